@@ -1,0 +1,37 @@
+# Prism developer commands. Python 3.11 is the only prerequisite.
+PYTHON ?= python3.11
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+
+.PHONY: render test extension bench venv clean
+
+# Creates .venv with the pinned requirements, once; re-running is a no-op.
+$(STAMP): requirements.txt
+	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -r requirements.txt
+	@touch $(STAMP)
+
+venv: $(STAMP)
+
+# Builds the demo scene and renders it with Prism to renders/demo.png.
+render: $(STAMP)
+	$(PY) demo/build_demo_scene.py renders/demo.blend
+	$(PY) render.py renders/demo.blend --samples 64 --output renders/demo.png
+
+# Runs the test suite.
+test: $(STAMP)
+	$(PY) -m pytest
+
+# Builds the installable extension zip(s) into dist/ and validates them.
+extension: $(STAMP)
+	$(PY) tools/build_extension.py
+
+# Speed-against-error benchmarks; writes benchmarks/results/ and docs/performance.md.
+bench: $(STAMP)
+	$(PY) -m pip install --quiet -r benchmarks/requirements.txt
+	$(PY) -m benchmarks.run
+
+clean:
+	rm -rf renders dist build .pytest_cache

@@ -1,0 +1,189 @@
+"""The scene the tracer renders: plain numpy arrays and dataclasses.
+
+The export layer (``engine/export``) builds a ``Scene`` from Blender's evaluated
+depsgraph; tests and benchmarks build one directly. Everything is in world space,
+in metres, with Blender's axis conventions (Z up; a camera looks down its local -Z
+with +Y up). Colours are scene-linear Rec.709 (Blender's default working space).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .errors import PrismInputError
+
+
+@dataclass(frozen=True)
+class SpectrumSpec:
+    """How an emitter's spectrum is defined.
+
+    kind: ``"rgb"`` (linear Rec.709 triple, upsampled against D65),
+    ``"blackbody"`` (``temperature_k``, 1000-40000 K) or ``"monochromatic"``
+    (a narrow line at ``wavelength_nm`` with full width ``width_nm``).
+    The spectrum is normalised so its luminance is that of the RGB white of the
+    same strength; strength/power lives on the light, not here.
+    """
+
+    kind: str = "rgb"
+    rgb: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    temperature_k: float = 6500.0
+    wavelength_nm: float = 550.0
+    width_nm: float = 10.0
+
+
+@dataclass
+class Material:
+    """One surface material.
+
+    kind: ``"diffuse"`` (Lambertian, ``base_color`` albedo), ``"conductor"``
+    (``conductor`` names a metal with measured n,k: "Au", "Ag", "Cu", "Al"; when
+    None the ``base_color`` is the normal-incidence reflectance), ``"dielectric"``
+    (glass: ``glass`` catalogue name, or ``glass_nd``/``glass_vd``, else the
+    constant ``ior``), ``"thin_film"`` (free-standing film such as a soap bubble of
+    ``film_thickness_nm`` and ``film_ior``: reflects and transmits).
+    ``roughness`` is Blender's roughness (GGX alpha = roughness**2).
+    A coating of ``coating_thickness_nm`` > 0 (index ``coating_ior``) puts
+    thin-film interference over a dielectric or conductor.
+    ``emission_strength`` > 0 makes the surface an emitter (radiance =
+    strength x spectrum, as Cycles' Emission strength).
+    """
+
+    name: str
+    kind: str = "diffuse"
+    base_color: tuple[float, float, float] = (0.8, 0.8, 0.8)
+    roughness: float = 0.0
+    conductor: str | None = None
+    glass: str | None = None
+    glass_nd: float | None = None
+    glass_vd: float | None = None
+    ior: float = 1.5
+    coating_thickness_nm: float = 0.0
+    coating_ior: float = 1.38
+    film_thickness_nm: float = 500.0
+    film_ior: float = 1.33
+    emission: SpectrumSpec | None = None
+    emission_strength: float = 0.0
+
+
+@dataclass
+class Light:
+    """A Blender light, in world space.
+
+    kind: ``"point"``, ``"spot"``, ``"area"`` or ``"sun"``.
+    ``power_w`` is Blender's Power in watts (point, spot, area): a point light of
+    power P has radiant intensity P / (4 pi) W/sr, an area light emits P over its
+    area into the hemisphere (radiance P / (pi * area)), as in Cycles.
+    ``irradiance_w_m2`` is a sun's Strength. ``direction`` is the light's local -Z
+    (where spots, areas and suns point); ``axis_u``/``axis_v`` are its local X/Y.
+    ``radius_m`` is the soft radius of point/spot lights (0 = a true point).
+    ``spot_size_rad`` is the full cone angle, ``spot_blend`` Blender's blend.
+    ``area_shape``: ``"rectangle"`` or ``"disk"`` with ``size_u_m`` x ``size_v_m``
+    (full extents; a disk uses them as diameters). ``sun_angle_rad`` is the
+    sun's angular diameter.
+    """
+
+    name: str
+    kind: str
+    position: np.ndarray
+    direction: np.ndarray = field(default_factory=lambda: np.array([0.0, 0.0, -1.0]))
+    axis_u: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0]))
+    axis_v: np.ndarray = field(default_factory=lambda: np.array([0.0, 1.0, 0.0]))
+    spectrum: SpectrumSpec = field(default_factory=SpectrumSpec)
+    power_w: float = 0.0
+    irradiance_w_m2: float = 0.0
+    radius_m: float = 0.0
+    spot_size_rad: float = np.pi / 4
+    spot_blend: float = 0.15
+    area_shape: str = "rectangle"
+    size_u_m: float = 1.0
+    size_v_m: float = 1.0
+    sun_angle_rad: float = 0.0
+
+
+@dataclass
+class Camera:
+    """The active camera.
+
+    ``camera_to_world`` is a 4x4 rigid transform (scale removed); the camera looks
+    down local -Z, +Y up, as Blender's. ``film_width_mm`` x ``film_height_mm`` is
+    the part of the sensor that maps onto the image (after Blender's sensor fit).
+    ``model``: ``"pinhole"``, ``"thin_lens"`` (``fstop`` and
+    ``focus_distance_m``) or ``"real_lens"`` (``lens_file``, traced element by
+    element; ``fstop`` scales its aperture stop, ``sensor_distance_mm`` None means
+    focus at ``focus_distance_m``). ``shift_x``/``shift_y`` are Blender's lens
+    shift in units of the larger film dimension.
+    """
+
+    name: str
+    camera_to_world: np.ndarray
+    resolution: tuple[int, int]
+    focal_length_mm: float = 50.0
+    film_width_mm: float = 36.0
+    film_height_mm: float = 24.0
+    model: str = "pinhole"
+    fstop: float = 2.8
+    focus_distance_m: float = 10.0
+    lens_file: str | None = None
+    sensor_distance_mm: float | None = None
+    shift_x: float = 0.0
+    shift_y: float = 0.0
+
+
+@dataclass
+class World:
+    """Constant background radiance: ``color`` (linear Rec.709) x ``strength``."""
+
+    color: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    strength: float = 1.0
+
+
+@dataclass
+class Scene:
+    """Triangle soup plus materials, lights, camera and world.
+
+    ``vertices`` float32 [V, 3] (m), ``triangles`` int32 [T, 3],
+    ``triangle_material`` int32 [T] indexes ``materials``, ``triangle_object``
+    int32 [T] indexes ``object_names`` (for messages), ``corner_normals`` float32
+    [T, 3, 3] (unit shading normals at each triangle corner) or None for flat
+    shading.
+    """
+
+    vertices: np.ndarray
+    triangles: np.ndarray
+    triangle_material: np.ndarray
+    materials: list[Material]
+    camera: Camera
+    lights: list[Light] = field(default_factory=list)
+    world: World = field(default_factory=World)
+    triangle_object: np.ndarray | None = None
+    object_names: list[str] = field(default_factory=list)
+    corner_normals: np.ndarray | None = None
+
+    @property
+    def triangle_count(self) -> int:
+        return int(len(self.triangles))
+
+    def object_name_of_triangle(self, index: int) -> str:
+        if self.triangle_object is None or not self.object_names:
+            return f"triangle {index}"
+        return self.object_names[int(self.triangle_object[index])]
+
+    def validate(self) -> None:
+        """Raise ``PrismInputError`` naming the object if the scene cannot render."""
+        if self.vertices.ndim != 2 or self.vertices.shape[1:] != (3,):
+            raise PrismInputError("Scene vertices must be an array of shape [V, 3].")
+        if len(self.triangles):
+            corners = self.vertices[self.triangles]
+            bad = ~np.isfinite(corners).all(axis=(1, 2))
+            if bad.any():
+                name = self.object_name_of_triangle(int(np.flatnonzero(bad)[0]))
+                raise PrismInputError(
+                    f"Object '{name}' has vertices that are NaN or infinite: "
+                    "fix or delete them (Mesh > Clean Up) before rendering."
+                )
+        if not np.all(np.isfinite(self.camera.camera_to_world)):
+            raise PrismInputError(
+                f"Camera '{self.camera.name}' has a non-finite transform: reset its location and rotation."
+            )
