@@ -82,6 +82,18 @@ def test_zip_holds_the_addon_and_its_wheels_only(linux_zip):
     assert manifest["build"]["generated"]["platforms"] == [PLATFORM]
 
 
+def test_missing_wheel_error_names_package_and_platform(tmp_path):
+    result = subprocess.run(
+        [sys.executable, str(BUILD_TOOL), "--platform", "macos-arm64", "--no-download",
+         "--wheels-dir", str(tmp_path / "empty"), "--output-dir", str(tmp_path / "dist"),
+         "--stage-dir", str(tmp_path / "stage")],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert result.returncode == 1
+    assert "macos-arm64" in result.stderr and "embreex==" in result.stderr, result.stderr
+    assert not (tmp_path / "dist").exists()
+
+
 def test_installed_zip_enables_and_renders(linux_zip, tmp_path):
     report_path = tmp_path / "report.json"
     user_dir = tmp_path / "blender-user"
@@ -98,7 +110,7 @@ def test_installed_zip_enables_and_renders(linux_zip, tmp_path):
     assert report_path.exists(), log
     report = json.loads(report_path.read_text())
     assert "error" not in report, report["error"] + log
-    assert result.returncode == 0, log
+    assert result.returncode == 0, f"the check died during its {report['phase']} phase: {log}"
 
     assert report["extensions_dir"].startswith(str(user_dir))  # the real config is untouched
     assert report["install_result"] == ["FINISHED"]
