@@ -144,7 +144,8 @@ def build(platforms: list[str] | None, output_dir: Path, stage_dir: Path, wheels
         pins = ew.resolve_pins(platform, requirement_pins)
         chosen[platform] = ew.ensure_wheels(pins, platform, wheels_dir, download=download)
     all_wheels = sorted({p for per in chosen.values() for p in per.values()}, key=lambda p: p.name)
-    print("runtime wheels:", ", ".join(str(p) for p in next(iter(chosen.values()))), flush=True)
+    for platform, per in chosen.items():
+        print(f"{platform}: " + ", ".join(path.name for path in per.values()), flush=True)
 
     patterns = list(manifest.get("build", {}).get("paths_exclude_pattern", []))
     stage_source(source_dir, stage_dir, patterns)
