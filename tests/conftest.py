@@ -1,0 +1,96 @@
+"""Shared fixtures: the add-on registered in the bpy module, a fresh scene per test,
+an initialised GPU for overlay tests, and the bpy exit workaround.
+
+Pure tracer tests import ``engine.tracer...`` directly (pytest.ini puts the
+repository root on sys.path); Blender tests use the add-on as the package
+``prism_spectral`` returned by the ``prism_addon`` fixture.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+from render import load_addon_package
+
+REPO_ROOT = Path(__file__).resolve().parents[1]
+
+_exit_status = {"code": None}
+
+
+@pytest.fixture(scope="session")
+def prism_addon():
+    """The add-on package, registered in the bpy module for the whole session."""
+    import bpy  # noqa: F401  (imported before the add-on, as Blender would)
+
+    addon = load_addon_package()
+    addon.register()
+    yield addon
+    addon.unregister()
+
+
+@pytest.fixture
+def fresh_scene(prism_addon):
+    """An empty factory scene with Prism as its render engine."""
+    import bpy
+
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRISM"
+    return scene
+
+
+def _initialise_gpu():
+    """Render one tiny Workbench frame: that brings up Blender's GPU backend
+    (Mesa EGL, llvmpipe, when headless) so offscreen drawing works."""
+    import bpy
+
+    scene = bpy.context.scene
+    previous = scene.render.engine, scene.render.resolution_x, scene.render.resolution_y
+    scene.render.engine = "BLENDER_WORKBENCH"
+    scene.render.resolution_x = scene.render.resolution_y = 4
+    if scene.camera is None:
+        data = bpy.data.cameras.new("gpu_init_camera")
+        camera = bpy.data.objects.new("gpu_init_camera", data)
+        scene.collection.objects.link(camera)
+        scene.camera = camera
+    bpy.ops.render.render()
+    scene.render.engine, scene.render.resolution_x, scene.render.resolution_y = previous
+    import gpu
+
+    gpu.types.GPUOffScreen(4, 4).free()
+
+
+@pytest.fixture(scope="session")
+def gpu_ready(prism_addon):
+    """The GPU initialised for offscreen drawing; in CI a failure fails the test."""
+    try:
+        _initialise_gpu()
+    except Exception as error:  # noqa: BLE001 - any failure means no GPU here
+        message = (
+            f"Could not initialise Blender's GPU backend headless ({error}). "
+            "Install Mesa EGL: apt-get install -y libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1"
+        )
+        if os.environ.get("CI"):
+            pytest.fail(message)
+        pytest.skip(message)
+    return True
+
+
+def pytest_sessionfinish(session, exitstatus):
+    _exit_status["code"] = int(exitstatus)
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_unconfigure(config):
+    """The bpy module can hang for ever in a global destructor at interpreter exit.
+
+    Once pytest has printed its summary, leave at once with the real exit status.
+    """
+    if "bpy" in sys.modules and _exit_status["code"] is not None:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(_exit_status["code"])
