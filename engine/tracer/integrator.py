@@ -1,0 +1,242 @@
+"""Wavefront unidirectional path tracer with next-event estimation and MIS.
+
+One call traces a chunk of camera paths bounce by bounce: every step is a numpy
+operation over all live paths (one Embree batch per bounce, one occlusion batch
+for shadow rays). Radiance is carried per wavelength [n,K].
+
+Estimator. At each surface vertex (up to ``max_bounces`` bounces, as Cycles) one
+light is chosen uniformly and sampled (next-event estimation) and the BSDF is
+sampled to continue. Hits on emitters by BSDF-sampled rays and light samples are
+combined with the power heuristic. ``use_mis=False``: light samples carry full
+weight, emitters hit by BSDF rays count only after a delta (specular) bounce, on
+camera rays, or if they are never light-sampled (the world). Both are unbiased.
+Blender lights are invisible to camera rays (they appear in reflections); the
+world is found only by escaping rays (BSDF sampling), so its weight is 1.
+Russian roulette from ``russian_roulette_depth`` divides survivors by their
+survival probability.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .path_state import collapse_to_hero, offset_origin, roll_columns, shading_frame, unroll_columns
+from .sampling import power_heuristic, to_local, to_world
+
+SHADOW_SHORTEN = 1e-4  # shadow rays stop this fraction short of the light sample
+
+
+class Integrator:
+    def __init__(self, accel, triangles, bsdfs, lights, mode, camera, settings, analysis):
+        self.accel = accel
+        self.tris = triangles
+        self.bsdfs = bsdfs
+        self.lights = lights
+        self.mode = mode
+        self.camera = camera
+        self.settings = settings
+        self.analysis = analysis
+        self.use_mis = bool(settings.use_mis)
+        self.max_depth = int(settings.max_bounces)
+        self.rr_depth = int(settings.russian_roulette_depth)
+        self.delta_material = np.array([b is not None and b.delta for b in bsdfs] + [True], dtype=bool)
+        self.two_sided = np.array([b is None or b.two_sided for b in bsdfs] + [True], dtype=bool)
+        self.disperses = np.array([b is not None and b.disperses for b in bsdfs] + [False], dtype=bool)
+
+    # -- helpers over material groups ------------------------------------------------
+    def _groups(self, mat):
+        for m in np.unique(mat):
+            yield int(m), np.flatnonzero(mat == m)
+
+    def _eval(self, mat, wo, wi, lam, hero, collapsed):
+        f = np.zeros(lam.shape)
+        pdf = np.zeros(len(mat))
+        for m, rows in self._groups(mat):
+            fm, pm = self.bsdfs[m].eval(wo[rows], wi[rows], lam[rows], hero[rows], collapsed[rows])
+            f[rows], pdf[rows] = fm, pm
+        return f, pdf
+
+    def _sample(self, mat, wo, lam, u, hero, collapsed):
+        n = len(mat)
+        wi = np.zeros((n, 3))
+        weight = np.zeros(lam.shape)
+        pdf = np.zeros(n)
+        delta = np.zeros(n, dtype=bool)
+        eta_scale = np.ones(n)
+        for m, rows in self._groups(mat):
+            s = self.bsdfs[m].sample(wo[rows], lam[rows], u[rows], hero[rows], collapsed[rows])
+            wi[rows], weight[rows], pdf[rows], delta[rows], eta_scale[rows] = (
+                s.wi, s.weight, s.pdf, s.delta, s.eta_scale)
+        return wi, weight, pdf, delta, eta_scale
+
+    # -- camera ----------------------------------------------------------------------
+    def camera_rays(self, pixel_xy, lens_uv, lam, hero):
+        if getattr(self.camera, "disperses", False):
+            o, d, w = self.camera.generate_rays(pixel_xy, lens_uv, roll_columns(lam, hero))
+            return o, d, unroll_columns(np.asarray(w, dtype=np.float64), hero), True
+        o, d, w = self.camera.generate_rays(pixel_xy, lens_uv, lam)
+        return o, d, np.asarray(w, dtype=np.float64), False
+
+    # -- the path loop ---------------------------------------------------------------
+    def trace(self, pixel_xy, lens_uv, lam, hero, rng):
+        """Trace one path per row; returns (radiance [n,K], rays_cast)."""
+        n, k = lam.shape
+        o, d, beta, cam_collapsed = self.camera_rays(pixel_xy, lens_uv, lam, hero)
+        radiance = np.zeros((n, k))
+        idx = np.arange(n)
+        collapsed = np.full(n, cam_collapsed)
+        prev_pdf = np.zeros(n)
+        prev_delta = np.ones(n, dtype=bool)
+        eta_scale = np.ones(n)
+        rays = 0
+        lights = self.lights
+        for depth in range(self.max_depth + 2):
+            if len(idx) == 0:
+                break
+            tri, t, bu, bv = self.accel.intersect(o, d)
+            rays += len(idx)
+            light_id = np.full(len(idx), -1)
+            if depth > 0:
+                for li, light in lights.hittable:
+                    tl = light.intersect(o, d)
+                    closer = tl < t
+                    t = np.where(closer, tl, t)
+                    light_id = np.where(closer, li, light_id)
+            on_light = light_id >= 0
+            tri = np.where(on_light, -1, tri)
+            self._emission_from_hits(radiance, idx, o, d, t, tri, light_id, lam, beta, prev_pdf, prev_delta, depth)
+            if depth == self.max_depth + 1:
+                break
+            keep = tri >= 0
+            if not keep.all():
+                idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale = (
+                    a[keep] for a in (idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale))
+            if len(idx) == 0:
+                break
+            p, ng, ns = self.tris.surface(tri, bu, bv)
+            mat = self.tris.material[tri]
+            wo = -d
+            if self.analysis.dispersion:
+                disp = self.disperses[mat] & ~collapsed
+                if disp.any():
+                    rows = np.flatnonzero(disp)
+                    sub_c = collapsed[rows]
+                    beta[rows] = collapse_to_hero(beta[rows], hero[rows], sub_c)
+                    collapsed[rows] = sub_c
+            flip = self.two_sided[mat] & ((wo * ng).sum(1) < 0)
+            nf = np.where(flip[:, None], -ns, ns)
+            frame = shading_frame(nf)
+            wo_l = to_local(wo, *frame)
+            if len(lights):
+                add, r = self._next_event(p, ng, frame, mat, wo, wo_l, lam, hero, collapsed, beta, rng)
+                radiance[idx] += add
+                rays += r
+            u = rng.random((len(idx), 3))
+            wi_l, weight, pdf, delta, es = self._sample(mat, wo_l, lam, u, hero, collapsed)
+            wi = to_world(wi_l, *frame)
+            ok = self._consistent(wo, wi, ng, wo_l, wi_l) & (weight > 0).any(1)
+            beta = beta * weight
+            eta_scale = eta_scale * es
+            if depth + 1 >= self.rr_depth:
+                k_eff = np.where(collapsed, k, 1)
+                survive = np.minimum(1.0, beta.max(1) / k_eff * eta_scale)
+                alive = rng.random(len(idx)) < survive
+                beta = beta / np.where(alive, survive, 1.0)[:, None]
+                ok &= alive
+            o = offset_origin(p, ng, wi)
+            d = wi
+            prev_pdf, prev_delta = pdf, delta
+            if not ok.all():
+                idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta = (
+                    a[ok] for a in (idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta))
+        return radiance, rays
+
+    @staticmethod
+    def _consistent(wo, wi, ng, wo_l, wi_l):
+        """Reflection must stay on wo's side of the geometric surface, transmission cross it."""
+        reflect = wo_l[:, 2] * wi_l[:, 2] > 0
+        same = (wo * ng).sum(1) * (wi * ng).sum(1) > 0
+        return reflect == same
+
+    def _mis_emitter(self, pdf_light, prev_pdf, prev_delta):
+        if self.use_mis:
+            return np.where(prev_delta, 1.0, power_heuristic(prev_pdf, pdf_light))
+        return prev_delta.astype(np.float64)
+
+    def _emission_from_hits(self, radiance, idx, o, d, t, tri, light_id, lam, beta, prev_pdf, prev_delta, depth):
+        lights = self.lights
+        sel = lights.select_pdf
+        for li, light in lights.hittable:
+            rows = np.flatnonzero(light_id == li)
+            if len(rows):
+                le = light.emitted(o[rows], d[rows], t[rows], lam[rows])
+                w = self._mis_emitter(sel * light.pdf(o[rows], d[rows], t[rows]), prev_pdf[rows], prev_delta[rows])
+                radiance[idx[rows]] += beta[rows] * le * w[:, None]
+        escaped = (tri < 0) & (light_id < 0)
+        if escaped.any():
+            rows = np.flatnonzero(escaped)
+            if not lights.world.black:
+                radiance[idx[rows]] += beta[rows] * lights.world.escaped(d[rows], lam[rows])
+            if depth > 0:
+                for li, sun in lights.distant:
+                    le = sun.escaped(d[rows], lam[rows])
+                    w = self._mis_emitter(sel * sun.pdf_escaped(d[rows]), prev_pdf[rows], prev_delta[rows])
+                    radiance[idx[rows]] += beta[rows] * le * w[:, None]
+        mesh = lights.mesh
+        if mesh is not None:
+            hit = tri >= 0
+            rows = np.flatnonzero(hit)
+            rows = rows[mesh.row_of_triangle[tri[rows]] >= 0]
+            if len(rows):
+                le = mesh.radiance(tri[rows], lam[rows])
+                if depth == 0:
+                    w = np.ones(len(rows))
+                else:
+                    pdf_l = sel * mesh.pdf(o[rows], d[rows], t[rows], tri[rows])
+                    w = self._mis_emitter(pdf_l, prev_pdf[rows], prev_delta[rows])
+                radiance[idx[rows]] += beta[rows] * le * w[:, None]
+
+    def _next_event(self, p, ng, frame, mat, wo, wo_l, lam, hero, collapsed, beta, rng):
+        """Light-sampled contribution [n,K] at the current vertices, and rays cast."""
+        n, k = lam.shape
+        out = np.zeros((n, k))
+        rows = np.flatnonzero(~self.delta_material[mat])
+        if len(rows) == 0:
+            return out, 0
+        lights = self.lights
+        m = len(rows)
+        u = rng.random((m, 4))
+        choice = np.minimum((u[:, 3] * len(lights)).astype(np.int64), len(lights) - 1)
+        wi = np.zeros((m, 3))
+        dist = np.zeros(m)
+        li_val = np.zeros((m, k))
+        pdf_l = np.zeros(m)
+        is_delta = np.zeros(m, dtype=bool)
+        pr = p[rows]
+        lr = lam[rows]
+        for j in np.unique(choice):
+            sub = np.flatnonzero(choice == j)
+            light = lights.lights[j]
+            wi[sub], dist[sub], li_val[sub], pdf_l[sub] = light.sample(pr[sub], u[sub, :3], lr[sub])
+            is_delta[sub] = light.delta
+        pdf_l = pdf_l * lights.select_pdf
+        fr = frame[0][rows], frame[1][rows], frame[2][rows]
+        wi_l = to_local(wi, *fr)
+        f, pdf_b = self._eval(mat[rows], wo_l[rows], wi_l, lr, hero[rows], collapsed[rows])
+        ok = (pdf_l > 0) & self._consistent(wo[rows], wi, ng[rows], wo_l[rows], wi_l)
+        if self.use_mis:
+            w = np.where(is_delta, 1.0, power_heuristic(pdf_l, pdf_b))
+        else:
+            w = np.ones(m)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            scale = np.where(ok, w * np.abs(wi_l[:, 2]) / np.where(ok, pdf_l, 1.0), 0.0)
+        contrib = beta[rows] * f * li_val * scale[:, None]
+        send = (contrib > 0).any(1)
+        if not send.any():
+            return out, 0
+        s = np.flatnonzero(send)
+        origin = offset_origin(pr[s], ng[rows][s], wi[s])
+        tmax = np.where(np.isfinite(dist[s]), dist[s] * (1.0 - SHADOW_SHORTEN), 1e30)
+        blocked = self.accel.occluded(origin, wi[s], tmax)
+        out[rows[s]] = np.where(blocked[:, None], 0.0, contrib[s])
+        return out, len(s)

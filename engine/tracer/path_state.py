@@ -1,0 +1,91 @@
+"""Geometry helpers of the integrator: hit points, normals, frames, ray offsets,
+and the hero-wavelength bookkeeping of a wavefront of paths."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .sampling import orthonormal_basis
+
+# Secondary rays start this far (relative to the largest coordinate of the hit
+# point) off the surface: ~30 float32 ulps, above Embree's float32 error.
+OFFSET_RELATIVE = 4e-6
+OFFSET_ABSOLUTE = 1e-7
+
+
+class TriangleData:
+    """Per-triangle data the shading needs (float32 storage, float64 on use)."""
+
+    def __init__(self, scene):
+        corners = np.asarray(scene.vertices, dtype=np.float32)[np.asarray(scene.triangles, dtype=np.int64)]
+        self.v0 = corners[:, 0].copy()
+        self.e1 = corners[:, 1] - corners[:, 0]
+        self.e2 = corners[:, 2] - corners[:, 0]
+        cross = np.cross(self.e1.astype(np.float64), self.e2.astype(np.float64))
+        length = np.linalg.norm(cross, axis=1, keepdims=True)
+        self.normal = (cross / np.where(length > 0, length, 1.0)).astype(np.float32)
+        self.material = np.asarray(scene.triangle_material, dtype=np.int64)
+        self.corner_normals = None
+        if scene.corner_normals is not None:
+            self.corner_normals = np.asarray(scene.corner_normals, dtype=np.float32)
+
+    def surface(self, tri, u, v):
+        """Hit point [n,3], unit geometric normal [n,3] and shading normal [n,3] (f64)."""
+        v0 = self.v0[tri].astype(np.float64)
+        p = v0 + u[:, None] * self.e1[tri] + v[:, None] * self.e2[tri]
+        ng = self.normal[tri].astype(np.float64)
+        if self.corner_normals is None:
+            return p, ng, ng
+        cn = self.corner_normals[tri].astype(np.float64)
+        ns = (1.0 - u - v)[:, None] * cn[:, 0] + u[:, None] * cn[:, 1] + v[:, None] * cn[:, 2]
+        length = np.linalg.norm(ns, axis=1, keepdims=True)
+        good = (length[:, 0] > 1e-12) & np.isfinite(length[:, 0])
+        ns = np.where(good[:, None], ns / np.where(good, length[:, 0], 1.0)[:, None], ng)
+        ns *= np.where((ns * ng).sum(1) < 0, -1.0, 1.0)[:, None]  # same side as the face
+        return p, ng, ns
+
+
+def offset_origin(p: np.ndarray, ng: np.ndarray, toward: np.ndarray) -> np.ndarray:
+    """Move points ``p`` off their surface along ``ng`` to the side of ``toward``."""
+    eps = OFFSET_RELATIVE * np.abs(p).max(axis=1) + OFFSET_ABSOLUTE
+    side = np.where((toward * ng).sum(1) >= 0, 1.0, -1.0)
+    return p + (eps * side)[:, None] * ng
+
+
+def shading_frame(n: np.ndarray):
+    """(s, t, n) orthonormal frame around unit normals [n,3]."""
+    s, t = orthonormal_basis(n)
+    return s, t, n
+
+
+def collapse_to_hero(beta: np.ndarray, hero: np.ndarray, collapsed: np.ndarray) -> np.ndarray:
+    """Keep only each path's hero wavelength (x K, others 0) where not yet collapsed.
+
+    Unbiased for every column because the hero column is uniform over columns."""
+    n, k = beta.shape
+    todo = ~collapsed
+    if not todo.any() or k == 1:
+        collapsed |= True
+        return beta
+    rows = np.flatnonzero(todo)
+    kept = beta[rows, hero[rows]] * k
+    beta[rows] = 0.0
+    beta[rows, hero[rows]] = kept
+    collapsed[rows] = True
+    return beta
+
+
+def roll_columns(values: np.ndarray, hero: np.ndarray) -> np.ndarray:
+    """Reorder columns so each row's hero column comes first."""
+    k = values.shape[1]
+    cols = (np.arange(k)[None, :] + hero[:, None]) % k
+    return np.take_along_axis(values, cols, axis=1)
+
+
+def unroll_columns(values: np.ndarray, hero: np.ndarray) -> np.ndarray:
+    """Inverse of ``roll_columns``."""
+    k = values.shape[1]
+    cols = (np.arange(k)[None, :] + hero[:, None]) % k
+    out = np.empty_like(values)
+    np.put_along_axis(out, cols, values, axis=1)
+    return out

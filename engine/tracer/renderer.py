@@ -1,0 +1,171 @@
+"""The Renderer API (see TEAM.md): progressive spectral path tracing of a ``Scene``.
+
+    renderer = Renderer(scene, settings, progress=None)
+    renderer.render_pass()          # + settings.samples_per_pass samples per pixel
+    renderer.image_rgb()            # float32 [H, W, 3] scene-linear Rec.709, row 0 = top
+    renderer.variance_rgb()         # float32 [H, W, 3] variance of the mean
+    renderer.samples_done, renderer.strategy, renderer.stats
+
+A pass is cut into fixed-size chunks of paths (independent of the thread count,
+so the seed alone fixes the image); chunks run on a thread pool, Embree and the
+large numpy kernels release the GIL. Pixel positions come from a per-pixel
+rotated R2 sequence indexed by the pixel's sample number; with the "box" filter
+they are uniform in the pixel, with "gaussian" they follow a Gaussian of
+standard deviation ``filter_width_px`` / 3 truncated at ``filter_width_px``
+(filter importance sampling, weight 1). ``progress(fraction)`` is called after
+each chunk with the fraction of the current pass done.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from . import spectra
+from .accel import Accel, _threads
+from .analysis import analyse
+from .bsdf import make_bsdf
+from .cameras import make_camera
+from .errors import PrismInputError
+from .film import Film
+from .integrator import Integrator
+from .lights import LightSet
+from .path_state import TriangleData
+from .sampling import pass_rng, pixel_offsets, r1_samples, r2_samples
+
+CHUNK_PATHS = 1 << 15
+
+
+def _filter_offsets(u, kind, width):
+    if kind == "box":
+        return u
+    from scipy.special import ndtr, ndtri
+
+    sigma = width / 3.0
+    lo = ndtr(-width / sigma)
+    p = lo + u * (1.0 - 2.0 * lo)
+    return 0.5 + sigma * ndtri(np.clip(p, 1e-12, 1 - 1e-12))
+
+
+class Renderer:
+    def __init__(self, scene, settings, progress=None):
+        started = time.perf_counter()
+        settings.validate()
+        scene.validate()
+        self.scene = scene
+        self.settings = settings
+        self.progress = progress
+        self.pixel_filter = getattr(settings, "pixel_filter", "box")
+        self.filter_width = float(getattr(settings, "filter_width_px", 1.5))
+        if self.pixel_filter not in ("box", "gaussian") or not self.filter_width > 0:
+            raise PrismInputError(f"Pixel filter '{self.pixel_filter}' is not supported: use box or gaussian.")
+        self.mode = spectra.WavelengthMode(settings)
+        self.camera = make_camera(scene.camera, settings)
+        width, height = (int(r) for r in scene.camera.resolution)
+        self.width, self.height = width, height
+        used = set(np.unique(np.asarray(scene.triangle_material)).tolist()) if len(scene.triangles) else set()
+        self.bsdfs = [make_bsdf(m, spectra) if i in used else None for i, m in enumerate(scene.materials)]
+        self.analysis = analyse(scene, settings, self.bsdfs, self.camera)
+        self.accel = Accel(scene.vertices, scene.triangles, settings.threads)
+        self.lights = LightSet(scene, spectra, use_mesh_lights=self.analysis.mesh_lights)
+        self.integrator = Integrator(
+            self.accel, TriangleData(scene), self.bsdfs, self.lights, self.mode, self.camera, settings, self.analysis
+        )
+        self.film = Film(width, height)
+        self._pixels = self._pixel_list(settings.border)
+        count = width * height
+        self._rot_pixel = pixel_offsets(settings.seed, count, 2, 1)
+        self._rot_lens = pixel_offsets(settings.seed, count, 2, 2)
+        self._rot_lambda = pixel_offsets(settings.seed, count, 1, 3)[:, 0]
+        self._pool = ThreadPoolExecutor(_threads(settings.threads))
+        self.samples_done = 0
+        self._passes = 0
+        self.strategy = self.analysis.strategy(settings.use_mis, self.pixel_filter)
+        warnings = []
+        if self.accel.dropped_triangles:
+            warnings.append(f"{self.accel.dropped_triangles} zero-area triangle(s) dropped")
+        self.stats = {
+            "rays_cast": 0,
+            "seconds": 0.0,
+            "setup_seconds": time.perf_counter() - started,
+            "nan_samples": 0,
+            "rejected_rays": 0,
+            "dropped_triangles": self.accel.dropped_triangles,
+            "paths": 0,
+            "warnings": warnings,
+            "strategy": self.strategy,
+        }
+
+    def _pixel_list(self, border):
+        if border is None:
+            return np.arange(self.width * self.height, dtype=np.int64)
+        x0, y0, x1, y1 = (int(b) for b in border)
+        x0, x1 = max(0, x0), min(self.width, x1)
+        y0, y1 = max(0, y0), min(self.height, y1)
+        if x1 <= x0 or y1 <= y0:
+            raise PrismInputError("The render border is empty: enlarge it or turn it off.")
+        ys, xs = np.mgrid[y0:y1, x0:x1]
+        return (ys * self.width + xs).ravel().astype(np.int64)
+
+    def _chunk(self, pixel, sample, chunk_index):
+        rng = pass_rng(self.settings.seed, self._passes, chunk_index)
+        n = len(pixel)
+        xy = np.column_stack([pixel % self.width, pixel // self.width]).astype(np.float64)
+        xy += _filter_offsets(r2_samples(sample, self._rot_pixel[pixel]), self.pixel_filter, self.filter_width)
+        lens_uv = r2_samples(sample, self._rot_lens[pixel])
+        if self.mode.dimensions == 1:
+            u_lam = r1_samples(sample, self._rot_lambda[pixel])[:, None]
+        else:
+            u_lam = rng.random((n, 3))
+        lam, lam_pdf = self.mode.sample(u_lam)
+        hero = rng.integers(0, lam.shape[1], n)
+        radiance, rays = self.integrator.trace(xy, lens_uv, lam, hero, rng)
+        return self.mode.to_rgb(radiance, lam, lam_pdf), rays
+
+    def render_pass(self) -> None:
+        """Add ``samples_per_pass`` samples (fewer on the last pass) to every pixel."""
+        started = time.perf_counter()
+        remaining = self.settings.samples - self.samples_done
+        spp = min(self.settings.samples_per_pass, remaining) if remaining > 0 else self.settings.samples_per_pass
+        pixel = np.repeat(self._pixels, spp)
+        sample = self.samples_done + np.tile(np.arange(spp), len(self._pixels))
+        bounds = list(range(0, len(pixel), CHUNK_PATHS)) + [len(pixel)]
+        jobs = [
+            self._pool.submit(self._chunk, pixel[a:b], sample[a:b], i)
+            for i, (a, b) in enumerate(zip(bounds[:-1], bounds[1:]))
+        ]
+        for i, (job, a, b) in enumerate(zip(jobs, bounds[:-1], bounds[1:])):
+            rgb, rays = job.result()
+            self.film.add(pixel[a:b], rgb)
+            self.stats["rays_cast"] += rays
+            if self.progress is not None:
+                self.progress((i + 1) / len(jobs))
+        self.samples_done += spp
+        self._passes += 1
+        self.stats["paths"] += len(pixel)
+        self.stats["nan_samples"] = self.film.nan_samples
+        self.stats["rejected_rays"] = self.accel.rejected_rays
+        self.stats["seconds"] += time.perf_counter() - started
+        self.stats["samples"] = self.samples_done
+
+    def image_rgb(self) -> np.ndarray:
+        """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top."""
+        return self.film.mean().astype(np.float32)
+
+    def variance_rgb(self) -> np.ndarray:
+        """Per-pixel variance of the mean estimate, float32 [H, W, 3]."""
+        return self.film.variance_of_mean().astype(np.float32)
+
+    def close(self) -> None:
+        self._pool.shutdown(wait=True)
+        self.accel.close()
+
+    def __del__(self):
+        try:
+            self._pool.shutdown(wait=False)
+            self.accel.close()
+        except Exception:
+            pass

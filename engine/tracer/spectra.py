@@ -1,0 +1,127 @@
+"""Scene data to per-wavelength evaluators, using the physics modules.
+
+Everything here returns callables ``f(wavelength_nm [n,K]) -> [n,K]`` (or the
+wavelength-mode helper), so the integrator never deals with RGB: reflectances
+are upsampled from RGB (sigmoid-polynomial, ``rgb_to_spectrum``), emitters use
+``emission_spectrum`` (luminance-normalised), glasses their catalogue
+dispersion, metals their measured n, k.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from .scene import SpectrumSpec
+
+
+class WavelengthMode:
+    """Sampling of the wavelengths a path carries and conversion of its radiance to RGB."""
+
+    def __init__(self, settings):
+        self.mode = settings.wavelength_mode
+        if self.mode == "cie":
+            self.count = int(settings.wavelengths_per_path)
+            self.channels = None
+        else:
+            from .wavelengths import GaussianChannels
+
+            self.count = 3
+            self.channels = GaussianChannels(settings.channel_means_nm, settings.channel_sigmas_nm)
+
+    @property
+    def dimensions(self) -> int:
+        """Uniform numbers one path needs to draw its wavelengths."""
+        return 1 if self.mode == "cie" else 3
+
+    def sample(self, u: np.ndarray):
+        """``u`` [n, dimensions] -> (wavelength_nm [n,K], pdf [n,K])."""
+        if self.mode == "cie":
+            from .wavelengths import sample_visible_wavelengths
+
+            return sample_visible_wavelengths(u[:, 0], self.count)
+        return self.channels.sample(u)
+
+    def to_rgb(self, radiance, wavelength_nm, pdf) -> np.ndarray:
+        """Per-path spectral radiance [n,K] to scene-linear Rec.709 [n,3]."""
+        from . import cie
+
+        if self.mode == "cie":
+            return cie.xyz_to_linear_rec709(cie.spectral_samples_to_xyz(radiance, wavelength_nm, pdf))
+        return cie.gaussian_channel_samples_to_rgb(radiance, wavelength_nm, pdf, self.channels)
+
+
+class _Constant:
+    def __init__(self, value):
+        self.value = float(value)
+
+    def __call__(self, lam):
+        return np.full(np.shape(lam), self.value)
+
+
+class _Reflectance:
+    def __init__(self, rgb):
+        from .rgb_to_spectrum import reflectance_coefficients
+
+        self.coefficients = reflectance_coefficients(np.asarray(rgb, dtype=np.float64))
+
+    def __call__(self, lam):
+        from .rgb_to_spectrum import evaluate_sigmoid_polynomial
+
+        return np.asarray(evaluate_sigmoid_polynomial(self.coefficients, lam), dtype=np.float64)
+
+
+def reflectance(rgb) -> callable:
+    """Reflectance spectrum (values in [0,1]) upsampled from a linear Rec.709 albedo."""
+    rgb = tuple(float(c) for c in rgb)
+    if rgb[0] == rgb[1] == rgb[2] and rgb[0] in (0.0, 1.0):
+        return _Constant(rgb[0])  # the sigmoid only approaches 0 and 1
+    return _cached_reflectance(rgb)
+
+
+@lru_cache(maxsize=256)
+def _cached_reflectance(rgb):
+    return _Reflectance(rgb)
+
+
+class _Emission:
+    def __init__(self, spec: SpectrumSpec):
+        from .emission_spectrum import emission_spectrum
+
+        self.spectrum = emission_spectrum(spec)
+
+    def __call__(self, lam):
+        return np.asarray(self.spectrum.evaluate(lam), dtype=np.float64)
+
+
+@lru_cache(maxsize=256)
+def emission(spec: SpectrumSpec) -> callable:
+    """Luminance-normalised emission spectrum of an emitter (radiance per unit strength)."""
+    return _Emission(spec)
+
+
+def world_emission(color) -> callable:
+    """Background radiance spectrum per unit strength for a linear Rec.709 colour."""
+    return emission(SpectrumSpec(kind="rgb", rgb=tuple(float(c) for c in color)))
+
+
+def glass_of(material):
+    """The material's ``Glass`` (catalogue name, n_d/V_d, or constant ``ior``)."""
+    from . import glass
+
+    if material.glass:
+        return glass.glass_by_name(material.glass)
+    if material.glass_nd is not None and material.glass_vd is not None:
+        return glass.glass_from_abbe(material.glass_nd, material.glass_vd)
+    if material.glass_nd is not None:
+        return glass.constant_ior(material.glass_nd)
+    return glass.constant_ior(material.ior)
+
+
+def conductor_nk(name: str, lam: np.ndarray):
+    """Complex index parts (n [n,K], k [n,K]) of a named metal."""
+    from .conductors import conductor_nk as nk
+
+    n, k = nk(name, lam)
+    return np.asarray(n, dtype=np.float64), np.asarray(k, dtype=np.float64)
