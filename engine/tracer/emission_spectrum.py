@@ -1,0 +1,116 @@
+"""Emission spectra of lights and emissive materials, from a ``SpectrumSpec``.
+
+Normalisation: every spectrum returned here has the luminance of RGB white,
+Y = 1 in ``cie``'s normalisation (Y = ∫ S ȳ dλ / ∫ ȳ dλ), except that an ``rgb``
+spectrum keeps the luminance of its colour (RGB (r, g, b) renders as (r, g, b),
+like Cycles' light colour). The light's strength/power multiplies it; nothing
+else does. So a blackbody's temperature changes its colour, not its brightness,
+and a monochromatic line is as bright (in luminance) as a white light.
+
+Sampling note for the tracer: a monochromatic line is a narrow feature that the
+``cie`` wavelength sampler hits rarely (noise). ``.support_nm`` gives the
+interval (lo, hi) outside which ``evaluate`` is exactly 0, so the tracer can
+importance-sample it if it wants; it is the visible range for the broad kinds.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import cie
+from .blackbody import blackbody_luminance_normalised, check_temperature
+from .errors import PrismInputError
+from .rgb_to_spectrum import RGBEmission
+from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
+
+SPECTRUM_KINDS = ("rgb", "blackbody", "monochromatic")
+_LINE_HALF_SUPPORT_FWHM = 3.0  # the Gaussian line is cut at ±3 FWHM (±7 sigma, mass lost < 1e-11)
+
+
+class RGBEmissionSpectrum:
+    """Linear Rec.709 colour upsampled against D65 (renders as that colour)."""
+
+    kind = "rgb"
+
+    def __init__(self, rgb):
+        self._emission = RGBEmission(rgb)
+        self.support_nm = (VISIBLE_MIN_NM, VISIBLE_MAX_NM)
+
+    def evaluate(self, wavelength_nm):
+        """Relative spectral radiance at ``wavelength_nm`` (any shape)."""
+        return self._emission.evaluate(wavelength_nm)
+
+
+class BlackbodyEmissionSpectrum:
+    """Planck spectrum at ``temperature_k`` scaled to luminance Y = 1."""
+
+    kind = "blackbody"
+
+    def __init__(self, temperature_k):
+        self.temperature_k = float(check_temperature(temperature_k))
+        self.support_nm = (VISIBLE_MIN_NM, VISIBLE_MAX_NM)
+        blackbody_luminance_normalised(550.0, self.temperature_k)  # warm the normalisation now
+
+    def evaluate(self, wavelength_nm):
+        """Relative spectral radiance at ``wavelength_nm`` (any shape)."""
+        return blackbody_luminance_normalised(wavelength_nm, self.temperature_k)
+
+
+class MonochromaticEmissionSpectrum:
+    """A Gaussian line centred at ``wavelength_nm`` with full width at half maximum ``width_nm``.
+
+    Cut to ``support_nm`` (±3 FWHM, within 360-830 nm) and scaled to Y = 1. A
+    line near the ends of the visible range, where ȳ is tiny, needs a very large
+    radiance to reach Y = 1: its colour is then mostly X and Z.
+    """
+
+    kind = "monochromatic"
+
+    def __init__(self, wavelength_nm, width_nm):
+        centre, width = float(wavelength_nm), float(width_nm)
+        if not VISIBLE_MIN_NM <= centre <= VISIBLE_MAX_NM:
+            raise PrismInputError(
+                f"Monochromatic wavelength {centre:g} nm is outside {VISIBLE_MIN_NM:.0f}–{VISIBLE_MAX_NM:.0f} nm: "
+                "pick a visible wavelength."
+            )
+        if not (math.isfinite(width) and width > 0.0):
+            raise PrismInputError(
+                f"Monochromatic line width {width:g} nm must be a positive number of nanometres (e.g. 10)."
+            )
+        self.wavelength_nm = centre
+        self.width_nm = width
+        self.sigma_nm = width / (2.0 * math.sqrt(2.0 * math.log(2.0)))
+        half = _LINE_HALF_SUPPORT_FWHM * width
+        self.support_nm = (max(VISIBLE_MIN_NM, centre - half), min(VISIBLE_MAX_NM, centre + half))
+        # Integrate on a grid fine enough for the narrowest line (the 1 nm CMF grid is not).
+        grid = np.linspace(self.support_nm[0], self.support_nm[1], 2001)
+        luminance = np.trapz(self._shape(grid) * cie.cie_xyz_cmf(grid)[:, 1], grid) / cie.CMF_Y_INTEGRAL
+        if not luminance > 0.0:
+            raise PrismInputError(
+                f"Monochromatic line at {centre:g} nm has no visible luminance: move it into 360–830 nm."
+            )
+        self._scale = 1.0 / luminance
+
+    def _shape(self, wavelength_nm):
+        wavelength_nm = np.asarray(wavelength_nm, dtype=np.float64)
+        z = (wavelength_nm - self.wavelength_nm) / self.sigma_nm
+        inside = (wavelength_nm >= self.support_nm[0]) & (wavelength_nm <= self.support_nm[1])
+        return np.where(inside, np.exp(-0.5 * z * z), 0.0)
+
+    def evaluate(self, wavelength_nm):
+        """Relative spectral radiance at ``wavelength_nm`` (any shape); 0 outside ``support_nm``."""
+        return self._scale * self._shape(wavelength_nm)
+
+
+def emission_spectrum(spec):
+    """The emission spectrum object (``.evaluate(wavelength_nm)``, ``.support_nm``) for a ``SpectrumSpec``."""
+    kind = getattr(spec, "kind", None)
+    if kind == "rgb":
+        return RGBEmissionSpectrum(spec.rgb)
+    if kind == "blackbody":
+        return BlackbodyEmissionSpectrum(spec.temperature_k)
+    if kind == "monochromatic":
+        return MonochromaticEmissionSpectrum(spec.wavelength_nm, spec.width_nm)
+    raise PrismInputError(f"Unknown emission spectrum kind {kind!r}: use one of {', '.join(SPECTRUM_KINDS)}.")

@@ -1,0 +1,64 @@
+import numpy as np
+import pytest
+
+from engine.tracer import cie
+from engine.tracer.wavelengths import GaussianChannels, sample_visible_wavelengths
+
+
+def test_cmf_table_values_and_range():
+    xyz = cie.cie_xyz_cmf([555.0, 300.0, 900.0])
+    assert xyz[0, 1] == pytest.approx(1.0, abs=2e-4)  # ybar peaks at 1 near 555 nm
+    assert np.all(xyz[1:] == 0.0)
+    assert cie.cie_xyz_cmf(np.zeros((2, 5))).shape == (2, 5, 3)
+    assert cie.CMF_Y_INTEGRAL == pytest.approx(106.857, abs=1e-3)
+
+
+def test_rec709_matrix_maps_d65_white_to_one():
+    x, y = 0.3127, 0.3290
+    white_xyz = np.array([x / y, 1.0, (1 - x - y) / y])
+    assert np.allclose(cie.xyz_to_linear_rec709(white_xyz), 1.0, atol=1e-9)
+    assert np.allclose(cie.linear_rec709_to_xyz(cie.xyz_to_linear_rec709(white_xyz)), white_xyz)
+
+
+def test_constant_spectrum_estimate_converges_to_cmf_integral():
+    rng = np.random.default_rng(3)
+    n = 20000
+    wavelength_nm, pdf = sample_visible_wavelengths(rng.random(n), 4)
+    xyz = cie.spectral_samples_to_xyz(np.ones_like(wavelength_nm), wavelength_nm, pdf)
+    table_nm = np.arange(360.0, 830.5, 1.0)
+    expected = np.trapz(cie.cie_xyz_cmf(table_nm), table_nm, axis=0) / cie.CMF_Y_INTEGRAL
+    assert expected[1] == pytest.approx(1.0)
+    mean = xyz.mean(axis=0)
+    stderr = xyz.std(axis=0, ddof=1) / np.sqrt(n)
+    assert np.all(np.abs(mean - expected) < 4.0 * stderr), (mean, expected, stderr)
+    assert np.all(stderr < 0.01)
+
+
+def test_zero_pdf_samples_contribute_nothing():
+    xyz = cie.spectral_samples_to_xyz(np.ones((1, 2)), np.array([[550.0, 550.0]]), np.array([[0.0, 0.0]]))
+    assert np.all(xyz == 0.0)
+
+
+def test_gaussian_channels_constant_spectrum_is_exactly_white():
+    channels = GaussianChannels()
+    wavelength_nm, pdf = channels.sample(np.random.default_rng(4).random((1000, 3)))
+    rgb = cie.gaussian_channel_samples_to_rgb(np.ones_like(wavelength_nm), wavelength_nm, pdf, channels)
+    assert np.allclose(rgb, 1.0, rtol=1e-12, atol=0)
+
+
+def test_monochromatic_rgb():
+    rgb = cie.monochromatic_rgb([450.0, 530.0, 650.0, 300.0, 900.0])
+    assert np.allclose(rgb[:3].max(axis=1), 1.0)
+    assert np.argmax(rgb[0]) == 2 and np.argmax(rgb[1]) == 1 and np.argmax(rgb[2]) == 0
+    assert np.all(rgb[3:] == 0.0) and np.all(rgb >= 0.0)
+
+
+def test_check_rgb_rejects_bad_colours():
+    from engine.tracer.errors import PrismInputError
+
+    with pytest.raises(PrismInputError, match="NaN"):
+        cie.check_rgb((np.nan, 0.0, 0.0), "Light 'Key'")
+    with pytest.raises(PrismInputError, match="negative"):
+        cie.check_rgb((-1.0, 0.0, 0.0), "Light 'Key'")
+    with pytest.raises(PrismInputError, match="three"):
+        cie.check_rgb((1.0, 0.0), "Light 'Key'")

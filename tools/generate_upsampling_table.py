@@ -1,0 +1,67 @@
+"""Generate the Jakob & Hanika (2019) RGB -> reflectance coefficient table for Prism.
+
+Run once by a developer (not by Blender, not by a render):
+
+    .venv/bin/python tools/generate_upsampling_table.py --size 10 --step 10
+
+It optimises the table with colour-science's ``LUT3D_Jakob2019`` for linear
+Rec.709 (ITU-R BT.709 primaries, D65) over 360-830 nm and writes
+``engine/tracer/data/rec709_jakob2019.coeff`` (colour's/the paper's ``.coeff``
+format, float32). ``engine/tracer/rgb_to_spectrum.py`` loads it lazily and
+polishes each looked-up colour with a few Newton steps, so a small table is
+enough; colour takes about 0.1 s per table cell on one core, so a size-N table
+costs about 3·N³ × 0.1 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+import warnings
+from pathlib import Path
+
+OUTPUT = Path(__file__).resolve().parents[1] / "engine" / "tracer" / "data" / "rec709_jakob2019.coeff"
+
+
+def d65_spectral_distribution(shape):
+    """CIE D65 from the daylight basis (S0, S1, S2) at its CCT, 300-830 nm, aligned to ``shape``."""
+    from colour.colorimetry import sd_CIE_illuminant_D_series
+    from colour.temperature import CCT_to_xy_CIE_D
+
+    # D65's CCT is 6500 K on the pre-1968 c2 scale: 6500 * 1.4388 / 1.4380 = 6504 K.
+    sd = sd_CIE_illuminant_D_series(CCT_to_xy_CIE_D(6500.0 * 1.4388 / 1.4380))
+    return sd.copy().align(shape)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--size", type=int, default=10, help="table resolution per axis")
+    parser.add_argument("--step", type=float, default=10.0, help="spectral sampling step in nm")
+    parser.add_argument("--output", type=Path, default=OUTPUT)
+    args = parser.parse_args(argv)
+
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
+    warnings.filterwarnings("ignore")
+    import colour
+    from colour.recovery import LUT3D_Jakob2019
+
+    shape = colour.SpectralShape(360.0, 830.0, args.step)
+    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"].copy().align(shape)
+    illuminant = d65_spectral_distribution(shape)
+    space = colour.RGB_COLOURSPACES["ITU-R BT.709"]
+
+    start = time.perf_counter()
+    lut = LUT3D_Jakob2019()
+    lut.generate(space, cmfs, illuminant, args.size, lambda *a, **k: None)
+    seconds = time.perf_counter() - start
+    args.output.parent.mkdir(parents=True, exist_ok=True)
+    lut.write(args.output)
+    print(
+        f"size {args.size}, step {args.step} nm: {3 * args.size**3} optimisations in {seconds:.1f} s; "
+        f"wrote {args.output} ({args.output.stat().st_size} bytes)"
+    )
+
+
+if __name__ == "__main__":
+    main()
