@@ -1,0 +1,186 @@
+"""Mitsuba 3 (spectral) on a benchmark scene, as a peer of Prism.
+
+Variant ``llvm_ad_spectral`` (JIT-compiled, vectorised, multi-threaded) when a
+libLLVM that Dr.Jit can drive is found (LLVM 15 aborts on x86 ``fminimum``;
+Debian's ``libllvm19`` works: ``apt-get install libllvm19``), else
+``scalar_spectral``. ``DRJIT_LIBLLVM_PATH`` overrides the search.
+
+Conventions matched to Prism: the same triangles (written to PLY), two-sided
+Lambertian grey, a Blender area light as a one-sided ``rectangle`` area emitter
+of radiance P / (pi A), RGB white upsampled with Mitsuba's illuminant (D65-white)
+convention, pinhole camera with the same horizontal field of view, box pixel
+filter, independent sampler, ``max_depth = max_bounces + 1`` (Mitsuba counts the
+camera segment), Mitsuba's default Russian roulette (from depth 5).
+
+Run: ``python -m benchmarks.peers.mitsuba --scene cornell_grey --spp 1 4 16 --out x.npz``
+"""
+
+from __future__ import annotations
+
+import glob
+import os
+import re
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+MIN_LLVM_MAJOR = 19
+
+
+def find_libllvm():
+    """Path of the newest libLLVM with major version >= MIN_LLVM_MAJOR, or None."""
+    found = []
+    for path in glob.glob("/usr/lib/x86_64-linux-gnu/libLLVM*.so*") + glob.glob("/usr/lib/llvm-*/lib/libLLVM*.so*"):
+        m = re.search(r"LLVM-?(\d+)", os.path.basename(path))
+        if m and int(m.group(1)) >= MIN_LLVM_MAJOR:
+            found.append((int(m.group(1)), path))
+    return max(found)[1] if found else None
+
+
+def choose_variant():
+    """Set DRJIT_LIBLLVM_PATH if needed and return the variant to use."""
+    if os.environ.get("DRJIT_LIBLLVM_PATH"):
+        return "llvm_ad_spectral"
+    lib = find_libllvm()
+    if lib:
+        os.environ["DRJIT_LIBLLVM_PATH"] = lib
+        return "llvm_ad_spectral"
+    return "scalar_spectral"
+
+
+def write_ply(path, vertices, triangles, normals=None):
+    """Binary little-endian PLY of a triangle mesh (``normals`` per vertex or None)."""
+    vertices = np.asarray(vertices, np.float32)
+    fields = [("x", "<f4"), ("y", "<f4"), ("z", "<f4")]
+    if normals is not None:
+        fields += [("nx", "<f4"), ("ny", "<f4"), ("nz", "<f4")]
+    vdata = np.empty(len(vertices), dtype=fields)
+    vdata["x"], vdata["y"], vdata["z"] = vertices.T
+    if normals is not None:
+        vdata["nx"], vdata["ny"], vdata["nz"] = np.asarray(normals, np.float32).T
+    fdata = np.empty(len(triangles), dtype=[("n", "u1"), ("i", "<i4", (3,))])
+    fdata["n"] = 3
+    fdata["i"] = triangles
+    header = ["ply", "format binary_little_endian 1.0", f"element vertex {len(vertices)}"]
+    header += [f"property float {name}" for name, _ in fields]
+    header += [f"element face {len(triangles)}", "property list uchar int vertex_indices", "end_header"]
+    with open(path, "wb") as f:
+        f.write(("\n".join(header) + "\n").encode("ascii"))
+        f.write(vdata.tobytes())
+        f.write(fdata.tobytes())
+
+
+def _matrix(m):
+    import mitsuba as mi
+
+    return mi.ScalarTransform4f(np.asarray(m, dtype=np.float64).tolist())
+
+
+def scene_dict(scene, folder, max_bounces=8):
+    """A Mitsuba 3 scene dict of a Prism ``Scene`` (diffuse/emissive materials, area
+    lights, pinhole camera); meshes are written as PLY files into ``folder``."""
+    import mitsuba as mi
+
+    cam = scene.camera
+    if cam.model != "pinhole":
+        raise ValueError(f"Mitsuba peer: camera model '{cam.model}' has no Mitsuba equivalent here")
+    width, height = cam.resolution
+    c2w = np.asarray(cam.camera_to_world, dtype=np.float64)
+    eye, forward, up = c2w[:3, 3], -c2w[:3, 2], c2w[:3, 1]
+    fov_x = np.degrees(2.0 * np.arctan(cam.film_width_mm / (2.0 * cam.focal_length_mm)))
+    out = {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": max_bounces + 1},
+        "sensor": {
+            "type": "perspective",
+            "fov": float(fov_x),
+            "fov_axis": "x",
+            "to_world": mi.ScalarTransform4f().look_at(origin=eye.tolist(), target=(eye + forward).tolist(), up=up.tolist()),
+            "sampler": {"type": "independent", "sample_count": 1},
+            "film": {"type": "hdrfilm", "width": int(width), "height": int(height),
+                     "rfilter": {"type": "box"}, "pixel_format": "rgb"},
+        },
+    }
+    for index, material in enumerate(scene.materials):
+        chosen = scene.triangle_material == index
+        if not chosen.any():
+            continue
+        if material.kind != "diffuse":
+            raise ValueError(f"Mitsuba peer: material '{material.name}' ({material.kind}) is not compared")
+        tris = scene.triangles[chosen]
+        if scene.corner_normals is not None:
+            vertices = scene.vertices[tris].reshape(-1, 3)
+            normals = scene.corner_normals[chosen].reshape(-1, 3)
+            tris = np.arange(len(vertices)).reshape(-1, 3)
+        else:
+            used, tris = np.unique(tris, return_inverse=True)
+            vertices, normals, tris = scene.vertices[used], None, tris.reshape(-1, 3)
+        path = str(Path(folder) / f"material_{index}.ply")
+        write_ply(path, vertices, tris, normals)
+        shape = {"type": "ply", "filename": path, "face_normals": normals is None,
+                 "bsdf": {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": {
+                     "type": "rgb", "value": [float(c) for c in material.base_color]}}}}
+        if material.emission_strength > 0:
+            shape["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": [
+                float(c) * material.emission_strength for c in material.emission.rgb]}}
+        out[f"mesh_{index}"] = shape
+    for k, light in enumerate(scene.lights):
+        if light.kind != "area" or light.area_shape != "rectangle" or light.spectrum.kind != "rgb":
+            raise ValueError(f"Mitsuba peer: light '{light.name}' is not a white rectangular area light")
+        area = light.size_u_m * light.size_v_m
+        radiance = light.power_w / (np.pi * area)
+        m = np.eye(4)
+        m[:3, 0] = np.asarray(light.axis_u) * light.size_u_m / 2
+        m[:3, 1] = -np.asarray(light.axis_v) * light.size_v_m / 2
+        m[:3, 2] = light.direction
+        m[:3, 3] = light.position
+        out[f"light_{k}"] = {
+            "type": "rectangle", "to_world": _matrix(m),
+            "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.0, 0.0, 0.0]}},
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [
+                float(c) * radiance for c in light.spectrum.rgb]}},
+        }
+    if any(c * scene.world.strength > 0 for c in scene.world.color):
+        out["world"] = {"type": "constant", "radiance": {"type": "rgb", "value": [
+            float(c) * scene.world.strength for c in scene.world.color]}}
+    return out
+
+
+def main():
+    from . import common
+
+    args = common.parse_args("Render a benchmark scene with Mitsuba 3")
+    variant = choose_variant()
+    import drjit as dr
+    import mitsuba as mi
+
+    mi.set_variant(variant)
+    dr.set_thread_count(args.threads)
+    from benchmarks.scenes import build
+
+    scene = build(args.scene, (args.resolution, args.resolution))
+    with tempfile.TemporaryDirectory() as folder:
+        start = time.perf_counter()
+        mi_scene = mi.load_dict(scene_dict(scene, folder, args.max_bounces))
+        load_seconds = time.perf_counter() - start
+
+    def render(spp, seed):
+        start = time.perf_counter()
+        image = np.array(mi.render(mi_scene, spp=int(spp), seed=int(seed)), dtype=np.float32)
+        return image, time.perf_counter() - start + load_seconds
+
+    for spp in args.spp:  # compile and cache every kernel once, untimed
+        render(spp, 1)
+    seconds, images = common.sweep(render, args.spp, args.repeats)
+    ref = common.reference(render, args.reference_spp, args.reference_chunks) if args.reference_spp else None
+    info = {"renderer": f"Mitsuba {mi.__version__}", "variant": variant, "threads": args.threads,
+            "load_seconds": load_seconds, "llvm": os.environ.get("DRJIT_LIBLLVM_PATH", "")}
+    common.save(args.out, args, args.spp, seconds, images, info, ref)
+    print(f"mitsuba {variant}: {args.scene} done", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
