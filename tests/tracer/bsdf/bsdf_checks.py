@@ -1,0 +1,116 @@
+"""Shared statistical checks for BSDF tests (not a test module).
+
+``chi2_sampling_test``: draws directions with ``bsdf.sample`` and compares their
+histogram in (cos theta, phi) with the integral of ``bsdf.eval``'s pdf over each
+bin (Gauss-Legendre quadrature). Each lobe gets its own zoomed rectangle (1st to
+99th percentile of its samples, so very sharp lobes such as GGX alpha = 0.01
+still fall on many bins); everything else is pooled, and bins expecting fewer
+than 5 samples are merged, as in Mitsuba's chi-square tests.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import stats
+
+
+def direction(theta_deg, phi_deg=30.0, below=False):
+    t, p = np.radians(theta_deg), np.radians(phi_deg)
+    v = np.array([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)])
+    if below:
+        v[2] = -v[2]
+    return v
+
+
+def _angles(w, phi0):
+    phi = np.mod(np.arctan2(w[:, 1], w[:, 0]) - phi0 + np.pi, 2 * np.pi) - np.pi
+    return w[:, 2], phi
+
+
+def _to_dir(cos, phi, phi0):
+    s = np.sqrt(np.maximum(0.0, 1 - cos * cos))
+    return np.stack([s * np.cos(phi + phi0), s * np.sin(phi + phi0), cos], -1)
+
+
+def chi2_sampling_test(bsdf, wo, n=300_000, bins=24, lam=550.0, seed=0, quad=12):
+    """p-value of the chi-square test of the sampled directions against the pdf."""
+    rng = np.random.default_rng(seed)
+    wo_n = np.repeat(wo[None], n, 0)
+    lam_n = np.full((n, 1), lam)
+    hero = np.zeros(n, dtype=np.int64)
+    coll = np.zeros(n, dtype=bool)
+    s = bsdf.sample(wo_n, lam_n, rng.random((n, 3)), hero, coll)
+    valid = (s.pdf > 0) & (s.weight > 0).any(1)
+    wi = s.wi[valid]
+    phi0 = np.arctan2(wo[1], wo[0]) + np.pi  # lobes sit opposite wo in azimuth
+    cos, phi = _angles(wi, phi0)
+    observed, expected = [], []
+    claimed = np.zeros(len(wi), dtype=bool)
+    gx, gw = np.polynomial.legendre.leggauss(quad)
+    for lobe in (cos > 0, cos < 0):
+        if lobe.sum() < 100:
+            continue
+        c_lo, c_hi = np.percentile(cos[lobe], [0.5, 99.5])
+        p_lo, p_hi = np.percentile(phi[lobe], [0.5, 99.5])
+        c_lo, c_hi = (max(c_lo, -1.0), min(c_hi, 1.0)) if c_hi > c_lo else (c_lo - 1e-3, c_hi + 1e-3)
+        ce = np.linspace(c_lo, c_hi, bins + 1)
+        pe = np.linspace(max(p_lo, -np.pi), min(p_hi, np.pi), bins + 1)
+        inside = (cos >= ce[0]) & (cos < ce[-1]) & (phi >= pe[0]) & (phi < pe[-1]) & ~claimed
+        claimed |= inside
+        h, _, _ = np.histogram2d(cos[inside], phi[inside], bins=[ce, pe])
+        # quadrature nodes of every bin
+        cc = (0.5 * (ce[1:] - ce[:-1])[:, None] * gx[None] + 0.5 * (ce[1:] + ce[:-1])[:, None])  # [b, q]
+        pp = (0.5 * (pe[1:] - pe[:-1])[:, None] * gx[None] + 0.5 * (pe[1:] + pe[:-1])[:, None])
+        C = cc[:, None, :, None] * np.ones((1, bins, 1, quad))
+        P = pp[None, :, None, :] * np.ones((bins, 1, quad, 1))
+        wi_q = _to_dir(C.ravel(), P.ravel(), phi0)
+        m = len(wi_q)
+        _, pdf = bsdf.eval(np.repeat(wo[None], m, 0), wi_q, np.full((m, 1), lam), np.zeros(m, dtype=np.int64),
+                           np.zeros(m, dtype=bool))
+        w = (gw[:, None] * gw[None, :])[None, None]
+        area = (0.25 * (ce[1:] - ce[:-1])[:, None] * (pe[1:] - pe[:-1])[None, :])
+        mass = (pdf.reshape(bins, bins, quad, quad) * w).sum((2, 3)) * area
+        observed.append(h.ravel())
+        expected.append(mass.ravel() * n)
+    observed = np.concatenate(observed)
+    expected = np.concatenate(expected)
+    # everything outside the rectangles and the failed samples: one pooled bin
+    rest_obs = n - observed.sum()
+    rest_exp = n - expected.sum()
+    order = np.argsort(expected)
+    obs_s, exp_s = observed[order], expected[order]
+    small = exp_s < 5
+    obs_f = list(obs_s[~small]) + [obs_s[small].sum() + rest_obs]
+    exp_f = list(exp_s[~small]) + [exp_s[small].sum() + rest_exp]
+    obs_f, exp_f = np.array(obs_f), np.array(exp_f)
+    if exp_f[-1] < 5:  # merge the pooled bin into the smallest proper bin
+        obs_f[-2] += obs_f[-1]
+        exp_f[-2] += exp_f[-1]
+        obs_f, exp_f = obs_f[:-1], exp_f[:-1]
+    chi2 = ((obs_f - exp_f) ** 2 / exp_f).sum()
+    return float(stats.chi2.sf(chi2, len(obs_f) - 1))
+
+
+def albedo(bsdf, wo, n=200_000, lam=None, seed=1):
+    """Monte Carlo directional albedo per wavelength column (mean sample weight)."""
+    rng = np.random.default_rng(seed)
+    lam = np.full((n, 1), 550.0) if lam is None else np.broadcast_to(lam, (n, len(lam))).copy()
+    s = bsdf.sample(np.repeat(wo[None], n, 0), lam, rng.random((n, 3)), np.zeros(n, dtype=np.int64),
+                    np.zeros(n, dtype=bool))
+    return s.weight.mean(0)
+
+
+def weight_matches_eval(bsdf, wo, n=2000, seed=2):
+    """Max relative mismatch between sample weights and f |cos| / pdf from eval."""
+    rng = np.random.default_rng(seed)
+    lam = np.full((n, 1), 550.0)
+    hero = np.zeros(n, dtype=np.int64)
+    coll = np.zeros(n, dtype=bool)
+    wo_n = np.repeat(wo[None], n, 0)
+    s = bsdf.sample(wo_n, lam, rng.random((n, 3)), hero, coll)
+    ok = s.pdf > 0
+    f, pdf = bsdf.eval(wo_n[ok], s.wi[ok], lam[ok], hero[ok], coll[ok])
+    expect = f[:, 0] * np.abs(s.wi[ok, 2]) / pdf
+    rel_w = np.abs(expect - s.weight[ok, 0]) / np.maximum(expect, 1e-12)
+    rel_p = np.abs(pdf - s.pdf[ok]) / pdf
+    return float(max(rel_w.max(initial=0), rel_p.max(initial=0)))

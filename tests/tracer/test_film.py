@@ -1,0 +1,32 @@
+"""Film: running mean and variance of the mean per pixel, NaN samples dropped and counted."""
+
+import numpy as np
+
+from engine.tracer.film import Film
+
+
+def test_mean_and_variance_match_numpy():
+    rng = np.random.default_rng(0)
+    film = Film(3, 2)
+    samples = {p: [] for p in range(6)}
+    for _ in range(4):
+        pix = np.repeat(np.arange(6), 3)
+        rgb = rng.normal(size=(18, 3)) * (pix[:, None] + 1)
+        film.add(pix, rgb)
+        for p, c in zip(pix, rgb):
+            samples[p].append(c)
+    mean = film.mean().reshape(6, 3)
+    var = film.variance_of_mean().reshape(6, 3)
+    for p in range(6):
+        s = np.array(samples[p])
+        assert np.allclose(mean[p], s.mean(0))
+        assert np.allclose(var[p], s.var(0, ddof=1) / len(s))
+    assert film.counts.tolist() == [[12, 12, 12], [12, 12, 12]]
+
+
+def test_non_finite_samples_are_dropped_and_counted():
+    film = Film(2, 1)
+    film.add(np.array([0, 0, 1, 1]), np.array([[1, 1, 1], [np.nan, 0, 0], [2, 2, 2], [np.inf, 1, 1.0]]))
+    assert film.nan_samples == 2
+    assert np.allclose(film.mean()[0], [[0.5, 0.5, 0.5], [1, 1, 1]])
+    assert np.all(np.isfinite(film.variance_of_mean()))
