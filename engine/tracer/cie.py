@@ -22,11 +22,20 @@ _CMF_TABLE = None  # (wavelength_nm [M], xyz [M, 3]) once loaded
 _LAZY = {}
 
 
+def import_colour():
+    """Import colour-science (about a second), silencing its note that matplotlib is absent."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=".*Matplotlib.*")
+        import colour
+    return colour
+
+
 def _cmf_table():
     global _CMF_TABLE
     if _CMF_TABLE is None:
-        import colour
-
+        colour = import_colour()
         cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
         _CMF_TABLE = (np.asarray(cmfs.wavelengths, dtype=np.float64), np.asarray(cmfs.values, dtype=np.float64))
     return _CMF_TABLE
@@ -38,7 +47,7 @@ def _cmf_y_integral():
 
 
 def _xyz_to_linear_rec709():
-    import colour
+    colour = import_colour()
 
     # The BT.709 colourspace with its matrix derived from primaries and the D65
     # whitepoint, so XYZ of the D65 white maps to (1, 1, 1) to double precision.

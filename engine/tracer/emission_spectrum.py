@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from . import cie
-from .blackbody import blackbody_luminance_normalised, check_temperature
+from .blackbody import blackbody_luminance, check_temperature, planck_spectral_radiance
 from .errors import PrismInputError
 from .rgb_to_spectrum import RGBEmission
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
@@ -51,11 +51,11 @@ class BlackbodyEmissionSpectrum:
     def __init__(self, temperature_k):
         self.temperature_k = float(check_temperature(temperature_k))
         self.support_nm = (VISIBLE_MIN_NM, VISIBLE_MAX_NM)
-        blackbody_luminance_normalised(550.0, self.temperature_k)  # warm the normalisation now
+        self._scale = 1.0 / float(blackbody_luminance(self.temperature_k))
 
     def evaluate(self, wavelength_nm):
         """Relative spectral radiance at ``wavelength_nm`` (any shape)."""
-        return blackbody_luminance_normalised(wavelength_nm, self.temperature_k)
+        return self._scale * planck_spectral_radiance(wavelength_nm, self.temperature_k)
 
 
 class MonochromaticEmissionSpectrum:

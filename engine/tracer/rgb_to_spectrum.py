@@ -13,10 +13,10 @@ RGB -> spectrum -> RGB is accurate to ~1e-5 although the table is small.
 
 White: the gray axis is handled analytically (constant spectrum), so RGB
 (1, 1, 1) is exactly 1 and (0, 0, 0) exactly 0 at every wavelength. A constant
-reflectance 1 under the D65 spectrum gives Rec.709 ``WHITE_RGB`` ≈ (0.99942,
-0.99955, 0.99988), not exactly (1, 1, 1) (the tabulated D65 spectrum and the
+reflectance 1 under the D65 spectrum gives Rec.709 ``white_rgb()`` ≈ (1.00016,
+0.99998, 0.99976), not exactly (1, 1, 1) (the tabulated D65 spectrum and the
 BT.709 white point xy = (0.3127, 0.3290) differ in the fifth digit); the polish
-targets ``rgb * WHITE_RGB`` so colours are continuous across the gray axis.
+targets ``rgb * white_rgb()`` so colours are continuous across the gray axis.
 
 Emission (pbrt-v4's "RGB illuminant spectrum" idea): ``RGBEmission(rgb)``
 = scale · S(λ; rgb / scale) · D65(λ) / Y(D65) with scale = 2 max(rgb), so
@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .cie import check_rgb
+from .cie import check_rgb, import_colour
 from .errors import PrismInputError
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
@@ -46,6 +46,7 @@ _CACHE = {}
 def _d65_table():
     """(wavelength_nm, relative power) of CIE D65, 300-830 nm at 5 nm, from colour's daylight basis."""
     if "d65" not in _CACHE:
+        import_colour()
         from colour.colorimetry import sd_CIE_illuminant_D_series
         from colour.temperature import CCT_to_xy_CIE_D
 
@@ -82,7 +83,7 @@ def _integration():
 
 
 def white_rgb():
-    """Rec.709 colour of a constant reflectance 1 under D65 (≈ (0.99942, 0.99955, 0.99988))."""
+    """Rec.709 colour of a constant reflectance 1 under D65 (≈ (1.00016, 0.99998, 0.99976))."""
     _integration()
     return _CACHE["white"].copy()
 
@@ -93,6 +94,7 @@ def _table():
             raise RuntimeError(
                 f"Missing {TABLE_PATH.name}: run tools/generate_upsampling_table.py (it ships with Prism)."
             )
+        import_colour()
         from colour.recovery import LUT3D_Jakob2019
 
         _CACHE["lut"] = LUT3D_Jakob2019().read(TABLE_PATH)
