@@ -62,3 +62,21 @@ def test_check_rgb_rejects_bad_colours():
         cie.check_rgb((-1.0, 0.0, 0.0), "Light 'Key'")
     with pytest.raises(PrismInputError, match="three"):
         cie.check_rgb((1.0, 0.0), "Light 'Key'")
+
+
+def test_importing_the_physics_modules_is_cheap():
+    """colour-science and scipy load lazily: importing the modules (as Blender's register might) pulls neither."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    modules = "wavelengths cie rgb_to_spectrum blackbody emission_spectrum glass fresnel conductors thin_film".split()
+    code = (
+        "import sys\n"
+        + "".join(f"import engine.tracer.{m}\n" for m in modules)
+        + "heavy = [m for m in ('colour', 'scipy') if m in sys.modules]\n"
+        + "assert not heavy, heavy\n"
+    )
+    root = Path(__file__).resolve().parents[2]
+    result = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
