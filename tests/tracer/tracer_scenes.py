@@ -81,3 +81,22 @@ def plane_under_point_light(size=32, power=100.0, height=2.0, albedo=0.5, fov_ha
     floor = quad((0, 0, 0), (20, 0, 0), (0, 20, 0))
     light = Light("lamp", "point", np.array([0.0, 0.0, height]), power_w=power)
     return make_scene([(*floor, 0)], [Material("floor", base_color=(albedo,) * 3)], cam, [light])
+
+
+def sphere_under_sky(size=24, albedo=1.0, mode="cie"):
+    """Convex diffuse sphere under a uniform white sky: every pixel equals the sky."""
+    cam = Camera("cam", look_at((0, -4.0, 0), (0, 0, 0)), (size, size), film_width_mm=36.0, film_height_mm=36.0)
+    sphere = uv_sphere((0, 0, 0), 1.0, rings=16, segments=32)
+    return make_scene([(*sphere, 0)], [Material("white", base_color=(albedo,) * 3)], cam,
+                      world=World(color=(1.0, 1.0, 1.0), strength=1.0))
+
+
+def inside_glowing_sphere(size=16, albedo=0.5, strength=1.0):
+    """Camera inside a closed sphere that emits ``strength`` and reflects ``albedo``:
+    radiance = strength * sum_{k=0}^{B+1} albedo^k with B = max_bounces."""
+    from engine.tracer.scene import SpectrumSpec
+
+    cam = Camera("cam", look_at((0.1, -0.2, 0.05), (0, 1, 0)), (size, size), film_width_mm=36.0, film_height_mm=36.0)
+    sphere = uv_sphere((0, 0, 0), 1.0, rings=12, segments=24, inward=True)
+    mat = Material("glow", base_color=(albedo,) * 3, emission=SpectrumSpec(), emission_strength=strength)
+    return make_scene([(*sphere, 0)], [mat], cam)
