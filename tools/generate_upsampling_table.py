@@ -2,7 +2,7 @@
 
 Run once by a developer (not by Blender, not by a render):
 
-    .venv/bin/python tools/generate_upsampling_table.py --size 10 --step 10
+    .venv/bin/python tools/generate_upsampling_table.py --size 8 --step 5
 
 It optimises the table with colour-science's ``LUT3D_Jakob2019`` for linear
 Rec.709 (ITU-R BT.709 primaries, D65) over 360-830 nm and writes
@@ -17,26 +17,29 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 import time
 import warnings
 from pathlib import Path
 
-OUTPUT = Path(__file__).resolve().parents[1] / "engine" / "tracer" / "data" / "rec709_jakob2019.coeff"
+ROOT = Path(__file__).resolve().parents[1]
+OUTPUT = ROOT / "engine" / "tracer" / "data" / "rec709_jakob2019.coeff"
 
 
 def d65_spectral_distribution(shape):
-    """CIE D65 from the daylight basis (S0, S1, S2) at its CCT, 300-830 nm, aligned to ``shape``."""
-    from colour.colorimetry import sd_CIE_illuminant_D_series
-    from colour.temperature import CCT_to_xy_CIE_D
+    """The D65 spectrum the tracer uses (``rgb_to_spectrum._d65_table``), as colour data aligned to ``shape``."""
+    import colour
 
-    # D65's CCT is 6500 K on the pre-1968 c2 scale: 6500 * 1.4388 / 1.4380 = 6504 K.
-    sd = sd_CIE_illuminant_D_series(CCT_to_xy_CIE_D(6500.0 * 1.4388 / 1.4380))
-    return sd.copy().align(shape)
+    sys.path.insert(0, str(ROOT))
+    from engine.tracer.rgb_to_spectrum import _d65_table
+
+    wavelength_nm, power = _d65_table()
+    return colour.SpectralDistribution(power, wavelength_nm).align(shape)
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--size", type=int, default=10, help="table resolution per axis")
+    parser.add_argument("--size", type=int, default=8, help="table resolution per axis")
     parser.add_argument("--step", type=float, default=10.0, help="spectral sampling step in nm")
     parser.add_argument("--output", type=Path, default=OUTPUT)
     args = parser.parse_args(argv)
