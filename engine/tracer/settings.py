@@ -35,6 +35,10 @@ class RenderSettings:
     russian_roulette_depth: int = 3
     use_pupil_bounds: bool = True
     border: tuple[int, int, int, int] | None = None
+    # Pixel filter (tracer): "box" (uniform over the pixel) or "gaussian" (standard
+    # deviation filter_width_px / 3, truncated at filter_width_px from the centre).
+    pixel_filter: str = "box"
+    filter_width_px: float = 1.5
 
     def validate(self) -> None:
         """Raise ``PrismInputError`` for settings no render can use."""

@@ -1,29 +1,27 @@
-"""Interface optics in the BSDFs' conventions (directions point away from the surface;
-``eta`` = index behind the surface / index in front, where "front" is +n).
+"""Interface optics in the BSDFs' conventions, as thin adapters over the physics
+modules (``fresnel``, ``thin_film``, ``conductors``).
 
-Thin adapters over the physics module ``fresnel`` when it is available.
+BSDF conventions: directions point away from the surface; ``eta`` = index behind
+the surface / index in front (front = the +normal side). Inputs are sanitised
+(cosines clipped, NaN zeroed) so one degenerate path cannot abort a render; the
+integrator drops the path instead.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .. import fresnel as _fresnel
+
+
+def _cos(c):
+    return np.clip(np.nan_to_num(np.asarray(c, dtype=np.float64)), -1.0, 1.0)
+
 
 def fresnel_dielectric(cos_i: np.ndarray, eta: np.ndarray) -> np.ndarray:
     """Unpolarised reflectance [n] for signed ``cos_i`` (< 0: arriving from behind,
     the index ratio is inverted); 1 under total internal reflection."""
-    cos_i = np.asarray(cos_i, dtype=np.float64)
-    eta = np.broadcast_to(np.asarray(eta, dtype=np.float64), cos_i.shape)
-    inside = cos_i < 0
-    eta = np.where(inside, 1.0 / eta, eta)
-    c = np.clip(np.abs(cos_i), 0.0, 1.0)
-    sin2_t = (1.0 - c * c) / (eta * eta)
-    cos_t = np.sqrt(np.maximum(0.0, 1.0 - sin2_t))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r_par = (eta * c - cos_t) / (eta * c + cos_t)
-        r_perp = (c - eta * cos_t) / (c + eta * cos_t)
-    r = 0.5 * (r_par * r_par + r_perp * r_perp)
-    return np.where(sin2_t >= 1.0, 1.0, np.where(np.isfinite(r), r, 1.0))
+    return _fresnel.fresnel_dielectric(_cos(cos_i), eta)
 
 
 def refract(w: np.ndarray, n: np.ndarray, eta: np.ndarray):
@@ -31,13 +29,59 @@ def refract(w: np.ndarray, n: np.ndarray, eta: np.ndarray):
 
     Returns (transmitted direction [n,3] (pointing away on the other side),
     eta' [n] = relative index actually crossed (n_t / n_i), tir [n] bool)."""
-    cos_i = (w * n).sum(1)
-    inside = cos_i < 0
-    eta = np.where(inside, 1.0 / eta, eta)
-    nn = np.where(inside[:, None], -n, n)
-    cos_i = np.abs(cos_i)
-    sin2_t = np.maximum(0.0, 1.0 - cos_i * cos_i) / (eta * eta)
-    tir = sin2_t >= 1.0
-    cos_t = np.sqrt(np.maximum(0.0, 1.0 - sin2_t))
-    wt = -w / eta[:, None] + (cos_i / eta - cos_t)[:, None] * nn
-    return wt, eta, tir
+    eta = np.broadcast_to(np.asarray(eta, dtype=np.float64), (len(w),))
+    inside = (w * n).sum(1) < 0
+    etap = np.where(inside, 1.0 / eta, eta)
+    facing = np.where(inside[:, None], -n, n)
+    t, tir = _fresnel.refract(-np.nan_to_num(w), facing, etap)
+    return t, etap, tir
+
+
+def conductor_fresnel(cos_i: np.ndarray, name: str, lam: np.ndarray) -> np.ndarray:
+    """Reflectance [n,K] of a named metal (measured n, k) at ``cos_i`` [n]."""
+    from ..conductors import conductor_nk
+
+    n, k = conductor_nk(name, lam)
+    return _fresnel.fresnel_conductor(np.abs(_cos(cos_i))[:, None], n, k)
+
+
+def coating_reflectance(thickness_nm: float, coating_ior: float):
+    """R(cos_i [n], n_incident [n], n_substrate [n], lam [n,K]) -> [n,K] of a film on a dielectric."""
+    from ..thin_film import thin_film_reflectance
+
+    def reflectance(cos_i, n_incident, n_substrate, lam):
+        return thin_film_reflectance(np.abs(_cos(cos_i))[:, None], lam, thickness_nm, n_incident[:, None],
+                                     coating_ior, n_substrate[:, None])
+
+    return reflectance
+
+
+def coated_conductor_fresnel(material, spectra):
+    """F(cos_i [n], lam [n,K]) of a thin film of index ``coating_ior`` over a metal: the
+    named metal's n + ik, or (base colour only) the real index with that normal reflectance."""
+    from ..conductors import conductor_nk
+    from ..thin_film import thin_film_reflectance
+
+    d, n_film = float(material.coating_thickness_nm), float(material.coating_ior)
+    f0 = None if material.conductor else spectra.reflectance(material.base_color)
+
+    def fresnel(cos_i, lam):
+        if f0 is None:
+            n, k = conductor_nk(material.conductor, lam)
+            index = n + 1j * k
+        else:
+            r = np.sqrt(np.clip(f0(lam), 0.0, 0.999))
+            index = (1.0 + r) / (1.0 - r)
+        return thin_film_reflectance(np.abs(_cos(cos_i))[:, None], lam, d, 1.0, n_film, index)
+
+    return fresnel
+
+
+def free_film_reflectance(thickness_nm: float, film_ior: float):
+    """R(cos_i [n], lam [n,K]) -> [n,K] of a free-standing film in air."""
+    from ..thin_film import thin_film_reflectance
+
+    def reflectance(cos_i, lam):
+        return thin_film_reflectance(np.abs(_cos(cos_i))[:, None], lam, thickness_nm, 1.0, film_ior, 1.0)
+
+    return reflectance

@@ -1,0 +1,41 @@
+"""Scene analysis: only what the scene needs is switched on, and the strategy says so."""
+
+import numpy as np
+
+from engine.tracer.renderer import Renderer
+from engine.tracer.scene import Material, SpectrumSpec
+
+from .tracer_scenes import plane_under_point_light, settings
+
+
+def _with_material(mat):
+    scene = plane_under_point_light(size=8)
+    scene.materials = [mat]
+    return scene
+
+
+def test_plain_scene_keeps_all_wavelengths_and_no_mesh_lights():
+    r = Renderer(plane_under_point_light(size=8), settings())
+    a = r.analysis
+    assert not a.dispersion and not a.mesh_lights and r.lights.mesh is None
+    assert "no dispersion" in r.strategy and "lights: point" in r.strategy and "cie x4" in r.strategy
+
+
+def test_dispersive_glass_turns_on_hero_termination_constant_glass_does_not():
+    r = Renderer(_with_material(Material("g", kind="dielectric", glass="N-BK7")), settings())
+    assert r.analysis.dispersion and "hero-wavelength termination (N-BK7)" in r.strategy
+    assert "smooth dielectric" in r.strategy
+    r = Renderer(_with_material(Material("g", kind="dielectric", ior=1.5, roughness=0.3)), settings())
+    assert not r.analysis.dispersion and "rough dielectric" in r.strategy
+
+
+def test_emissive_material_turns_on_mesh_lights_and_features_are_listed():
+    mat = Material("glow", emission=SpectrumSpec(kind="blackbody", temperature_k=4000), emission_strength=2.0)
+    r = Renderer(_with_material(mat), settings(wavelength_mode="gaussian_rgb", use_mis=False))
+    assert r.analysis.mesh_lights and r.lights.mesh is not None and len(r.lights.mesh.triangles) == 2
+    assert "emissive meshes" in r.strategy and "gaussian_rgb x3" in r.strategy and "no MIS" in r.strategy
+    r = Renderer(_with_material(Material("m", kind="conductor", conductor="Cu", roughness=0.4,
+                                         coating_thickness_nm=200.0)), settings(pixel_filter="gaussian"))
+    assert "rough conductor" in r.strategy and "thin-film coating" in r.strategy and "gaussian filter" in r.strategy
+    r.render_pass()
+    assert r.stats["nan_samples"] == 0 and np.all(np.isfinite(r.image_rgb()))
