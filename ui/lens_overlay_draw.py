@@ -80,17 +80,10 @@ def _focus_distance_m(camera_object):
 
 
 def sensor_half_height_mm(scene, camera_data):
-    """Half the vertical extent of the film (mm): the meridional plane is the camera's Y."""
-    render = scene.render
-    aspect = (render.resolution_x * render.pixel_aspect_x) / max(render.resolution_y * render.pixel_aspect_y, 1e-9)
-    fit = camera_data.sensor_fit
-    if fit == "VERTICAL":
-        height = camera_data.sensor_height
-    elif fit == "HORIZONTAL" or aspect >= 1.0:
-        height = camera_data.sensor_width / aspect
-    else:
-        height = camera_data.sensor_width
-    return 0.5 * height
+    """Half the film height (mm) the render uses (the meridional plane is the camera's Y)."""
+    from ..engine.export.camera import film_size_mm, render_resolution
+
+    return 0.5 * film_size_mm(camera_data, *render_resolution(scene))[1]
 
 
 def overlay_inputs(scene):
@@ -240,27 +233,36 @@ def _line_width(context):
     return max(1.0, float(getattr(context.preferences.system, "ui_line_width", 1.0)))
 
 
-def _draw_view():
-    context = bpy.context
-    scene = context.scene
+def draw_at_camera(scene, viewport_size, line_width):
+    """Draw ``scene``'s lens diagram at its active camera, in world space, with the current
+    view and projection matrices. Returns whether there was something to draw."""
+    import gpu
+
     settings = overlay_settings(scene)
-    space = context.space_data
-    if settings is None or not settings.enabled or not getattr(space.overlay, "show_overlays", True):
-        return
     diagram, _ = scene_diagram(scene)
     if diagram is None:
-        return
+        return False
     key = (id(diagram), settings.show_outlines, settings.show_sensor)
     if _batch_cache["key"] != key:
         _batch_cache["batches"] = build_batches(diagram, settings.show_outlines, settings.show_sensor)
         _batch_cache["key"] = key
-    import gpu
-
     camera = scene.camera
-    region = context.region
     with gpu.matrix.push_pop():
         gpu.matrix.multiply_matrix(camera.matrix_world @ lens_to_camera_matrix(diagram, camera.data.display_size))
-        draw_batches(_batch_cache["batches"], (region.width, region.height), _line_width(context))
+        draw_batches(_batch_cache["batches"], viewport_size, line_width)
+    return True
+
+
+def _overlay_shown(context):
+    settings = overlay_settings(context.scene)
+    overlay = getattr(context.space_data, "overlay", None)
+    return settings is not None and settings.enabled and getattr(overlay, "show_overlays", True)
+
+
+def _draw_view():
+    context = bpy.context
+    if _overlay_shown(context):
+        draw_at_camera(context.scene, (context.region.width, context.region.height), _line_width(context))
 
 
 def _sidebar_width(context):
@@ -273,11 +275,10 @@ def _draw_pixel():
     import blf
 
     context = bpy.context
-    scene = context.scene
-    settings = overlay_settings(scene)
-    if settings is None or not settings.enabled or not getattr(context.space_data.overlay, "show_overlays", True):
+    if not _overlay_shown(context):
         return
-    diagram, message = scene_diagram(scene)
+    settings = overlay_settings(context.scene)
+    diagram, message = scene_diagram(context.scene)
     scale = context.preferences.system.ui_scale or 1.0
     margin = 20 * scale
     if diagram is None:

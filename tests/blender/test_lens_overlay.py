@@ -190,3 +190,55 @@ def test_export_operator_writes_the_png(prism_addon, lens_scene, gpu_ready, tmp_
     lens_scene.camera.data.prism.lens_model = "PINHOLE"
     with pytest.raises(RuntimeError, match="Real lens"):
         bpy.ops.prism.export_lens_diagram(filepath=str(tmp_path / "none.png"))
+
+
+@pytest.mark.parametrize("wavelengths, channel", [("450", 2), ("650", 0)])
+def test_viewport_drawing_places_the_fan_in_front_of_the_camera(lens_scene, overlay, gpu_ready, wavelengths, channel):
+    """The POST_VIEW path (``draw_at_camera``) seen from the camera's side in an offscreen."""
+    import gpu
+    from mathutils import Matrix, Vector
+
+    settings = lens_scene.prism.lens_overlay
+    settings.wavelength_source, settings.custom_wavelengths_nm = "CUSTOM", wavelengths
+    camera = lens_scene.camera
+    camera.location, camera.rotation_euler = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)  # looking down -Z
+    camera.data.display_size = 1.0
+    bpy.context.view_layer.update()
+    diagram, message = overlay.scene_diagram(lens_scene)
+    assert diagram is not None, message
+    size = 400
+    view = Matrix(((0, 0, -1, 0), (0, 1, 0, 0), (1, 0, 0, -5), (0, 0, 0, 1)))  # from +X, up +Y
+    projection = Matrix(((1 / 0.7, 0, 0, -0.5 / 0.7), (0, 1 / 0.7, 0, 0), (0, 0, -0.1, 0), (0, 0, 0, 1)))
+    offscreen = gpu.types.GPUOffScreen(size, size)
+    try:
+        with offscreen.bind():
+            framebuffer = gpu.state.active_framebuffer_get()
+            framebuffer.clear(color=(0.0, 0.0, 0.0, 1.0))
+            with gpu.matrix.push_pop(), gpu.matrix.push_pop_projection():
+                gpu.matrix.load_projection_matrix(projection)
+                gpu.matrix.load_matrix(view)
+                assert overlay.draw_at_camera(lens_scene, (size, size), 1.0)
+            buffer = framebuffer.read_color(0, 0, size, size, 4, 0, "FLOAT")
+    finally:
+        offscreen.free()
+    buffer.dimensions = size * size * 4
+    pixels = np.array(buffer, dtype=np.float32).reshape(size, size, 4)
+    to_clip = projection @ view @ camera.matrix_world @ overlay.lens_to_camera_matrix(diagram, 1.0)
+    fan = diagram.fans[0]
+    hits = 0
+    for ray in np.flatnonzero(fan.reached):
+        a, b = fan.points_mm[ray, 0], fan.points_mm[ray, 1]  # incoming segment
+        if abs(a[1]) < 0.5:
+            continue
+        clip = to_clip @ Vector((*(0.5 * (a + b)),))
+        col, row = int(round((clip.x + 1) * size / 2)), int(round((clip.y + 1) * size / 2))
+        patch = pixels[row - 1 : row + 2, col - 1 : col + 2, :3].reshape(-1, 3)
+        rgb = patch[np.argmax(patch.sum(axis=1))]
+        assert rgb[channel] > 0.5 and rgb[channel] > 2.0 * max(np.delete(rgb, channel)), (ray, rgb)
+        hits += 1
+    assert hits >= 2
+    # seen from +X, the camera's -Z runs to the right: the sensor line sits at the camera
+    # (x_eye = 0, column 57) and nothing is drawn behind it
+    sensor_col = int(round((1 - 0.5 / 0.7) * size / 2))
+    assert pixels[:, sensor_col - 1 : sensor_col + 2, :3].max() > 0.5
+    assert pixels[:, : sensor_col - 12, :3].max() < 0.05
