@@ -40,6 +40,7 @@ _SPAN_NM = VISIBLE_MAX_NM - VISIBLE_MIN_NM
 _POLISH_ITERATIONS = 40
 _POLISH_TOLERANCE = 1e-7
 _ACCEPTABLE_ERROR = 1e-5
+_ROUNDING_TOLERANCE = 1e-6
 _CACHE = {}
 
 
@@ -207,11 +208,12 @@ def reflectance_coefficients(rgb):
     """Jakob-Hanika coefficients [..., 3] (nm units) of linear Rec.709 reflectances ``rgb`` [..., 3].
 
     Components must be finite and within [0, 1] (a reflectance above 1 would
-    create energy): anything else raises ``PrismInputError``. Gray colours
+    create energy; 1 + 1e-6 is taken as 1): anything else raises ``PrismInputError``. Gray colours
     (r = g = b) give c0 = c1 = 0 and a constant spectrum, exactly 0 and 1 at
     the ends.
     """
     rgb = check_rgb(rgb, "Reflectance colour")
+    rgb = np.where((rgb > 1.0) & (rgb <= 1.0 + _ROUNDING_TOLERANCE), 1.0, rgb)  # float32 round-off
     if np.any(rgb > 1.0):
         raise PrismInputError(
             f"Reflectance colour {rgb.tolist()} has a component above 1: a surface cannot reflect more "

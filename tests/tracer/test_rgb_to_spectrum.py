@@ -96,3 +96,8 @@ def test_emission_rejects_bad_colours():
         RGBEmission((np.nan, 1.0, 1.0))
     with pytest.raises(PrismInputError):
         RGBEmission((-1.0, 1.0, 1.0))
+
+
+def test_float32_round_off_above_one_is_accepted():
+    coefficients = reflectance_coefficients(np.array([1.0000001, 0.5, 0.25]))
+    assert np.allclose(coefficients, reflectance_coefficients(np.array([1.0, 0.5, 0.25])))
