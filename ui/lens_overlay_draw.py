@@ -23,6 +23,7 @@ lens, focus, f-stop or overlay settings and cached); this module only draws poly
 from __future__ import annotations
 
 import functools
+import math
 import os
 import traceback
 
@@ -37,7 +38,7 @@ STOP_RGBA = (0.95, 0.95, 0.95, 0.95)
 SENSOR_RGBA = (0.75, 0.75, 0.75, 0.9)
 AXIS_RGBA = (0.5, 0.5, 0.5, 0.5)
 TEXT_RGBA = (0.92, 0.92, 0.92, 1.0)
-SPOT_BACKGROUND_RGBA = (0.05, 0.05, 0.05, 0.75)
+SPOT_BACKGROUND_RGBA = (0.04, 0.04, 0.05, 0.8)
 SPOT_POINT_SIZE = 3.0
 
 _handles: dict = {}
@@ -103,7 +104,7 @@ def overlay_inputs(scene):
         return None, f"Lens overlay: camera '{camera.name}': lens file '{path or ''}' not found; choose a lens."
     try:
         wavelengths = tuple(settings.wavelengths_nm(scene.prism))
-    except Exception as error:  # PrismInputError from the custom list
+    except PrismInputError as error:  # the custom list
         return None, str(error)
     inputs = (
         path,
@@ -128,7 +129,7 @@ def compute_diagram(inputs):
     system = load_lens(path).with_fstop(fstop)
     return lens_diagram(
         system, wavelengths, n_rays=rays, field_angle_deg=field, source_distance_mm=source_mm,
-        focus_distance_mm=focus_mm, sensor_half_height_mm=half_height,
+        focus_distance_mm=focus_mm if focus_mm > 0.0 else math.inf, sensor_half_height_mm=half_height,
     )
 
 

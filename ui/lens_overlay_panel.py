@@ -53,10 +53,10 @@ def draw_overlay_settings(layout, context, show_camera=True):
     column.prop(settings, "show_sensor")
     column.prop(settings, "show_spot_diagram")
     camera = scene.camera
-    if show_camera and camera is not None and camera.type == "CAMERA":
+    if camera is not None and camera.type == "CAMERA":
         column = layout.column()
         prism = getattr(camera.data, "prism", None)
-        if prism is not None:
+        if show_camera and prism is not None:
             column.prop(prism, "lens_model")
             if prism.lens_model == "REAL_LENS":
                 column.prop(prism, "lens_source")
@@ -94,6 +94,10 @@ class DATA_PT_prism_lens_overlay(bpy.types.Panel):
         return context.camera is not None and context.engine in cls.COMPAT_ENGINES
 
     def draw(self, context):
+        camera = context.scene.camera
+        if camera is None or camera.data != context.camera:
+            name = camera.name if camera is not None else "none"
+            self.layout.label(text=f"The overlay follows the scene camera ({name})", icon="INFO")
         draw_overlay_settings(self.layout, context, show_camera=False)
 
 

@@ -242,3 +242,41 @@ def test_viewport_drawing_places_the_fan_in_front_of_the_camera(lens_scene, over
     sensor_col = int(round((1 - 0.5 / 0.7) * size / 2))
     assert pixels[:, sensor_col - 1 : sensor_col + 2, :3].max() > 0.5
     assert pixels[:, : sensor_col - 12, :3].max() < 0.05
+
+
+class _RecordingLayout:
+    """Stands in for ``UILayout``: checks every property and operator the panels name."""
+
+    def __init__(self, record):
+        self.record = record
+        self.use_property_split = self.use_property_decorate = False
+
+    def column(self, **_kwargs):
+        return self
+
+    box = row = column
+
+    def prop(self, data, name, **_kwargs):
+        assert name in data.bl_rna.properties, f"{data} has no property {name}"
+        self.record.append(name)
+
+    def operator(self, idname, **_kwargs):
+        category, name = idname.split(".")
+        assert hasattr(getattr(bpy.ops, category), name), idname
+        self.record.append(idname)
+
+    def label(self, text="", **_kwargs):
+        self.record.append(text)
+
+
+def test_panels_show_the_settings_and_the_status(prism_addon, lens_scene):
+    panel = importlib.import_module(f"{prism_addon.__name__}.ui.lens_overlay_panel")
+    record = []
+    panel.draw_overlay_settings(_RecordingLayout(record), bpy.context)
+    for name in ("prism.toggle_lens_overlay", "wavelength_source", "rays_per_fan", "field_angle_deg",
+                 "source_distance_m", "show_spot_diagram", "lens_model", "lens_file", "focus_distance",
+                 "aperture_fstop", "prism.export_lens_diagram"):
+        assert name in record
+    assert any("RMS spot" in str(entry) for entry in record)
+    assert bpy.types.VIEW3D_PT_prism_lens_overlay.bl_category == "Prism"
+    assert bpy.types.DATA_PT_prism_lens_overlay.bl_context == "data"
