@@ -11,6 +11,9 @@ from . import lens_overlay_draw as draw
 
 
 def _draw_status(layout, scene):
+    if not draw.overlay_settings(scene).enabled:
+        layout.label(text="Show the overlay to trace the fans and spot diagram", icon="INFO")
+        return
     diagram, message = draw.scene_diagram(scene)
     if diagram is None:
         layout.label(text=message, icon="INFO")

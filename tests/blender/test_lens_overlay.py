@@ -272,6 +272,7 @@ class _RecordingLayout:
 def test_panels_show_the_settings_and_the_status(prism_addon, lens_scene):
     panel = importlib.import_module(f"{prism_addon.__name__}.ui.lens_overlay_panel")
     record = []
+    lens_scene.prism.lens_overlay.enabled = True
     panel.draw_overlay_settings(_RecordingLayout(record), bpy.context)
     for name in ("prism.toggle_lens_overlay", "wavelength_source", "rays_per_fan", "field_angle_deg",
                  "source_distance_m", "show_spot_diagram", "lens_model", "lens_file", "focus_distance",

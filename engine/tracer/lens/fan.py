@@ -144,11 +144,11 @@ def ray_fan(system, wavelength_nm, source, n_rays, sensor_z_mm, heights_mm=None)
     """A meridional fan of ``n_rays`` rays of one wavelength from ``source`` to the sensor plane.
 
     ``heights_mm``: aim heights on the front vertex plane (default: evenly across the front
-    clear aperture). ``sensor_z_mm``: axial position of the sensor plane.
+    clear aperture; a single ray goes through its centre). ``sensor_z_mm``: axial position of the sensor plane.
     """
     if heights_mm is None:
         radius = system.surfaces[0].semi_aperture_mm
-        heights_mm = np.linspace(-radius, radius, int(n_rays))
+        heights_mm = np.linspace(-radius, radius, int(n_rays)) if n_rays > 1 else np.zeros(1)
     heights_mm = np.asarray(heights_mm, dtype=np.float64)
     aim = np.column_stack([np.zeros_like(heights_mm), heights_mm])
     origins, directions = _source_rays(system, source, aim, sensor_z_mm)

@@ -70,6 +70,8 @@ def test_fan_polylines_run_from_the_source_through_every_surface_to_the_sensor()
     assert np.all(np.diff(fan.points_mm[:, :, 2], axis=1) > 0)
     starts, ends, ray = fan.segments()
     assert len(starts) == 7 * 3 and np.all(np.bincount(ray) == 3)
+    single = ray_fan(lens, 550.0, PointSource(), 1, sensor_z_mm=120.0)
+    np.testing.assert_allclose(single.points_mm[0, :, 1], 0.0, atol=1e-12)  # one ray: along the axis
 
 
 def test_rays_outside_a_clear_aperture_are_blocked_at_that_surface():
