@@ -6,7 +6,17 @@ they run in this order and are undone in reverse.
 
 import importlib
 
-_MODULE_NAMES: tuple[str, ...] = ("lens_overlay_draw", "lens_overlay_export", "lens_overlay_panel")
+_MODULE_NAMES: tuple[str, ...] = (
+    "compat_panels",
+    "spectral_plot",
+    "panels_render",
+    "panels_camera",
+    "panels_light",
+    "panels_material",
+    "lens_overlay_draw",
+    "lens_overlay_export",
+    "lens_overlay_panel",
+)
 
 
 def _modules():

@@ -1,0 +1,75 @@
+"""``Light.prism``: how a light's spectrum is defined. Strength is Blender's own light energy."""
+
+import bpy
+from bpy.props import EnumProperty, FloatProperty, FloatVectorProperty
+
+from ._common import TEMPERATURE_SUBTYPE, WAVELENGTH_SUBTYPE, register_group, unregister_group
+from .spectral_colour import blackbody_display_rgb, line_display_rgb
+
+COLOR_SOURCE_ITEMS = [
+    ("RGB", "RGB", "The light's colour, turned into a smooth spectrum", 0),
+    ("BLACKBODY", "Blackbody", "The spectrum of a blackbody at a colour temperature", 1),
+    ("MONOCHROMATIC", "Monochromatic", "A narrow emission line at one wavelength (e.g. a laser or sodium lamp)", 2),
+]
+
+TEMPERATURE_RANGE_K = (1000.0, 40000.0)
+
+
+def _preview_color(self):
+    if self.color_source == "BLACKBODY":
+        return blackbody_display_rgb(self.temperature_k)
+    if self.color_source == "MONOCHROMATIC":
+        return line_display_rgb(self.wavelength_nm, self.line_width_nm)
+    return tuple(self.id_data.color)
+
+
+class PrismLightSettings(bpy.types.PropertyGroup):
+    """Prism settings of a light."""
+
+    color_source: EnumProperty(
+        name="Colour Source",
+        description="How the light's spectrum is defined",
+        items=COLOR_SOURCE_ITEMS,
+        default="RGB",
+    )
+    temperature_k: FloatProperty(
+        name="Temperature",
+        description="Colour temperature of the blackbody in kelvin (1000-40000 K render)",
+        default=6500.0,
+        min=1.0,
+        soft_min=TEMPERATURE_RANGE_K[0],
+        soft_max=TEMPERATURE_RANGE_K[1],
+        subtype=TEMPERATURE_SUBTYPE,
+    )
+    wavelength_nm: FloatProperty(
+        name="Wavelength",
+        description="Centre wavelength of the emission line in nm",
+        default=550.0,
+        min=360.0,
+        max=830.0,
+        subtype=WAVELENGTH_SUBTYPE,
+    )
+    line_width_nm: FloatProperty(
+        name="Line Width",
+        description="Full width at half maximum of the emission line in nm",
+        default=10.0,
+        min=0.1,
+        soft_max=100.0,
+        max=470.0,
+        subtype=WAVELENGTH_SUBTYPE,
+    )
+    preview_color: FloatVectorProperty(
+        name="Colour",
+        description="Colour of the light's spectrum on screen (brightest channel 1; read-only)",
+        size=3,
+        subtype="COLOR",
+        get=_preview_color,
+    )
+
+
+def register():
+    register_group(PrismLightSettings, bpy.types.Light, "prism", "Prism light settings")
+
+
+def unregister():
+    unregister_group(PrismLightSettings, bpy.types.Light, "prism")

@@ -1,0 +1,165 @@
+"""``Scene.prism``: render settings stored in the .blend (the session turns them into ``RenderSettings``)."""
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+
+from ._common import WAVELENGTH_SUBTYPE, register_group, unregister_group
+from .lens_overlay import PrismLensOverlaySettings
+
+WAVELENGTH_MODE_ITEMS = [
+    (
+        "CIE",
+        "CIE hero wavelengths",
+        "Sample several wavelengths per path over 360-830 nm and integrate them against the "
+        "CIE 1931 colour-matching functions (physically correct colour)",
+        0,
+    ),
+    (
+        "GAUSSIAN_RGB",
+        "Gaussian RGB",
+        "Trace one wavelength per R, G and B channel, drawn from that channel's Gaussian "
+        "(the original spectral ray tracer's model)",
+        1,
+    ),
+]
+
+
+def _update_render_passes(self, context):
+    scene = self.id_data
+    for view_layer in scene.view_layers:
+        view_layer.update_render_passes()
+
+
+def _mean(channel: str, default: float):
+    return FloatProperty(
+        name=f"{channel} Mean",
+        description=f"Centre wavelength in nm of the {channel} channel's Gaussian (Gaussian RGB mode)",
+        default=default,
+        min=360.0,
+        max=830.0,
+        subtype=WAVELENGTH_SUBTYPE,
+    )
+
+
+def _sigma(channel: str, default: float):
+    return FloatProperty(
+        name=f"{channel} Sigma",
+        description=f"Standard deviation in nm of the {channel} channel's Gaussian (Gaussian RGB mode)",
+        default=default,
+        min=0.5,
+        max=200.0,
+        subtype=WAVELENGTH_SUBTYPE,
+    )
+
+
+class PrismSceneSettings(bpy.types.PropertyGroup):
+    """Prism render settings of a scene."""
+
+    samples: IntProperty(
+        name="Samples",
+        description="Samples per pixel of a final render",
+        default=64,
+        min=1,
+        soft_max=4096,
+    )
+    samples_per_pass: IntProperty(
+        name="Samples per Pass",
+        description="Samples added to every pixel before the image is shown again (higher is faster overall, "
+        "lower refreshes more often)",
+        default=1,
+        min=1,
+        soft_max=64,
+    )
+    preview_samples: IntProperty(
+        name="Preview Samples",
+        description="Samples per pixel of viewport and material previews",
+        default=4,
+        min=1,
+        soft_max=256,
+    )
+    max_bounces: IntProperty(
+        name="Max Bounces",
+        description="Maximum number of times a path scatters before it is ended",
+        default=8,
+        min=0,
+        max=1024,
+        soft_max=64,
+    )
+    seed: IntProperty(
+        name="Seed",
+        description="Seed of the random numbers: the same seed renders the same image",
+        default=0,
+        min=0,
+    )
+    wavelength_mode: EnumProperty(
+        name="Wavelength Mode",
+        description="How wavelengths are chosen for each path",
+        items=WAVELENGTH_MODE_ITEMS,
+        default="CIE",
+    )
+    wavelengths_per_path: IntProperty(
+        name="Wavelengths per Path",
+        description="Hero wavelengths carried by each path in CIE mode (a dispersive event keeps only the first)",
+        default=4,
+        min=1,
+        max=16,
+    )
+    mean_r_nm: _mean("R", 600.0)
+    sigma_r_nm: _sigma("R", 25.0)
+    mean_g_nm: _mean("G", 550.0)
+    sigma_g_nm: _sigma("G", 25.0)
+    mean_b_nm: _mean("B", 450.0)
+    sigma_b_nm: _sigma("B", 15.0)
+    use_mis: BoolProperty(
+        name="Multiple Importance Sampling",
+        description="Combine light sampling and BSDF sampling (less noise from small or bright lights)",
+        default=True,
+    )
+    russian_roulette_depth: IntProperty(
+        name="Russian Roulette Depth",
+        description="Bounce after which dim paths may be ended at random (unbiased, saves time)",
+        default=3,
+        min=0,
+        soft_max=64,
+        max=1024,
+    )
+    threads: IntProperty(
+        name="Threads",
+        description="Number of CPU threads to render with (0 = all cores)",
+        default=0,
+        min=0,
+        max=1024,
+    )
+    use_pass_variance: BoolProperty(
+        name="Noise",
+        description="Add a Noise pass: per-pixel variance of the mean (R, G, B)",
+        default=False,
+        update=_update_render_passes,
+    )
+    use_pass_sample_count: BoolProperty(
+        name="Sample Count",
+        description="Add a Sample Count pass: samples accumulated in each pixel",
+        default=False,
+        update=_update_render_passes,
+    )
+    lens_overlay: PointerProperty(
+        type=PrismLensOverlaySettings,
+        name="Lens Overlay",
+        description="Settings of the viewport overlay that draws ray fans through the camera's real lens",
+    )
+
+    def channel_means_nm(self) -> tuple[float, float, float]:
+        """(R, G, B) Gaussian means in nm."""
+        return (self.mean_r_nm, self.mean_g_nm, self.mean_b_nm)
+
+    def channel_sigmas_nm(self) -> tuple[float, float, float]:
+        """(R, G, B) Gaussian standard deviations in nm."""
+        return (self.sigma_r_nm, self.sigma_g_nm, self.sigma_b_nm)
+
+
+def register():
+    register_group(PrismSceneSettings, bpy.types.Scene, "prism", "Prism render settings")
+
+
+def unregister():
+    unregister_group(PrismSceneSettings, bpy.types.Scene, "prism")

@@ -1,0 +1,93 @@
+"""Light data properties: type, spectrum (colour source), strength and shape."""
+
+from __future__ import annotations
+
+import bpy
+
+from ..engine.properties.light import TEMPERATURE_RANGE_K
+from ._panel_base import PrismPanel, error_label
+
+
+class PRISM_PT_light(PrismPanel, bpy.types.Panel):
+    """The light's type, spectrum, swatch, strength and size."""
+
+    bl_label = "Light"
+    bl_context = "data"
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine == "PRISM" and context.light is not None
+
+    def draw(self, context):
+        layout = self.layout
+        light = context.light
+        settings = light.prism
+        layout.row().prop(light, "type", expand=True)
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+
+        column = layout.column()
+        column.prop(settings, "color_source")
+        if settings.color_source == "RGB":
+            column.prop(light, "color")
+        elif settings.color_source == "BLACKBODY":
+            column.prop(settings, "temperature_k")
+            low, high = TEMPERATURE_RANGE_K
+            if not low <= settings.temperature_k <= high:
+                error_label(column, f"Temperature must be {low:.0f}-{high:.0f} K to render.")
+        else:
+            column.prop(settings, "wavelength_nm")
+            column.prop(settings, "line_width_nm")
+        if settings.color_source != "RGB":
+            column.prop(settings, "preview_color", text="Resulting Colour")
+
+        layout.separator()
+        column = layout.column()
+        column.prop(light, "energy", text="Strength" if light.type == "SUN" else "Power")
+        if light.type in {"POINT", "SPOT"}:
+            column.prop(light, "shadow_soft_size", text="Radius")
+        elif light.type == "SUN":
+            column.prop(light, "angle")
+        elif light.type == "AREA":
+            column.prop(light, "shape")
+            sub = column.column(align=True)
+            if light.shape in {"SQUARE", "DISK"}:
+                sub.prop(light, "size")
+            else:
+                sub.prop(light, "size", text="Size X")
+                sub.prop(light, "size_y", text="Y")
+
+
+class PRISM_PT_light_beam(PrismPanel, bpy.types.Panel):
+    """Spot light cone."""
+
+    bl_label = "Beam Shape"
+    bl_context = "data"
+    bl_parent_id = "PRISM_PT_light"
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine == "PRISM" and context.light is not None and context.light.type == "SPOT"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        light = context.light
+        column = layout.column()
+        column.prop(light, "spot_size", text="Size")
+        column.prop(light, "spot_blend", text="Blend", slider=True)
+        column.prop(light, "show_cone")
+
+
+CLASSES = (PRISM_PT_light, PRISM_PT_light_beam)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+
+
+def unregister():
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

@@ -1,0 +1,153 @@
+"""Material properties: what Prism reads from the Principled BSDF, and Prism's overrides."""
+
+from __future__ import annotations
+
+import bpy
+
+from ..engine.properties.principled import READ_SOCKETS, find_principled, material_kind, read_principled
+from ._panel_base import PrismPanel, error_label
+
+_KIND_LABELS = {
+    "diffuse": "Diffuse",
+    "conductor": "Metal",
+    "dielectric": "Glass (refractive)",
+    "thin_film": "Thin film",
+}
+
+
+def _material_poll(context):
+    return context.engine == "PRISM" and context.material is not None
+
+
+class PRISM_PT_material(PrismPanel, bpy.types.Panel):
+    """What Prism renders for this material."""
+
+    bl_label = "Prism"
+    bl_context = "material"
+
+    @classmethod
+    def poll(cls, context):
+        return _material_poll(context)
+
+    def draw(self, context):
+        layout = self.layout
+        material = context.material
+        reading = read_principled(material)
+        kind = material_kind(reading, material.prism)
+        emits = reading.emission_strength > 0.0 and max(reading.emission_color) > 0.0
+        layout.label(
+            text=f"Renders as: {_KIND_LABELS[kind]}{' + emission' if emits else ''}",
+            icon="SHADING_RENDERED",
+        )
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        node = find_principled(material)
+        column = layout.column(align=True)
+        if node is None:
+            column.label(text="No Principled BSDF: using the viewport display values.", icon="INFO")
+            column.prop(material, "diffuse_color", text="Base Color")
+            column.prop(material, "metallic")
+            column.prop(material, "roughness")
+        else:
+            for name in READ_SOCKETS:
+                socket = node.inputs.get(name)
+                if socket is None:
+                    continue
+                if socket.is_linked:
+                    column.label(text=f"{name}: linked (ignored)", icon="ERROR")
+                else:
+                    column.prop(socket, "default_value", text=name)
+        for message in reading.ignored:
+            error_label(layout, message)
+
+
+class PRISM_PT_material_glass(PrismPanel, bpy.types.Panel):
+    """Dispersion of a transmissive material."""
+
+    bl_label = "Glass"
+    bl_context = "material"
+    bl_parent_id = "PRISM_PT_material"
+
+    @classmethod
+    def poll(cls, context):
+        return _material_poll(context)
+
+    def draw(self, context):
+        layout = self.layout
+        material = context.material
+        settings = material.prism
+        reading = read_principled(material)
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        layout.active = material_kind(reading, settings) == "dielectric"
+        layout.prop(settings, "glass_source")
+        if settings.glass_source == "CATALOGUE":
+            layout.prop(settings, "glass_name")
+        elif settings.glass_source == "ABBE":
+            column = layout.column(align=True)
+            column.prop(settings, "glass_nd")
+            column.prop(settings, "glass_vd")
+        else:
+            layout.label(text=f"Constant IOR {reading.ior:.4g} from the Principled BSDF: no dispersion.")
+
+
+class PRISM_PT_material_metal(PrismPanel, bpy.types.Panel):
+    """Which metal a metallic material is."""
+
+    bl_label = "Metal"
+    bl_context = "material"
+    bl_parent_id = "PRISM_PT_material"
+
+    @classmethod
+    def poll(cls, context):
+        return _material_poll(context)
+
+    def draw(self, context):
+        layout = self.layout
+        material = context.material
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        layout.active = material_kind(read_principled(material), material.prism) == "conductor"
+        layout.prop(material.prism, "conductor")
+
+
+class PRISM_PT_material_films(PrismPanel, bpy.types.Panel):
+    """Coatings and free-standing thin films (interference colours)."""
+
+    bl_label = "Coating and Thin Film"
+    bl_context = "material"
+    bl_parent_id = "PRISM_PT_material"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    @classmethod
+    def poll(cls, context):
+        return _material_poll(context)
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.material.prism
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        column = layout.column(align=True)
+        column.prop(settings, "coating_thickness_nm")
+        sub = column.column(align=True)
+        sub.active = settings.coating_thickness_nm > 0.0
+        sub.prop(settings, "coating_ior")
+        layout.prop(settings, "is_thin_film")
+        column = layout.column(align=True)
+        column.active = settings.is_thin_film
+        column.prop(settings, "film_thickness_nm")
+        column.prop(settings, "film_ior")
+
+
+CLASSES = (PRISM_PT_material, PRISM_PT_material_glass, PRISM_PT_material_metal, PRISM_PT_material_films)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+
+
+def unregister():
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)
