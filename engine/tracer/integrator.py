@@ -21,7 +21,8 @@ from __future__ import annotations
 import numpy as np
 
 from .path_state import collapse_to_hero, offset_origin, roll_columns, shading_frame, unroll_columns
-from .sampling import power_heuristic, to_local, to_world
+from .sampling import dot, power_heuristic, to_local, to_world
+from .spectra import PathWavelengths
 
 SHADOW_SHORTEN = 1e-4  # shadow rays stop this fraction short of the light sample
 
@@ -82,6 +83,7 @@ class Integrator:
         """Trace one path per row; returns (radiance [n,K], rays_cast)."""
         n, k = lam.shape
         o, d, beta, cam_collapsed = self.camera_rays(pixel_xy, lens_uv, lam, hero)
+        lam = PathWavelengths(lam)
         radiance = np.zeros((n, k))
         idx = np.arange(n)
         collapsed = np.full(n, cam_collapsed)
@@ -123,7 +125,7 @@ class Integrator:
                     sub_c = collapsed[rows]
                     beta[rows] = collapse_to_hero(beta[rows], hero[rows], sub_c)
                     collapsed[rows] = sub_c
-            flip = self.two_sided[mat] & ((wo * ng).sum(1) < 0)
+            flip = self.two_sided[mat] & (dot(wo, ng) < 0)
             nf = np.where(flip[:, None], -ns, ns)
             frame = shading_frame(nf)
             wo_l = to_local(wo, *frame)
@@ -155,7 +157,7 @@ class Integrator:
     def _consistent(wo, wi, ng, wo_l, wi_l):
         """Reflection must stay on wo's side of the geometric surface, transmission cross it."""
         reflect = wo_l[:, 2] * wi_l[:, 2] > 0
-        same = (wo * ng).sum(1) * (wi * ng).sum(1) > 0
+        same = dot(wo, ng) * dot(wi, ng) > 0
         return reflect == same
 
     def _mis_emitter(self, pdf_light, prev_pdf, prev_delta):
@@ -197,46 +199,60 @@ class Integrator:
                 radiance[idx[rows]] += beta[rows] * le * w[:, None]
 
     def _next_event(self, p, ng, frame, mat, wo, wo_l, lam, hero, collapsed, beta, rng):
-        """Light-sampled contribution [n,K] at the current vertices, and rays cast."""
+        """Light-sampled contribution [n,K] at the current vertices (only rows whose
+        material is not a pure delta get one), and the number of shadow rays cast."""
         n, k = lam.shape
         out = np.zeros((n, k))
-        rows = np.flatnonzero(~self.delta_material[mat])
-        if len(rows) == 0:
-            return out, 0
+        nee = ~self.delta_material[mat]
+        if not nee.all():
+            rows = np.flatnonzero(nee)
+            if len(rows) == 0:
+                return out, 0
+            p, ng, mat, wo, wo_l, lam, hero, collapsed, beta = (
+                a[rows] for a in (p, ng, mat, wo, wo_l, lam, hero, collapsed, beta))
+            frame = tuple(a[rows] for a in frame)
+        else:
+            rows = None
         lights = self.lights
-        m = len(rows)
+        m = len(p)
         u = rng.random((m, 4))
-        choice = np.minimum((u[:, 3] * len(lights)).astype(np.int64), len(lights) - 1)
-        wi = np.zeros((m, 3))
-        dist = np.zeros(m)
-        li_val = np.zeros((m, k))
-        pdf_l = np.zeros(m)
-        is_delta = np.zeros(m, dtype=bool)
-        pr = p[rows]
-        lr = lam[rows]
-        for j in np.unique(choice):
-            sub = np.flatnonzero(choice == j)
-            light = lights.lights[j]
-            wi[sub], dist[sub], li_val[sub], pdf_l[sub] = light.sample(pr[sub], u[sub, :3], lr[sub])
-            is_delta[sub] = light.delta
+        if len(lights) == 1:
+            light = lights.lights[0]
+            wi, dist, li_val, pdf_l = light.sample(p, u[:, :3], lam)
+            is_delta = np.full(m, light.delta)
+        else:
+            choice = np.minimum((u[:, 3] * len(lights)).astype(np.int64), len(lights) - 1)
+            wi = np.zeros((m, 3))
+            dist = np.zeros(m)
+            li_val = np.zeros((m, k))
+            pdf_l = np.zeros(m)
+            is_delta = np.zeros(m, dtype=bool)
+            for j in np.unique(choice):
+                sub = np.flatnonzero(choice == j)
+                light = lights.lights[j]
+                wi[sub], dist[sub], li_val[sub], pdf_l[sub] = light.sample(p[sub], u[sub, :3], lam[sub])
+                is_delta[sub] = light.delta
         pdf_l = pdf_l * lights.select_pdf
-        fr = frame[0][rows], frame[1][rows], frame[2][rows]
-        wi_l = to_local(wi, *fr)
-        f, pdf_b = self._eval(mat[rows], wo_l[rows], wi_l, lr, hero[rows], collapsed[rows])
-        ok = (pdf_l > 0) & self._consistent(wo[rows], wi, ng[rows], wo_l[rows], wi_l)
+        wi_l = to_local(wi, *frame)
+        f, pdf_b = self._eval(mat, wo_l, wi_l, lam, hero, collapsed)
+        ok = (pdf_l > 0) & self._consistent(wo, wi, ng, wo_l, wi_l)
         if self.use_mis:
             w = np.where(is_delta, 1.0, power_heuristic(pdf_l, pdf_b))
         else:
-            w = np.ones(m)
+            w = 1.0
         with np.errstate(divide="ignore", invalid="ignore"):
             scale = np.where(ok, w * np.abs(wi_l[:, 2]) / np.where(ok, pdf_l, 1.0), 0.0)
-        contrib = beta[rows] * f * li_val * scale[:, None]
-        send = (contrib > 0).any(1)
+        contrib = beta * f
+        contrib *= li_val
+        contrib *= scale[:, None]
+        send = contrib.max(axis=1) > 0
         if not send.any():
             return out, 0
         s = np.flatnonzero(send)
-        origin = offset_origin(pr[s], ng[rows][s], wi[s])
-        tmax = np.where(np.isfinite(dist[s]), dist[s] * (1.0 - SHADOW_SHORTEN), 1e30)
+        origin = offset_origin(p[s], ng[s], wi[s])
+        ds = dist[s]
+        tmax = np.where(np.isfinite(ds), ds * (1.0 - SHADOW_SHORTEN), 1e30)
         blocked = self.accel.occluded(origin, wi[s], tmax)
-        out[rows[s]] = np.where(blocked[:, None], 0.0, contrib[s])
+        target = s if rows is None else rows[s]
+        out[target] = np.where(blocked[:, None], 0.0, contrib[s])
         return out, len(s)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .sampling import orthonormal_basis
+from .sampling import dot, orthonormal_basis
 
 # Secondary rays start this far (relative to the largest coordinate of the hit
 # point) off the surface: ~30 float32 ulps, above Embree's float32 error.
@@ -41,14 +41,14 @@ class TriangleData:
         length = np.linalg.norm(ns, axis=1, keepdims=True)
         good = (length[:, 0] > 1e-12) & np.isfinite(length[:, 0])
         ns = np.where(good[:, None], ns / np.where(good, length[:, 0], 1.0)[:, None], ng)
-        ns *= np.where((ns * ng).sum(1) < 0, -1.0, 1.0)[:, None]  # same side as the face
+        ns *= np.where(dot(ns, ng) < 0, -1.0, 1.0)[:, None]  # same side as the face
         return p, ng, ns
 
 
 def offset_origin(p: np.ndarray, ng: np.ndarray, toward: np.ndarray) -> np.ndarray:
     """Move points ``p`` off their surface along ``ng`` to the side of ``toward``."""
     eps = OFFSET_RELATIVE * np.abs(p).max(axis=1) + OFFSET_ABSOLUTE
-    side = np.where((toward * ng).sum(1) >= 0, 1.0, -1.0)
+    side = np.where(dot(toward, ng) >= 0, 1.0, -1.0)
     return p + (eps * side)[:, None] * ng
 
 

@@ -17,6 +17,11 @@ _R2 = np.array([1.0 / _PHI2, 1.0 / (_PHI2 * _PHI2)])
 _R1 = 0.61803398874989484820  # golden ratio conjugate
 
 
+def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise dot products [N] of [N,3] arrays (einsum: much faster than (a*b).sum(1))."""
+    return np.einsum("ij,ij->i", a, b)
+
+
 def pass_rng(seed: int, pass_index: int, chunk_index: int = 0) -> np.random.Generator:
     """The generator of one chunk of one pass (independent streams)."""
     return np.random.Generator(np.random.PCG64([int(seed) & 0xFFFFFFFF, int(pass_index), int(chunk_index)]))
@@ -57,7 +62,7 @@ def concentric_disk(u: np.ndarray) -> np.ndarray:
 def cosine_hemisphere(u: np.ndarray) -> np.ndarray:
     """Cosine-weighted directions [N,3] about +Z; pdf = cos(theta)/pi."""
     d = concentric_disk(u)
-    z = np.sqrt(np.maximum(0.0, 1.0 - (d * d).sum(axis=1)))
+    z = np.sqrt(np.maximum(0.0, 1.0 - dot(d, d)))
     return np.column_stack([d, z])
 
 
@@ -97,7 +102,7 @@ def orthonormal_basis(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def to_local(v: np.ndarray, s: np.ndarray, t: np.ndarray, n: np.ndarray) -> np.ndarray:
     """World vectors [N,3] into the frame (s, t, n)."""
-    return np.column_stack([(v * s).sum(1), (v * t).sum(1), (v * n).sum(1)])
+    return np.column_stack([dot(v, s), dot(v, t), dot(v, n)])
 
 
 def to_world(v: np.ndarray, s: np.ndarray, t: np.ndarray, n: np.ndarray) -> np.ndarray:

@@ -16,6 +16,51 @@ import numpy as np
 from .scene import SpectrumSpec
 
 
+class PathWavelengths(np.ndarray):
+    """Wavelengths [n,K] (nm) of a chunk of paths that remember which paths they are.
+
+    A path keeps its wavelengths for life, so every spectrum (albedo, emitter) is
+    evaluated once per chunk and then looked up at each bounce: indexing rows
+    (``lam[mask]``, ``lam[indices]``) keeps the link; anything else gives a plain array.
+    """
+
+    def __new__(cls, wavelength_nm):
+        full = np.ascontiguousarray(wavelength_nm, dtype=np.float64)
+        obj = full.view(cls)
+        obj._rows = np.arange(len(full))
+        obj._cache = {}
+        obj._full = full
+        return obj
+
+    def __array_finalize__(self, obj):
+        self._rows = None
+        self._cache = None
+        self._full = None
+
+    def __getitem__(self, key):
+        out = super().__getitem__(key)
+        if not isinstance(out, np.ndarray):
+            return out
+        rows_key = isinstance(key, slice) or (isinstance(key, np.ndarray) and key.ndim == 1)
+        if self._rows is not None and rows_key and out.ndim == 2:
+            out._rows = self._rows[key]
+            out._cache = self._cache
+            out._full = self._full
+            return out
+        return out.view(np.ndarray)
+
+
+def cached(key, fn, lam) -> np.ndarray:
+    """``fn(lam)`` [n,K], computed once per chunk when ``lam`` is a ``PathWavelengths``."""
+    rows = getattr(lam, "_rows", None)
+    if rows is None:
+        return np.asarray(fn(np.asarray(lam)), dtype=np.float64)
+    table = lam._cache.get(key)
+    if table is None:
+        table = lam._cache[key] = np.asarray(fn(lam._full), dtype=np.float64)
+    return table[rows]
+
+
 class WavelengthMode:
     """Sampling of the wavelengths a path carries and conversion of its radiance to RGB."""
 
@@ -67,9 +112,12 @@ class _Reflectance:
         self.coefficients = reflectance_coefficients(np.asarray(rgb, dtype=np.float64))
 
     def __call__(self, lam):
+        return cached(self, self._evaluate, lam)
+
+    def _evaluate(self, lam):
         from .rgb_to_spectrum import evaluate_sigmoid_polynomial
 
-        return np.asarray(evaluate_sigmoid_polynomial(self.coefficients, lam), dtype=np.float64)
+        return evaluate_sigmoid_polynomial(self.coefficients, lam)
 
 
 def reflectance(rgb) -> callable:
@@ -92,7 +140,7 @@ class _Emission:
         self.spectrum = emission_spectrum(spec)
 
     def __call__(self, lam):
-        return np.asarray(self.spectrum.evaluate(lam), dtype=np.float64)
+        return cached(self, self.spectrum.evaluate, lam)
 
 
 @lru_cache(maxsize=256)
@@ -120,8 +168,8 @@ def glass_of(material):
 
 
 def conductor_nk(name: str, lam: np.ndarray):
-    """Complex index parts (n [n,K], k [n,K]) of a named metal."""
+    """Complex index parts (n [n,K], k [n,K]) of a named metal (cached per chunk)."""
     from .conductors import conductor_nk as nk
 
-    n, k = nk(name, lam)
-    return np.asarray(n, dtype=np.float64), np.asarray(k, dtype=np.float64)
+    nk_stack = cached(("nk", name), lambda wl: np.stack(nk(name, wl), axis=-1), lam)
+    return nk_stack[..., 0], nk_stack[..., 1]

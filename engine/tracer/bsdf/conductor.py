@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..sampling import dot
+
 from .base import BSDF, BSDFSample
 from .microfacet import ggx_d, ggx_g1, ggx_g2, reflect, sample_visible_normal, visible_normal_pdf
 
@@ -30,7 +32,7 @@ class Conductor(BSDF):
         ok = (wo[:, 2] > 0) & (wi[:, 2] > 0)
         wm = wo + wi
         wm /= np.maximum(np.linalg.norm(wm, axis=1, keepdims=True), 1e-300)
-        cos_om = np.clip((wo * wm).sum(1), 0.0, 1.0)
+        cos_om = np.clip(dot(wo, wm), 0.0, 1.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             scalar = ggx_d(wm, self.alpha) * ggx_g2(wo, wi, self.alpha) / (4.0 * wo[:, 2] * wi[:, 2])
             pdf = visible_normal_pdf(wo, wm, self.alpha) / (4.0 * cos_om)
@@ -48,7 +50,7 @@ class Conductor(BSDF):
         wm = sample_visible_normal(wo, self.alpha, u[:, 1:3])
         wi = reflect(wo, wm)
         ok = (wo[:, 2] > 0) & (wi[:, 2] > 0)
-        cos_om = np.clip((wo * wm).sum(1), 0.0, 1.0)
+        cos_om = np.clip(dot(wo, wm), 0.0, 1.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio = ggx_g2(wo, wi, self.alpha) / ggx_g1(wo, self.alpha)
             pdf = visible_normal_pdf(wo, wm, self.alpha) / (4.0 * cos_om)

@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..sampling import dot
+
 from .base import BSDF, BSDFSample, hero_column
 from .microfacet import ggx_d, ggx_g1, ggx_g2, sample_visible_normal, visible_normal_pdf
 from .optics import fresnel_dielectric, refract
@@ -88,7 +90,7 @@ class Dielectric(BSDF):
         n = len(wo)
         eta = self.eta(lam, hero)
         wm = sample_visible_normal(wo, self.alpha, u[:, 1:3])
-        cos_om = (wo * wm).sum(1)
+        cos_om = dot(wo, wm)
         r = self.reflectance(cos_om, eta, lam)
         p = choice_probability(r, hero, collapsed)
         reflect = u[:, 0] < p
@@ -99,7 +101,7 @@ class Dielectric(BSDF):
         valid = np.where(reflect, wo[:, 2] * cos_i > 0, (~tir) & (wo[:, 2] * cos_i < 0))
         ratio = ggx_g2(wo, wi, self.alpha) / ggx_g1(wo, self.alpha)
         pdf_wm = visible_normal_pdf(wo, wm, self.alpha)
-        cos_im = (wi * wm).sum(1)
+        cos_im = dot(wi, wm)
         with np.errstate(divide="ignore", invalid="ignore"):
             denom = (cos_im + cos_om / etap) ** 2
             pdf = np.where(
@@ -126,8 +128,8 @@ class Dielectric(BSDF):
         ok = (cos_o != 0) & (cos_i != 0) & (length > 0)
         wm = wm / np.where(length > 0, length, 1.0)[:, None]
         wm *= np.where(wm[:, 2] < 0, -1.0, 1.0)[:, None]
-        cos_om = (wo * wm).sum(1)
-        cos_im = (wi * wm).sum(1)
+        cos_om = dot(wo, wm)
+        cos_im = dot(wi, wm)
         ok &= (cos_im * cos_i > 0) & (cos_om * cos_o > 0)
         r = self.reflectance(cos_om, eta, lam)
         p = choice_probability(r, hero, collapsed)

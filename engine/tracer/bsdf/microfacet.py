@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..sampling import dot
+
 
 def ggx_d(wm: np.ndarray, alpha: np.ndarray | float) -> np.ndarray:
     """Normal distribution D(wm) [n] (per steradian of microfacet normal)."""
@@ -43,10 +45,10 @@ def visible_normal_pdf(w, wm, alpha) -> np.ndarray:
     """Density of visible normals D_w(wm) = G1(w) max(0, w.wm) D(wm) / |cos w| [n]
     (``w`` may be below the surface: it is mirrored up, as in sampling)."""
     w_up = w * np.where(w[:, 2] < 0, -1.0, 1.0)[:, None]
-    dot = np.maximum((w_up * wm).sum(1), 0.0)
+    cos_m = np.maximum(dot(w_up, wm), 0.0)
     cos = np.abs(w[:, 2])
     with np.errstate(divide="ignore", invalid="ignore"):
-        pdf = ggx_g1(w_up, alpha) * dot * ggx_d(wm, alpha) / cos
+        pdf = ggx_g1(w_up, alpha) * cos_m * ggx_d(wm, alpha) / cos
     return np.where(cos > 0, pdf, 0.0)
 
 
@@ -78,4 +80,4 @@ def sample_visible_normal(w: np.ndarray, alpha, u: np.ndarray) -> np.ndarray:
 
 def reflect(w: np.ndarray, n: np.ndarray) -> np.ndarray:
     """Mirror ``w`` (pointing away from the surface) about ``n``: 2 (w.n) n - w."""
-    return 2.0 * (w * n).sum(1, keepdims=True) * n - w
+    return 2.0 * dot(w, n)[:, None] * n - w

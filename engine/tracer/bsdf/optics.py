@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..sampling import dot
+
 from .. import fresnel as _fresnel
 
 
@@ -30,7 +32,7 @@ def refract(w: np.ndarray, n: np.ndarray, eta: np.ndarray):
     Returns (transmitted direction [n,3] (pointing away on the other side),
     eta' [n] = relative index actually crossed (n_t / n_i), tir [n] bool)."""
     eta = np.broadcast_to(np.asarray(eta, dtype=np.float64), (len(w),))
-    inside = (w * n).sum(1) < 0
+    inside = dot(w, n) < 0
     etap = np.where(inside, 1.0 / eta, eta)
     facing = np.where(inside[:, None], -n, n)
     t, tir = _fresnel.refract(-np.nan_to_num(w), facing, etap)
@@ -39,7 +41,7 @@ def refract(w: np.ndarray, n: np.ndarray, eta: np.ndarray):
 
 def conductor_fresnel(cos_i: np.ndarray, name: str, lam: np.ndarray) -> np.ndarray:
     """Reflectance [n,K] of a named metal (measured n, k) at ``cos_i`` [n]."""
-    from ..conductors import conductor_nk
+    from ..spectra import conductor_nk
 
     n, k = conductor_nk(name, lam)
     return _fresnel.fresnel_conductor(np.abs(_cos(cos_i))[:, None], n, k)
@@ -59,7 +61,7 @@ def coating_reflectance(thickness_nm: float, coating_ior: float):
 def coated_conductor_fresnel(material, spectra):
     """F(cos_i [n], lam [n,K]) of a thin film of index ``coating_ior`` over a metal: the
     named metal's n + ik, or (base colour only) the real index with that normal reflectance."""
-    from ..conductors import conductor_nk
+    from ..spectra import conductor_nk
     from ..thin_film import thin_film_reflectance
 
     d, n_film = float(material.coating_thickness_nm), float(material.coating_ior)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import uniform_triangle
+from ..sampling import dot, uniform_triangle
 
 
 class MeshEmitters:
@@ -56,7 +56,7 @@ class MeshEmitters:
         dist = np.linalg.norm(wi, axis=1)
         safe = np.where(dist > 0, dist, 1.0)
         wi = wi / safe[:, None]
-        cos_l = np.abs((wi * self.normal[rows]).sum(1))
+        cos_l = np.abs(dot(wi, self.normal[rows]))
         ok = (cos_l > 0) & (dist > 0) & (self.area[rows] > 0)
         pdf = np.where(ok, self.select[rows] / np.where(ok, self.area[rows], 1.0) * safe**2 / np.where(ok, cos_l, 1.0), 0.0)
         li = np.where(ok[:, None], self._radiance_rows(rows, lam), 0.0)
@@ -76,7 +76,7 @@ class MeshEmitters:
         rows = self.row_of_triangle[triangle]
         ok = rows >= 0
         r = np.where(ok, rows, 0)
-        cos_l = np.abs((d * self.normal[r]).sum(1))
+        cos_l = np.abs(dot(d, self.normal[r]))
         with np.errstate(divide="ignore", invalid="ignore"):
             pdf = self.select[r] / self.area[r] * t * t / cos_l
         return np.where(ok & np.isfinite(pdf), pdf, 0.0)

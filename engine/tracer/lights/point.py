@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import orthonormal_basis, to_world, uniform_cone
+from ..sampling import dot, orthonormal_basis, to_world, uniform_cone
 
 
 def spot_falloff(cos_angle, cos_half_size, blend):
@@ -75,8 +75,8 @@ class PointLight:
 
     def _hit_distance(self, o, d):
         oc = o - self.position
-        b = (oc * d).sum(1)
-        c = (oc * oc).sum(1) - self.radius**2
+        b = dot(oc, d)
+        c = dot(oc, oc) - self.radius**2
         disc = b * b - c
         root = np.sqrt(np.maximum(disc, 0.0))
         t = np.where(-b - root > 0, -b - root, -b + root)
