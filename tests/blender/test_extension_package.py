@@ -65,8 +65,13 @@ def test_zip_holds_the_addon_and_its_wheels_only(linux_zip):
         names = zf.namelist()
         manifest = tomllib.loads(zf.read("blender_manifest.toml").decode("utf-8"))
     assert "__init__.py" in names
-    assert any(n.startswith("engine/") for n in names)
-    assert any(n.startswith("lenses/") for n in names)
+    assert any(n.startswith("engine/tracer/") for n in names)
+    # Every file of the add-on's own directories is packaged (lens data included).
+    for folder in ("engine", "lenses", "operators", "ui"):
+        for path in (REPO_ROOT / folder).rglob("*"):
+            rel = path.relative_to(REPO_ROOT).as_posix()
+            if path.is_file() and "__pycache__" not in rel and not rel.endswith(".pyc"):
+                assert rel in names, f"{rel} is missing from the zip"
     leaked = [n for n in names if n.startswith(DEV_ONLY_DIRS) or "__pycache__" in n]
     assert leaked == []
 
