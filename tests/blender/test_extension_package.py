@@ -26,7 +26,7 @@ INSTALL_CHECK = REPO_ROOT / "tools" / "check_extension_install.py"
 PLATFORM = "linux-x64"
 RUNTIME_WHEELS = ("colour_science", "embreex", "imageio", "pillow", "scipy", "typing_extensions")
 DEV_ONLY_DIRS = ("tests/", "benchmarks/", ".ci/", "docs/", "tools/", ".venv/", ".git/",
-                 ".coord/", "build/", "dist/")
+                 ".coord/", "build/", "dist/", "demo/")
 
 
 @pytest.fixture(scope="session")
