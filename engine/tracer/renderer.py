@@ -18,7 +18,6 @@ each chunk with the fraction of the current pass done.
 
 from __future__ import annotations
 
-import math
 import time
 from concurrent.futures import ThreadPoolExecutor
 
@@ -36,7 +35,14 @@ from .lights import LightSet
 from .path_state import TriangleData
 from .sampling import pass_rng, pixel_offsets, r1_samples, r2_samples
 
-CHUNK_PATHS = 1 << 15
+CHUNK_PATHS = 1 << 15  # largest wavefront one thread traces at once
+MIN_CHUNK_PATHS = 2048  # below this, per-bounce Python overhead dominates
+
+
+def chunk_size(path_count: int) -> int:
+    """Paths per chunk: at least two chunks when there is enough work, so both cores
+    trace; depends only on the pass size (never the thread count), so seeds stay exact."""
+    return int(max(MIN_CHUNK_PATHS, min(CHUNK_PATHS, -(-path_count // 2))))
 
 
 def _filter_offsets(u, kind, width):
@@ -132,7 +138,7 @@ class Renderer:
         spp = min(self.settings.samples_per_pass, remaining) if remaining > 0 else self.settings.samples_per_pass
         pixel = np.repeat(self._pixels, spp)
         sample = self.samples_done + np.tile(np.arange(spp), len(self._pixels))
-        bounds = list(range(0, len(pixel), CHUNK_PATHS)) + [len(pixel)]
+        bounds = list(range(0, len(pixel), chunk_size(len(pixel)))) + [len(pixel)]
         jobs = [
             self._pool.submit(self._chunk, pixel[a:b], sample[a:b], i)
             for i, (a, b) in enumerate(zip(bounds[:-1], bounds[1:]))
@@ -145,11 +151,23 @@ class Renderer:
                 self.progress((i + 1) / len(jobs))
         self.samples_done += spp
         self._passes += 1
+        self._glass_warnings()
         self.stats["paths"] += len(pixel)
         self.stats["nan_samples"] = self.film.nan_samples
         self.stats["rejected_rays"] = self.accel.rejected_rays
         self.stats["seconds"] += time.perf_counter() - started
         self.stats["samples"] = self.samples_done
+
+    def _glass_warnings(self):
+        for b in self.bsdfs:
+            glass = getattr(b, "glass", None)
+            count = int(getattr(glass, "out_of_range_count", 0) or 0)
+            if count:
+                lo, hi = glass.valid_range_nm
+                text = (f"Glass '{glass.name}' is specified for {lo:g}-{hi:g} nm only: "
+                        f"the index was clamped at the range edge for {{}} wavelength sample(s)")
+                msgs = self.stats["warnings"]
+                msgs[:] = [m for m in msgs if not m.startswith(text.split("{")[0])] + [text.format(count)]
 
     def image_rgb(self) -> np.ndarray:
         """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top."""

@@ -77,3 +77,27 @@ def test_progressive_passes_and_border():
     assert np.all(img[:2] == 0) and np.all(img[:, :4] == 0) and np.all(img[10:] == 0)
     assert np.all(img[2:10, 4:12] > 0)
     assert r.stats["rays_cast"] > 0 and isinstance(r.strategy, str)
+
+
+def test_gaussian_pixel_filter_offsets_and_chunking():
+    from scipy import stats
+
+    from engine.tracer.renderer import _filter_offsets, chunk_size
+
+    u = np.random.default_rng(0).random((100_000, 2))
+    off = _filter_offsets(u, "gaussian", 1.5)
+    assert np.all(np.abs(off - 0.5) <= 1.5) and np.allclose(off.mean(0), 0.5, atol=0.01)
+    assert np.allclose(off.std(0), 0.5 * np.sqrt(1 - 6 * stats.norm.pdf(3) / (1 - 2 * stats.norm.cdf(-3))), rtol=0.02)
+    assert np.array_equal(_filter_offsets(u, "box", 1.5), u)
+    assert chunk_size(4096) == 2048 and chunk_size(10**7) == 1 << 15 and chunk_size(100) == 2048
+
+
+def test_dispersive_glass_out_of_range_is_reported():
+    scene = plane_under_point_light(size=8)
+    from engine.tracer.scene import Material
+
+    scene.materials = [Material("sf11", kind="dielectric", glass="N-SF11")]
+    r = Renderer(scene, settings(samples=16, samples_per_pass=16))
+    r.render_pass()
+    assert any("N-SF11" in w and "clamped" in w for w in r.stats["warnings"])
+    assert r.stats["nan_samples"] == 0
