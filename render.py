@@ -83,7 +83,12 @@ def render_still(arguments: argparse.Namespace) -> Path:
 
     package = prism_package_name()
     session = importlib.import_module(f"{package}.engine.session")
+    export = importlib.import_module(f"{package}.engine.export")
     scene = bpy.context.scene
+    try:
+        export.export_camera(scene)  # Blender's own "no camera" error names nothing; ours does
+    except export.PrismInputError as error:
+        raise BatchError(str(error)) from None
     scene.render.engine = "PRISM"
     if hasattr(scene, "prism"):
         if arguments.samples is not None:
@@ -138,8 +143,14 @@ def _script_arguments(in_blender: bool) -> list[str]:
 
 
 if __name__ == "__main__":
-    inside_blender = _running_inside_blender()
-    status = main(_script_arguments(inside_blender), inside_blender)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(status)
+    status = 1
+    try:
+        inside_blender = _running_inside_blender()
+        status = main(_script_arguments(inside_blender), inside_blender)
+    finally:
+        # bpy can hang for ever in a global destructor at exit: leave at once.
+        try:
+            sys.stdout.flush()
+            sys.stderr.flush()
+        finally:
+            os._exit(status)

@@ -4,11 +4,14 @@ Reads the evaluated depsgraph (modifiers and instances applied) with
 ``foreach_get`` into numpy. Each kind of data-block has its own module.
 """
 
+from ..tracer.errors import PrismInputError
 from ..tracer.scene import Scene
 from .camera import export_camera
 from .lights import export_lights
 from .meshes import export_meshes
 from .world import export_world
+
+__all__ = ["PrismInputError", "export_camera", "export_scene"]
 
 
 def export_scene(depsgraph) -> Scene:

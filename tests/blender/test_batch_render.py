@@ -1,0 +1,78 @@
+"""render.py as a command: renders a .blend, and fails clearly on bad input."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import bpy
+import numpy as np
+import pytest
+
+from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+
+
+def run_render_script(*arguments):
+    return subprocess.run(
+        [sys.executable, str(REPO_ROOT / "render.py"), *map(str, arguments)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+
+
+@pytest.fixture
+def lit_scene_file(fresh_scene, tmp_path):
+    add_plane("Floor", 6.0, color=(0.6, 0.6, 0.6))
+    add_plane("Card", 0.8, color=(0.8, 0.2, 0.1), location=(0.0, 0.0, 0.5))
+    add_point_light("Bulb", 300.0, (0.3, 0.2, 2.0))
+    add_camera((0.0, -3.0, 2.5), (0.9, 0.0, 0.0), resolution=(24, 16))
+    path = tmp_path / "lit.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    return path
+
+
+def test_renders_png_with_light_and_shadow(lit_scene_file, tmp_path):
+    output = tmp_path / "out.png"
+    completed = run_render_script(lit_scene_file, "--samples", 2, "--output", output)
+    assert completed.returncode == 0, completed.stderr
+    image = bpy.data.images.load(str(output))
+    pixels = np.array(image.pixels[:]).reshape(16, 24, 4)[..., :3]
+    assert pixels.std() > 0.05, "the render is a flat colour"
+
+
+def test_missing_file_fails_clearly(tmp_path):
+    completed = run_render_script(tmp_path / "nope.blend", "--output", tmp_path / "x.png")
+    assert completed.returncode != 0
+    assert "nope.blend' does not exist" in completed.stderr
+
+
+def test_scene_without_camera_fails_clearly(fresh_scene, tmp_path):
+    add_plane("Floor", 2.0)
+    path = tmp_path / "no_camera.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    completed = run_render_script(path, "--output", tmp_path / "x.png")
+    assert completed.returncode != 0
+    assert "has no active camera" in completed.stderr
+    assert not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.parametrize(
+    "arguments, message",
+    [
+        (["--samples", "0"], "--samples must be at least 1"),
+        (["--samples", "many"], "invalid int value: 'many'"),
+        (["--bogus"], "unrecognized arguments: --bogus"),
+    ],
+)
+def test_wrong_arguments_fail_clearly(lit_scene_file, tmp_path, arguments, message):
+    completed = run_render_script(lit_scene_file, "--output", tmp_path / "x.png", *arguments)
+    assert completed.returncode == 2
+    assert message in completed.stderr
+
+
+def test_wrong_output_format_fails_clearly(lit_scene_file, tmp_path):
+    completed = run_render_script(lit_scene_file, "--output", tmp_path / "x.jpg")
+    assert completed.returncode == 2
+    assert "--output must end in .png or .exr" in completed.stderr

@@ -1,0 +1,65 @@
+"""Small bpy scene builders shared by the Blender tests."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+
+import bpy
+import numpy as np
+
+
+def add_plane(name: str, size_m: float, color=(0.5, 0.5, 0.5), location=(0.0, 0.0, 0.0)):
+    """A square plane facing +Z with a Principled material of ``color``."""
+    half = size_m / 2
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([(-half, -half, 0), (half, -half, 0), (half, half, 0), (-half, half, 0)], [], [(0, 1, 2, 3)])
+    material = bpy.data.materials.new(f"{name} material")
+    material.use_nodes = True
+    material.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (*color, 1.0)
+    mesh.materials.append(material)
+    obj = bpy.data.objects.new(name, mesh)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def add_point_light(name: str, power_w: float, location, color=(1.0, 1.0, 1.0)):
+    data = bpy.data.lights.new(name, "POINT")
+    data.energy, data.color, data.shadow_soft_size = power_w, color, 0.0
+    obj = bpy.data.objects.new(name, data)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def add_camera(location, rotation_euler, lens_mm: float = 50.0, resolution=(32, 32)):
+    scene = bpy.context.scene
+    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    camera.location, camera.rotation_euler = location, rotation_euler
+    camera.data.lens = lens_mm
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    scene.render.resolution_x, scene.render.resolution_y = resolution
+    scene.render.resolution_percentage = 100
+    return camera
+
+
+def render_linear_rgb(scene, samples: int, seed: int = 0) -> np.ndarray:
+    """Render ``scene`` with Prism through ``bpy.ops.render.render``; scene-linear [H, W, 3], row 0 on top."""
+    scene.render.engine = "PRISM"
+    scene.prism.samples = samples
+    scene.prism.seed = seed
+    settings = scene.render.image_settings
+    settings.file_format, settings.color_depth = "OPEN_EXR", "32"
+    with tempfile.TemporaryDirectory() as directory:
+        path = os.path.join(directory, "render.exr")
+        scene.render.filepath = path
+        scene.render.use_file_extension = False
+        bpy.ops.render.render(write_still=True)
+        image = bpy.data.images.load(path)
+        width, height = image.size
+        pixels = np.empty(width * height * 4, np.float32)
+        image.pixels.foreach_get(pixels)
+        bpy.data.images.remove(image)
+    return pixels.reshape(height, width, 4)[::-1, :, :3]
