@@ -27,10 +27,13 @@ class SceneAnalysis:
     light_kinds: list[str] = field(default_factory=list)
     features: list[str] = field(default_factory=list)
     world: bool = False
+    guided_lines: int = 0
 
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
         """One line for the render stats."""
         parts = [f"{self.wavelength_mode} x{self.wavelengths_per_path}"]
+        if self.guided_lines:
+            parts[0] += f" guided by {self.guided_lines} emission line(s)"
         if self.dispersion:
             what = ", ".join(self.dispersive + (["lens"] if self.camera_disperses else []))
             parts.append(f"hero-wavelength termination ({what})")

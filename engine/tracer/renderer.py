@@ -68,13 +68,15 @@ class Renderer:
         self.filter_width = float(getattr(settings, "filter_width_px", 1.5))
         if self.pixel_filter not in ("box", "gaussian") or not self.filter_width > 0:
             raise PrismInputError(f"Pixel filter '{self.pixel_filter}' is not supported: use box or gaussian.")
-        self.mode = spectra.WavelengthMode(settings)
         self.camera = make_camera(scene.camera, settings)
         width, height = (int(r) for r in scene.camera.resolution)
         self.width, self.height = width, height
         used = set(np.unique(np.asarray(scene.triangle_material)).tolist()) if len(scene.triangles) else set()
         self.bsdfs = [make_bsdf(m, spectra) if i in used else None for i, m in enumerate(scene.materials)]
         self.analysis = analyse(scene, settings, self.bsdfs, self.camera)
+        lines = spectra.monochromatic_lines(scene, self.analysis.used_materials)
+        self.mode = spectra.WavelengthMode(settings, lines)
+        self.analysis.guided_lines = len(lines) if self.mode.guided is not None else 0
         self.accel = Accel(scene.vertices, scene.triangles, settings.threads)
         self.lights = LightSet(scene, spectra, use_mesh_lights=self.analysis.mesh_lights)
         self.integrator = Integrator(
