@@ -159,45 +159,44 @@ def lens_cornell(resolution=(64, 64)):
     return cornell_grey(resolution, camera=camera)
 
 
-# Prism set-up: a white slit beam from a black tube meets a 60 degree N-SF11 prism
-# near minimum deviation (incidence ~63 deg, deviation ~66 deg towards the base) and
-# paints a spectrum on a white screen.
+# Prism set-up: a tall white slit light shines on a 60 degree N-SF11 prism near
+# minimum deviation (incidence ~63 deg, deviation ~66 deg towards the base); the
+# dispersed fan falls on a white screen. The camera stands inside the fan, between
+# prism and screen, looking back into the prism: there the slit appears as a
+# spectrum (the rainbow the screen receives, seen at its source). A camera on the
+# screen itself would need a caustic path (screen -> prism -> slit), which a
+# unidirectional path tracer finds with probability ~1e-3 per sample.
 PRISM_ROTATION_RAD = np.radians(-33.0)
 PRISM_DEVIATION_RAD = np.radians(-66.0)
 
 
-def prism(resolution=(64, 64), slit_width_m=0.03, slit_height_m=0.3, tube_length_m=0.8,
-          light_radiance=400.0, screen_distance_m=0.6):
-    """60 degree prism, white beam through a slit, screen behind (the rainbow scene)."""
+def prism(resolution=(64, 64), slit_width_m=0.06, slit_height_m=0.3, slit_distance_m=0.9,
+          light_radiance=5.0, camera_distance_m=0.5, screen_distance_m=1.2):
+    """60 degree prism, white slit light, screen behind the camera (the rainbow scene)."""
     builder = MeshBuilder()
     materials = [
         Material(name="Screen", base_color=(0.8, 0.8, 0.8)),
-        Material(name="Black", base_color=(0.0, 0.0, 0.0)),
         Material(name="Glass", kind="dielectric", glass=GLASS_NAME),
     ]
     z0 = 0.5
-    builder.add("Prism", 2, triangular_prism((0.0, 0.0, z0), 0.16, 0.6, PRISM_ROTATION_RAD))
-    # the tube: light at its back end (x = x_back), open towards the prism
-    x_back, x_front = -0.25 - tube_length_m, -0.25
-    hw, hh = slit_width_m / 2, slit_height_m / 2
-    builder.add("TubeLeft", 1, quad((x_back, hw, z0 - hh), (x_front, hw, z0 - hh), (x_front, hw, z0 + hh), (x_back, hw, z0 + hh)))
-    builder.add("TubeRight", 1, quad((x_back, -hw, z0 - hh), (x_back, -hw, z0 + hh), (x_front, -hw, z0 + hh), (x_front, -hw, z0 - hh)))
-    builder.add("TubeTop", 1, quad((x_back, -hw, z0 + hh), (x_back, hw, z0 + hh), (x_front, hw, z0 + hh), (x_front, -hw, z0 + hh)))
-    builder.add("TubeBottom", 1, quad((x_back, -hw, z0 - hh), (x_front, -hw, z0 - hh), (x_front, hw, z0 - hh), (x_back, hw, z0 - hh)))
-    builder.add("TubeBack", 1, quad((x_back - 0.01, -hw, z0 - hh), (x_back - 0.01, hw, z0 - hh), (x_back - 0.01, hw, z0 + hh), (x_back - 0.01, -hw, z0 + hh)))
-    # the screen, perpendicular to the deviated beam
+    side = 0.16
+    builder.add("Prism", 1, triangular_prism((0.0, 0.0, z0), side, 0.6, PRISM_ROTATION_RAD))
+    # aim the slit at the middle of the entry face (between the corners at 57 and 177 deg)
+    corners = np.radians([57.0, 177.0])
+    y0 = float(np.mean(np.sin(corners))) * side / np.sqrt(3.0)
     d = np.array([np.cos(PRISM_DEVIATION_RAD), np.sin(PRISM_DEVIATION_RAD), 0.0])
-    side = np.array([-d[1], d[0], 0.0])
+    across = np.array([-d[1], d[0], 0.0])
     centre = np.array([0.0, 0.0, z0]) + screen_distance_m * d
     half = 0.4
-    corners = [centre + sx * half * side + np.array([0, 0, sz * half]) for sx, sz in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
-    if np.dot(np.cross(corners[1] - corners[0], corners[2] - corners[0]), d) > 0:
-        corners = corners[::-1]
-    builder.add("Screen", 0, quad(*corners))
+    quad_corners = [centre + sx * half * across + np.array([0, 0, sz * half])
+                    for sx, sz in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+    if np.dot(np.cross(quad_corners[1] - quad_corners[0], quad_corners[2] - quad_corners[0]), d) > 0:
+        quad_corners = quad_corners[::-1]
+    builder.add("Screen", 0, quad(*quad_corners))
     light = Light(
         name="Slit",
         kind="area",
-        position=np.array([x_back + 0.005, 0.0, z0]),
+        position=np.array([-slit_distance_m, y0, z0]),
         direction=np.array([1.0, 0.0, 0.0]),
         axis_u=np.array([0.0, 0.0, 1.0]),
         axis_v=np.array([0.0, 1.0, 0.0]),
@@ -205,13 +204,12 @@ def prism(resolution=(64, 64), slit_width_m=0.03, slit_height_m=0.3, tube_length
         size_u_m=slit_height_m,
         size_v_m=slit_width_m,
     )
-    view = np.radians(np.degrees(np.arctan2(-d[1], -d[0])) - 40.0)
-    eye = centre + 1.1 * np.array([np.cos(view), np.sin(view), 0.0]) + np.array([0.0, 0.0, 0.25])
+    eye = np.array([0.0, 0.0, z0]) + camera_distance_m * d
     camera = Camera(
         name="Camera",
-        camera_to_world=look_at(eye, centre),
+        camera_to_world=look_at(eye, (0.0, 0.0, z0)),
         resolution=resolution,
-        focal_length_mm=28.0,
+        focal_length_mm=50.0,
         film_width_mm=36.0,
         film_height_mm=36.0,
     )
@@ -234,7 +232,7 @@ SCENES = {
     for s in (
         BenchScene("cornell_grey", cornell_grey, "grey Cornell box, area light", ("cycles", "mitsuba")),
         BenchScene("cornell_glass", cornell_glass, "Cornell box + N-SF11 glass ball", (), True),
-        BenchScene("prism", prism, "60 deg N-SF11 prism, slit beam, screen", (), True),
+        BenchScene("prism", prism, "60 deg N-SF11 prism, slit light seen through it", (), True),
         BenchScene("lens", lens_cornell, "grey Cornell box through the double Gauss", ()),
         BenchScene("soap_bubble", soap_bubble, "Cornell box + 450 nm soap film sphere", ()),
         BenchScene("mesh_1m", mesh_1m, "Cornell box + 1M-triangle displaced sphere", ("mitsuba",)),

@@ -9,7 +9,8 @@ Conventions matched to Prism: the same triangles (written to PLY), two-sided
 Lambertian grey, a Blender area light as a one-sided ``rectangle`` area emitter
 of radiance P / (pi A), RGB white upsampled with Mitsuba's illuminant (D65-white)
 convention, pinhole camera with the same horizontal field of view, box pixel
-filter, independent sampler, ``max_depth = max_bounces + 1`` (Mitsuba counts the
+filter, independent sampler, emitters hidden from camera rays (as Prism's and
+Cycles' Blender lights), ``max_depth = max_bounces + 1`` (Mitsuba counts the
 camera segment), Mitsuba's default Russian roulette (from depth 5).
 
 Run: ``python -m benchmarks.peers.mitsuba --scene cornell_grey --spp 1 4 16 --out x.npz``
@@ -93,7 +94,7 @@ def scene_dict(scene, folder, max_bounces=8):
     fov_x = np.degrees(2.0 * np.arctan(cam.film_width_mm / (2.0 * cam.focal_length_mm)))
     out = {
         "type": "scene",
-        "integrator": {"type": "path", "max_depth": max_bounces + 1},
+        "integrator": {"type": "path", "max_depth": max_bounces + 1, "hide_emitters": True},
         "sensor": {
             "type": "perspective",
             "fov": float(fov_x),
