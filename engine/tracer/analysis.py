@@ -28,6 +28,7 @@ class SceneAnalysis:
     features: list[str] = field(default_factory=list)
     world: bool = False
     guided_lines: int = 0
+    camera_strategy: str = ""
 
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
         """One line for the render stats."""
@@ -47,6 +48,8 @@ class SceneAnalysis:
         if self.features:
             parts.append("materials: " + ", ".join(self.features))
         parts.append(f"{pixel_filter} filter")
+        if self.camera_strategy:
+            parts.append(self.camera_strategy)
         return " | ".join(parts)
 
 
@@ -72,6 +75,7 @@ def analyse(scene, settings, bsdfs, camera) -> SceneAnalysis:
         if mat.kind in ("conductor", "dielectric") and mat.coating_thickness_nm > 0:
             features.add("thin-film coating")
     a.camera_disperses = bool(getattr(camera, "disperses", False))
+    a.camera_strategy = str(getattr(camera, "strategy", "") or "")
     a.dispersion = bool(a.dispersive) or a.camera_disperses
     a.light_kinds = [light.kind for light in scene.lights]
     a.features = sorted(features)

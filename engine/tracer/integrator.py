@@ -87,9 +87,12 @@ class Integrator:
         radiance = np.zeros((n, k))
         idx = np.arange(n)
         collapsed = np.full(n, cam_collapsed)
-        prev_pdf = np.zeros(n)
-        prev_delta = np.ones(n, dtype=bool)
-        eta_scale = np.ones(n)
+        live = (beta.max(axis=1) > 0) & np.isfinite(beta).all(axis=1)
+        if not live.all():  # e.g. rays a real lens blocks: nothing to trace
+            idx, o, d, beta, lam, hero, collapsed = (a[live] for a in (idx, o, d, beta, lam, hero, collapsed))
+        prev_pdf = np.zeros(len(idx))
+        prev_delta = np.ones(len(idx), dtype=bool)
+        eta_scale = np.ones(len(idx))
         rays = 0
         lights = self.lights
         for depth in range(self.max_depth + 2):

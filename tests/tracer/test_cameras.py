@@ -53,3 +53,28 @@ def test_factory_and_errors():
         make_camera(_cam(model="fisheye"), None)
     with pytest.raises(PrismInputError):
         make_camera(_cam(focal_length_mm=0.0), None)
+
+
+@pytest.mark.parametrize("mode", ["cie", "gaussian_rgb"])
+def test_real_lens_camera_renders_a_uniform_sky_white_at_the_centre(mode):
+    """The lens disperses (hero wavelength kept, rolled to column 0 for the camera and
+    back): a white sky must stay white on average in both modes, with no NaN."""
+    from engine.tracer.renderer import Renderer
+
+    from .test_integrator import _white
+    from .tracer_scenes import settings, sphere_under_sky
+
+    scene = sphere_under_sky(size=8)
+    scene.triangles = scene.triangles[:0]
+    scene.triangle_material = scene.triangle_material[:0]
+    scene.camera = Camera("cam", look_at((0, -4, 0), (0, 0, 0)), (8, 8), model="real_lens",
+                          lens_file="lenses/double_gauss_50mm.lens", fstop=4.0, focus_distance_m=4.0,
+                          film_width_mm=4.0, film_height_mm=4.0)
+    s = settings(wavelength_mode=mode, samples=256, samples_per_pass=256)
+    r = Renderer(scene, s)
+    assert "real lens" in r.strategy and "hero-wavelength termination (lens)" in r.strategy
+    r.render_pass()
+    mean = r.image_rgb().astype(np.float64).mean((0, 1)) / _white(s)
+    stderr = np.sqrt(r.variance_rgb().astype(np.float64).mean((0, 1)) / 64) / _white(s)
+    assert np.all(np.abs(mean - 1.0) < 4 * stderr + 0.01), (mean, stderr)
+    assert r.stats["nan_samples"] == 0
