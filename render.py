@@ -3,16 +3,29 @@
     blender -b scene.blend -P render.py -- --samples 64 --output out.png
     python render.py scene.blend --samples 64 --output out.exr      (bpy module)
 
-PNG gets the scene's view transform; EXR stays scene-linear. Exits non-zero with
-a one-line message when the file is missing, the scene cannot render, or an
-argument is wrong.
+Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--frames A..B`` (``#``
+in ``--output`` becomes the zero-padded frame number, else ``_NNNN`` is
+appended), ``--output`` ``.png`` (the scene's view transform) or ``.exr``
+(scene-linear, 32-bit float).
+
+Chunked renders: ``--chunk-seed K --samples N --output chunk_K.exr`` renders
+samples ``K*N .. (K+1)*N-1`` of the seed's sequence and writes an EXR carrying
+its sample count; ``--merge a.exr b.exr ... --output merged.exr`` combines
+chunks weighted by their samples. Chunks ``0..K-1`` merge to the same image,
+bit for bit, as one render of ``K*N`` samples written with ``--chunk-seed 0``
+(see ``engine/chunks.py`` for when that holds).
+
+Progress goes to stderr. Exits non-zero with a one-line message when the file
+is missing, the scene cannot render, or an argument is wrong.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import importlib.util
 import os
+import re
 import sys
 from pathlib import Path
 
@@ -49,6 +62,17 @@ def prism_package_name() -> str:
     return ADDON_PACKAGE
 
 
+def _frame_range(text: str) -> tuple[int, int]:
+    match = re.fullmatch(r"\s*(-?\d+)\s*(?:\.\.\s*(-?\d+)\s*)?", text)
+    if not match:
+        raise argparse.ArgumentTypeError(f"--frames must look like 1..24 or 7 (got '{text}')")
+    first = int(match.group(1))
+    last = int(match.group(2)) if match.group(2) is not None else first
+    if last < first:
+        raise argparse.ArgumentTypeError(f"--frames {text}: the last frame comes before the first")
+    return first, last
+
+
 def parse_arguments(argv: list[str], in_blender: bool) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         prog="render.py",
@@ -56,16 +80,39 @@ def parse_arguments(argv: list[str], in_blender: bool) -> argparse.Namespace:
         epilog="Inside Blender: blender -b file.blend -P render.py -- [options]",
     )
     if not in_blender:
-        parser.add_argument("blend_file", help="the .blend file to render")
+        parser.add_argument("blend_file", nargs="?", help="the .blend file to render (not with --merge)")
     parser.add_argument("--samples", type=int, help="samples per pixel (default: the scene's setting)")
     parser.add_argument("--seed", type=int, help="random seed (default: the scene's setting)")
+    parser.add_argument("--threads", type=int, help="CPU threads (0 = all cores; default: the scene's setting)")
+    parser.add_argument("--frames", type=_frame_range, help="render frames A..B (inclusive) instead of the current one")
+    parser.add_argument("--chunk-seed", type=int, help="render sample chunk K (samples K*N..(K+1)*N-1) to an EXR")
+    parser.add_argument("--merge", nargs="+", metavar="CHUNK", help="merge chunk EXRs weighted by their samples")
     parser.add_argument("--output", required=True, help="output image, .png or .exr")
     arguments = parser.parse_args(argv)
-    if arguments.samples is not None and arguments.samples < 1:
-        parser.error(f"--samples must be at least 1 (got {arguments.samples})")
     suffix = Path(arguments.output).suffix.lower()
     if suffix not in OUTPUT_FORMATS:
         parser.error(f"--output must end in .png or .exr (got '{arguments.output}')")
+    if arguments.samples is not None and arguments.samples < 1:
+        parser.error(f"--samples must be at least 1 (got {arguments.samples})")
+    if arguments.threads is not None and arguments.threads < 0:
+        parser.error(f"--threads cannot be negative (got {arguments.threads})")
+    if arguments.merge:
+        if suffix != ".exr":
+            parser.error("--merge writes an EXR: give --output a .exr name")
+        if not in_blender and arguments.blend_file:
+            parser.error("--merge takes chunk EXRs, not a .blend file")
+        return arguments
+    if not in_blender and not arguments.blend_file:
+        parser.error("give the .blend file to render")
+    if arguments.chunk_seed is not None:
+        if arguments.chunk_seed < 0:
+            parser.error(f"--chunk-seed must be 0 or more (got {arguments.chunk_seed})")
+        if arguments.samples is None:
+            parser.error("--chunk-seed needs --samples (the chunk's sample count)")
+        if suffix != ".exr":
+            parser.error("--chunk-seed writes an EXR: give --output a .exr name")
+        if arguments.frames is not None:
+            parser.error("--chunk-seed renders one frame: leave out --frames")
     return arguments
 
 
@@ -74,28 +121,53 @@ def open_blend_file(path: str) -> None:
 
     if not Path(path).is_file():
         raise BatchError(f"Blend file '{path}' does not exist: check the path.")
-    bpy.ops.wm.open_mainfile(filepath=str(Path(path).resolve()))
+    try:
+        bpy.ops.wm.open_mainfile(filepath=str(Path(path).resolve()))
+    except RuntimeError as error:
+        raise BatchError(f"Blend file '{path}' cannot be opened: {str(error).strip()}") from None
 
 
-def render_still(arguments: argparse.Namespace) -> Path:
-    """Render the current scene to ``arguments.output``; raise BatchError on failure."""
-    import bpy
+def frame_output(output: Path, frame: int) -> Path:
+    """``out_###.png`` → ``out_007.png``; without ``#``, ``out.png`` → ``out_0007.png``."""
+    name = output.name
+    runs = list(re.finditer(r"#+", name))
+    if runs:
+        run = runs[-1]
+        name = f"{name[: run.start()]}{frame:0{len(run.group())}d}{name[run.end():]}"
+    else:
+        name = f"{output.stem}_{frame:04d}{output.suffix}"
+    return output.with_name(name)
 
+
+def _modules():
     package = prism_package_name()
     session = importlib.import_module(f"{package}.engine.session")
     export = importlib.import_module(f"{package}.engine.export")
+    chunks = importlib.import_module(f"{package}.engine.chunks")
+    return session, export, chunks
+
+
+def render_frame(arguments: argparse.Namespace, output: Path) -> Path:
+    """Render the current frame to ``output``; raise BatchError on failure."""
+    import bpy
+
+    session, export, chunks = _modules()
     scene = bpy.context.scene
     try:
         export.export_camera(scene)  # Blender's own "no camera" error names nothing; ours does
     except export.PrismInputError as error:
         raise BatchError(str(error)) from None
     scene.render.engine = "PRISM"
-    if hasattr(scene, "prism"):
-        if arguments.samples is not None:
-            scene.prism.samples = arguments.samples
-        if arguments.seed is not None:
-            scene.prism.seed = arguments.seed
-    output = Path(arguments.output).resolve()
+    chunked = arguments.chunk_seed is not None
+    session.request = session.RenderRequest(
+        samples=arguments.samples,
+        seed=arguments.seed,
+        threads=arguments.threads,
+        sample_offset=arguments.chunk_seed * arguments.samples if chunked else 0,
+        quick_first_pass=False,
+        keep_film=chunked,
+        progress_stream=sys.stderr,
+    )
     output.parent.mkdir(parents=True, exist_ok=True)
     image_settings = scene.render.image_settings
     image_settings.file_format = OUTPUT_FORMATS[output.suffix.lower()]
@@ -104,14 +176,53 @@ def render_still(arguments: argparse.Namespace) -> Path:
     scene.render.filepath = str(output)
     scene.render.use_file_extension = False
     try:
-        bpy.ops.render.render(write_still=True)
+        bpy.ops.render.render(write_still=not chunked)
     except RuntimeError as error:
         raise BatchError(session.last_error or str(error).strip()) from None
+    finally:
+        session.request = None
     if session.last_error:
         raise BatchError(session.last_error)
+    if chunked:
+        film = session.last_film
+        if film is None:
+            raise BatchError("The chunk render was cancelled: nothing was written.")
+        try:
+            chunks.write_exr(output, film.mean, film.samples, film.sample_offset, film.seed)
+        except export.PrismInputError as error:
+            raise BatchError(str(error)) from None
     if not output.is_file():
         raise BatchError(f"Prism rendered but no image was written to '{output}'.")
     return output
+
+
+def render_all(arguments: argparse.Namespace) -> list[Path]:
+    import bpy
+
+    output = Path(arguments.output).resolve()
+    if arguments.frames is None:
+        return [render_frame(arguments, output)]
+    written = []
+    scene = bpy.context.scene
+    first, last = arguments.frames
+    for frame in range(first, last + 1):
+        print(f"Prism: frame {frame} ({frame - first + 1}/{last - first + 1})", file=sys.stderr, flush=True)
+        scene.frame_set(frame)
+        written.append(render_frame(arguments, frame_output(output, frame)))
+    return written
+
+
+def merge(arguments: argparse.Namespace) -> list[Path]:
+    _, export, chunks = _modules()
+    output = Path(arguments.output).resolve()
+    try:
+        merged = chunks.merge_chunks([chunks.read_chunk(path) for path in arguments.merge])
+        output.parent.mkdir(parents=True, exist_ok=True)
+        chunks.write_exr(output, merged.mean, merged.samples, merged.sample_offset, merged.seed)
+    except export.PrismInputError as error:
+        raise BatchError(str(error)) from None
+    print(f"Prism: merged {len(arguments.merge)} chunks, {merged.samples} samples per pixel", file=sys.stderr)
+    return [output]
 
 
 def main(argv: list[str], in_blender: bool) -> int:
@@ -120,13 +231,20 @@ def main(argv: list[str], in_blender: bool) -> int:
     except SystemExit as exit_request:
         return int(exit_request.code or 0)
     try:
-        if not in_blender:
-            open_blend_file(arguments.blend_file)
-        output = render_still(arguments)
+        if arguments.merge:
+            written = merge(arguments)
+        else:
+            if not in_blender:
+                open_blend_file(arguments.blend_file)
+            written = render_all(arguments)
     except BatchError as error:
         print(f"Prism: error: {error}", file=sys.stderr)
         return 1
-    print(f"Prism: wrote {output}", file=sys.stderr)
+    except Exception as error:  # noqa: BLE001 - one line, never only a traceback
+        print(f"Prism: error: unexpected {type(error).__name__}: {error}", file=sys.stderr)
+        return 1
+    for path in written:
+        print(f"Prism: wrote {path}", file=sys.stderr)
     return 0
 
 
@@ -143,14 +261,8 @@ def _script_arguments(in_blender: bool) -> list[str]:
 
 
 if __name__ == "__main__":
-    status = 1
-    try:
-        inside_blender = _running_inside_blender()
-        status = main(_script_arguments(inside_blender), inside_blender)
-    finally:
-        # bpy can hang for ever in a global destructor at exit: leave at once.
-        try:
-            sys.stdout.flush()
-            sys.stderr.flush()
-        finally:
-            os._exit(status)
+    inside_blender = _running_inside_blender()
+    status = main(_script_arguments(inside_blender), inside_blender)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(status)

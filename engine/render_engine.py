@@ -2,12 +2,27 @@
 
 import bpy
 
+NOISE_PASS = ("Noise", 3, "RGB", "COLOR")
+SAMPLE_COUNT_PASS = ("Sample Count", 1, "X", "VALUE")
+
+
+def enabled_passes(scene) -> list[tuple[str, int, str, str]]:
+    """The optional passes (name, channels, channel ids, type) the scene asks for."""
+    prism = getattr(scene, "prism", None)
+    passes = []
+    if prism is not None and prism.use_pass_variance:
+        passes.append(NOISE_PASS)
+    if prism is not None and prism.use_pass_sample_count:
+        passes.append(SAMPLE_COUNT_PASS)
+    return passes
+
 
 class PrismRenderEngine(bpy.types.RenderEngine):
     """Spectral path tracer: dispersive glass, real lenses, blackbody lights."""
 
     bl_idname = "PRISM"
     bl_label = "Prism"
+    # Material/light previews are drawn by EEVEE: a spectral preview would cost seconds per icon.
     bl_use_preview = False
     bl_use_eevee_viewport = True
 
@@ -15,6 +30,11 @@ class PrismRenderEngine(bpy.types.RenderEngine):
         from .session import RenderSession
 
         RenderSession(self, depsgraph).run()
+
+    def update_render_passes(self, scene=None, renderlayer=None):
+        self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
+        for name, channels, ids, kind in enabled_passes(scene):
+            self.register_pass(scene, renderlayer, name, channels, ids, kind)
 
 
 def register():

@@ -4,6 +4,8 @@ Reads the evaluated depsgraph (modifiers and instances applied) with
 ``foreach_get`` into numpy. Each kind of data-block has its own module.
 """
 
+from __future__ import annotations
+
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Scene
 from .camera import export_camera
@@ -14,15 +16,35 @@ from .world import export_world
 __all__ = ["PrismInputError", "export_camera", "export_scene"]
 
 
-def export_scene(depsgraph) -> Scene:
+def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:
+    if tracer_scene.triangle_count == 0:
+        raise PrismInputError(
+            f"Scene '{scene_name}' has no visible geometry: add a mesh object, or enable an object for "
+            "rendering (Outliner ▸ camera icon), before rendering."
+        )
+    world = tracer_scene.world
+    world_lit = world.strength > 0 and max(world.color) > 0
+    used = {int(i) for i in set(tracer_scene.triangle_material.tolist())}
+    emissive = any(
+        tracer_scene.materials[i].emission is not None and tracer_scene.materials[i].emission_strength > 0 for i in used
+    )
+    if not (tracer_scene.lights or world_lit or emissive):
+        raise PrismInputError(
+            f"Scene '{scene_name}' has no light (no light with power, no emissive material, a black world): "
+            "add a light or give the world a colour, or the image would be black."
+        )
+
+
+def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     """Build the tracer scene from an evaluated depsgraph.
 
     Raises ``PrismInputError`` (naming the object and the fix) for scenes that
-    cannot render: no camera, unsupported camera, NaN geometry, ...
+    cannot render: no camera, unsupported camera, NaN geometry, unknown glass, ...
+    Inputs Prism ignores are appended to ``warnings`` (one message each).
     """
     scene = depsgraph.scene
     camera = export_camera(scene)
-    geometry = export_meshes(depsgraph)
+    geometry = export_meshes(depsgraph, warnings)
     tracer_scene = Scene(
         vertices=geometry.vertices,
         triangles=geometry.triangles,
@@ -33,7 +55,8 @@ def export_scene(depsgraph) -> Scene:
         materials=geometry.materials,
         camera=camera,
         lights=export_lights(depsgraph),
-        world=export_world(scene),
+        world=export_world(scene, warnings),
     )
     tracer_scene.validate()
+    _check_something_to_see(scene.name, tracer_scene)
     return tracer_scene

@@ -1,16 +1,26 @@
-"""The active camera → ``tracer.scene.Camera`` (perspective projection)."""
+"""The active camera → ``tracer.scene.Camera``: perspective projection plus ``Camera.prism``'s
+lens model (Blender perspective = pinhole, thin lens, or a real lens prescription).
+
+Focus distance, focus object and f-stop are Blender's own depth-of-field settings.
+"""
+
+from __future__ import annotations
+
+import math
 
 import numpy as np
 
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Camera
 
+LENS_MODELS = {"PINHOLE": "pinhole", "THIN_LENS": "thin_lens", "REAL_LENS": "real_lens"}
+
 
 def render_resolution(scene) -> tuple[int, int]:
-    """Output size in pixels, with the resolution percentage applied."""
+    """Output size in pixels, with the resolution percentage applied (as Blender rounds it)."""
     render = scene.render
-    scale = render.resolution_percentage / 100.0
-    return max(1, int(render.resolution_x * scale)), max(1, int(render.resolution_y * scale))
+    percent = render.resolution_percentage
+    return max(1, render.resolution_x * percent // 100), max(1, render.resolution_y * percent // 100)
 
 
 def film_size_mm(camera_data, width_px: int, height_px: int) -> tuple[float, float]:
@@ -39,6 +49,46 @@ def rigid_matrix(matrix_world) -> np.ndarray:
     return matrix
 
 
+def focus_distance_m(camera_object) -> float:
+    """Blender's focus distance: along the view axis to the focus object when one is set."""
+    dof = camera_object.data.dof
+    target = dof.focus_object
+    if target is None:
+        return float(dof.focus_distance)
+    matrix = np.array(camera_object.matrix_world, dtype=np.float64)
+    view_axis = -matrix[:3, 2] / max(np.linalg.norm(matrix[:3, 2]), 1e-300)
+    target_position = np.array(target.matrix_world, dtype=np.float64)[:3, 3]
+    if dof.focus_subtarget and target.type == "ARMATURE":
+        bone = target.pose.bones.get(dof.focus_subtarget)
+        if bone is not None:
+            target_position = (np.array(target.matrix_world) @ np.append(np.array(bone.head), 1.0))[:3]
+    distance = float(np.dot(target_position - matrix[:3, 3], view_axis))
+    if not distance > 0:
+        raise PrismInputError(
+            f"Camera '{camera_object.name}' focuses on '{target.name}', which is behind the camera: "
+            "pick a focus object in front of it or clear Focus on Object."
+        )
+    return distance
+
+
+def _lens_file(camera_object) -> str:
+    from ..tracer.lens.lens_file import load_lens
+
+    settings = camera_object.data.prism
+    path = settings.lens_path()
+    name = camera_object.name
+    if not path:
+        where = "Lens File" if settings.lens_source == "FILE" else "Lens"
+        raise PrismInputError(
+            f"Camera '{name}' uses a real lens but no prescription is chosen: set Camera ▸ Prism Lens ▸ {where}."
+        )
+    try:
+        load_lens(path)  # parse now, so a bad file is reported before tracing starts
+    except PrismInputError as error:
+        raise PrismInputError(f"Camera '{name}': {error}") from None
+    return path
+
+
 def export_camera(scene) -> Camera:
     """The scene's active camera; a clear error when there is none or it is unsupported."""
     camera_object = scene.camera
@@ -62,16 +112,31 @@ def export_camera(scene) -> Camera:
     film_w, film_h = film_size_mm(data, width, height)
     if not (np.isfinite(data.lens) and data.lens > 0):
         raise PrismInputError(f"Camera '{camera_object.name}' has focal length {data.lens} mm: use a positive value.")
-    return Camera(
+    settings = getattr(data, "prism", None)
+    model = LENS_MODELS[settings.lens_model] if settings is not None else "pinhole"
+    camera = Camera(
         name=camera_object.name,
         camera_to_world=rigid_matrix(camera_object.matrix_world),
         resolution=(width, height),
         focal_length_mm=float(data.lens),
         film_width_mm=float(film_w),
         film_height_mm=float(film_h),
-        model="pinhole",
+        model=model,
         fstop=float(data.dof.aperture_fstop),
         focus_distance_m=float(data.dof.focus_distance),
         shift_x=float(data.shift_x),
         shift_y=float(data.shift_y),
     )
+    if model == "pinhole":
+        return camera
+    camera.focus_distance_m = focus_distance_m(camera_object)
+    if not (math.isfinite(camera.focus_distance_m) and camera.focus_distance_m > 0):
+        raise PrismInputError(
+            f"Camera '{camera_object.name}' focuses at {camera.focus_distance_m:g} m: set a focus distance above 0 "
+            "(Camera ▸ Prism Lens ▸ Focus)."
+        )
+    if not (math.isfinite(camera.fstop) and camera.fstop > 0):
+        raise PrismInputError(f"Camera '{camera_object.name}' has f-stop {camera.fstop:g}: use a positive f-stop.")
+    if model == "real_lens":
+        camera.lens_file = _lens_file(camera_object)
+    return camera

@@ -1,19 +1,60 @@
-"""Blender lights → ``tracer.scene.Light`` (power in Blender's watts, as Cycles)."""
+"""Blender lights → ``tracer.scene.Light`` (power in Blender's watts, as Cycles).
+
+The spectrum comes from ``Light.prism``: the light's RGB colour, a blackbody at a
+colour temperature, or a monochromatic line. Strength is Blender's own energy.
+"""
+
+from __future__ import annotations
+
+import math
 
 import numpy as np
 
+from ..properties.light import TEMPERATURE_RANGE_K
+from ..tracer.errors import PrismInputError
 from ..tracer.scene import Light, SpectrumSpec
 
 _AREA_SHAPES = {"SQUARE": "rectangle", "RECTANGLE": "rectangle", "DISK": "disk", "ELLIPSE": "disk"}
+VISIBLE_RANGE_NM = (360.0, 830.0)
 
 
-def light_spectrum(light_data) -> SpectrumSpec:
-    """The light's colour as a spectrum specification."""
-    return SpectrumSpec(kind="rgb", rgb=tuple(float(c) for c in light_data.color))
+def light_spectrum(name: str, light_data) -> SpectrumSpec:
+    """The light's spectrum specification; ``PrismInputError`` naming the light when it is invalid."""
+    settings = getattr(light_data, "prism", None)
+    source = settings.color_source if settings is not None else "RGB"
+    if source == "BLACKBODY":
+        temperature = float(settings.temperature_k)
+        low, high = TEMPERATURE_RANGE_K
+        if not low <= temperature <= high:
+            raise PrismInputError(
+                f"Light '{name}': blackbody temperature {temperature:g} K is outside {low:.0f}-{high:.0f} K; "
+                "set Light ▸ Prism ▸ Temperature within that range."
+            )
+        return SpectrumSpec(kind="blackbody", temperature_k=temperature)
+    if source == "MONOCHROMATIC":
+        wavelength, width = float(settings.wavelength_nm), float(settings.line_width_nm)
+        low, high = VISIBLE_RANGE_NM
+        if not low <= wavelength <= high:
+            raise PrismInputError(f"Light '{name}': wavelength {wavelength:g} nm is outside {low:.0f}-{high:.0f} nm.")
+        if not width > 0:
+            raise PrismInputError(f"Light '{name}': line width must be positive (got {width:g} nm).")
+        return SpectrumSpec(kind="monochromatic", wavelength_nm=wavelength, width_nm=width)
+    rgb = tuple(float(c) for c in light_data.color)
+    if not all(math.isfinite(c) and c >= 0 for c in rgb):
+        raise PrismInputError(f"Light '{name}': its colour {rgb} has negative or non-finite values; pick a colour again.")
+    return SpectrumSpec(kind="rgb", rgb=rgb)
 
 
 def _export_light(name: str, light_data, matrix_world) -> Light:
     matrix = np.array(matrix_world, dtype=np.float64)
+    if not np.isfinite(matrix).all():
+        raise PrismInputError(f"Light '{name}' has a non-finite transform: reset its location, rotation and scale.")
+    energy = float(light_data.energy)
+    if not math.isfinite(energy) or energy < 0:
+        raise PrismInputError(
+            f"Light '{name}' has {'Strength' if light_data.type == 'SUN' else 'Power'} {energy:g}: "
+            "Prism needs a finite value of 0 or more (negative light does not exist)."
+        )
     axes = matrix[:3, :3]
     scale = np.linalg.norm(axes, axis=0)
     safe_scale = np.where(scale > 0, scale, 1.0)
@@ -25,13 +66,13 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
         direction=-axis_z,
         axis_u=axis_u,
         axis_v=axis_v,
-        spectrum=light_spectrum(light_data),
+        spectrum=light_spectrum(name, light_data),
     )
     if light_data.type == "SUN":
-        light.irradiance_w_m2 = float(light_data.energy)
+        light.irradiance_w_m2 = energy
         light.sun_angle_rad = float(light_data.angle)
         return light
-    light.power_w = float(light_data.energy)
+    light.power_w = energy
     if light_data.type in {"POINT", "SPOT"}:
         light.radius_m = float(light_data.shadow_soft_size)
     if light_data.type == "SPOT":
@@ -42,15 +83,19 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
         size_v = light_data.size if light_data.shape in {"SQUARE", "DISK"} else light_data.size_y
         light.size_u_m = float(light_data.size * scale[0])
         light.size_v_m = float(size_v * scale[1])
+        if not (light.size_u_m > 0 and light.size_v_m > 0):
+            raise PrismInputError(f"Area light '{name}' has zero size: give it a size above 0 (and a non-zero scale).")
     return light
 
 
 def export_lights(depsgraph) -> list[Light]:
-    """Every visible light instance of the evaluated depsgraph."""
+    """Every visible light instance of the evaluated depsgraph (lights of power 0 are skipped)."""
     lights = []
     for instance in depsgraph.object_instances:
         obj = instance.object
-        if obj.type != "LIGHT" or obj.data.energy == 0:
+        if obj.type != "LIGHT":
             continue
-        lights.append(_export_light(obj.name, obj.data, instance.matrix_world))
+        light = _export_light(obj.name, obj.data, instance.matrix_world)
+        if light.power_w > 0 or light.irradiance_w_m2 > 0:
+            lights.append(light)
     return lights

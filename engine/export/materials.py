@@ -1,32 +1,96 @@
-"""Blender materials → ``tracer.scene.Material``."""
+"""Blender materials → ``tracer.scene.Material``: the Principled BSDF plus ``Material.prism``.
 
+What is read lives in ``engine.properties.principled`` (shared with the material
+panel, so the panel shows what renders); this module turns it into a tracer
+material and validates the glass. Inputs Prism does not model become warnings,
+one per material and socket.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..properties.material import CONDUCTOR_NAMES
+from ..properties.principled import material_kind, read_principled
+from ..tracer.errors import PrismInputError
 from ..tracer.scene import Material, SpectrumSpec
 
 DEFAULT_MATERIAL = Material(name="Default", kind="diffuse", base_color=(0.8, 0.8, 0.8))
 
 
-def _principled_node(material):
-    if not material.use_nodes or material.node_tree is None:
-        return None
-    for node in material.node_tree.nodes:
-        if node.type == "BSDF_PRINCIPLED":
-            return node
-    return None
+def _glass(material, settings, exported: Material) -> None:
+    from ..tracer import glass as glass_catalogue
+
+    name = material.name
+    if settings.glass_source == "CATALOGUE":
+        glass_name = settings.glass_name
+        if not glass_name or glass_name == "NONE":
+            raise PrismInputError(
+                f"Material '{name}' uses a catalogue glass that is not in Prism's catalogue "
+                f"(stored value {settings.get('glass_name', '?')}): choose a glass in Material ▸ Prism ▸ Glass."
+            )
+        try:
+            glass_catalogue.glass_by_name(glass_name)
+        except PrismInputError as error:
+            raise PrismInputError(f"Material '{name}': {error}") from None
+        exported.glass = glass_name
+    elif settings.glass_source == "ABBE":
+        try:
+            glass_catalogue.glass_from_abbe(settings.glass_nd, settings.glass_vd)
+        except PrismInputError as error:
+            raise PrismInputError(f"Material '{name}': {error}") from None
+        exported.glass_nd = float(settings.glass_nd)
+        exported.glass_vd = float(settings.glass_vd)
 
 
-def export_material(material) -> Material:
-    """Lambertian base colour and emission from the Principled BSDF (or the viewport colour)."""
+def export_material(material, warnings: list[str] | None = None) -> Material:
+    """The tracer material for a Blender material (None → the default grey diffuse)."""
     if material is None:
         return DEFAULT_MATERIAL
-    node = _principled_node(material)
-    if node is None:
-        color = material.diffuse_color
-        return Material(name=material.name, base_color=(color[0], color[1], color[2]))
-    color = node.inputs["Base Color"].default_value
-    emission = node.inputs["Emission Color"].default_value
-    strength = float(node.inputs["Emission Strength"].default_value)
-    exported = Material(name=material.name, base_color=(color[0], color[1], color[2]))
-    if strength > 0 and max(emission[:3]) > 0:
-        exported.emission = SpectrumSpec(kind="rgb", rgb=(emission[0], emission[1], emission[2]))
-        exported.emission_strength = strength
+    reading = read_principled(material)
+    if warnings is not None:
+        warnings.extend(reading.ignored)
+    settings = getattr(material, "prism", None)
+    kind = material_kind(reading, settings)
+    name = material.name
+    values = {
+        "base_color": reading.base_color,
+        "roughness": reading.roughness,
+        "ior": reading.ior,
+        "emission_strength": reading.emission_strength,
+    }
+    for label, value in (("Roughness", reading.roughness), ("IOR", reading.ior), ("Emission Strength", reading.emission_strength)):
+        if not math.isfinite(value):
+            raise PrismInputError(f"Material '{name}': {label} is {value}; enter a finite number.")
+    if not all(math.isfinite(c) for c in reading.base_color + reading.emission_color):
+        raise PrismInputError(f"Material '{name}': a colour is NaN or infinite; pick a colour again.")
+    if kind == "dielectric" and reading.ior < 1.0 and (settings is None or settings.glass_source == "PRINCIPLED_IOR"):
+        raise PrismInputError(
+            f"Material '{name}': IOR {reading.ior:g} is below 1; Prism's glass needs an IOR of 1 or more."
+        )
+    exported = Material(name=name, kind=kind, **values)
+    if reading.emission_strength < 0:
+        raise PrismInputError(f"Material '{name}': Emission Strength {reading.emission_strength:g} is negative.")
+    if reading.emission_strength > 0 and max(reading.emission_color) > 0:
+        exported.emission = SpectrumSpec(kind="rgb", rgb=reading.emission_color)
+    else:
+        exported.emission_strength = 0.0
+    if settings is None:
+        return exported
+    if kind == "dielectric":
+        _glass(material, settings, exported)
+    elif kind == "conductor":
+        exported.conductor = CONDUCTOR_NAMES[settings.conductor]
+    elif kind == "thin_film":
+        exported.film_thickness_nm = float(settings.film_thickness_nm)
+        exported.film_ior = float(settings.film_ior)
+    if settings.coating_thickness_nm > 0:
+        exported.coating_thickness_nm = float(settings.coating_thickness_nm)
+        exported.coating_ior = float(settings.coating_ior)
+    elif reading.thin_film_thickness_nm > 0:
+        # Blender 4.2+'s Principled thin film is a coating on the surface.
+        exported.coating_thickness_nm = reading.thin_film_thickness_nm
+        exported.coating_ior = reading.thin_film_ior
+    if exported.coating_thickness_nm > 0 and kind in {"diffuse", "thin_film"} and warnings is not None:
+        warnings.append(f"Material '{name}': a coating only acts on glass or metal; it is ignored on a {kind.replace('_', ' ')} surface.")
     return exported

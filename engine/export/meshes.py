@@ -69,8 +69,9 @@ def _normalise(vectors: np.ndarray) -> np.ndarray:
     return vectors / np.where(length > 0, length, 1.0)
 
 
-def export_meshes(depsgraph) -> ExportedGeometry:
-    """Every visible geometry instance, transformed to world space (metres)."""
+def export_meshes(depsgraph, warnings: list[str] | None = None) -> ExportedGeometry:
+    """Every visible geometry instance, transformed to world space (metres); material warnings
+    (inputs Prism does not model) are appended to ``warnings``."""
     local_meshes: dict[tuple, _LocalMesh | None] = {}
     material_index: dict[str, int] = {}
     materials: list[Material] = []
@@ -81,7 +82,7 @@ def export_meshes(depsgraph) -> ExportedGeometry:
         key = material.name if material is not None else None
         if key not in material_index:
             material_index[key] = len(materials)
-            materials.append(export_material(material) if material is not None else DEFAULT_MATERIAL)
+            materials.append(export_material(material, warnings) if material is not None else DEFAULT_MATERIAL)
         return material_index[key]
 
     for instance in depsgraph.object_instances:

@@ -1,38 +1,42 @@
 """``Scene.prism`` → ``tracer.settings.RenderSettings``."""
 
+from __future__ import annotations
+
 from ..tracer.settings import RenderSettings
 
 _MODES = {"CIE": "cie", "GAUSSIAN_RGB": "gaussian_rgb"}
 
 
-def export_settings(scene, samples: int | None = None, seed: int | None = None) -> RenderSettings:
-    """Render settings from the scene's Prism settings; ``samples``/``seed`` override them."""
-    defaults = RenderSettings()
-    prism = getattr(scene, "prism", None)
+def export_settings(
+    scene,
+    samples: int | None = None,
+    seed: int | None = None,
+    threads: int | None = None,
+    preview: bool = False,
+    border: tuple[int, int, int, int] | None = None,
+) -> RenderSettings:
+    """Render settings from the scene's Prism settings.
 
-    def value(name, default):
-        return getattr(prism, name, default) if prism is not None else default
-
+    ``samples``/``seed``/``threads`` override the scene's (batch renders);
+    ``preview`` uses the preview sample count; ``border`` is the pixel rectangle
+    (x0, y0, x1, y1), rows from the top, half-open.
+    """
+    prism = scene.prism
+    if samples is None:
+        samples = prism.preview_samples if preview else prism.samples
     settings = RenderSettings(
-        samples=int(samples if samples is not None else value("samples", 64)),
-        samples_per_pass=int(value("samples_per_pass", defaults.samples_per_pass)),
-        max_bounces=int(value("max_bounces", defaults.max_bounces)),
-        seed=int(seed if seed is not None else value("seed", defaults.seed)),
-        wavelength_mode=_MODES.get(value("wavelength_mode", "CIE"), "cie"),
-        wavelengths_per_path=int(value("wavelengths_per_path", defaults.wavelengths_per_path)),
-        channel_means_nm=(
-            float(value("mean_r_nm", 600.0)),
-            float(value("mean_g_nm", 550.0)),
-            float(value("mean_b_nm", 450.0)),
-        ),
-        channel_sigmas_nm=(
-            float(value("sigma_r_nm", 25.0)),
-            float(value("sigma_g_nm", 25.0)),
-            float(value("sigma_b_nm", 15.0)),
-        ),
-        threads=int(value("threads", defaults.threads)),
-        use_mis=bool(value("use_mis", defaults.use_mis)),
-        russian_roulette_depth=int(value("russian_roulette_depth", defaults.russian_roulette_depth)),
+        samples=int(samples),
+        samples_per_pass=int(prism.samples_per_pass),
+        max_bounces=int(prism.max_bounces),
+        seed=int(prism.seed if seed is None else seed),
+        wavelength_mode=_MODES[prism.wavelength_mode],
+        wavelengths_per_path=int(prism.wavelengths_per_path),
+        channel_means_nm=tuple(float(v) for v in prism.channel_means_nm()),
+        channel_sigmas_nm=tuple(float(v) for v in prism.channel_sigmas_nm()),
+        threads=int(prism.threads if threads is None else threads),
+        use_mis=bool(prism.use_mis),
+        russian_roulette_depth=int(prism.russian_roulette_depth),
+        border=border,
     )
     settings.validate()
     return settings
