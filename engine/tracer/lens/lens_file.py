@@ -108,8 +108,8 @@ def parse_dat(text: str, path: str = "<lens>", resolver=None) -> LensSystem:
         else:
             medium, glass_name = resolver.by_index(index)
             notes.append(
-                f"line {lineno}: glass n_d {index:g} from the file; V_d assumed from {glass_name}, "
-                "the catalogue glass nearest in n_d"
+                f"line {lineno}: n_d {index:g} from the file, V_d {medium.v_d:.2f} assumed from {glass_name} "
+                "(the catalogue glass nearest in n_d)"
             )
         surfaces.append(Surface(math.inf if is_stop else radius, thickness, aperture, medium, is_stop, lineno))
     if not surfaces:

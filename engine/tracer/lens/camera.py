@@ -1,0 +1,180 @@
+"""``RealLensCamera``: camera rays traced from the film out through every lens element.
+
+Placement: the film is at the camera's origin and the lens extends along its local -Z
+(the camera looks down -Z, +Y up). Lens coordinates (mm, +z toward the film) map to
+camera space by x, y unchanged and Z = (z - film_z) / 1000 m. A real lens forms an
+inverted image; the film is read rotated by 180 degrees, so an object on the left of the
+scene appears on the left of the rendered image.
+
+Weights: a sample on the rear-element plane at distance z from the film carries
+cos^4(theta) * A_box / z^2 (irradiance from a uniform-radiance scene, where A_box is the
+area of the exit-pupil box it was drawn from), divided by the same quantity integrated at
+the film centre. So a uniform white scene renders 1.0 at the image centre at every f-stop
+(as Blender's cameras expose), while vignetting and the cos^4 fall-off are physical.
+Only the hero wavelength (column 0) is traced: its weight is multiplied by K and the
+other columns are 0.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+
+from ..errors import PrismInputError
+from .exit_pupil import RADIAL_BINS, ExitPupilBounds
+from .lens_file import load_lens
+from .media import D_LINE_NM
+from .system import TOWARD_SCENE
+
+WASTE_SAMPLES = 20000
+NORMALISATION_GRID = 96
+
+
+@lru_cache(maxsize=8)
+def _pupil_bounds(system, film_z_mm, film_radius_mm, full):
+    return ExitPupilBounds(system, film_z_mm, film_radius_mm, RADIAL_BINS, full=full)
+
+
+class RealLensCamera:
+    """A camera whose rays are traced through a lens prescription (``camera.lens_file``).
+
+    ``camera`` is an ``engine.tracer.scene.Camera`` with ``model == "real_lens"``;
+    ``settings.use_pupil_bounds`` chooses exit-pupil sampling (default) or the whole rear
+    element. Attributes: ``system`` (the stopped-down ``LensSystem``),
+    ``sensor_distance_mm`` (rear vertex to film), ``strategy`` (one line for the render
+    stats), ``wasted_fraction`` (share of samples inside the pupil bounds that the lens
+    blocks), ``outside_image_circle_fraction`` (share of the frame no light reaches).
+    """
+
+    disperses = True
+
+    def __init__(self, camera, settings=None):
+        name = camera.name
+        width, height = (int(r) for r in camera.resolution)
+        if width < 1 or height < 1:
+            raise PrismInputError(f"Camera '{name}': resolution must be at least 1 x 1 pixels.")
+        if not (camera.film_width_mm > 0 and camera.film_height_mm > 0):
+            raise PrismInputError(f"Camera '{name}': sensor size must be positive.")
+        if not camera.lens_file:
+            raise PrismInputError(
+                f"Camera '{name}' uses a real lens but no lens file is chosen: pick a bundled lens or a .lens file."
+            )
+        if not (camera.fstop > 0 and math.isfinite(camera.fstop)):
+            raise PrismInputError(f"Camera '{name}': f-stop must be a positive number (got {camera.fstop}).")
+        self.width, self.height = width, height
+        self.film_width_mm, self.film_height_mm = float(camera.film_width_mm), float(camera.film_height_mm)
+        larger = max(self.film_width_mm, self.film_height_mm)
+        self._shift_mm = np.array([camera.shift_x * larger, camera.shift_y * larger])
+
+        self.system = load_lens(camera.lens_file).with_fstop(float(camera.fstop))
+        if camera.sensor_distance_mm is None:
+            if not camera.focus_distance_m > 0:
+                raise PrismInputError(f"Camera '{name}': focus distance must be positive.")
+            from .focus import focus
+
+            self.sensor_distance_mm = focus(self.system, camera.focus_distance_m * 1000.0).sensor_distance_mm
+        else:
+            self.sensor_distance_mm = float(camera.sensor_distance_mm)
+            if not self.sensor_distance_mm > 0:
+                raise PrismInputError(
+                    f"Camera '{name}': sensor distance {self.sensor_distance_mm:g} mm would put the film inside "
+                    "the lens; use a positive distance behind the rear element."
+                )
+        self.film_z_mm = self.system.rear_z_mm + self.sensor_distance_mm
+        film_radius = math.hypot(0.5 * self.film_width_mm + abs(self._shift_mm[0]),
+                                 0.5 * self.film_height_mm + abs(self._shift_mm[1]))
+        self.use_pupil_bounds = bool(getattr(settings, "use_pupil_bounds", True))
+        self.pupil = _pupil_bounds(self.system, self.film_z_mm, film_radius, not self.use_pupil_bounds)
+        self._axial_mm = self.film_z_mm - self.system.rear_z_mm
+        self._normalisation = self._centre_irradiance()
+        if not self._normalisation > 0:
+            raise PrismInputError(
+                f"Camera '{name}': no light reaches the film centre through lens '{self.system.name}'; "
+                "check the lens file and the focus settings."
+            )
+        m = np.asarray(camera.camera_to_world, dtype=np.float64)
+        self._rotation, self._origin = m[:3, :3], m[:3, 3].copy()
+        self.wasted_fraction, self.outside_image_circle_fraction = self._measure_waste(settings)
+        how = "exit-pupil bounds" if self.use_pupil_bounds else "whole rear element"
+        self.strategy = (
+            f"real lens '{self.system.name}' f/{camera.fstop:g}, film {self.sensor_distance_mm:.2f} mm behind the "
+            f"rear element, {how}, {100 * self.wasted_fraction:.1f}% samples wasted"
+        )
+        if self.outside_image_circle_fraction > 0.001:
+            self.strategy += f", {100 * self.outside_image_circle_fraction:.0f}% of the frame outside the image circle"
+
+    # ---- geometry -----------------------------------------------------------------------
+    def film_points_mm(self, pixel_xy):
+        """Film positions [N, 2] (lens x, y in mm) of raster positions, rotated 180 degrees."""
+        sx = (pixel_xy[:, 0] / self.width - 0.5) * self.film_width_mm + self._shift_mm[0]
+        sy = (0.5 - pixel_xy[:, 1] / self.height) * self.film_height_mm + self._shift_mm[1]
+        return np.column_stack([-sx, -sy])
+
+    def trace_from_film(self, film_xy_mm, lens_uv, wavelength_nm):
+        """Trace one ray per film point through a sample of its exit-pupil box.
+
+        Returns (TraceResult in lens coordinates, weight [N]) where the weight already
+        includes the normalisation and is 0 for blocked rays.
+        """
+        points, area = self.pupil.sample(film_xy_mm, lens_uv)
+        film = np.column_stack([film_xy_mm, np.full(len(film_xy_mm), self.film_z_mm)])
+        direction = points - film
+        result = self.system.trace(film, direction, wavelength_nm, toward=TOWARD_SCENE)
+        cos_theta = self._axial_mm / np.linalg.norm(direction, axis=1)
+        weight = cos_theta**4 * area / self._axial_mm**2 / self._normalisation
+        return result, np.where(result.alive, weight, 0.0)
+
+    def generate_rays(self, pixel_xy, lens_uv, wavelength_nm):
+        """World-space rays for raster positions (see the camera contract in TEAM.md).
+
+        ``pixel_xy`` [N, 2], ``lens_uv`` [N, 2] in [0, 1), ``wavelength_nm`` [N, K]: column 0
+        (the hero wavelength) is traced; weight [N, K] has K x the lens weight in column 0.
+        """
+        pixel_xy = np.asarray(pixel_xy, dtype=np.float64)
+        lens_uv = np.asarray(lens_uv, dtype=np.float64)
+        wavelength_nm = np.asarray(wavelength_nm, dtype=np.float64)
+        if wavelength_nm.ndim == 1:
+            wavelength_nm = wavelength_nm[:, None]
+        n, k = wavelength_nm.shape
+        result, lens_weight = self.trace_from_film(self.film_points_mm(pixel_xy), lens_uv, wavelength_nm[:, 0])
+        origins_cam = result.origins.copy()
+        origins_cam[:, 2] -= self.film_z_mm
+        origins_cam *= 1e-3
+        directions_cam = result.directions.copy()
+        dead = ~result.alive
+        origins_cam[dead] = 0.0
+        directions_cam[dead] = (0.0, 0.0, -1.0)
+        origins = origins_cam @ self._rotation.T + self._origin
+        directions = directions_cam @ self._rotation.T
+        directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+        weight = np.zeros((n, k))
+        weight[:, 0] = k * lens_weight
+        return origins, directions, weight
+
+    # ---- set-up measurements ------------------------------------------------------------
+    def _centre_irradiance(self):
+        """Integral of cos^4 / z^2 over the passing part of the pupil seen from the film centre."""
+        g = NORMALISATION_GRID
+        u = (np.arange(g) + 0.5) / g
+        uv = np.column_stack([np.repeat(u, g), np.tile(u, g)])
+        centre = np.zeros((g * g, 2))
+        points, area = self.pupil.sample(centre, uv)
+        film = np.column_stack([centre, np.full(g * g, self.film_z_mm)])
+        direction = points - film
+        alive = self.system.trace(film, direction, D_LINE_NM, toward=TOWARD_SCENE).alive
+        cos_theta = self._axial_mm / np.linalg.norm(direction, axis=1)
+        return float(np.mean(np.where(alive, cos_theta**4, 0.0)) * area[0] / self._axial_mm**2)
+
+    def _measure_waste(self, settings):
+        """(blocked share of samples drawn inside non-empty pupil boxes, share of the frame with empty boxes)."""
+        rng = np.random.default_rng(getattr(settings, "seed", 0) if settings is not None else 0)
+        pixel = rng.random((WASTE_SAMPLES, 2)) * (self.width, self.height)
+        film = self.film_points_mm(pixel)
+        wavelength = rng.uniform(400.0, 700.0, WASTE_SAMPLES)
+        has_box = self.pupil.sample(film, np.zeros((WASTE_SAMPLES, 2)))[1] > 0
+        if not has_box.any():
+            return 1.0, 1.0
+        result, _ = self.trace_from_film(film[has_box], rng.random((int(has_box.sum()), 2)), wavelength[has_box])
+        return float(1.0 - result.alive.mean()), float(1.0 - has_box.mean())
