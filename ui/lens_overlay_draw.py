@@ -23,7 +23,6 @@ lens, focus, f-stop or overlay settings and cached); this module only draws poly
 from __future__ import annotations
 
 import functools
-import math
 import os
 import traceback
 
@@ -102,6 +101,9 @@ def overlay_inputs(scene):
     path = prism.lens_path() if hasattr(prism, "lens_path") else None
     if not path or not os.path.isfile(path):
         return None, f"Lens overlay: camera '{camera.name}': lens file '{path or ''}' not found; choose a lens."
+    focus_m = float(_focus_distance_m(camera))
+    if not focus_m > 0.0:  # as the render's real-lens camera
+        return None, f"Lens overlay: camera '{camera.name}': focus distance must be positive."
     try:
         wavelengths = tuple(settings.wavelengths_nm(scene.prism))
     except PrismInputError as error:  # the custom list
@@ -110,7 +112,7 @@ def overlay_inputs(scene):
         path,
         os.stat(path).st_mtime_ns,
         round(float(camera.data.dof.aperture_fstop), 6),
-        round(1000.0 * float(_focus_distance_m(camera)), 6),
+        round(1000.0 * focus_m, 6),
         wavelengths,
         int(settings.rays_per_fan),
         round(float(settings.field_angle_deg), 6),
@@ -121,7 +123,8 @@ def overlay_inputs(scene):
 
 
 def compute_diagram(inputs):
-    """The ``LensDiagram`` for ``overlay_inputs`` (may raise ``PrismInputError``)."""
+    """The ``LensDiagram`` for ``overlay_inputs`` (may raise ``PrismInputError``): the lens
+    stopped and focused exactly as the render's ``RealLensCamera`` does it."""
     from ..engine.tracer.lens.fan import lens_diagram
     from ..engine.tracer.lens.lens_file import load_lens
 
@@ -129,7 +132,7 @@ def compute_diagram(inputs):
     system = load_lens(path).with_fstop(fstop)
     return lens_diagram(
         system, wavelengths, n_rays=rays, field_angle_deg=field, source_distance_mm=source_mm,
-        focus_distance_mm=focus_mm if focus_mm > 0.0 else math.inf, sensor_half_height_mm=half_height,
+        focus_distance_mm=focus_mm, sensor_half_height_mm=half_height,
     )
 
 

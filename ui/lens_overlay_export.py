@@ -165,18 +165,19 @@ def pixel_projection(width, height):
     return Matrix(((2.0 / width, 0, 0, -1), (0, 2.0 / height, 0, -1), (0, 0, -1, 0), (0, 0, 0, 1)))
 
 
-def _title(diagram, focus_mm):
+def _title(diagram, focus_mm, fstop):
     source = diagram.source
-    where = "infinity" if source.at_infinity else f"{(diagram.sensor_z_mm - source.z_mm) / 1000.0:.3g} m"
-    focus = "infinity" if not math.isfinite(focus_mm) or focus_mm <= 0 else f"{focus_mm / 1000.0:.3g} m"
+    where = "infinity" if source.at_infinity else f"{(diagram.sensor_z_mm - source.z_mm) / 1000.0:.4g} m"
+    focus = "infinity" if not math.isfinite(focus_mm) or focus_mm <= 0 else f"{focus_mm / 1000.0:.4g} m"
     return (
-        f"{diagram.name}   f/{diagram.f_number:.2g}   focus {focus}   "
+        f"{diagram.name}   at f/{fstop if fstop else diagram.f_number:.3g}   focus {focus}   "
         f"source {where}, {source.field_angle_deg:g}°"
     )
 
 
-def render_diagram_pixels(diagram, width, height, focus_mm=math.inf):
-    """Draw ``diagram`` offscreen; returns float32 RGBA pixels [height, width, 4], row 0 at the bottom."""
+def render_diagram_pixels(diagram, width, height, focus_mm=math.inf, fstop=None):
+    """Draw ``diagram`` offscreen; returns float32 RGBA pixels [height, width, 4], row 0 at the
+    bottom. ``focus_mm`` and ``fstop`` (the camera's; default the paraxial f-number) go in the title."""
     import blf
     import gpu
     import numpy as np
@@ -201,7 +202,7 @@ def render_diagram_pixels(diagram, width, height, focus_mm=math.inf):
                 blf.size(0, font_size)
                 blf.color(0, *draw.TEXT_RGBA)
                 blf.position(0, 0.04 * height, height - 0.06 * height, 0)
-                blf.draw(0, _title(diagram, focus_mm))
+                blf.draw(0, _title(diagram, focus_mm, fstop))
             buffer = framebuffer.read_color(0, 0, width, height, 4, 0, "FLOAT")
     finally:
         offscreen.free()
@@ -236,7 +237,7 @@ def write_lens_diagram_png(scene, filepath, width=1200, height=600):
     if inputs is None:
         raise PrismInputError(message)
     diagram = draw.compute_diagram(inputs)
-    pixels = render_diagram_pixels(diagram, int(width), int(height), focus_mm=inputs[3])
+    pixels = render_diagram_pixels(diagram, int(width), int(height), focus_mm=inputs[3], fstop=inputs[2])
     save_png(pixels, bpy.path.abspath(str(filepath)))
     return diagram
 

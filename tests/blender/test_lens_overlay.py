@@ -7,6 +7,7 @@ import math
 import bpy
 import numpy as np
 import pytest
+from helpers.bpy_scenes import add_plane, add_point_light
 
 SINGLET_DAT = """# test singlet: stop, then a biconvex N-BK7 lens
 # radius  thickness  index  aperture
@@ -150,6 +151,9 @@ def test_background_register_toggle_and_render_never_touch_gpu(prism_addon, lens
     scene.camera.data.prism.lens_model = "PINHOLE"
     assert bpy.ops.prism.toggle_lens_overlay() == {"FINISHED"}
     assert scene.prism.lens_overlay.enabled and not overlay.handlers_active()
+    add_plane("Floor", 4.0)
+    add_point_light("Bulb", 100.0, (0.0, 0.0, 2.0))
+    scene.camera.location = (0.0, 0.0, 3.0)
     scene.prism.samples = 1
     bpy.ops.render.render()
     assert calls == []
@@ -174,7 +178,9 @@ def test_diagram_is_cached_until_an_input_changes(prism_addon, lens_scene, overl
     assert diagram is None and "Real lens" in message
 
 
-def test_export_operator_writes_the_png(prism_addon, lens_scene, gpu_ready, tmp_path):
+def test_export_operator_writes_the_bundled_double_gauss_png(prism_addon, lens_scene, gpu_ready, tmp_path):
+    lens_scene.camera.data.prism.lens_source = "BUNDLED"
+    lens_scene.camera.data.prism.bundled_lens = "double_gauss_50mm"
     path = tmp_path / "diagram.png"
     assert bpy.ops.prism.export_lens_diagram(filepath=str(path), width=300, height=150) == {"FINISHED"}
     image = bpy.data.images.load(str(path))
