@@ -170,12 +170,13 @@ class Integrator:
 
     def _emission_from_hits(self, radiance, idx, o, d, t, tri, light_id, lam, beta, prev_pdf, prev_delta, depth):
         lights = self.lights
-        sel = lights.select_pdf
+        sel = lights.select_prob
         for li, light in lights.hittable:
             rows = np.flatnonzero(light_id == li)
             if len(rows):
                 le = light.emitted(o[rows], d[rows], t[rows], lam[rows])
-                w = self._mis_emitter(sel * light.pdf(o[rows], d[rows], t[rows]), prev_pdf[rows], prev_delta[rows])
+                pdf_l = sel[li] * light.pdf(o[rows], d[rows], t[rows])
+                w = self._mis_emitter(pdf_l, prev_pdf[rows], prev_delta[rows])
                 radiance[idx[rows]] += beta[rows] * le * w[:, None]
         escaped = (tri < 0) & (light_id < 0)
         if escaped.any():
@@ -185,7 +186,7 @@ class Integrator:
             if depth > 0:
                 for li, sun in lights.distant:
                     le = sun.escaped(d[rows], lam[rows])
-                    w = self._mis_emitter(sel * sun.pdf_escaped(d[rows]), prev_pdf[rows], prev_delta[rows])
+                    w = self._mis_emitter(sel[li] * sun.pdf_escaped(d[rows]), prev_pdf[rows], prev_delta[rows])
                     radiance[idx[rows]] += beta[rows] * le * w[:, None]
         mesh = lights.mesh
         if mesh is not None:
@@ -197,7 +198,7 @@ class Integrator:
                 if depth == 0:
                     w = np.ones(len(rows))
                 else:
-                    pdf_l = sel * mesh.pdf(o[rows], d[rows], t[rows], tri[rows])
+                    pdf_l = sel[lights.mesh_index] * mesh.pdf(o[rows], d[rows], t[rows], tri[rows])
                     w = self._mis_emitter(pdf_l, prev_pdf[rows], prev_delta[rows])
                 radiance[idx[rows]] += beta[rows] * le * w[:, None]
 
@@ -224,7 +225,7 @@ class Integrator:
             wi, dist, li_val, pdf_l = light.sample(p, u[:, :3], lam)
             is_delta = np.full(m, light.delta)
         else:
-            choice = np.minimum((u[:, 3] * len(lights)).astype(np.int64), len(lights) - 1)
+            choice = np.minimum(np.searchsorted(lights.select_cdf, u[:, 3], side="right"), len(lights) - 1)
             wi = np.zeros((m, 3))
             dist = np.zeros(m)
             li_val = np.zeros((m, k))
@@ -235,7 +236,7 @@ class Integrator:
                 light = lights.lights[j]
                 wi[sub], dist[sub], li_val[sub], pdf_l[sub] = light.sample(p[sub], u[sub, :3], lam[sub])
                 is_delta[sub] = light.delta
-        pdf_l = pdf_l * lights.select_pdf
+        pdf_l = pdf_l * (lights.select_prob[0] if len(lights) == 1 else lights.select_prob[choice])
         wi_l = to_local(wi, *frame)
         f, pdf_b = self._eval(mat, wo_l, wi_l, lam, hero, collapsed)
         ok = (pdf_l > 0) & self._consistent(wo, wi, ng, wo_l, wi_l)

@@ -28,7 +28,8 @@ def test_pinhole_frustum_orientation_and_shift():
     assert d[2][1] / -d[2][2] == pytest.approx(9.0 / 50.0)  # top row looks up (+Y here)
     shifted = PinholeCamera(_cam(shift_x=0.1, shift_y=-0.2))
     _, ds, _ = shifted.generate_rays(xy[:1], np.zeros((1, 2)), lam[:1])
-    assert ds[0][0] / -ds[0][2] == pytest.approx(0.1 * 36 / 50) and ds[0][1] / -ds[0][2] == pytest.approx(-0.2 * 36 / 50)
+    assert ds[0][0] / -ds[0][2] == pytest.approx(0.1 * 36 / 50)
+    assert ds[0][1] / -ds[0][2] == pytest.approx(-0.2 * 36 / 50)
 
 
 def test_thin_lens_focuses_at_focus_distance():

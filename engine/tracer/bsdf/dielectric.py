@@ -139,7 +139,8 @@ class Dielectric(BSDF):
         with np.errstate(divide="ignore", invalid="ignore"):
             denom = (cos_im + cos_om / etap) ** 2
             f_r = (d * g / (4.0 * np.abs(cos_i * cos_o)))[:, None] * r
-            f_t = (d * g * np.abs(cos_im * cos_om) / (np.abs(cos_i * cos_o) * denom) / (etap * etap))[:, None] * (1.0 - r)
+            f_t = d * g * np.abs(cos_im * cos_om) / (np.abs(cos_i * cos_o) * denom) / (etap * etap)
+            f_t = f_t[:, None] * (1.0 - r)
             pdf = np.where(reflect, pdf_wm / (4.0 * np.abs(cos_om)) * p, pdf_wm * np.abs(cos_im) / denom * (1.0 - p))
         f = np.where(reflect[:, None], f_r, f_t)
         ok &= np.isfinite(pdf) & np.isfinite(f).all(1)

@@ -47,7 +47,11 @@ def _emits(light) -> bool:
 
 
 class LightSet:
-    """All emitters of a scene. NEE picks one of ``lights`` uniformly (``select_pdf``)."""
+    """All emitters of a scene. NEE picks one of ``lights`` with probability
+    ``select_prob`` proportional to its estimated power (spectra are luminance-normalised,
+    so powers compare): P for point, spot and area lights, E pi R^2 for a sun (R: radius
+    of the scene's bounding sphere), pi sum(area x strength) for emissive meshes; every
+    light keeps at least 1/(20 n) so none is starved."""
 
     def __init__(self, scene, spectra, use_mesh_lights=True):
         self.lights = [_make(light, spectra) for light in scene.lights if _emits(light)]
@@ -77,10 +81,33 @@ class LightSet:
         self.hittable = [(i, light) for i, light in enumerate(self.lights) if getattr(light, "hittable", False)]
         self.distant = [(i, light) for i, light in enumerate(self.lights) if getattr(light, "distant", False)]
         self.world = WorldLight(scene.world, spectra.world_emission(scene.world.color))
-        self.select_pdf = 1.0 / len(self.lights) if self.lights else 0.0
+        self.select_prob = _selection(self.lights, scene)
+        self.select_cdf = np.cumsum(self.select_prob)
 
     def __len__(self):
         return len(self.lights)
+
+
+def _selection(lights, scene):
+    if not lights:
+        return np.zeros(0)
+    verts = np.asarray(scene.vertices, dtype=np.float64)
+    radius = 0.5 * float(np.linalg.norm(np.ptp(verts, axis=0))) if len(verts) else 1.0
+    power = []
+    for light in lights:
+        if isinstance(light, SunLight):
+            power.append(light.irradiance * np.pi * max(radius, 1e-3) ** 2)
+        elif isinstance(light, MeshEmitters):
+            power.append(np.pi * light.total)
+        elif isinstance(light, AreaLight):
+            power.append(light.radiance * np.pi * light.area)
+        else:
+            power.append(light.intensity * 4.0 * np.pi)
+    power = np.maximum(np.nan_to_num(np.asarray(power, dtype=np.float64)), 0.0)
+    n = len(lights)
+    prob = power / power.sum() if power.sum() > 0 else np.full(n, 1.0 / n)
+    prob = np.maximum(prob, 1.0 / (20 * n))
+    return prob / prob.sum()
 
 
 def _white():

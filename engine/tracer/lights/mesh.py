@@ -58,7 +58,8 @@ class MeshEmitters:
         wi = wi / safe[:, None]
         cos_l = np.abs(dot(wi, self.normal[rows]))
         ok = (cos_l > 0) & (dist > 0) & (self.area[rows] > 0)
-        pdf = np.where(ok, self.select[rows] / np.where(ok, self.area[rows], 1.0) * safe**2 / np.where(ok, cos_l, 1.0), 0.0)
+        area = np.where(ok, self.area[rows], 1.0)
+        pdf = np.where(ok, self.select[rows] / area * safe**2 / np.where(ok, cos_l, 1.0), 0.0)
         li = np.where(ok[:, None], self._radiance_rows(rows, lam), 0.0)
         return wi, dist, li, pdf
 
