@@ -287,3 +287,13 @@ def test_panels_show_the_settings_and_the_status(prism_addon, lens_scene):
     assert any("RMS spot" in str(entry) for entry in record)
     assert bpy.types.VIEW3D_PT_prism_lens_overlay.bl_category == "Prism"
     assert bpy.types.DATA_PT_prism_lens_overlay.bl_context == "data"
+
+
+def test_export_without_a_gpu_fails_with_the_fix(prism_addon, lens_scene, monkeypatch, tmp_path):
+    export = importlib.import_module(f"{prism_addon.__name__}.ui.lens_overlay_export")
+    monkeypatch.setattr(export, "_gpu_available", lambda: False)
+    scenes_before = len(bpy.data.scenes)
+    with pytest.raises(export.LensDiagramExportError, match="Mesa EGL"):
+        export.write_lens_diagram_png(lens_scene, tmp_path / "x.png", 200, 100)
+    assert len(bpy.data.scenes) == scenes_before  # the temporary GPU-initialising scene is gone
+    assert not (tmp_path / "x.png").exists()
