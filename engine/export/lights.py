@@ -95,7 +95,8 @@ def export_lights(depsgraph) -> list[Light]:
         obj = instance.object
         if obj.type != "LIGHT":
             continue
-        light = _export_light(obj.name, obj.data, instance.matrix_world)
+        # Settings from the original light (see ``export_material``), placement from the instance.
+        light = _export_light(obj.name, obj.data.original, instance.matrix_world)
         if light.power_w > 0 or light.irradiance_w_m2 > 0:
             lights.append(light)
     return lights

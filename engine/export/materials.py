@@ -47,6 +47,9 @@ def export_material(material, warnings: list[str] | None = None) -> Material:
     """The tracer material for a Blender material (None → the default grey diffuse)."""
     if material is None:
         return DEFAULT_MATERIAL
+    # The original data-block: what the user (or a script) set last, even when the depsgraph
+    # has not re-copied it (Python edits to settings do not tag the material for evaluation).
+    material = material.original
     reading = read_principled(material)
     if warnings is not None:
         warnings.extend(reading.ignored)

@@ -1,0 +1,230 @@
+"""Errors a user can act on: each one is a Blender error report naming the object and the fix,
+the render stops (no silent wrong image), and the batch script exits non-zero with the message."""
+
+from __future__ import annotations
+
+import importlib
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import bpy
+import pytest
+
+from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+
+
+def _base_scene():
+    """A scene that renders: a plane, a light, a camera."""
+    add_plane("Floor", 4.0)
+    add_point_light("Bulb", 100.0, (0.0, 0.0, 2.0))
+    add_camera((0.0, -3.0, 1.5), (1.1, 0.0, 0.0), resolution=(8, 8))
+
+
+def _no_camera():
+    bpy.context.scene.camera = None
+
+
+def _empty_as_camera():
+    empty = bpy.data.objects.new("Helper", None)
+    bpy.context.scene.collection.objects.link(empty)
+    bpy.context.scene.camera = empty
+
+
+def _camera_type(kind):
+    def mutate():
+        bpy.context.scene.camera.data.type = kind
+
+    return mutate
+
+
+def _real_lens(path):
+    def mutate():
+        settings = bpy.context.scene.camera.data.prism
+        settings.lens_model = "REAL_LENS"
+        settings.lens_source = "FILE"
+        settings.lens_file = str(path) if path is not None else ""
+
+    return mutate
+
+
+def _write(tmp, name, text):
+    path = Path(tmp) / name
+    path.write_text(text)
+    return path
+
+
+def _bad_toml_lens(tmp):
+    return _real_lens(_write(tmp, "bad.lens", 'format = "prism-lens-1"\nname = "bad"\n[[surface]]\nradius_mm = 30.0\nthickness_mm = = 3\n'))
+
+
+def _unknown_glass_in_lens(tmp):
+    text = (
+        'format = "prism-lens-1"\nname = "x"\n[[surface]]\nradius_mm = 30.0\nthickness_mm = 3\naperture_mm = 20\n'
+        'glass = "UNOBTAINIUM"\n[[surface]]\nradius_mm = -30\nthickness_mm = 40\naperture_mm = 20\n'
+    )
+    return _real_lens(_write(tmp, "glass.lens", text))
+
+
+def _floor_material():
+    material = bpy.data.materials["Floor material"]
+    return material, material.node_tree.nodes["Principled BSDF"]
+
+
+def _glass(source, **values):
+    def mutate():
+        material, node = _floor_material()
+        node.inputs["Transmission Weight"].default_value = 1.0
+        material.prism.glass_source = source
+        for key, value in values.items():
+            if key == "raw_glass_name":
+                material.prism["glass_name"] = value  # a glass saved by a catalogue that no longer has it
+            elif key == "ior":
+                node.inputs["IOR"].default_value = value
+            else:
+                setattr(material.prism, key, value)
+
+    return mutate
+
+
+def _light(**values):
+    def mutate():
+        data = bpy.data.lights["Bulb"]
+        for key, value in values.items():
+            if key == "energy":
+                data.energy = value
+            else:
+                setattr(data.prism, key, value)
+
+    return mutate
+
+
+def _nan_vertex():
+    mesh = bpy.data.objects["Floor"].data
+    mesh.vertices[0].co = (math.nan, 0.0, 0.0)
+
+
+def _nan_light():
+    bpy.data.objects["Bulb"].location = (math.nan, 0.0, 2.0)
+
+
+def _only_camera():
+    for name in ("Floor", "Bulb"):
+        bpy.data.objects.remove(bpy.data.objects[name])
+
+
+def _no_light():
+    bpy.data.objects.remove(bpy.data.objects["Bulb"])
+    bpy.context.scene.world = None
+
+
+def _thin_lens_focus(distance_m):
+    def mutate():
+        data = bpy.context.scene.camera.data
+        data.prism.lens_model = "THIN_LENS"
+        data.dof.focus_distance = distance_m
+
+    return mutate
+
+
+def _focus_behind():
+    data = bpy.context.scene.camera.data
+    data.prism.lens_model = "THIN_LENS"
+    target = bpy.data.objects.new("Behind", None)
+    target.location = (0.0, -10.0, 3.0)
+    bpy.context.scene.collection.objects.link(target)
+    data.dof.focus_object = target
+
+
+def _zero_area_light():
+    data = bpy.data.lights.new("Panel", "AREA")
+    data.energy, data.size = 50.0, 1.0
+    obj = bpy.data.objects.new("Panel", data)
+    obj.location = (0.0, 0.0, 2.0)
+    obj.scale = (0.0, 1.0, 1.0)
+    bpy.context.scene.collection.objects.link(obj)
+
+
+CASES = {
+    "no camera": (_no_camera, "Scene 'Scene' has no active camera"),
+    "camera is not a camera": (_empty_as_camera, "The active camera 'Helper' is not a camera object"),
+    "orthographic camera": (_camera_type("ORTHO"), "Camera 'Camera' is orthographic; Prism renders perspective"),
+    "panoramic camera": (_camera_type("PANO"), "Camera 'Camera' is panoramic; Prism renders perspective"),
+    "no lens chosen": (lambda tmp: _real_lens(None), "Camera 'Camera' uses a real lens but no prescription is chosen"),
+    "missing lens file": (lambda tmp: _real_lens(Path(tmp) / "nowhere.lens"), "nowhere.lens' does not exist"),
+    "invalid lens file": (_bad_toml_lens, "bad.lens: not valid TOML: Invalid value (at line 5, column 16)"),
+    "unknown glass in lens": (_unknown_glass_in_lens, "glass.lens, line 7 (surface 1, 'glass'): unknown glass 'UNOBTAINIUM'"),
+    "unknown glass": (_glass("CATALOGUE", raw_glass_name=12345), "Material 'Floor material' uses a catalogue glass that is not in"),
+    "invalid Abbe glass": (_glass("ABBE", glass_nd=1.0), "Material 'Floor material': Glass n_d 1 is invalid"),
+    "IOR below 1": (_glass("PRINCIPLED_IOR", ior=0.8), "Material 'Floor material': IOR 0.8 is below 1"),
+    "temperature out of range": (
+        _light(color_source="BLACKBODY", temperature_k=500.0),
+        "Light 'Bulb': blackbody temperature 500 K is outside 1000-40000 K",
+    ),
+    "negative light power": (_light(energy=-10.0), "Light 'Bulb' has Power -10"),
+    "zero-size area light": (_zero_area_light, "Area light 'Panel' has zero size"),
+    "NaN vertices": (_nan_vertex, "Object 'Floor' has vertices that are NaN or infinite"),
+    "empty scene": (_only_camera, "Scene 'Scene' has no visible geometry"),
+    "no light": (_no_light, "Scene 'Scene' has no light"),
+    "thin lens focused at 0 m": (_thin_lens_focus(0.0), "Camera 'Camera' focuses at 0 m"),
+    "focus object behind camera": (_focus_behind, "focuses on 'Behind', which is behind the camera"),
+    "light at NaN location": (_nan_light, "Light 'Bulb' has a non-finite transform"),
+}
+_NEEDS_TMP = {"no lens chosen", "missing lens file", "invalid lens file", "unknown glass in lens"}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_error_is_reported_and_stops_the_render(prism_addon, fresh_scene, tmp_path, case):
+    session = importlib.import_module(f"{prism_addon.__name__}.engine.session")
+    export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
+    mutate, message = CASES[case]
+    _base_scene()
+    (mutate(tmp_path) if case in _NEEDS_TMP else mutate)()
+    fresh_scene.render.engine = "PRISM"
+    with pytest.raises(export.PrismInputError, match="") as exported:
+        export.export_scene(bpy.context.evaluated_depsgraph_get())
+    assert message in str(exported.value)
+    with pytest.raises(RuntimeError) as raised:
+        bpy.ops.render.render()
+    if case == "no camera":  # Blender refuses before any engine runs; the batch script names the scene
+        assert "no camera" in str(raised.value)
+        return
+    assert message in str(raised.value)
+    assert session.last_error is not None and message in session.last_error
+    assert "Traceback" not in session.last_error
+
+
+def test_batch_exits_non_zero_with_the_message(fresh_scene, tmp_path):
+    _base_scene()
+    _light(color_source="BLACKBODY", temperature_k=90000.0)()
+    path = tmp_path / "hot.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    completed = subprocess.run(
+        [sys.executable, str(REPO_ROOT / "render.py"), str(path), "--output", str(tmp_path / "x.png")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert completed.returncode == 1
+    last_line = completed.stderr.strip().splitlines()[-1]
+    assert last_line.startswith("Prism: error: Light 'Bulb': blackbody temperature 90000 K is outside")
+    assert not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.parametrize(
+    ("arguments", "message"),
+    [
+        (["--frames", "5..2"], "the last frame comes before the first"),
+        (["--chunk-seed", "1"], "--chunk-seed needs --samples"),
+        (["--output", "out.jpg"], "--output must end in .png or .exr"),
+        (["--samples", "0"], "--samples must be at least 1"),
+    ],
+)
+def test_batch_argument_errors(prism_addon, arguments, message, capsys):
+    render = importlib.import_module("render")
+    argv = ["scene.blend", "--output", "out.exr", *arguments]
+    assert render.main(argv, in_blender=False) == 2
+    assert message in capsys.readouterr().err
