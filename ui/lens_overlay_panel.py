@@ -26,7 +26,8 @@ def _draw_status(layout, scene):
 
 
 def draw_overlay_settings(layout, context, show_camera=True):
-    """The overlay's settings, the camera's lens and focus, and the status line."""
+    """The overlay's settings, the status line and, with ``show_camera``, the scene camera's
+    lens, focus distance and f-stop."""
     scene = context.scene
     settings = draw.overlay_settings(scene)
     if settings is None:
@@ -56,10 +57,10 @@ def draw_overlay_settings(layout, context, show_camera=True):
     column.prop(settings, "show_sensor")
     column.prop(settings, "show_spot_diagram")
     camera = scene.camera
-    if camera is not None and camera.type == "CAMERA":
+    if show_camera and camera is not None and camera.type == "CAMERA":
         column = layout.column()
         prism = getattr(camera.data, "prism", None)
-        if show_camera and prism is not None:
+        if prism is not None:
             column.prop(prism, "lens_model")
             if prism.lens_model == "REAL_LENS":
                 column.prop(prism, "lens_source")
@@ -82,8 +83,9 @@ class VIEW3D_PT_prism_lens_overlay(bpy.types.Panel):
         draw_overlay_settings(self.layout, context)
 
 
-class DATA_PT_prism_lens_overlay(bpy.types.Panel):
-    """Lens overlay settings with the camera's other properties (Prism engine only)."""
+class PRISM_PT_camera_lens_overlay(bpy.types.Panel):
+    """Lens overlay settings under the camera's Prism Lens panel (Prism engine only); the
+    lens, focus and f-stop are in the parent panel and its Focus sub-panel."""
 
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
@@ -91,6 +93,7 @@ class DATA_PT_prism_lens_overlay(bpy.types.Panel):
     bl_label = "Lens Overlay"
     bl_options = {"DEFAULT_CLOSED"}
     COMPAT_ENGINES = {"PRISM"}
+    PARENT = "PRISM_PT_camera_lens"
 
     @classmethod
     def poll(cls, context):
@@ -104,10 +107,17 @@ class DATA_PT_prism_lens_overlay(bpy.types.Panel):
         draw_overlay_settings(self.layout, context, show_camera=False)
 
 
-_CLASSES = (VIEW3D_PT_prism_lens_overlay, DATA_PT_prism_lens_overlay)
+_CLASSES = (VIEW3D_PT_prism_lens_overlay, PRISM_PT_camera_lens_overlay)
 
 
 def register():
+    # A sub-panel of the camera's Prism Lens panel when that is registered (it is, earlier
+    # in ui/__init__.py's order); a panel of its own otherwise.
+    parent = PRISM_PT_camera_lens_overlay.PARENT
+    if hasattr(bpy.types, parent):
+        PRISM_PT_camera_lens_overlay.bl_parent_id = parent
+    elif "bl_parent_id" in PRISM_PT_camera_lens_overlay.__dict__:
+        del PRISM_PT_camera_lens_overlay.bl_parent_id
     for cls in _CLASSES:
         bpy.utils.register_class(cls)
 

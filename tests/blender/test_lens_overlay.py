@@ -286,7 +286,8 @@ def test_panels_show_the_settings_and_the_status(prism_addon, lens_scene):
         assert name in record
     assert any("RMS spot" in str(entry) for entry in record)
     assert bpy.types.VIEW3D_PT_prism_lens_overlay.bl_category == "Prism"
-    assert bpy.types.DATA_PT_prism_lens_overlay.bl_context == "data"
+    camera_panel = bpy.types.PRISM_PT_camera_lens_overlay
+    assert camera_panel.bl_context == "data" and camera_panel.bl_parent_id == "PRISM_PT_camera_lens"
 
 
 def test_export_without_a_gpu_fails_with_the_fix(prism_addon, lens_scene, monkeypatch, tmp_path):
