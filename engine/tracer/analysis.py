@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .bsdf.emission import is_emissive
 from .errors import PrismInputError
 
 
@@ -66,7 +67,7 @@ def analyse(scene, settings, bsdfs, camera) -> SceneAnalysis:
         mat = scene.materials[m]
         if b.disperses:
             a.dispersive.append(mat.glass or mat.name)
-        if mat.emission_strength > 0:
+        if is_emissive(mat):
             a.mesh_lights = True
         if b.kind in ("conductor", "dielectric"):
             features.add(("mirror " if b.kind == "conductor" else "smooth ") + b.kind if b.delta else "rough " + b.kind)

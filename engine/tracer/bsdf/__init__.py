@@ -4,7 +4,8 @@
 GGX), ``Dielectric`` (smooth or rough glass, dispersive or not) or ``ThinFilm``
 (free-standing film); a coating (``coating_thickness_nm`` > 0) replaces the
 interface reflectance of a conductor or dielectric by thin-film interference.
-Reflectances are spectra (RGB upsampled), never RGB triples.
+Reflectances are spectra (RGB upsampled), never RGB triples. Emission (any kind
+may also emit) lives in ``emission.py`` and is sampled as a light (``lights.mesh``).
 """
 
 from __future__ import annotations
@@ -16,9 +17,11 @@ from .base import BSDF, BSDFSample
 from .conductor import Conductor
 from .dielectric import Dielectric
 from .diffuse import Diffuse
+from .emission import emission_spectrum_of, is_emissive
 from .thin_film import ThinFilm
 
-__all__ = ["BSDF", "BSDFSample", "Conductor", "Dielectric", "Diffuse", "ThinFilm", "make_bsdf"]
+__all__ = ["BSDF", "BSDFSample", "Conductor", "Dielectric", "Diffuse", "ThinFilm", "make_bsdf", "is_emissive",
+           "emission_spectrum_of"]
 
 
 def _alpha(material) -> float:

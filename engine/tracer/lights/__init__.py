@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..bsdf.emission import emission_spectrum_of, is_emissive
 from ..errors import PrismInputError
 from .area import AreaLight
 from .mesh import MeshEmitters
@@ -56,7 +57,7 @@ class LightSet:
     def __init__(self, scene, spectra, use_mesh_lights=True):
         self.lights = [_make(light, spectra) for light in scene.lights if _emits(light)]
         self.mesh = None
-        emissive = [i for i, m in enumerate(scene.materials) if m.emission_strength > 0]
+        emissive = [i for i, m in enumerate(scene.materials) if is_emissive(m)]
         if use_mesh_lights and emissive and len(scene.triangles):
             tri_mat = np.asarray(scene.triangle_material)
             tris = np.flatnonzero(np.isin(tri_mat, emissive))
@@ -66,7 +67,7 @@ class LightSet:
             if len(tris):
                 spec_of_mat = {m: k for k, m in enumerate(emissive)}
                 mats = tri_mat[tris]
-                spectra_list = [spectra.emission(scene.materials[m].emission or _white()) for m in emissive]
+                spectra_list = [emission_spectrum_of(scene.materials[m], spectra) for m in emissive]
                 self.mesh = MeshEmitters(
                     scene.vertices,
                     scene.triangles,
@@ -109,8 +110,3 @@ def _selection(lights, scene):
     prob = np.maximum(prob, 1.0 / (20 * n))
     return prob / prob.sum()
 
-
-def _white():
-    from ..scene import SpectrumSpec
-
-    return SpectrumSpec()
