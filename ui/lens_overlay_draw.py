@@ -70,15 +70,6 @@ def _display_colour(wavelength_nm):
     return tuple(float(c) for c in encoded)
 
 
-def _focus_distance_m(camera_object):
-    dof = camera_object.data.dof
-    target = getattr(dof, "focus_object", None)
-    if target is not None:  # as Blender does: the target's depth along the view axis
-        local = camera_object.matrix_world.inverted() @ target.matrix_world.translation
-        return max(-local.z, 1e-3)
-    return dof.focus_distance
-
-
 def sensor_half_height_mm(scene, camera_data):
     """Half the film height (mm) the render uses (the meridional plane is the camera's Y)."""
     from ..engine.export.camera import film_size_mm, render_resolution
@@ -101,7 +92,12 @@ def overlay_inputs(scene):
     path = prism.lens_path() if hasattr(prism, "lens_path") else None
     if not path or not os.path.isfile(path):
         return None, f"Lens overlay: camera '{camera.name}': lens file '{path or ''}' not found; choose a lens."
-    focus_m = float(_focus_distance_m(camera))
+    from ..engine.export.camera import focus_distance_m
+
+    try:  # exactly as the render exports it (focus object, bone, behind-the-camera check)
+        focus_m = float(focus_distance_m(camera))
+    except PrismInputError as error:
+        return None, f"Lens overlay: {error}"
     if not focus_m > 0.0:  # as the render's real-lens camera
         return None, f"Lens overlay: camera '{camera.name}': focus distance must be positive."
     try:

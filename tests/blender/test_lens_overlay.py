@@ -298,3 +298,18 @@ def test_export_without_a_gpu_fails_with_the_fix(prism_addon, lens_scene, monkey
         export.write_lens_diagram_png(lens_scene, tmp_path / "x.png", 200, 100)
     assert len(bpy.data.scenes) == scenes_before  # the temporary GPU-initialising scene is gone
     assert not (tmp_path / "x.png").exists()
+
+
+def test_focus_follows_the_focus_object_as_the_render_does(prism_addon, lens_scene, overlay):
+    target = bpy.data.objects.new("Target", None)
+    lens_scene.collection.objects.link(target)
+    target.location = (0.3, 0.0, -2.0)  # camera at the origin looking down -Z: 2 m along the axis
+    lens_scene.camera.data.dof.focus_object = target
+    bpy.context.view_layer.update()
+    inputs, message = overlay.overlay_inputs(lens_scene)
+    assert inputs is not None, message
+    assert inputs[3] == pytest.approx(2000.0)
+    target.location = (0.0, 0.0, 1.0)  # behind the camera
+    bpy.context.view_layer.update()
+    inputs, message = overlay.overlay_inputs(lens_scene)
+    assert inputs is None and "behind the camera" in message
