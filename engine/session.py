@@ -60,6 +60,8 @@ last_error: str | None = None
 last_film: FilmSnapshot | None = None
 #: Warnings of the last render (inputs Prism ignored), for tests and the batch script.
 last_warnings: list[str] = []
+#: The stats line of the last pass of the last render (strategy, rays/s, warnings).
+last_stats: str = ""
 
 
 class _Cancelled(Exception):
@@ -111,9 +113,10 @@ class RenderSession:
             print(line, file=stream, flush=True)
 
     def run(self) -> None:
-        global last_error, last_film
+        global last_error, last_film, last_stats
         last_error = None
         last_film = None
+        last_stats = ""
         try:
             self._render()
         except PrismInputError as error:
@@ -177,6 +180,7 @@ class RenderSession:
         renderer._passes = offset // per_pass  # the pass index seeds the pass's random numbers
 
     def _passes(self, renderer, border, width, height, target, warnings) -> None:
+        global last_stats
         engine = self.engine
         req = self.request
         x0, y0, x1, y1 = border or (0, 0, width, height)
@@ -220,6 +224,7 @@ class RenderSession:
                 engine.update_progress(min(1.0, done / target))
                 line = stats_line(renderer, done, target, time.perf_counter() - started, warnings)
                 engine.update_stats("", line)
+                last_stats = line
                 self._print(line)
                 if self.cancelled:
                     break

@@ -1,0 +1,152 @@
+"""F12 renders end to end through ``bpy.ops.render.render``: spectra, cancel, border, passes."""
+
+from __future__ import annotations
+
+import importlib
+
+import bpy
+import numpy as np
+import pytest
+
+from helpers.bpy_scenes import add_camera, add_plane, add_point_light, render_linear_rgb
+
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722])  # Rec.709 Y of linear RGB
+
+
+def _session(prism_addon):
+    return importlib.import_module(f"{prism_addon.__name__}.engine.session")
+
+
+@pytest.fixture
+def lit_plane(fresh_scene):
+    add_plane("Floor", 8.0, color=(0.8, 0.8, 0.8))
+    add_point_light("Bulb", 400.0, (0.0, 0.0, 2.0))
+    add_camera((0.0, 0.0, 3.0), (0.0, 0.0, 0.0), lens_mm=35.0, resolution=(24, 24))
+    fresh_scene.world = None
+    return fresh_scene
+
+
+def test_blackbody_light_changes_colour_not_luminance(lit_plane):
+    settings = bpy.data.lights["Bulb"].prism
+    settings.color_source = "BLACKBODY"
+    means = {}
+    for temperature in (2700.0, 10000.0):
+        settings.temperature_k = temperature
+        means[temperature] = render_linear_rgb(lit_plane, samples=4).reshape(-1, 3).mean(axis=0)
+    warm, cool = means[2700.0], means[10000.0]
+    assert warm @ LUMINANCE == pytest.approx(cool @ LUMINANCE, rel=0.03)
+    assert warm[0] / warm[2] > 2.0 > 1.0 > cool[0] / cool[2]  # candle-warm vs sky-blue
+
+
+def test_cancelling_after_the_first_pass_keeps_the_partial_image(prism_addon, lit_plane, monkeypatch):
+    session = _session(prism_addon)
+    renderer_module = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.renderer")
+    passes = []
+    original_pass = renderer_module.Renderer.render_pass
+
+    def counting_pass(self):
+        original_pass(self)
+        passes.append(self.samples_done)
+
+    monkeypatch.setattr(renderer_module.Renderer, "render_pass", counting_pass)
+    class EscAfterFirstPass:
+        """The real engine, except that Esc is 'pressed' once a pass has finished."""
+
+        def __init__(self, engine):
+            self._engine = engine
+
+        def test_break(self):
+            return len(passes) >= 1
+
+        def __getattr__(self, name):
+            return getattr(self._engine, name)
+
+    original_init = session.RenderSession.__init__
+
+    def init(self, engine, depsgraph, render_request=None):
+        original_init(self, EscAfterFirstPass(engine), depsgraph, render_request)
+
+    monkeypatch.setattr(session.RenderSession, "__init__", init)
+    image = render_linear_rgb(lit_plane, samples=64)
+    assert passes == [1]
+    assert session.last_error is None
+    assert np.isfinite(image).all() and image.mean() > 0.05  # the first pass's image is there
+    assert (image > 0).mean() > 0.9
+
+
+def test_first_pass_is_quick_then_full_passes(prism_addon, lit_plane, monkeypatch):
+    renderer_module = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.renderer")
+    done = []
+    original_pass = renderer_module.Renderer.render_pass
+
+    def counting_pass(self):
+        original_pass(self)
+        done.append(self.samples_done)
+
+    monkeypatch.setattr(renderer_module.Renderer, "render_pass", counting_pass)
+    lit_plane.prism.samples_per_pass = 4
+    render_linear_rgb(lit_plane, samples=9)
+    assert done == [1, 5, 9]
+    assert "9/9 spp" in _session(prism_addon).last_stats
+
+
+@pytest.mark.parametrize("crop", [True, False])
+def test_render_border_and_resolution_percentage(prism_addon, lit_plane, crop):
+    full = render_linear_rgb(lit_plane, samples=4)
+    render = lit_plane.render
+    render.resolution_x = render.resolution_y = 48
+    render.resolution_percentage = 50  # back to 24 x 24 pixels
+    render.use_border, render.use_crop_to_border = True, crop
+    render.border_min_x, render.border_max_x = 0.25, 0.75
+    render.border_min_y, render.border_max_y = 0.5, 1.0  # the top half (Blender's y is up)
+    image = render_linear_rgb(lit_plane, samples=4)
+    region = full[0:12, 6:18]
+    if crop:
+        assert image.shape == (12, 12, 3)
+        inside = image
+    else:
+        assert image.shape == (24, 24, 3)
+        inside = image[0:12, 6:18]
+        outside = image.copy()
+        outside[0:12, 6:18] = 0
+        assert not outside.any()
+    assert inside.mean() == pytest.approx(region.mean(), rel=0.05)
+    assert np.corrcoef(inside[..., 1].ravel(), region[..., 1].ravel())[0, 1] > 0.9
+
+
+def test_noise_and_sample_count_passes(prism_addon, lit_plane, tmp_path):
+    chunks = importlib.import_module(f"{prism_addon.__name__}.engine.chunks")
+    lit_plane.prism.use_pass_variance = True
+    lit_plane.prism.use_pass_sample_count = True
+    lit_plane.prism.samples = 6
+    settings = lit_plane.render.image_settings
+    settings.file_format, settings.color_depth = "OPEN_EXR_MULTILAYER", "32"
+    path = tmp_path / "passes.exr"
+    lit_plane.render.filepath = str(path)
+    lit_plane.render.use_file_extension = False
+    bpy.ops.render.render(write_still=True)
+    oiio = chunks._oiio()
+    image = oiio.ImageInput.open(str(path))
+    spec = image.spec()
+    names = list(spec.channelnames)
+    pixels = np.asarray(image.read_image(0, 0, 0, spec.nchannels, "float")).reshape(24, 24, -1)
+    image.close()
+    count = pixels[..., names.index("ViewLayer.Sample Count.X")]
+    noise = np.stack([pixels[..., names.index(f"ViewLayer.Noise.{c}")] for c in "RGB"], axis=-1)
+    combined = np.stack([pixels[..., names.index(f"ViewLayer.Combined.{c}")] for c in "RGB"], axis=-1)
+    assert (count == 6).all()
+    assert np.isfinite(noise).all() and (noise >= 0).all() and noise.mean() > 0
+    # The variance of a 6-sample mean is far below the squared mean of a well-lit plane.
+    assert noise.mean() < 0.1 * (combined**2).mean()
+
+
+def test_dispersive_glass_reaches_the_renderer(prism_addon, lit_plane):
+    slab = add_plane("Slab", 1.0, location=(0.0, 0.0, 1.0))
+    material = slab.active_material
+    material.node_tree.nodes["Principled BSDF"].inputs["Transmission Weight"].default_value = 1.0
+    material.prism.glass_source = "CATALOGUE"
+    material.prism.glass_name = "SF11"
+    image = render_linear_rgb(lit_plane, samples=2)
+    stats = _session(prism_addon).last_stats
+    assert "hero-wavelength termination (SF11)" in stats
+    assert np.isfinite(image).all()
