@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .path_state import collapse_to_hero, offset_origin, roll_columns, shading_frame, unroll_columns
+from .path_state import collapse_to_hero, offset_distance, offset_origin, roll_columns, shading_frame, unroll_columns
 from .sampling import dot, power_heuristic, to_local, to_world
 from .spectra import PathWavelengths
 
@@ -128,18 +128,21 @@ class Integrator:
                     sub_c = collapsed[rows]
                     beta[rows] = collapse_to_hero(beta[rows], hero[rows], sub_c)
                     collapsed[rows] = sub_c
-            flip = self.two_sided[mat] & (dot(wo, ng) < 0)
+            cos_og = dot(wo, ng)
+            eps = offset_distance(p)
+            flip = self.two_sided[mat] & (cos_og < 0)
             nf = np.where(flip[:, None], -ns, ns)
             frame = shading_frame(nf)
             wo_l = to_local(wo, *frame)
             if len(lights):
-                add, r = self._next_event(p, ng, frame, mat, wo, wo_l, lam, hero, collapsed, beta, rng)
+                add, r = self._next_event(p, ng, frame, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta, rng)
                 radiance[idx] += add
                 rays += r
             u = rng.random((len(idx), 3))
             wi_l, weight, pdf, delta, es = self._sample(mat, wo_l, lam, u, hero, collapsed)
             wi = to_world(wi_l, *frame)
-            ok = self._consistent(wo, wi, ng, wo_l, wi_l) & (weight > 0).any(1)
+            cos_ig = dot(wi, ng)
+            ok = self._consistent(cos_og, cos_ig, wo_l, wi_l) & (weight > 0).any(1)
             beta = beta * weight
             eta_scale = eta_scale * es
             if depth + 1 >= self.rr_depth:
@@ -148,7 +151,7 @@ class Integrator:
                 alive = rng.random(len(idx)) < survive
                 beta = beta / np.where(alive, survive, 1.0)[:, None]
                 ok &= alive
-            o = offset_origin(p, ng, wi)
+            o = offset_origin(p, ng, wi, eps, cos_ig)
             d = wi
             prev_pdf, prev_delta = pdf, delta
             if not ok.all():
@@ -157,10 +160,11 @@ class Integrator:
         return radiance, rays
 
     @staticmethod
-    def _consistent(wo, wi, ng, wo_l, wi_l):
-        """Reflection must stay on wo's side of the geometric surface, transmission cross it."""
+    def _consistent(cos_og, cos_ig, wo_l, wi_l):
+        """Reflection must stay on wo's side of the geometric surface, transmission cross it
+        (``cos_og``, ``cos_ig``: wo.ng and wi.ng)."""
         reflect = wo_l[:, 2] * wi_l[:, 2] > 0
-        same = dot(wo, ng) * dot(wi, ng) > 0
+        same = cos_og * cos_ig > 0
         return reflect == same
 
     def _mis_emitter(self, pdf_light, prev_pdf, prev_delta):
@@ -202,7 +206,7 @@ class Integrator:
                     w = self._mis_emitter(pdf_l, prev_pdf[rows], prev_delta[rows])
                 radiance[idx[rows]] += beta[rows] * le * w[:, None]
 
-    def _next_event(self, p, ng, frame, mat, wo, wo_l, lam, hero, collapsed, beta, rng):
+    def _next_event(self, p, ng, frame, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta, rng):
         """Light-sampled contribution [n,K] at the current vertices (only rows whose
         material is not a pure delta get one), and the number of shadow rays cast."""
         n, k = lam.shape
@@ -212,8 +216,8 @@ class Integrator:
             rows = np.flatnonzero(nee)
             if len(rows) == 0:
                 return out, 0
-            p, ng, mat, wo, wo_l, lam, hero, collapsed, beta = (
-                a[rows] for a in (p, ng, mat, wo, wo_l, lam, hero, collapsed, beta))
+            p, ng, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta = (
+                a[rows] for a in (p, ng, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta))
             frame = tuple(a[rows] for a in frame)
         else:
             rows = None
@@ -239,7 +243,8 @@ class Integrator:
         pdf_l = pdf_l * (lights.select_prob[0] if len(lights) == 1 else lights.select_prob[choice])
         wi_l = to_local(wi, *frame)
         f, pdf_b = self._eval(mat, wo_l, wi_l, lam, hero, collapsed)
-        ok = (pdf_l > 0) & self._consistent(wo, wi, ng, wo_l, wi_l)
+        cos_ig = dot(wi, ng)
+        ok = (pdf_l > 0) & self._consistent(cos_og, cos_ig, wo_l, wi_l)
         if self.use_mis:
             w = np.where(is_delta, 1.0, power_heuristic(pdf_l, pdf_b))
         else:
@@ -253,7 +258,7 @@ class Integrator:
         if not send.any():
             return out, 0
         s = np.flatnonzero(send)
-        origin = offset_origin(p[s], ng[s], wi[s])
+        origin = offset_origin(p[s], ng[s], wi[s], eps[s], cos_ig[s])
         ds = dist[s]
         tmax = np.where(np.isfinite(ds), ds * (1.0 - SHADOW_SHORTEN), 1e30)
         blocked = self.accel.occluded(origin, wi[s], tmax)

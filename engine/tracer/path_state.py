@@ -45,11 +45,17 @@ class TriangleData:
         return p, ng, ns
 
 
-def offset_origin(p: np.ndarray, ng: np.ndarray, toward: np.ndarray) -> np.ndarray:
-    """Move points ``p`` off their surface along ``ng`` to the side of ``toward``."""
-    eps = OFFSET_RELATIVE * np.abs(p).max(axis=1) + OFFSET_ABSOLUTE
-    side = np.where(dot(toward, ng) >= 0, 1.0, -1.0)
-    return p + (eps * side)[:, None] * ng
+def offset_distance(p: np.ndarray) -> np.ndarray:
+    """How far [n] (m) secondary rays start off the surface at points ``p``."""
+    return OFFSET_RELATIVE * np.abs(p).max(axis=1) + OFFSET_ABSOLUTE
+
+
+def offset_origin(p: np.ndarray, ng: np.ndarray, toward: np.ndarray, eps=None, cos_toward=None) -> np.ndarray:
+    """Move points ``p`` off their surface along ``ng`` to the side of ``toward``
+    (``eps`` from ``offset_distance`` and ``cos_toward`` = toward . ng if known)."""
+    eps = offset_distance(p) if eps is None else eps
+    cos_toward = dot(toward, ng) if cos_toward is None else cos_toward
+    return p + np.where(cos_toward >= 0, eps, -eps)[:, None] * ng
 
 
 def shading_frame(n: np.ndarray):

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import concentric_disk
+from ..sampling import concentric_disk, dot
 
 
 class AreaLight:
@@ -42,7 +42,7 @@ class AreaLight:
             xy = 2.0 * u[:, :2] - 1.0
         q = self.center + (xy[:, 0:1] * self.half_u) * self.axis_u + (xy[:, 1:2] * self.half_v) * self.axis_v
         wi = q - p
-        dist = np.linalg.norm(wi, axis=1)
+        dist = np.sqrt(dot(wi, wi))
         safe = np.where(dist > 0, dist, 1.0)
         wi = wi / safe[:, None]
         cos_l = -(wi @ self.normal)

@@ -53,7 +53,7 @@ class MeshEmitters:
         b = uniform_triangle(u[:, :2])
         q = self.v0[rows] + b[:, 0:1] * self.e1[rows] + b[:, 1:2] * self.e2[rows]
         wi = q - p
-        dist = np.linalg.norm(wi, axis=1)
+        dist = np.sqrt(dot(wi, wi))
         safe = np.where(dist > 0, dist, 1.0)
         wi = wi / safe[:, None]
         cos_l = np.abs(dot(wi, self.normal[rows]))

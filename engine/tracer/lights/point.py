@@ -55,7 +55,7 @@ class PointLight:
     def sample(self, p, u, lam):
         """Direction to the light from points ``p`` [n,3]: (wi, distance, Li [n,K], pdf)."""
         to_c = self.position - p
-        dist_c = np.linalg.norm(to_c, axis=1)
+        dist_c = np.sqrt(dot(to_c, to_c))
         safe = np.where(dist_c > 0, dist_c, 1.0)
         axis = to_c / safe[:, None]
         falloff = self._falloff(p)
