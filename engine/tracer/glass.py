@@ -162,7 +162,8 @@ def _validate_dispersion(glass, what):
     """Finite, > 1 and strictly decreasing over 360-830 nm (within the valid range)."""
     lo = max(VISIBLE_MIN_NM, glass.valid_range_nm[0])
     hi = min(VISIBLE_MAX_NM, glass.valid_range_nm[1])
-    n = glass._raw_index(np.linspace(lo, hi, 471))
+    with np.errstate(all="ignore"):  # a pole in range shows up as inf/NaN, reported below
+        n = glass._raw_index(np.linspace(lo, hi, 471))
     if not (np.all(np.isfinite(n)) and np.all(n > 1.0) and np.all(np.diff(n) < 0.0)):
         raise PrismInputError(
             f"{what}: its refractive index is not finite, above 1 and decreasing over {lo:g}–{hi:g} nm; "

@@ -80,3 +80,25 @@ def test_importing_the_physics_modules_is_cheap():
     root = Path(__file__).resolve().parents[2]
     result = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
+
+
+def test_lazy_constants_import_by_name():
+    from engine.tracer.cie import CMF_Y_INTEGRAL, XYZ_TO_LINEAR_REC709
+
+    assert CMF_Y_INTEGRAL == cie.CMF_Y_INTEGRAL
+    assert XYZ_TO_LINEAR_REC709.shape == (3, 3) and not XYZ_TO_LINEAR_REC709.flags.writeable
+    with pytest.raises(AttributeError):
+        cie.NOT_A_CONSTANT  # noqa: B018
+
+
+def test_gaussian_channel_estimate_of_a_sloped_spectrum():
+    """E[RGB_c] = ∫ L(λ) response_c(λ) dλ: for L(λ) = λ/500 that is the channel's truncated mean / 500."""
+    from scipy import integrate
+
+    channels = GaussianChannels()
+    wavelength_nm, pdf = channels.sample(np.random.default_rng(6).random((20000, 3)))
+    rgb = cie.gaussian_channel_samples_to_rgb(wavelength_nm / 500.0, wavelength_nm, pdf, channels)
+    for c in range(3):
+        expected = integrate.quad(lambda x: x / 500.0 * channels.pdf(np.full(3, x))[c], 360.0, 830.0, points=[450, 550, 600])[0]
+        stderr = rgb[:, c].std() / np.sqrt(len(rgb))
+        assert abs(rgb[:, c].mean() - expected) < 4 * stderr

@@ -107,3 +107,11 @@ def test_below_valid_range_clamps_warns_once_and_counts(monkeypatch):
     assert len(messages) == 1 and "SF11" in messages[0] and "390" in messages[0]
     assert sf11.out_of_range_count == 3
     assert glass_by_name("N-BK7").out_of_range_count == 0
+
+
+def test_dispersion_validation_rejects_a_pole_in_the_visible():
+    from engine.tracer.glass import SellmeierGlass, _validate_dispersion
+
+    bad = SellmeierGlass("Broken", [1.0, 0.0, 0.0], [0.25, 0.01, 100.0], (300.0, 2500.0))  # pole at 500 nm
+    with pytest.raises(PrismInputError, match="Broken"):
+        _validate_dispersion(bad, "Catalogue glass 'Broken'")
