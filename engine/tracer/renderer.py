@@ -88,7 +88,8 @@ class Renderer:
         self._rot_pixel = pixel_offsets(settings.seed, count, 2, 1)
         self._rot_lens = pixel_offsets(settings.seed, count, 2, 2)
         self._rot_lambda = pixel_offsets(settings.seed, count, 1, 3)[:, 0]
-        self._pool = ThreadPoolExecutor(_threads(settings.threads))
+        self._workers = _threads(settings.threads)
+        self._pool = ThreadPoolExecutor(self._workers)
         self.samples_done = 0
         self._passes = 0
         self.strategy = self.analysis.strategy(settings.use_mis, self.pixel_filter)
@@ -118,8 +119,14 @@ class Renderer:
         ys, xs = np.mgrid[y0:y1, x0:x1]
         return (ys * self.width + xs).ravel().astype(np.int64)
 
-    def _chunk(self, pixel, sample, chunk_index):
+    def _paths(self, start, stop, spp):
+        """Pixel index and sample number of paths ``start:stop`` of this pass."""
+        path = np.arange(start, stop, dtype=np.int64)
+        return self._pixels[path // spp], self.samples_done + path % spp
+
+    def _chunk(self, start, stop, spp, chunk_index):
         rng = pass_rng(self.settings.seed, self._passes, chunk_index)
+        pixel, sample = self._paths(start, stop, spp)
         n = len(pixel)
         xy = np.column_stack([pixel % self.width, pixel // self.width]).astype(np.float64)
         xy += _filter_offsets(r2_samples(sample, self._rot_pixel[pixel]), self.pixel_filter, self.filter_width)
@@ -131,30 +138,31 @@ class Renderer:
         lam, lam_pdf = self.mode.sample(u_lam)
         hero = rng.integers(0, lam.shape[1], n)
         radiance, rays = self.integrator.trace(xy, lens_uv, lam, hero, rng)
-        return self.mode.to_rgb(radiance, lam, lam_pdf), rays
+        return pixel, self.mode.to_rgb(radiance, lam, lam_pdf), rays
 
     def render_pass(self) -> None:
         """Add ``samples_per_pass`` samples (fewer on the last pass) to every pixel."""
         started = time.perf_counter()
         remaining = self.settings.samples - self.samples_done
         spp = min(self.settings.samples_per_pass, remaining) if remaining > 0 else self.settings.samples_per_pass
-        pixel = np.repeat(self._pixels, spp)
-        sample = self.samples_done + np.tile(np.arange(spp), len(self._pixels))
-        bounds = list(range(0, len(pixel), chunk_size(len(pixel)))) + [len(pixel)]
-        jobs = [
-            self._pool.submit(self._chunk, pixel[a:b], sample[a:b], i)
-            for i, (a, b) in enumerate(zip(bounds[:-1], bounds[1:]))
-        ]
-        for i, (job, a, b) in enumerate(zip(jobs, bounds[:-1], bounds[1:])):
-            rgb, rays = job.result()
-            self.film.add(pixel[a:b], rgb)
+        total = len(self._pixels) * spp
+        bounds = list(range(0, total, chunk_size(total))) + [total]
+        chunks = list(zip(bounds[:-1], bounds[1:]))
+        window = 2 * self._workers  # chunks in flight: bounded memory for huge frames
+        jobs = {}
+        for i in range(len(chunks)):
+            for j in range(i, min(i + window, len(chunks))):
+                if j not in jobs:
+                    jobs[j] = self._pool.submit(self._chunk, *chunks[j], spp, j)
+            pixel, rgb, rays = jobs.pop(i).result()
+            self.film.add(pixel, rgb)
             self.stats["rays_cast"] += rays
             if self.progress is not None:
-                self.progress((i + 1) / len(jobs))
+                self.progress((i + 1) / len(chunks))
         self.samples_done += spp
         self._passes += 1
         self._glass_warnings()
-        self.stats["paths"] += len(pixel)
+        self.stats["paths"] += total
         self.stats["nan_samples"] = self.film.nan_samples
         self.stats["rejected_rays"] = self.accel.rejected_rays
         self.stats["seconds"] += time.perf_counter() - started
