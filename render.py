@@ -56,7 +56,8 @@ def prism_package_name() -> str:
     import bpy
 
     for engine_class in bpy.types.RenderEngine.__subclasses__():
-        if getattr(engine_class, "bl_idname", None) == "PRISM":
+        # Only a registered class counts: importing a copy of the add-on defines one too.
+        if getattr(engine_class, "bl_idname", None) == "PRISM" and getattr(engine_class, "is_registered", False):
             return engine_class.__module__.rsplit(".engine.", 1)[0]
     load_addon_package().register()
     return ADDON_PACKAGE
