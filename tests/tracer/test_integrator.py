@@ -125,3 +125,34 @@ def test_non_absorbing_objects_vanish_in_the_furnace(mode, material):
     stderr = np.sqrt(r.variance_rgb().astype(np.float64).mean((0, 1)) / 144) / _white(s)
     assert np.all(np.abs(mean - 1) < 4 * stderr + 0.003), (mean, stderr)
     assert r.stats["nan_samples"] == 0
+
+
+@pytest.mark.parametrize("light", [
+    Light("panel", "area", np.array([0.0, 0.0, 2.0]), direction=np.array([0.0, 0.0, -1.0]), power_w=50.0,
+          size_u_m=3.0, size_v_m=3.0),
+    Light("sun", "sun", np.zeros(3), direction=np.array([0.0, 0.0, -1.0]), irradiance_w_m2=2.0,
+          sun_angle_rad=np.radians(60.0)),
+    Light("bulb", "point", np.array([0.0, 0.0, 3.0]), power_w=40.0, radius_m=2.0),
+], ids=lambda light: light.name)
+def test_lights_seen_in_a_perfect_mirror_have_their_radiance(light):
+    """Camera looks straight down at a mirror (F = 1): every pixel reflects the light's
+    own radiance (lights are invisible to camera rays but not to reflections)."""
+    from engine.tracer.scene import Camera
+
+    cam = Camera("cam", look_at((0, 0, 1.0), (0, 0, 0), up=(0, 1, 0)), (8, 8), film_width_mm=6.0,
+                 film_height_mm=6.0)
+    mirror = quad((0, 0, 0), (5, 0, 0), (0, 5, 0))
+    scene = make_scene([(*mirror, 0)], [Material("mirror", kind="conductor", base_color=(1.0, 1.0, 1.0))], cam,
+                       [light])
+    s = settings(samples=16, samples_per_pass=16)
+    r = Renderer(scene, s)
+    r.render_pass()
+    if light.kind == "area":
+        radiance = light.power_w / (np.pi * light.size_u_m * light.size_v_m)
+    elif light.kind == "sun":
+        radiance = light.irradiance_w_m2 / (np.pi * np.sin(light.sun_angle_rad / 2) ** 2)
+    else:
+        radiance = light.power_w / (4 * np.pi) / (np.pi * light.radius_m**2)
+    ratio = r.image_rgb().astype(np.float64) / (radiance * _white(s))
+    assert np.allclose(ratio.mean((0, 1)), 1.0, atol=0.01) and np.allclose(ratio, 1.0, atol=0.15)
+    assert r.stats["nan_samples"] == 0
