@@ -4,16 +4,22 @@ One call traces a chunk of camera paths bounce by bounce: every step is a numpy
 operation over all live paths (one Embree batch per bounce, one occlusion batch
 for shadow rays). Radiance is carried per wavelength [n,K].
 
-Estimator. At each surface vertex (up to ``max_bounces`` bounces, as Cycles) one
-light is chosen uniformly and sampled (next-event estimation) and the BSDF is
+Estimator. At each surface vertex (up to ``max_bounces`` bounces, as Cycles: 0 =
+direct light only) one light is chosen (probability proportional to its power) and
+sampled (next-event estimation, skipped on pure-delta materials), and the BSDF is
 sampled to continue. Hits on emitters by BSDF-sampled rays and light samples are
 combined with the power heuristic. ``use_mis=False``: light samples carry full
 weight, emitters hit by BSDF rays count only after a delta (specular) bounce, on
 camera rays, or if they are never light-sampled (the world). Both are unbiased.
 Blender lights are invisible to camera rays (they appear in reflections); the
 world is found only by escaping rays (BSDF sampling), so its weight is 1.
-Russian roulette from ``russian_roulette_depth`` divides survivors by their
-survival probability.
+Russian roulette from ``russian_roulette_depth`` keeps a path with probability
+min(1, max throughput x eta'^2 scale) and divides survivors by it.
+
+Wavelengths: a path carries K wavelengths; its hero column is uniform over the K
+columns. At a dispersive material (and at a dispersive camera) only the hero is
+kept, x K, the others are zeroed: each column's estimate stays unbiased because
+it is the hero with probability 1/K. Scenes without dispersion never run that code.
 """
 
 from __future__ import annotations
