@@ -222,7 +222,7 @@ class RenderSession:
                 engine.update_result(result)
                 done = renderer.samples_done - start_done
                 engine.update_progress(min(1.0, done / target))
-                line = stats_line(renderer, done, target, time.perf_counter() - started, warnings)
+                line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings)
                 engine.update_stats("", line)
                 last_stats = line
                 self._print(line)
@@ -256,12 +256,12 @@ def bottom_up(image: np.ndarray, alpha: bool = False) -> np.ndarray:
     return np.ascontiguousarray(image[::-1], dtype=np.float32).reshape(height * width, -1)
 
 
-def stats_line(renderer, done: int, target: int, seconds: float, warnings) -> str:
-    """``Prism | 12/64 spp | 1.30 M rays/s | <strategy> | ...`` for Blender's status bar."""
+def stats_line(renderer, pass_index: int, done: int, target: int, seconds: float, warnings) -> str:
+    """``Prism | Pass 3 | 12/64 spp | 1.30 M rays/s | <strategy> | ...`` for Blender's status bar."""
     stats = renderer.stats
     rays_per_second = stats.get("rays_cast", 0) / seconds if seconds > 0 else 0.0
     parts = [
-        f"Prism | {done}/{target} spp",
+        f"Prism | Pass {pass_index} | {done}/{target} spp",
         f"{rays_per_second / 1e6:.2f} M rays/s",
         renderer.strategy,
     ]

@@ -17,9 +17,10 @@ def _lens_catalogue():
     return importlib.import_module("..engine.tracer.lens.catalogue", __package__)
 
 
-def _call_readouts(function, path: str, fstop: float, focus_distance_m: float):
+def _call_readouts(function, path: str, fstop: float, focus_distance_m: float, sensor_width_mm: float):
     """Call ``lens_readouts`` with the keyword arguments it declares."""
     wanted = {
+        "sensor_width_mm": sensor_width_mm,
         "fstop": fstop,
         "f_number": fstop,
         "focus_distance_m": focus_distance_m,
@@ -49,7 +50,7 @@ def lens_readout_rows(camera_data) -> tuple[list[tuple[str, str]], str | None]:
     if not os.path.isfile(path):
         return [], f"Lens file not found: {path}"
     dof = camera_data.dof
-    key = (path, os.path.getmtime(path), dof.aperture_fstop, dof.focus_distance)
+    key = (path, os.path.getmtime(path), dof.aperture_fstop, dof.focus_distance, camera_data.sensor_width)
     if key in _readout_cache:
         return _readout_cache[key]
     try:
@@ -57,7 +58,7 @@ def lens_readout_rows(camera_data) -> tuple[list[tuple[str, str]], str | None]:
     except (ImportError, AttributeError):
         return [], "Lens read-outs are not available in this build."
     try:
-        answer = (_as_rows(_call_readouts(function, path, dof.aperture_fstop, dof.focus_distance)), None)
+        answer = (_as_rows(_call_readouts(function, path, dof.aperture_fstop, dof.focus_distance, camera_data.sensor_width)), None)
     except Exception as error:  # noqa: BLE001 - any failure is shown as a red label, never a traceback
         answer = ([], str(error) or type(error).__name__)
     if len(_readout_cache) > 32:

@@ -54,7 +54,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         corner_normals=geometry.corner_normals,
         materials=geometry.materials,
         camera=camera,
-        lights=export_lights(depsgraph),
+        lights=export_lights(depsgraph, warnings),
         world=export_world(scene, warnings),
     )
     tracer_scene.validate()

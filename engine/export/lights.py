@@ -88,13 +88,21 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
     return light
 
 
-def export_lights(depsgraph) -> list[Light]:
+def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
     """Every visible light instance of the evaluated depsgraph (lights of power 0 are skipped)."""
     lights = []
+    warned = set()
     for instance in depsgraph.object_instances:
         obj = instance.object
         if obj.type != "LIGHT":
             continue
+        data = obj.data.original
+        if getattr(data, "use_temperature", False) and warnings is not None and data.name not in warned:
+            warned.add(data.name)  # Blender 4.4+ has its own light temperature; Prism's is physical
+            warnings.append(
+                f"Light '{obj.name}': Blender's Temperature checkbox is ignored; for a blackbody spectrum "
+                "set Light ▸ Colour Source to Blackbody."
+            )
         # Settings from the original light (see ``export_material``), placement from the instance.
         light = _export_light(obj.name, obj.data.original, instance.matrix_world)
         if light.power_w > 0 or light.irradiance_w_m2 > 0:

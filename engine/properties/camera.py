@@ -9,9 +9,10 @@ from pathlib import Path
 import bpy
 from bpy.props import EnumProperty, StringProperty
 
-from ._common import DynamicEnumCache, register_group, unregister_group
+from ._common import DynamicEnumCache, register_group, stable_enum_number, unregister_group
 
 LENS_DIRECTORY = Path(__file__).resolve().parents[2] / "lenses"
+DEFAULT_BUNDLED_LENS = "double_gauss_50mm"
 
 LENS_MODEL_ITEMS = [
     ("PINHOLE", "Blender perspective", "Blender's perspective camera: a pinhole, everything in focus", 0),
@@ -84,6 +85,7 @@ class PrismCameraSettings(bpy.types.PropertyGroup):
         name="Lens",
         description="Lens prescription shipped with Prism",
         items=_bundled_lens_items,
+        default=stable_enum_number(DEFAULT_BUNDLED_LENS, set()),
     )
     lens_file: StringProperty(
         name="Lens File",

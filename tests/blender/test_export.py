@@ -181,3 +181,21 @@ def test_camera_models_focus_and_resolution(prism_addon, basic, tmp_path):
     view_axis = -np.array(camera.matrix_world)[:3, 2]
     expected = float(np.dot(np.array(target.location) - np.array(camera.location), view_axis))
     assert _export(prism_addon).camera.focus_distance_m == pytest.approx(expected)
+
+
+def test_real_lens_camera_exports_its_prescription_and_renders(prism_addon, basic):
+    from helpers.bpy_scenes import render_linear_rgb
+
+    camera = bpy.context.scene.camera.data
+    camera.prism.lens_model = "REAL_LENS"
+    camera.prism.bundled_lens = "double_gauss_50mm"
+    camera.dof.aperture_fstop, camera.dof.focus_distance = 4.0, 4.0
+    exported = _export(prism_addon).camera
+    assert exported.model == "real_lens" and exported.lens_file.endswith("lenses/double_gauss_50mm.lens")
+    assert (exported.fstop, exported.focus_distance_m) == (4.0, pytest.approx(4.0))
+    camera.prism.lens_source = "FILE"
+    camera.prism.lens_file = exported.lens_file
+    assert _export(prism_addon).camera.lens_file == exported.lens_file
+    bpy.context.scene.render.resolution_x = bpy.context.scene.render.resolution_y = 12
+    image = render_linear_rgb(bpy.context.scene, samples=1)
+    assert image.shape == (12, 12, 3) and np.isfinite(image).all() and image.mean() > 0

@@ -140,6 +140,11 @@ def test_camera_panels_draw_for_every_lens_model(prism_addon, fresh_scene, tmp_p
             camera.prism.lens_source = source
             for panel in panels:
                 _draw(panel, _context(fresh_scene, camera=camera))
+    camera.prism.lens_model = "REAL_LENS"
+    camera.prism.lens_source = "BUNDLED"
+    camera.prism.bundled_lens = "double_gauss_50mm"
+    log = _draw(prism_addon.ui.panels_camera.PRISM_PT_camera_lens, _context(fresh_scene, camera=camera))
+    assert {"Focal length", "Field of view"} <= set(_labels(log))  # read-outs of the bundled lens
     camera.prism.lens_model = "THIN_LENS"
     log = _draw(prism_addon.ui.panels_camera.PRISM_PT_camera_focus, _context(fresh_scene, camera=camera))
     assert {"focus_distance", "aperture_fstop", "focus_object"} <= set(_props(log))
@@ -154,7 +159,8 @@ def test_camera_panels_draw_for_every_lens_model(prism_addon, fresh_scene, tmp_p
     broken = tmp_path / "broken.lens"
     broken.write_text("this is not a lens\n")
     camera.prism.lens_file = str(broken)
-    _draw(prism_addon.ui.panels_camera.PRISM_PT_camera_lens, _context(fresh_scene, camera=camera))
+    log = _draw(prism_addon.ui.panels_camera.PRISM_PT_camera_lens, _context(fresh_scene, camera=camera))
+    assert any("broken.lens" in text and "line 1" in text for text in _labels(log))
 
     camera.type = "ORTHO"
     log = _draw(prism_addon.ui.panels_camera.PRISM_PT_camera_lens, _context(fresh_scene, camera=camera))
