@@ -37,7 +37,10 @@ def _cmf_table():
     if _CMF_TABLE is None:
         colour = import_colour()
         cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
-        _CMF_TABLE = (np.asarray(cmfs.wavelengths, dtype=np.float64), np.asarray(cmfs.values, dtype=np.float64))
+        wavelength_nm = np.asarray(cmfs.wavelengths, dtype=np.float64)
+        if not np.allclose(np.diff(wavelength_nm), 1.0):
+            raise RuntimeError("colour-science's CIE 1931 table is expected at 1 nm steps.")
+        _CMF_TABLE = (wavelength_nm, np.asarray(cmfs.values, dtype=np.float64))
     return _CMF_TABLE
 
 
@@ -68,18 +71,38 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+def lerp_uniform_table(x, x0, dx, table):
+    """Linear interpolation in a table sampled at ``x0 + i * dx`` ([M] or [M, C]); zero outside, NaN stays NaN.
+
+    Direct index arithmetic instead of a binary search (``np.interp``): the
+    hot path evaluates it for every wavelength of every path.
+    """
+    x = np.asarray(x, dtype=np.float64)
+    table = np.asarray(table, dtype=np.float64)
+    columns = table.reshape(len(table), -1).T  # [C, M]
+    slopes = np.diff(columns, axis=1)
+    position = ((x - x0) / dx).reshape(-1)
+    outside = ~((position >= 0.0) & (position <= len(table) - 1))  # NaN counts as outside
+    position[outside] = 0.0
+    index = np.minimum(position.astype(np.intp), len(table) - 2)
+    frac = position - index
+    out = np.empty((len(columns), position.size))
+    for c in range(len(columns)):  # one pass per table column (3 for the CMFs), not per sample
+        np.multiply(slopes[c].take(index), frac, out=out[c])
+        out[c] += columns[c].take(index)
+    out[:, outside] = 0.0
+    out[:, np.isnan(x).reshape(-1)] = np.nan
+    out = out.T if table.ndim == 2 else out[0]
+    return out.reshape(x.shape + table.shape[1:])
+
+
 def cie_xyz_cmf(wavelength_nm):
     """CIE 1931 2° colour-matching functions (x̄, ȳ, z̄) at ``wavelength_nm``; shape [..., 3].
 
-    Linear interpolation of the 1 nm table; zero outside 360-830 nm.
+    Linear interpolation of the 1 nm table; zero outside 360-830 nm; NaN in, NaN out.
     """
     table_nm, xyz = _cmf_table()
-    wavelength_nm = np.asarray(wavelength_nm, dtype=np.float64)
-    flat = wavelength_nm.reshape(-1)
-    out = np.empty(flat.shape + (3,), dtype=np.float64)
-    for c in range(3):  # three channels, not a loop over samples
-        out[:, c] = np.interp(flat, table_nm, xyz[:, c], left=0.0, right=0.0)
-    return out.reshape(wavelength_nm.shape + (3,))
+    return lerp_uniform_table(wavelength_nm, table_nm[0], table_nm[1] - table_nm[0], xyz)
 
 
 def xyz_to_linear_rec709(xyz):

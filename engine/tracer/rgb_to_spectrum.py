@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .cie import check_rgb, import_colour
+from .cie import check_rgb, import_colour, lerp_uniform_table
 from .errors import PrismInputError
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
@@ -53,6 +53,8 @@ def _d65_table():
 
         # D65's CCT is 6500 K on the pre-1968 c2 scale: 6500 * 1.4388 / 1.4380 = 6504 K.
         sd = sd_CIE_illuminant_D_series(CCT_to_xy_CIE_D(6500.0 * 1.4388 / 1.4380))
+        if not np.allclose(np.diff(sd.wavelengths), 5.0):
+            raise RuntimeError("colour-science's daylight basis is expected at 5 nm steps.")
         _CACHE["d65"] = (np.asarray(sd.wavelengths, np.float64), np.asarray(sd.values, np.float64))
     return _CACHE["d65"]
 
@@ -62,7 +64,7 @@ def d65_relative_power(wavelength_nm):
     table_nm, power = _d65_table()
     wavelength_nm = np.asarray(wavelength_nm, dtype=np.float64)
     inside = (wavelength_nm >= VISIBLE_MIN_NM) & (wavelength_nm <= VISIBLE_MAX_NM)
-    return np.where(inside, np.interp(wavelength_nm, table_nm, power), 0.0)
+    return np.where(inside, lerp_uniform_table(wavelength_nm, table_nm[0], table_nm[1] - table_nm[0], power), 0.0)
 
 
 def _integration():
@@ -103,9 +105,10 @@ def _table():
 
 
 def _sigmoid(u):
-    # u / hypot(1, u) does not overflow for large |u|; ±inf gives exactly 0 or 1.
-    s = np.where(np.isinf(u), np.sign(u), u / np.hypot(1.0, np.where(np.isinf(u), 0.0, u)))
-    return 0.5 + 0.5 * s
+    # Beyond |u| = 1e10 the sigmoid is 0 or 1 to double precision; clipping keeps u*u finite and
+    # makes ±inf give exactly 0 or 1 (NaN stays NaN).
+    u = np.clip(u, -1e10, 1e10)
+    return 0.5 + 0.5 * (u / np.sqrt(1.0 + u * u))
 
 
 def evaluate_sigmoid_polynomial(coefficients, wavelength_nm):

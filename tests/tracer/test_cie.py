@@ -102,3 +102,12 @@ def test_gaussian_channel_estimate_of_a_sloped_spectrum():
         expected = integrate.quad(lambda x: x / 500.0 * channels.pdf(np.full(3, x))[c], 360.0, 830.0, points=[450, 550, 600])[0]
         stderr = rgb[:, c].std() / np.sqrt(len(rgb))
         assert abs(rgb[:, c].mean() - expected) < 4 * stderr
+
+
+def test_uniform_table_lookup_matches_np_interp():
+    wl = np.random.default_rng(7).uniform(350.0, 840.0, (50, 4))
+    table_nm, xyz = cie._cmf_table()
+    expected = np.stack([np.interp(wl, table_nm, xyz[:, c], left=0.0, right=0.0) for c in range(3)], axis=-1)
+    assert np.allclose(cie.cie_xyz_cmf(wl), expected, rtol=0, atol=1e-15)
+    assert np.all(np.isnan(cie.cie_xyz_cmf(np.nan)))
+    assert cie.cie_xyz_cmf(830.0)[1] == xyz[-1, 1]
