@@ -44,6 +44,10 @@ class PRISM_PT_light(PrismPanel, bpy.types.Panel):
         layout.separator()
         column = layout.column()
         column.prop(light, "energy", text="Strength" if light.type == "SUN" else "Power")
+        if hasattr(light, "exposure"):
+            column.prop(light, "exposure")
+        if light.type == "AREA" and hasattr(light, "normalize"):
+            column.prop(light, "normalize")
         if light.type in {"POINT", "SPOT"}:
             column.prop(light, "shadow_soft_size", text="Radius")
         elif light.type == "SUN":

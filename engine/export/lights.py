@@ -49,7 +49,8 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
     matrix = np.array(matrix_world, dtype=np.float64)
     if not np.isfinite(matrix).all():
         raise PrismInputError(f"Light '{name}' has a non-finite transform: reset its location, rotation and scale.")
-    energy = float(light_data.energy)
+    # Blender 4.x's Exposure scales the energy by 2^exposure, as in Cycles and EEVEE.
+    energy = float(light_data.energy) * 2.0 ** float(getattr(light_data, "exposure", 0.0))
     if not math.isfinite(energy) or energy < 0:
         raise PrismInputError(
             f"Light '{name}' has {'Strength' if light_data.type == 'SUN' else 'Power'} {energy:g}: "
@@ -85,6 +86,10 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
         light.size_v_m = float(size_v * scale[1])
         if not (light.size_u_m > 0 and light.size_v_m > 0):
             raise PrismInputError(f"Area light '{name}' has zero size: give it a size above 0 (and a non-zero scale).")
+        if not getattr(light_data, "normalize", True):
+            # Unnormalised: the power is per square metre, so a larger light emits more.
+            area = light.size_u_m * light.size_v_m * (math.pi / 4 if light.area_shape == "disk" else 1.0)
+            light.power_w *= area
     return light
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+import math
 
 import bpy
 import numpy as np
@@ -150,6 +151,13 @@ def test_light_kinds_and_spectra(prism_addon, basic, light_type, shape, expected
     if shape:
         assert light.area_shape == expected_shape
         assert (light.size_u_m, light.size_v_m) == (pytest.approx(1.0), pytest.approx(0.5))
+        data.normalize = False  # power per m² of a 1 m x 0.5 m light (x pi/4 for an ellipse)
+        area = 0.5 * (math.pi / 4 if shape == "ELLIPSE" else 1.0)
+        assert _export(prism_addon).lights[0].power_w == pytest.approx(5.0 * area)
+        data.normalize = True
+    data.exposure = 1.0
+    (light,) = _export(prism_addon).lights
+    assert max(light.power_w, light.irradiance_w_m2) == pytest.approx(10.0)
     data.prism.color_source = "MONOCHROMATIC"
     data.prism.wavelength_nm, data.prism.line_width_nm = 589.0, 2.0
     (light,) = _export(prism_addon).lights
