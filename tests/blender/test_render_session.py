@@ -150,3 +150,34 @@ def test_dispersive_glass_reaches_the_renderer(prism_addon, lit_plane):
     stats = _session(prism_addon).last_stats
     assert "hero-wavelength termination (SF11)" in stats
     assert np.isfinite(image).all()
+
+
+def test_cancelling_inside_a_pass_stops_after_the_current_chunk(prism_addon, lit_plane, monkeypatch):
+    session = _session(prism_addon)
+    calls = []
+
+    class EscDuringFirstPass:
+        """Esc 'pressed' from the second check on: that check runs after the pass's first chunk."""
+
+        def __init__(self, engine):
+            self._engine = engine
+
+        def test_break(self):
+            calls.append(True)
+            return len(calls) >= 2
+
+        def __getattr__(self, name):
+            return getattr(self._engine, name)
+
+    original_init = session.RenderSession.__init__
+
+    def init(self, engine, depsgraph, render_request=None):
+        original_init(self, EscDuringFirstPass(engine), depsgraph, render_request)
+
+    monkeypatch.setattr(session.RenderSession, "__init__", init)
+    lit_plane.prism.samples_per_pass = 64  # one pass of 24 x 24 x 64 paths, cut into two chunks
+    image = render_linear_rgb(lit_plane, samples=64)
+    assert session.last_error is None
+    assert len(calls) == 2  # stopped at the check after the first chunk, not after the pass
+    assert "0/64 spp" in session.last_stats  # the pass never completed...
+    assert np.isfinite(image).all() and image.mean() > 0.05  # ...but its first chunk's samples are shown
