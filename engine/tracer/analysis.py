@@ -30,6 +30,7 @@ class SceneAnalysis:
     world: bool = False
     guided_lines: int = 0
     camera_strategy: str = ""
+    see_through_films: bool = False
 
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
         """One line for the render stats."""
@@ -46,6 +47,8 @@ class SceneAnalysis:
         if self.world:
             parts.append("world")
         parts.append("NEE+BSDF MIS" if use_mis else "NEE only (no MIS)")
+        if self.see_through_films:
+            parts.append("see-through film shadows")
         if self.features:
             parts.append("materials: " + ", ".join(self.features))
         parts.append(f"{pixel_filter} filter")
@@ -75,6 +78,8 @@ def analyse(scene, settings, bsdfs, camera) -> SceneAnalysis:
             features.add(b.kind)
         if mat.kind in ("conductor", "dielectric") and mat.coating_thickness_nm > 0:
             features.add("thin-film coating")
+        if b.kind == "thin_film":
+            a.see_through_films = True
     a.camera_disperses = bool(getattr(camera, "disperses", False))
     a.camera_strategy = str(getattr(camera, "strategy", "") or "")
     a.dispersion = bool(a.dispersive) or a.camera_disperses

@@ -28,6 +28,7 @@ import numpy as np
 
 from .path_state import collapse_to_hero, offset_distance, offset_origin, roll_columns, shading_frame, unroll_columns
 from .sampling import dot, power_heuristic, to_local, to_world
+from .shadows import ShadowTester
 from .spectra import PathWavelengths
 
 SHADOW_SHORTEN = 1e-4  # shadow rays stop this fraction short of the light sample
@@ -49,6 +50,8 @@ class Integrator:
         self.delta_material = np.array([b is not None and b.delta for b in bsdfs] + [True], dtype=bool)
         self.two_sided = np.array([b is None or b.two_sided for b in bsdfs] + [True], dtype=bool)
         self.disperses = np.array([b is not None and b.disperses for b in bsdfs] + [False], dtype=bool)
+        self.film_material = np.array([b is not None and b.kind == "thin_film" for b in bsdfs] + [False], dtype=bool)
+        self.shadows = ShadowTester(accel, triangles, bsdfs, self.film_material)
 
     # -- helpers over material groups ------------------------------------------------
     def _groups(self, mat):
@@ -96,6 +99,7 @@ class Integrator:
         live = (beta.max(axis=1) > 0) & np.isfinite(beta).all(axis=1)
         if not live.all():  # e.g. rays a real lens blocks: nothing to trace
             idx, o, d, beta, lam, hero, collapsed = (a[live] for a in (idx, o, d, beta, lam, hero, collapsed))
+        mis_o = o.copy()  # last vertex that was not a film crossing: light pdfs are measured from it
         prev_pdf = np.zeros(len(idx))
         prev_delta = np.ones(len(idx), dtype=bool)
         eta_scale = np.ones(len(idx))
@@ -115,13 +119,15 @@ class Integrator:
                     light_id = np.where(closer, li, light_id)
             on_light = light_id >= 0
             tri = np.where(on_light, -1, tri)
-            self._emission_from_hits(radiance, idx, o, d, t, tri, light_id, lam, beta, prev_pdf, prev_delta, depth)
+            self._emission_from_hits(radiance, idx, mis_o, o, d, t, tri, light_id, lam, beta, prev_pdf, prev_delta,
+                                     depth)
             if depth == self.max_depth + 1:
                 break
             keep = tri >= 0
             if not keep.all():
-                idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale = (
-                    a[keep] for a in (idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale))
+                idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta = (
+                    a[keep] for a in (idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o,
+                                      prev_pdf, prev_delta))
             if len(idx) == 0:
                 break
             p, ng, ns = self.tris.surface(tri, bu, bv)
@@ -159,10 +165,16 @@ class Integrator:
                 ok &= alive
             o = offset_origin(p, ng, wi, eps, cos_ig)
             d = wi
-            prev_pdf, prev_delta = pdf, delta
+            if self.shadows.see_through:
+                null = self.film_material[mat] & (wo_l[:, 2] * wi_l[:, 2] < 0)  # straight through a film
+                prev_pdf = np.where(null, prev_pdf, pdf)
+                prev_delta = np.where(null, prev_delta, delta)
+                mis_o = np.where(null[:, None], mis_o, p)
+            else:
+                prev_pdf, prev_delta, mis_o = pdf, delta, p
             if not ok.all():
-                idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta = (
-                    a[ok] for a in (idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta))
+                idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta, mis_o = (
+                    a[ok] for a in (idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta, mis_o))
         return radiance, rays
 
     @staticmethod
@@ -178,14 +190,18 @@ class Integrator:
             return np.where(prev_delta, 1.0, power_heuristic(prev_pdf, pdf_light))
         return prev_delta.astype(np.float64)
 
-    def _emission_from_hits(self, radiance, idx, o, d, t, tri, light_id, lam, beta, prev_pdf, prev_delta, depth):
+    def _emission_from_hits(self, radiance, idx, mis_o, o, d, t, tri, light_id, lam, beta, prev_pdf, prev_delta,
+                            depth):
+        """Add emission found by the rays o + t d; MIS densities of light sampling are
+        those seen from ``mis_o`` (the ray origin, or the vertex before film crossings)."""
         lights = self.lights
         sel = lights.select_prob
+        t_mis = t + dot(o - mis_o, d)  # distance from mis_o along the (straight) ray
         for li, light in lights.hittable:
             rows = np.flatnonzero(light_id == li)
             if len(rows):
-                le = light.emitted(o[rows], d[rows], t[rows], lam[rows])
-                pdf_l = sel[li] * light.pdf(o[rows], d[rows], t[rows])
+                le = light.emitted(mis_o[rows], d[rows], t[rows], lam[rows])
+                pdf_l = sel[li] * light.pdf(mis_o[rows], d[rows], t_mis[rows])
                 w = self._mis_emitter(pdf_l, prev_pdf[rows], prev_delta[rows])
                 radiance[idx[rows]] += beta[rows] * le * w[:, None]
         escaped = (tri < 0) & (light_id < 0)
@@ -208,7 +224,7 @@ class Integrator:
                 if depth == 0:
                     w = np.ones(len(rows))
                 else:
-                    pdf_l = sel[lights.mesh_index] * mesh.pdf(o[rows], d[rows], t[rows], tri[rows])
+                    pdf_l = sel[lights.mesh_index] * mesh.pdf(mis_o[rows], d[rows], t_mis[rows], tri[rows])
                     w = self._mis_emitter(pdf_l, prev_pdf[rows], prev_delta[rows])
                 radiance[idx[rows]] += beta[rows] * le * w[:, None]
 
@@ -267,7 +283,7 @@ class Integrator:
         origin = offset_origin(p[s], ng[s], wi[s], eps[s], cos_ig[s])
         ds = dist[s]
         tmax = np.where(np.isfinite(ds), ds * (1.0 - SHADOW_SHORTEN), 1e30)
-        blocked = self.accel.occluded(origin, wi[s], tmax)
+        trans, cast = self.shadows.transmittance(origin, wi[s], tmax, lam[s])
         target = s if rows is None else rows[s]
-        out[target] = np.where(blocked[:, None], 0.0, contrib[s])
-        return out, len(s)
+        out[target] = contrib[s] * trans
+        return out, cast
