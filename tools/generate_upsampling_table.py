@@ -8,9 +8,10 @@ It optimises the table with colour-science's ``LUT3D_Jakob2019`` for linear
 Rec.709 (ITU-R BT.709 primaries, D65) over 360-830 nm and writes
 ``engine/tracer/data/rec709_jakob2019.coeff`` (colour's/the paper's ``.coeff``
 format, float32). ``engine/tracer/rgb_to_spectrum.py`` loads it lazily and
-polishes each looked-up colour with a few Newton steps, so a small table is
-enough; colour takes about 0.1 s per table cell on one core, so a size-N table
-costs about 3·N³ × 0.1 s.
+polishes each looked-up colour with a few Levenberg-Marquardt steps, so a small
+table is enough. colour takes about 0.08 s per table cell on one unloaded core,
+so a size-N table costs about 3·N³ × 0.08 s (size 8: 2 min); see docs/colour.md
+for the round-trip error of each size.
 """
 
 from __future__ import annotations
