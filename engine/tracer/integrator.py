@@ -59,6 +59,8 @@ class Integrator:
             yield int(m), np.flatnonzero(mat == m)
 
     def _eval(self, mat, wo, wi, lam, hero, collapsed):
+        if len(mat) and mat.min() == mat.max():  # one material: no gather/scatter
+            return self.bsdfs[int(mat[0])].eval(wo, wi, lam, hero, collapsed)
         f = np.zeros(lam.shape)
         pdf = np.zeros(len(mat))
         for m, rows in self._groups(mat):
@@ -67,6 +69,9 @@ class Integrator:
         return f, pdf
 
     def _sample(self, mat, wo, lam, u, hero, collapsed):
+        if len(mat) and mat.min() == mat.max():
+            s = self.bsdfs[int(mat[0])].sample(wo, lam, u, hero, collapsed)
+            return s.wi, s.weight, s.pdf, s.delta, s.eta_scale
         n = len(mat)
         wi = np.zeros((n, 3))
         weight = np.zeros(lam.shape)
