@@ -82,3 +82,16 @@ def test_bad_wavelength_raises():
         planck_spectral_radiance(np.nan, 6500.0)
     with pytest.raises(PrismInputError):
         planck_spectral_radiance(-5.0, 6500.0)
+
+
+@pytest.mark.filterwarnings("ignore")
+def test_chromaticity_matches_colour_science():
+    """Independent check of Planck + CMF integration: colour's own blackbody and integration."""
+    import colour
+
+    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+    for temperature_k in (2000.0, 6504.0, 15000.0):
+        sd = colour.sd_blackbody(temperature_k, colour.SpectralShape(360, 830, 1))
+        expected = colour.XYZ_to_xy(colour.sd_to_XYZ(sd, cmfs, method="Integration"))
+        xyz = cie.spectrum_to_xyz(lambda wl, t=temperature_k: blackbody_luminance_normalised(wl, t))
+        assert np.allclose(xyz[:2] / xyz.sum(), expected, atol=2e-5)
