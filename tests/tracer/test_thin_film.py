@@ -73,3 +73,33 @@ def test_bad_input_raises(kwargs):
     args.update(kwargs)
     with pytest.raises(PrismInputError):
         thin_film_reflectance(**args)
+
+
+def _characteristic_matrix(cos0, wl, d, n0, n1, n2):
+    """Independent reference: Abelès characteristic matrix with tilted admittances (Macleod).
+
+    Macleod writes absorbing indices as n - ik (time factor e^{+iωt}); ours are n + ik, hence the conjugates.
+    """
+    n1, n2 = np.conj(complex(n1)), np.conj(complex(n2))
+    s2 = n0**2 * (1 - cos0**2)
+    q = [np.sqrt(np.asarray(n, complex) ** 2 - s2) for n in (n0, n1, n2)]
+    out = []
+    for pol in ("s", "p"):
+        eta = q if pol == "s" else [complex(n) ** 2 / qq for n, qq in zip((n0, n1, n2), q)]
+        delta = 2 * np.pi * q[1] * d / wl
+        b = np.cos(delta) + 1j * np.sin(delta) / eta[1] * eta[2]
+        c = 1j * eta[1] * np.sin(delta) + np.cos(delta) * eta[2]
+        denominator = eta[0] * b + c
+        out.append((abs((eta[0] * b - c) / denominator) ** 2, 4 * eta[0].real * eta[2].real / abs(denominator) ** 2))
+    return 0.5 * (out[0][0] + out[1][0]), 0.5 * (out[0][1] + out[1][1])
+
+
+@pytest.mark.parametrize("n2", [1.52, 0.43 + 2.455j, 1.0])
+@pytest.mark.parametrize("angle_deg", [0.0, 35.0, 70.0])
+def test_matches_the_characteristic_matrix_method(n2, angle_deg):
+    cos0 = np.cos(np.radians(angle_deg))
+    for wl, d, n1 in [(450.0, 120.0, 1.38), (600.0, 350.0, 2.1), (700.0, 40.0, 1.33)]:
+        r, t = thin_film_reflectance_transmittance(cos0, wl, d, 1.0, n1, n2)
+        r_ref, t_ref = _characteristic_matrix(cos0, wl, d, 1.0, n1, n2)
+        assert r == pytest.approx(r_ref, abs=1e-12)
+        assert t == pytest.approx(t_ref, abs=1e-12)
