@@ -60,3 +60,15 @@ def test_dispersive_glass_uses_hero_index():
     lam = np.array([[450.0, 650.0], [450.0, 650.0]])
     eta = b.eta(lam, np.array([0, 1]))
     assert eta[0] == pytest.approx(float(glass.index(450.0))) and eta[1] == pytest.approx(float(glass.index(650.0)))
+
+
+@pytest.mark.parametrize("theta,below", [(30.0, False), (40.0, True)])
+def test_rough_coated_glass_sampling_chi2_and_weights(theta, below):
+    """The coating changes the reflect/refract choice (p = R of the film stack); sampling
+    and pdf must still agree."""
+    from engine.tracer.bsdf.optics import coating_reflectance
+
+    b = Dielectric(constant_ior(1.6), 0.15, coating=coating_reflectance(250.0, 1.38))
+    wo = direction(theta, below=below)
+    assert chi2_sampling_test(b, wo, n=150_000, bins=12) > 1e-3
+    assert weight_matches_eval(b, wo) < 1e-6
