@@ -27,6 +27,10 @@ class PRISM_PT_sampling(PrismPanel, bpy.types.Panel):
         column = layout.column()
         column.prop(settings, "samples_per_pass")
         column.prop(settings, "seed")
+        column.prop(settings, "pixel_filter")
+        sub = column.column()
+        sub.active = settings.pixel_filter == "GAUSSIAN"
+        sub.prop(settings, "filter_width_px")
 
 
 class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):

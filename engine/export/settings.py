@@ -37,6 +37,8 @@ def export_settings(
         use_mis=bool(prism.use_mis),
         russian_roulette_depth=int(prism.russian_roulette_depth),
         border=border,
+        pixel_filter=prism.pixel_filter.lower(),
+        filter_width_px=float(prism.filter_width_px),
     )
     settings.validate()
     return settings

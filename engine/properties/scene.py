@@ -123,6 +123,24 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         soft_max=64,
         max=1024,
     )
+    pixel_filter: EnumProperty(
+        name="Pixel Filter",
+        description="How samples spread over and around their pixel",
+        items=[
+            ("BOX", "Box", "Samples uniform over the pixel: sharpest, may alias", 0),
+            ("GAUSSIAN", "Gaussian", "Samples in a Gaussian around the pixel centre: smoother edges", 1),
+        ],
+        default="BOX",
+    )
+    filter_width_px: FloatProperty(
+        name="Filter Width",
+        description="Gaussian filter: distance in pixels at which it is cut off (standard deviation = width / 3)",
+        default=1.5,
+        min=0.01,
+        soft_max=3.0,
+        max=10.0,
+        subtype="PIXEL",
+    )
     threads: IntProperty(
         name="Threads",
         description="Number of CPU threads to render with (0 = all cores)",

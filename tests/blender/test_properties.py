@@ -26,6 +26,8 @@ EXPECTED_DEFAULTS = {
         "use_pass_variance": False,
         "use_pass_sample_count": False,
         "preview_samples": 4,
+        "pixel_filter": "BOX",
+        "filter_width_px": 1.5,
     },
     "overlay": {
         "enabled": False,
@@ -55,6 +57,7 @@ EXPECTED_DEFAULTS = {
 
 ENUM_NUMBERS = {
     ("scene", "wavelength_mode"): {"CIE": 0, "GAUSSIAN_RGB": 1},
+    ("scene", "pixel_filter"): {"BOX": 0, "GAUSSIAN": 1},
     ("overlay", "wavelength_source"): {"CHANNELS": 0, "CUSTOM": 1},
     ("camera", "lens_model"): {"PINHOLE": 0, "THIN_LENS": 1, "REAL_LENS": 2},
     ("camera", "lens_source"): {"BUNDLED": 0, "FILE": 1},
@@ -196,7 +199,7 @@ def test_every_property_round_trips_through_a_blend_file(groups, tmp_path):
         _set_all(groups[kind], written, kind)
     for data in (owners["camera"], owners["light"], owners["material"]):
         data.use_fake_user = True
-    assert len(written) >= 44
+    assert len(written) >= 47
     path = tmp_path / "roundtrip.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(path))
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
