@@ -96,3 +96,12 @@ def test_gaussian_channels_validation():
         GaussianChannels(means_nm=(1000.0, 550.0, 450.0))
     with pytest.raises(PrismInputError):
         GaussianChannels().sample(np.zeros((4, 2)))
+
+
+def test_matches_pbrt_v4_published_constants():
+    """pbrt-v4 SampleVisibleWavelengths / VisibleWavelengthsPDF, constants as published (8 digits)."""
+    u = np.array([0.0, 0.1, 0.5, 0.9, 0.999])
+    wavelength_nm, pdf = sample_visible_wavelengths(u, 1)
+    expected = 538.0 - 138.888889 * np.arctanh(0.85691062 - 1.82750197 * u)
+    assert np.allclose(wavelength_nm[:, 0], expected, atol=2e-4)
+    assert np.allclose(pdf[:, 0], 0.0039398042 / np.cosh(0.0072 * (expected - 538.0)) ** 2, rtol=1e-4)
