@@ -49,3 +49,17 @@ def test_unknown_conductor_and_bad_wavelengths():
         conductor_nk("Pt", 500.0)
     with pytest.raises(PrismInputError):
         conductor_nk("Au", np.nan)
+
+
+def test_normal_incidence_colours_are_the_familiar_metal_colours():
+    """Linear Rec.709 F0 under D65 vs commonly quoted values (Real-Time Rendering 4th ed., Table 9.2).
+
+    Those come from other measurements, so only a loose match is expected.
+    """
+    from engine.tracer.rgb_to_spectrum import reflectance_spectrum_to_rgb
+
+    quoted = {"Au": (1.000, 0.782, 0.344), "Ag": (0.972, 0.960, 0.915), "Cu": (0.955, 0.638, 0.538),
+              "Al": (0.913, 0.922, 0.924)}
+    for name, expected in quoted.items():
+        rgb = reflectance_spectrum_to_rgb(lambda wl, name=name: fresnel_conductor(1.0, *conductor_nk(name, wl)))
+        assert np.allclose(rgb, expected, atol=0.07), (name, rgb)
