@@ -40,7 +40,7 @@ LAMBDA_C_NM = 656.2725
 
 CATALOGUE_PATH = Path(__file__).resolve().parent / "data" / "glasses.tsv"
 
-_CATALOGUE = None  # {key: (name, B[3], C_um2[3], (lo_nm, hi_nm), catalogue_nd, catalogue_vd)}
+_CATALOGUE = None  # {normalised name: (SellmeierGlass, catalogue_nd, catalogue_vd)}
 _WARNED = set()
 _WARN_LOCK = threading.Lock()
 
@@ -91,10 +91,11 @@ class Glass:
             _WARNED.add(self.name)
         lo, hi = self.valid_range_nm
         bad = wavelength_nm[outside]
+        finite = bad[np.isfinite(bad)]
+        seen = f"{finite.min():g}–{finite.max():g} nm" if finite.size else "NaN"
         warnings.warn(
-            f"Glass '{self.name}' is only specified for {lo:g}–{hi:g} nm; wavelengths down to "
-            f"{np.nanmin(bad) if np.isfinite(bad).any() else float('nan'):g} nm use the index at the edge of "
-            "that range (reported once per glass).",
+            f"Glass '{self.name}' is only specified for {lo:g}–{hi:g} nm but was sampled at {seen}; "
+            "those wavelengths use the index at the nearest edge of the range (reported once per glass).",
             RuntimeWarning,
             stacklevel=3,
         )
