@@ -16,6 +16,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 _MIN_CHUNK = 16384
+REJECTED = -2  # triangle index reported for rays that were not sent (non-finite)
 _FAR = np.float32(1e30)
 
 
@@ -91,7 +92,7 @@ class Accel:
     def intersect(self, origins: np.ndarray, directions: np.ndarray):
         """Closest hits of rays [N,3] (any float dtype; directions need not be unit).
 
-        Returns ``(triangle int64 [N] (-1 = miss), t float64 [N] (inf on miss),
+        Returns ``(triangle int64 [N] (-1 = miss, -2 = ray not sent: non-finite), t float64 [N] (inf on miss),
         u float64 [N], v float64 [N])``; the hit point is o + t d, barycentric
         corner weights (1-u-v, u, v).
         """
@@ -100,6 +101,9 @@ class Accel:
         t = np.full(n, np.inf)
         u = np.zeros(n)
         v = np.zeros(n)
+        if n and self._scene is None:
+            finite = np.isfinite(origins).all(axis=1) & np.isfinite(directions).all(axis=1)
+            tri[~finite] = REJECTED
         if self._scene is None or n == 0:
             return tri, t, u, v
         o, d, _, idx = self._prepare(origins, directions)
@@ -122,6 +126,7 @@ class Accel:
         tf = np.where(hit, tf, np.inf)
         if idx is None:
             return prim_out, tf, uu, vv
+        tri[:] = REJECTED
         tri[idx], t[idx], u[idx], v[idx] = prim_out, tf, uu, vv
         return tri, t, u, v
 

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .accel import REJECTED
 from .path_state import collapse_to_hero, offset_distance, offset_origin, roll_columns, shading_frame, unroll_columns
 from .sampling import dot, power_heuristic, to_local, to_world
 from .shadows import ShadowTester
@@ -115,6 +116,11 @@ class Integrator:
                 break
             tri, t, bu, bv = self.accel.intersect(o, d)
             rays += len(idx)
+            sent = tri != REJECTED
+            if not sent.all():  # a non-finite ray: the path ends here, adding nothing
+                idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta = (
+                    a[sent] for a in (idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o,
+                                      prev_pdf, prev_delta))
             light_id = np.full(len(idx), -1)
             if depth > 0:
                 for li, light in lights.hittable:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .accel import REJECTED
 from .path_state import offset_origin
 from .sampling import dot
 
@@ -46,6 +47,7 @@ class ShadowTester:
             d = direction[active]
             tri, t, bu, bv = self.accel.intersect(o[active], d)
             rays += len(active)
+            trans[active[tri == REJECTED]] = 0.0
             hit = (tri >= 0) & (t < remaining[active])
             mat = self.tris.material[np.where(hit, tri, 0)]
             film = hit & self.film_material[mat]

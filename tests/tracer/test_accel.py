@@ -31,7 +31,7 @@ def test_non_finite_rays_are_not_sent_and_zero_area_triangles_dropped():
     o = np.array([[0.1, 0.1, 1.0], [np.nan, 0, 1], [0.1, 0.1, 1.0]])
     d = np.array([[0, 0, -1.0], [0, 0, -1.0], [np.inf, 0, -1]])
     tri, t, _, _ = acc.intersect(o, d)
-    assert tri.tolist() == [0, -1, -1] and acc.rejected_rays == 2
+    assert tri.tolist() == [0, -2, -2] and acc.rejected_rays == 2  # -2: not sent
     assert acc.occluded(o, d, np.array([2.0, 2.0, 2.0])).tolist() == [True, True, True]
 
 

@@ -156,3 +156,23 @@ def test_lights_seen_in_a_perfect_mirror_have_their_radiance(light):
     ratio = r.image_rgb().astype(np.float64) / (radiance * _white(s))
     assert np.allclose(ratio.mean((0, 1)), 1.0, atol=0.01) and np.allclose(ratio, 1.0, atol=0.15)
     assert r.stats["nan_samples"] == 0
+
+
+def test_non_finite_camera_rays_add_nothing():
+    """A ray Embree cannot take (NaN direction) ends its path with no radiance,
+    instead of being mistaken for an escape to the sky."""
+    scene = sphere_under_sky(size=8)
+    r = Renderer(scene, settings(samples=4, samples_per_pass=4))
+    cam = r.integrator.camera
+    original = cam.generate_rays
+
+    def broken(pixel_xy, lens_uv, lam):
+        o, d, w = original(pixel_xy, lens_uv, lam)
+        d[pixel_xy[:, 0] < 4] = np.nan  # left half of the image
+        return o, d, w
+
+    cam.generate_rays = broken
+    r.render_pass()
+    img = r.image_rgb()
+    assert np.all(img[:, :4] == 0) and np.all(img[:, 4:] > 0.5)
+    assert r.stats["rejected_rays"] == 8 * 4 * 4
