@@ -12,7 +12,7 @@ from engine.tracer.renderer import Renderer
 from engine.tracer.sampling import to_local, to_world
 from engine.tracer.scene import Camera, Material, SpectrumSpec, World
 
-from .tracer_scenes import look_at, make_scene, quad, settings
+from .tracer_scenes import look_at, make_scene, settings
 
 APEX = np.radians(60.0)
 

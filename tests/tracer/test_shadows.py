@@ -2,7 +2,6 @@
 light through films counted once (MIS on and off agree)."""
 
 import numpy as np
-import pytest
 
 from engine.tracer import cie
 from engine.tracer.emission_spectrum import emission_spectrum

@@ -1,7 +1,6 @@
 """Scene spectra: guided wavelength sampling for monochromatic emitters, per-chunk caching."""
 
 import numpy as np
-import pytest
 from scipy import stats
 
 from engine.tracer import cie, spectra
