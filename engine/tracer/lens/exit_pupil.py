@@ -14,11 +14,15 @@ import warnings
 
 import numpy as np
 
+from ..sampling import concentric_disk
 from .media import D_LINE_NM
 from .system import TOWARD_SCENE
 
 RADIAL_BINS = 64
 COARSE_GRID = 40
+MAX_COARSE_GRID = 200
+COARSE_CELLS_PER_PUPIL = 6
+COARSE_BIN_STEP = 4
 FINE_GRID = 32
 # The pupil edge moves a little with wavelength; bound it over the visible range.
 BOUND_WAVELENGTHS_NM = (380.0, 780.0)
@@ -43,14 +47,16 @@ class ExitPupilBounds:
         square = np.array([-half, half, -half, half])
         if full:
             self.boxes = np.tile(square, (bins, 1))
+            self.ellipses, self.use_ellipse = np.zeros((bins, 4)), np.zeros(bins, dtype=bool)
         else:
-            self.boxes = self._search(square, bins)
+            self.boxes, self.ellipses, self.use_ellipse = self._search(square, bins)
 
     # ---- construction -------------------------------------------------------------------
     def _passing_boxes(self, radii, boxes, grid, wavelengths_nm):
         """For each film radius (on +x) and search box [M, 4], the box of the grid points that pass.
 
-        Returns [M, 4] boxes (NaN rows where nothing passes) and the grid cell sizes [M, 2].
+        Returns [M, 4] boxes (NaN rows where nothing passes), the grid cell sizes [M, 2] and
+        (passed, x, y) [M, grid^2] of the grid points.
         """
         m = len(radii)
         u = (np.arange(grid) + 0.5) / grid
@@ -72,31 +78,54 @@ class ExitPupilBounds:
         ])
         out[~passed.any(axis=1)] = np.nan
         cells = np.column_stack([(boxes[:, 1] - boxes[:, 0]) / grid, (boxes[:, 3] - boxes[:, 2]) / grid])
-        return out, cells
+        return out, cells, (passed, px, py)
+
+    def _coarse_grid(self, half_width_mm):
+        """Coarse grid size: fine enough that the paraxial exit pupil, projected onto the
+        rear vertex plane, spans several cells even when stopped far down."""
+        from .paraxial import paraxial_data
+
+        data = paraxial_data(self.system)
+        to_pupil = self.film_z_mm - data.exit_pupil_z_mm
+        to_rear = self.film_z_mm - self.rear_z_mm
+        projected = data.exit_pupil_diameter_mm * abs(to_rear / to_pupil) if abs(to_pupil) > 1e-9 else np.inf
+        wanted = 2.0 * half_width_mm / max(projected / COARSE_CELLS_PER_PUPIL, 1e-9)
+        return int(np.clip(np.ceil(wanted), COARSE_GRID, MAX_COARSE_GRID))
 
     def _search(self, square, bins):
-        """Coarse boxes at the bin edges, then a fine search per bin at its edges and middle."""
+        """Coarse boxes every few bins, then a fine search per bin at its edges and middle."""
         edges = np.arange(bins + 1) * self.bin_width_mm
-        coarse, cell = self._passing_boxes(edges, np.tile(square, (bins + 1, 1)), COARSE_GRID, (D_LINE_NM,))
+        step = COARSE_BIN_STEP if bins % COARSE_BIN_STEP == 0 else 1
+        coarse_radii = edges[::step]
+        grid = self._coarse_grid(square[1])
+        coarse, cell, _ = self._passing_boxes(coarse_radii, np.tile(square, (len(coarse_radii), 1)), grid,
+                                              (D_LINE_NM,))
         # A passing region's extreme lies within one grid cell of a passing grid point;
-        # grow by 2 coarse cells to also cover the pupil's drift across the bin and with
-        # wavelength, then clip to the rear element.
+        # grow by 2 coarse cells to also cover the pupil's drift across the bins and with
+        # wavelength; each bin searches the union of the boxes at the coarse radii around
+        # it, clipped to the search square.
         grown = coarse + 2.0 * np.column_stack([-cell[:, 0], cell[:, 0], -cell[:, 1], cell[:, 1]])
+        # The coarse radius before the bracketing pair is included too: at the edge of the
+        # image circle the pupil shrinks to a sliver the coarse grid can miss.
+        lo = np.arange(bins) // step
+        around = grown[np.stack([np.maximum(lo - 1, 0), lo, lo + 1])]  # [3, bins, 4]
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
             search = np.column_stack([
-                np.fmin(grown[:-1, 0], grown[1:, 0]), np.fmax(grown[:-1, 1], grown[1:, 1]),
-                np.fmin(grown[:-1, 2], grown[1:, 2]), np.fmax(grown[:-1, 3], grown[1:, 3]),
+                np.nanmin(around[:, :, 0], axis=0), np.nanmax(around[:, :, 1], axis=0),
+                np.nanmin(around[:, :, 2], axis=0), np.nanmax(around[:, :, 3], axis=0),
             ])
         search[:, [0, 2]] = np.maximum(search[:, [0, 2]], square[[0, 2]])
         search[:, [1, 3]] = np.minimum(search[:, [1, 3]], square[[1, 3]])
         found = np.isfinite(search).all(axis=1)
         boxes = np.zeros((bins, 4))  # empty box: nothing passes in this bin
+        ellipses = np.zeros((bins, 4))
+        use_ellipse = np.zeros(bins, dtype=bool)
         if not found.any():
-            return boxes
+            return boxes, ellipses, use_ellipse
         radii = np.column_stack([edges[:-1], 0.5 * (edges[:-1] + edges[1:]), edges[1:]])[found].ravel()
-        fine, fine_cell = self._passing_boxes(radii, np.repeat(search[found], 3, axis=0), FINE_GRID,
-                                              BOUND_WAVELENGTHS_NM)
+        fine, fine_cell, (passed, px, py) = self._passing_boxes(
+            radii, np.repeat(search[found], 3, axis=0), FINE_GRID, BOUND_WAVELENGTHS_NM)
         fine += np.column_stack([-fine_cell[:, 0], fine_cell[:, 0], -fine_cell[:, 1], fine_cell[:, 1]])
         per_bin = fine.reshape(-1, 3, 4)
         with warnings.catch_warnings():
@@ -105,46 +134,76 @@ class ExitPupilBounds:
                 np.nanmin(per_bin[:, :, 0], axis=1), np.nanmax(per_bin[:, :, 1], axis=1),
                 np.nanmin(per_bin[:, :, 2], axis=1), np.nanmax(per_bin[:, :, 3], axis=1),
             ])
-        union[~np.isfinite(union).all(axis=1)] = 0.0
+        empty = ~np.isfinite(union).all(axis=1)
+        union[empty] = 0.0
         boxes[found] = union
-        return boxes
+        # An ellipse with the box's centre and aspect, scaled to hold every passing point
+        # and grown by a grid-cell diagonal, wastes far less than the box on round pupils.
+        centre_x, centre_y = 0.5 * (union[:, 0] + union[:, 1]), 0.5 * (union[:, 2] + union[:, 3])
+        half_x = np.maximum(0.5 * (union[:, 1] - union[:, 0]), 1e-12)
+        half_y = np.maximum(0.5 * (union[:, 3] - union[:, 2]), 1e-12)
+        nb = len(union)
+        rho2 = (((px.reshape(nb, -1) - centre_x[:, None]) / half_x[:, None]) ** 2
+                + ((py.reshape(nb, -1) - centre_y[:, None]) / half_y[:, None]) ** 2)
+        scale = np.sqrt(np.where(passed.reshape(nb, -1), rho2, 0.0).max(axis=1))
+        cell = fine_cell.reshape(nb, 3, 2).max(axis=1)
+        margin = np.hypot(cell[:, 0], cell[:, 1])
+        semi_x, semi_y = scale * half_x + margin, scale * half_y + margin
+        ellipses[found] = np.column_stack([centre_x, centre_y, semi_x, semi_y])
+        use_ellipse[found] = (np.pi * semi_x * semi_y < 4.0 * half_x * half_y) & ~empty
+        return boxes, ellipses, use_ellipse
 
     # ---- use ----------------------------------------------------------------------------
+    def bin_of(self, film_xy_mm):
+        """Radial bin index [N] of each film point."""
+        r = np.hypot(film_xy_mm[:, 0], film_xy_mm[:, 1])
+        return np.minimum((r / self.bin_width_mm).astype(np.int64), len(self.boxes) - 1)
+
     def box_for(self, film_xy_mm):
         """Box [N, 4] of the radial bin of each film point (before rotation)."""
-        r = np.hypot(film_xy_mm[:, 0], film_xy_mm[:, 1])
-        k = np.minimum((r / self.bin_width_mm).astype(np.int64), len(self.boxes) - 1)
-        return self.boxes[k]
+        return self.boxes[self.bin_of(film_xy_mm)]
 
-    def sample(self, film_xy_mm, uv):
-        """Points [N, 3] on the rear vertex plane and the sampled box area [N] (mm^2).
-
-        ``film_xy_mm`` [N, 2] film positions, ``uv`` [N, 2] uniform in [0, 1)^2. The box of
-        the film point's radial bin is rotated to the film point's azimuth.
-        """
-        box = self.box_for(film_xy_mm)
-        bx = box[:, 0] + uv[:, 0] * (box[:, 1] - box[:, 0])
-        by = box[:, 2] + uv[:, 1] * (box[:, 3] - box[:, 2])
+    @staticmethod
+    def _azimuth(film_xy_mm):
         r = np.hypot(film_xy_mm[:, 0], film_xy_mm[:, 1])
         safe = r > 0
         cos_phi = np.where(safe, film_xy_mm[:, 0] / np.where(safe, r, 1.0), 1.0)
         sin_phi = np.where(safe, film_xy_mm[:, 1] / np.where(safe, r, 1.0), 0.0)
-        points = np.column_stack([cos_phi * bx - sin_phi * by, sin_phi * bx + cos_phi * by,
-                                  np.full(len(bx), self.rear_z_mm)])
+        return cos_phi, sin_phi
+
+    def sample(self, film_xy_mm, uv):
+        """Points [N, 3] on the rear vertex plane and the area [N] (mm^2) they were drawn from.
+
+        ``film_xy_mm`` [N, 2] film positions, ``uv`` [N, 2] uniform in [0, 1)^2. Each film
+        point samples its radial bin's shape (box or ellipse, whichever is smaller)
+        uniformly, rotated to the film point's azimuth.
+        """
+        k = self.bin_of(film_xy_mm)
+        box, ellipse, round_ = self.boxes[k], self.ellipses[k], self.use_ellipse[k]
+        bx = box[:, 0] + uv[:, 0] * (box[:, 1] - box[:, 0])
+        by = box[:, 2] + uv[:, 1] * (box[:, 3] - box[:, 2])
         area = (box[:, 1] - box[:, 0]) * (box[:, 3] - box[:, 2])
+        if round_.any():
+            disk = concentric_disk(uv[round_])
+            e = ellipse[round_]
+            bx[round_] = e[:, 0] + e[:, 2] * disk[:, 0]
+            by[round_] = e[:, 1] + e[:, 3] * disk[:, 1]
+            area[round_] = np.pi * e[:, 2] * e[:, 3]
+        c, s = self._azimuth(film_xy_mm)
+        points = np.column_stack([c * bx - s * by, s * bx + c * by, np.full(len(bx), self.rear_z_mm)])
         return points, area
 
     def contains(self, film_xy_mm, rear_xy_mm):
-        """Whether each rear-plane point lies inside its film point's (rotated) box."""
-        box = self.box_for(film_xy_mm)
-        r = np.hypot(film_xy_mm[:, 0], film_xy_mm[:, 1])
-        safe = r > 0
-        c = np.where(safe, film_xy_mm[:, 0] / np.where(safe, r, 1.0), 1.0)
-        s = np.where(safe, film_xy_mm[:, 1] / np.where(safe, r, 1.0), 0.0)
+        """Whether each rear-plane point lies inside its film point's (rotated) sampling shape."""
+        k = self.bin_of(film_xy_mm)
+        box, ellipse, round_ = self.boxes[k], self.ellipses[k], self.use_ellipse[k]
+        c, s = self._azimuth(film_xy_mm)
         bx = c * rear_xy_mm[:, 0] + s * rear_xy_mm[:, 1]
         by = -s * rear_xy_mm[:, 0] + c * rear_xy_mm[:, 1]
-        return (bx >= box[:, 0]) & (bx <= box[:, 1]) & (by >= box[:, 2]) & (by <= box[:, 3])
-
+        in_box = (bx >= box[:, 0]) & (bx <= box[:, 1]) & (by >= box[:, 2]) & (by <= box[:, 3])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            in_ellipse = ((bx - ellipse[:, 0]) / ellipse[:, 2]) ** 2 + ((by - ellipse[:, 1]) / ellipse[:, 3]) ** 2 <= 1.0
+        return np.where(round_, in_ellipse, in_box)
 
 
 def rear_search_half_width_mm(system, film_z_mm, film_radius_mm) -> float:
