@@ -45,7 +45,7 @@ def _check(cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_subst
     n2 = np.asarray(n_substrate, dtype=np.complex128)
     if not np.all(cos_i <= 1.0 + 1e-9):
         raise PrismInputError("Thin film: cos(theta_i) must be a finite cosine in [-1, 1].")
-    if not np.all((wavelength_nm > 0.0) & np.isfinite(wavelength_nm)):
+    if not np.all((wavelength_nm > 0.0) & (wavelength_nm < np.inf)):  # NaN fails both
         raise PrismInputError("Thin film: wavelengths must be positive, finite numbers of nm.")
     if not np.all((thickness_nm >= 0.0) & np.isfinite(thickness_nm)):
         raise PrismInputError(
@@ -54,11 +54,46 @@ def _check(cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_subst
     if not np.all((n0 > 0.0) & np.isfinite(n0)):
         raise PrismInputError("Thin film: the incident medium's index must be finite and positive.")
     for what, n in (("film", n1), ("substrate", n2)):
-        if not np.all(np.isfinite(n) & (n.real > 0.0) & (n.imag >= 0.0)):
+        if not np.all((n.real > 0.0) & (n.real < np.inf) & (n.imag >= 0.0) & (n.imag < np.inf)):
             raise PrismInputError(
                 f"Thin film: the {what} index must be finite with a positive real part and k >= 0 (e.g. 1.33)."
             )
     return np.minimum(cos_i, 1.0), wavelength_nm, thickness_nm, n0, n1, n2
+
+
+def _abs2(z):
+    return z.real * z.real + z.imag * z.imag
+
+
+def _airy(cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate, with_transmittance):
+    cos_i, wavelength_nm, thickness_nm, n0, n1, n2 = _check(
+        cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate
+    )
+    s2 = (n0 * n0) * (1.0 - cos_i * cos_i)
+    n0c = n0.astype(np.complex128)
+    q0 = n0c * cos_i
+    # Principal roots have Re >= 0; for a real index below s (evanescent) the root is +i|.|, which decays.
+    q1 = np.sqrt(n1 * n1 - s2)
+    q2 = np.sqrt(n2 * n2 - s2)
+    r01s, t01s, r01p, t01p = _interface(n0c, q0, n1, q1)
+    r12s, t12s, r12p, t12p = _interface(n1, q1, n2, q2)
+    phase = np.exp(1j * (2.0 * np.pi / wavelength_nm) * q1 * thickness_nm)
+    phase2 = phase * phase
+    den_s = 1.0 + r01s * r12s * phase2
+    den_p = 1.0 + r01p * r12p * phase2
+    grazing = cos_i == 0.0  # q0 = 0: everything is reflected
+    reflectance = 0.5 * (_abs2((r01s + r12s * phase2) / den_s) + _abs2((r01p + r12p * phase2) / den_p))
+    reflectance = np.clip(np.where(grazing, 1.0, reflectance), 0.0, 1.0)
+    if not with_transmittance:
+        return reflectance, None
+    with np.errstate(invalid="ignore", divide="ignore"):
+        q0_real = np.where(grazing, 1.0, np.real(q0))
+        factor_s = np.real(q2) / q0_real
+        factor_p = np.real(q2 * np.conj(n2) / n2) / q0_real
+    t_s2 = _abs2(t01s * t12s * phase / den_s)
+    t_p2 = _abs2(t01p * t12p * phase / den_p)
+    transmittance = np.where(grazing, 0.0, 0.5 * (factor_s * t_s2 + factor_p * t_p2))
+    return reflectance, np.clip(transmittance, 0.0, 1.0)
 
 
 def thin_film_reflectance_transmittance(cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate):
@@ -68,45 +103,14 @@ def thin_film_reflectance_transmittance(cos_theta_i, wavelength_nm, thickness_nm
     (its sign is ignored). T is the power carried into the substrate (0 for a
     thick enough absorber); for non-absorbing layers R + T = 1.
     """
-    cos_i, wavelength_nm, thickness_nm, n0, n1, n2 = _check(
-        cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate
-    )
-    n0c = n0.astype(np.complex128)
-    s2 = (n0 * n0) * (1.0 - cos_i * cos_i)
-    q0 = n0c * cos_i
-    q1 = np.sqrt(n1 * n1 - s2)
-    q2 = np.sqrt(n2 * n2 - s2)
-    # Principal roots have Re >= 0; for a real index below s (evanescent) the root is +i|.|, which decays.
-    r01s, t01s, r01p, t01p = _interface(n0c, q0, n1, q1)
-    r12s, t12s, r12p, t12p = _interface(n1, q1, n2, q2)
-    phase = np.exp(1j * (2.0 * np.pi / wavelength_nm) * q1 * thickness_nm)
-    phase2 = phase * phase
-    r_s = (r01s + r12s * phase2) / (1.0 + r01s * r12s * phase2)
-    r_p = (r01p + r12p * phase2) / (1.0 + r01p * r12p * phase2)
-    t_s = t01s * t12s * phase / (1.0 + r01s * r12s * phase2)
-    t_p = t01p * t12p * phase / (1.0 + r01p * r12p * phase2)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        q0_real = np.real(q0)
-        trans_s = np.where(q0_real > 0.0, np.real(q2) / np.where(q0_real > 0, q0_real, 1.0), 0.0) * np.abs(t_s) ** 2
-        factor_p = np.real(q2 * np.conj(n2) / n2) / np.where(q0_real > 0, q0_real, 1.0)
-        trans_p = np.where(q0_real > 0.0, factor_p, 0.0) * np.abs(t_p) ** 2
-    reflectance = 0.5 * (np.abs(r_s) ** 2 + np.abs(r_p) ** 2)
-    transmittance = 0.5 * (trans_s + trans_p)
-    grazing = cos_i == 0.0  # q0 = 0: everything is reflected
-    reflectance = np.where(grazing, 1.0, reflectance)
-    transmittance = np.where(grazing, 0.0, transmittance)
-    return np.clip(reflectance, 0.0, 1.0), np.clip(transmittance, 0.0, 1.0)
+    return _airy(cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate, True)
 
 
 def thin_film_reflectance(cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate):
     """Unpolarised reflectance of a single film (see ``thin_film_reflectance_transmittance``)."""
-    return thin_film_reflectance_transmittance(
-        cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate
-    )[0]
+    return _airy(cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate, False)[0]
 
 
 def thin_film_transmittance(cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate):
     """Unpolarised transmittance into the substrate (see ``thin_film_reflectance_transmittance``)."""
-    return thin_film_reflectance_transmittance(
-        cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate
-    )[1]
+    return _airy(cos_theta_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate, True)[1]
