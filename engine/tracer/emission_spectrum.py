@@ -10,7 +10,9 @@ and a monochromatic line is as bright (in luminance) as a white light.
 Sampling note for the tracer: a monochromatic line is a narrow feature that the
 ``cie`` wavelength sampler hits rarely (noise). ``.support_nm`` gives the
 interval (lo, hi) outside which ``evaluate`` is exactly 0, so the tracer can
-importance-sample it if it wants; it is the visible range for the broad kinds.
+importance-sample it if it wants (monochromatic spectra also offer
+``sample_wavelengths(u)`` / ``pdf``, proportional to the line); it is the visible
+range for the broad kinds.
 """
 
 from __future__ import annotations
@@ -102,6 +104,33 @@ class MonochromaticEmissionSpectrum:
     def evaluate(self, wavelength_nm):
         """Relative spectral radiance at ``wavelength_nm`` (any shape); 0 outside ``support_nm``."""
         return self._scale * self._shape(wavelength_nm)
+
+    def _cdf_bounds(self):
+        from scipy.special import ndtr
+
+        lo, hi = self.support_nm
+        return ndtr((lo - self.wavelength_nm) / self.sigma_nm), ndtr((hi - self.wavelength_nm) / self.sigma_nm)
+
+    def pdf(self, wavelength_nm):
+        """Density (1/nm) of ``sample_wavelengths``: the line's shape normalised over ``support_nm``."""
+        cdf_lo, cdf_hi = self._cdf_bounds()
+        return self._shape(wavelength_nm) / (self.sigma_nm * math.sqrt(2.0 * math.pi) * (cdf_hi - cdf_lo))
+
+    def sample_wavelengths(self, u):
+        """Importance-sample the line: uniform ``u`` (any shape) -> ``(wavelength_nm, pdf)`` within ``support_nm``.
+
+        Optional for the tracer: with it, ``evaluate(λ) / pdf(λ)`` is the constant luminance-normalised
+        line power, so a monochromatic light renders without wavelength noise.
+        """
+        from scipy.special import ndtri
+
+        u = np.asarray(u, dtype=np.float64)
+        if u.size and not (np.all(u >= 0.0) and np.all(u <= 1.0)):
+            raise PrismInputError("Monochromatic line sampling: uniform samples must lie in [0, 1].")
+        cdf_lo, cdf_hi = self._cdf_bounds()
+        p = np.clip(cdf_lo + u * (cdf_hi - cdf_lo), np.nextafter(cdf_lo, 1.0), np.nextafter(cdf_hi, 0.0))
+        wavelength_nm = np.clip(self.wavelength_nm + self.sigma_nm * ndtri(p), *self.support_nm)
+        return wavelength_nm, self.pdf(wavelength_nm)
 
 
 def emission_spectrum(spec):

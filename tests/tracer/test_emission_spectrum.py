@@ -62,3 +62,30 @@ def test_line_support_is_clipped_to_the_visible_range():
 def test_bad_specs_raise(spec, message):
     with pytest.raises(PrismInputError, match=message):
         emission_spectrum(spec)
+
+
+@pytest.mark.parametrize("centre, width", [(600.0, 2.0), (365.0, 10.0), (550.0, 0.05)])
+def test_monochromatic_line_importance_sampling(centre, width):
+    from scipy import integrate, stats
+
+    spectrum = emission_spectrum(SpectrumSpec(kind="monochromatic", wavelength_nm=centre, width_nm=width))
+    lo, hi = spectrum.support_nm
+    assert integrate.quad(spectrum.pdf, lo, hi, points=[centre])[0] == pytest.approx(1.0, abs=1e-8)
+    n = 20000
+    wl, pdf = spectrum.sample_wavelengths(np.random.default_rng(8).random(n))
+    assert np.all((wl >= lo) & (wl <= hi)) and np.allclose(pdf, spectrum.pdf(wl))
+    # the line is proportional to its pdf: the weight is constant
+    weight = spectrum.evaluate(wl) / pdf
+    assert np.allclose(weight, weight[0], rtol=1e-9)
+    edges = np.linspace(lo, hi, 31)
+    expected = np.array([integrate.quad(spectrum.pdf, a, b)[0] for a, b in zip(edges[:-1], edges[1:])]) * n
+    keep = expected > 5
+    observed, _ = np.histogram(wl, edges)
+    obs = np.append(observed[keep], observed[~keep].sum())
+    exp = np.append(expected[keep], expected[~keep].sum())
+    if exp[-1] == 0:
+        obs, exp = obs[:-1], exp[:-1]
+    assert stats.chisquare(obs, exp * obs.sum() / exp.sum()).pvalue > 1e-3
+    # the luminance-1 normalisation, estimated with this sampler
+    y = np.mean(weight * cie.cie_xyz_cmf(wl)[:, 1]) / cie.CMF_Y_INTEGRAL
+    assert y == pytest.approx(1.0, rel=1e-3)
