@@ -33,11 +33,16 @@ class Film:
         if bad.any():
             self.nan_samples += int(bad.sum())
             rgb = np.where(bad[:, None], 0.0, rgb)
-        n = self._count.size
-        self._count += np.bincount(pixel_index, minlength=n)
+        if len(pixel_index) == 0:
+            return
+        # a chunk covers a narrow range of pixels: bin over that range only
+        lo = int(pixel_index.min())
+        hi = int(pixel_index.max()) + 1
+        local = pixel_index - lo
+        self._count[lo:hi] += np.bincount(local, minlength=hi - lo)
         for c in range(3):
-            self._sum[:, c] += np.bincount(pixel_index, weights=rgb[:, c], minlength=n)
-            self._sum_sq[:, c] += np.bincount(pixel_index, weights=rgb[:, c] ** 2, minlength=n)
+            self._sum[lo:hi, c] += np.bincount(local, weights=rgb[:, c], minlength=hi - lo)
+            self._sum_sq[lo:hi, c] += np.bincount(local, weights=rgb[:, c] ** 2, minlength=hi - lo)
 
     @property
     def counts(self) -> np.ndarray:
