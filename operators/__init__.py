@@ -6,7 +6,7 @@ they run in this order and are undone in reverse.
 
 import importlib
 
-_MODULE_NAMES: tuple[str, ...] = ("lens_overlay",)
+_MODULE_NAMES: tuple[str, ...] = ("lens_overlay", "autofocus")
 
 
 def _modules():
