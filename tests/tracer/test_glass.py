@@ -35,9 +35,13 @@ def test_catalogue_nd_vd_are_reproduced(name):
     assert n.dtype == np.float64 and np.all(n > 1) and np.all(np.diff(n) < 0)
 
 
-def test_published_index_value():
-    # N-BK7 at 546.07 nm (e line): 1.51872 in the SCHOTT datasheet
-    assert glass_by_name("N-BK7").index(546.0740) == pytest.approx(1.51872, abs=2e-5)
+def test_published_index_values():
+    # SCHOTT N-BK7 datasheet: n_e (546.07 nm), n_F, n_C, n_g (435.83 nm), n_t (1013.98 nm)
+    bk7 = glass_by_name("N-BK7")
+    wl = np.array([546.0740, 486.1327, 656.2725, 435.8343, 1013.98])
+    assert np.allclose(bk7.index(wl), [1.51872, 1.52238, 1.51432, 1.52668, 1.50731], atol=2e-5)
+    # Malitson 1965 fused silica at the HeNe line, 632.8 nm: 1.45702
+    assert glass_by_name("FusedSilica").index(632.8) == pytest.approx(1.45702, abs=2e-5)
 
 
 def test_lookup_is_case_insensitive_and_unknown_names_help():
