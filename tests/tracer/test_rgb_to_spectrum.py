@@ -101,3 +101,12 @@ def test_emission_rejects_bad_colours():
 def test_float32_round_off_above_one_is_accepted():
     coefficients = reflectance_coefficients(np.array([1.0000001, 0.5, 0.25]))
     assert np.allclose(coefficients, reflectance_coefficients(np.array([1.0, 0.5, 0.25])))
+
+
+def test_round_trip_of_random_dark_and_bright_colours():
+    rng = np.random.default_rng(10)
+    rgb = np.concatenate([rng.random((200, 3)), rng.random((100, 3)) ** 6, 1.0 - rng.random((100, 3)) ** 6])
+    coefficients = reflectance_coefficients(rgb)
+    assert np.all(np.isfinite(coefficients))
+    back = _reflectance_to_rgb(coefficients)
+    assert np.abs(back - rgb * white_rgb()).max() < 1e-5
