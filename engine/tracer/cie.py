@@ -163,11 +163,12 @@ def monochromatic_rgb(wavelength_nm):
     return np.where(peak > 0.0, rgb / np.where(peak > 0.0, peak, 1.0), 0.0)
 
 
-def spectrum_luminance(spectrum_fn, wavelength_nm=None):
+def spectrum_luminance(spectrum_fn):
     """Y of a spectrum given as a callable of wavelength (nm), by trapezoid on the 1 nm CMF grid.
 
     ``spectrum_fn(wavelength_nm [M]) -> [..., M]``; returns [...]. Used to
-    normalise emission spectra to a luminance.
+    normalise emission spectra to a luminance; only for spectra smooth on a
+    1 nm scale (not narrow lines).
     """
     table_nm, xyz = _cmf_table()
     values = np.asarray(spectrum_fn(table_nm), dtype=np.float64)
@@ -175,7 +176,7 @@ def spectrum_luminance(spectrum_fn, wavelength_nm=None):
 
 
 def spectrum_to_xyz(spectrum_fn):
-    """XYZ [..., 3] of a spectrum given as a callable of wavelength (nm) (trapezoid on the 1 nm grid)."""
+    """XYZ [..., 3] of a spectrum given as a callable of wavelength (nm) (trapezoid on the 1 nm grid; smooth spectra)."""
     table_nm, xyz = _cmf_table()
     values = np.asarray(spectrum_fn(table_nm), dtype=np.float64)
     return np.trapz(values[..., None] * xyz, table_nm, axis=-2) / __getattr__("CMF_Y_INTEGRAL")
