@@ -6,7 +6,9 @@
 Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--frames A..B`` (``#``
 in ``--output`` becomes the zero-padded frame number, else ``_NNNN`` is
 appended), ``--output`` ``.png`` (the scene's view transform) or ``.exr``
-(scene-linear, 32-bit float).
+(scene-linear, 32-bit float). ``--lens-diagram out.png`` writes the lens overlay
+drawing (cross-section, wavelength-coloured ray fans, spot diagram) of the
+camera's real lens, with or without a render.
 
 Chunked renders: ``--chunk-seed K --samples N --output chunk_K.exr`` renders
 samples ``K*N .. (K+1)*N-1`` of the seed's sequence and writes an EXR carrying
@@ -88,8 +90,21 @@ def parse_arguments(argv: list[str], in_blender: bool) -> argparse.Namespace:
     parser.add_argument("--frames", type=_frame_range, help="render frames A..B (inclusive) instead of the current one")
     parser.add_argument("--chunk-seed", type=int, help="render sample chunk K (samples K*N..(K+1)*N-1) to an EXR")
     parser.add_argument("--merge", nargs="+", metavar="CHUNK", help="merge chunk EXRs weighted by their samples")
-    parser.add_argument("--output", required=True, help="output image, .png or .exr")
+    parser.add_argument("--output", help="output image, .png or .exr")
+    parser.add_argument(
+        "--lens-diagram",
+        metavar="PNG",
+        help="also write the lens overlay drawing (cross-section, ray fans, spot diagram) of the camera's real lens",
+    )
     arguments = parser.parse_args(argv)
+    if arguments.lens_diagram is not None and Path(arguments.lens_diagram).suffix.lower() != ".png":
+        parser.error(f"--lens-diagram must end in .png (got '{arguments.lens_diagram}')")
+    if arguments.output is None:
+        if arguments.lens_diagram is None or arguments.merge:
+            parser.error("give --output (an image to render), --lens-diagram, or both")
+        if not in_blender and not arguments.blend_file:
+            parser.error("give the .blend file to draw")
+        return arguments
     suffix = Path(arguments.output).suffix.lower()
     if suffix not in OUTPUT_FORMATS:
         parser.error(f"--output must end in .png or .exr (got '{arguments.output}')")
@@ -197,13 +212,31 @@ def render_frame(arguments: argparse.Namespace, output: Path) -> Path:
     return output
 
 
+def write_lens_diagram(arguments: argparse.Namespace) -> Path:
+    """The lens overlay drawing of the active camera, as a PNG (offscreen GPU)."""
+    import bpy
+
+    package = prism_package_name()
+    export = importlib.import_module(f"{package}.engine.export")
+    drawing = importlib.import_module(f"{package}.ui.lens_overlay_export")
+    path = Path(arguments.lens_diagram).resolve()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        drawing.write_lens_diagram_png(bpy.context.scene, str(path))
+    except export.PrismInputError as error:
+        raise BatchError(str(error)) from None
+    return path
+
+
 def render_all(arguments: argparse.Namespace) -> list[Path]:
     import bpy
 
+    written = [write_lens_diagram(arguments)] if arguments.lens_diagram else []
+    if arguments.output is None:
+        return written
     output = Path(arguments.output).resolve()
     if arguments.frames is None:
-        return [render_frame(arguments, output)]
-    written = []
+        return written + [render_frame(arguments, output)]
     scene = bpy.context.scene
     first, last = arguments.frames
     for frame in range(first, last + 1):

@@ -76,3 +76,36 @@ def test_wrong_output_format_fails_clearly(lit_scene_file, tmp_path):
     completed = run_render_script(lit_scene_file, "--output", tmp_path / "x.jpg")
     assert completed.returncode == 2
     assert "--output must end in .png or .exr" in completed.stderr
+
+
+def _real_lens_scene_file(tmp_path, lens_model):
+    add_plane("Floor", 6.0)
+    camera = add_camera((0.0, -3.0, 1.0), (1.5, 0.0, 0.0), resolution=(16, 16))
+    camera.data.prism.lens_model = lens_model
+    camera.data.prism.lens_source = "BUNDLED"
+    camera.data.prism.bundled_lens = "double_gauss_50mm"
+    path = tmp_path / f"{lens_model.lower()}.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    return path
+
+
+def test_lens_diagram_option_writes_the_overlay_drawing(fresh_scene, tmp_path):
+    path = _real_lens_scene_file(tmp_path, "REAL_LENS")
+    diagram = tmp_path / "lens.png"
+    completed = run_render_script(path, "--lens-diagram", diagram)
+    assert completed.returncode == 0, completed.stderr
+    image = bpy.data.images.load(str(diagram))
+    width, height = image.size
+    pixels = np.array(image.pixels[:]).reshape(height, width, 4)[..., :3]
+    assert pixels.std() > 0.02, "the lens diagram is blank"
+    reddish = (pixels[..., 0] > pixels[..., 2] + 0.2).sum()
+    bluish = (pixels[..., 2] > pixels[..., 0] + 0.2).sum()
+    assert reddish > 50 and bluish > 50, "ray fans are coloured by wavelength"
+
+
+def test_lens_diagram_needs_a_real_lens(fresh_scene, tmp_path):
+    path = _real_lens_scene_file(tmp_path, "PINHOLE")
+    completed = run_render_script(path, "--lens-diagram", tmp_path / "lens.png")
+    assert completed.returncode == 1
+    assert "Prism: error:" in completed.stderr and "lens" in completed.stderr.lower()
+    assert not (tmp_path / "lens.png").exists()
