@@ -2,9 +2,11 @@
 
     python demo/build_demo_scene.py renders/demo.blend      (bpy module)
 
-A small room: a monkey (subdivision modifier), a glass prism, coloured boxes,
-a warm blackbody area light and a cool point light, so the render shows lit
-geometry, soft and hard shadows, colour bleeding and dispersion.
+A small room: a gold monkey (subdivision modifier, measured n,k of gold), a
+flint-glass prism (N-SF11 from the glass catalogue), a teal box, a warm 3200 K
+blackbody area light and a cool 9000 K point light, so the render shows lit
+geometry, soft and hard shadows, colour bleeding and dispersive glass.
+Needs the Prism add-on registered (its settings live on the data-blocks).
 """
 
 import math
@@ -13,6 +15,9 @@ import sys
 from pathlib import Path
 
 import bpy
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from render import load_addon_package  # noqa: E402  (the add-on, for its settings)
 
 
 def principled(name, color, **inputs):
@@ -42,11 +47,11 @@ def box_mesh(name):
 
 
 def room_mesh():
-    """Floor, back wall and two side walls, open toward the camera."""
+    """Floor, ceiling, back wall and two side walls, open toward the camera."""
     mesh = bpy.data.meshes.new("Room")
     s, h = 3.0, 3.0
     vertices = [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, s, 0), (-s, s, h), (s, s, h), (-s, -s, h), (s, -s, h)]
-    faces = [(0, 1, 2, 3), (3, 2, 5, 4), (0, 3, 4, 6), (1, 7, 5, 2)]
+    faces = [(0, 1, 2, 3), (3, 2, 5, 4), (0, 3, 4, 6), (1, 7, 5, 2), (6, 4, 5, 7)]
     mesh.from_pydata(vertices, [], faces)
     return mesh
 
@@ -64,6 +69,8 @@ def prism_mesh():
 
 def build(path: Path) -> None:
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    if not hasattr(bpy.types.Scene, "prism"):
+        load_addon_package().register()
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y = 480, 320
     scene.render.resolution_percentage = 100
@@ -73,21 +80,25 @@ def build(path: Path) -> None:
     monkey = bpy.context.active_object
     monkey.name = "Monkey"
     monkey.modifiers.new("Subdivision", "SUBSURF").levels = 2
-    monkey.data.materials.append(principled("Orange", (0.8, 0.25, 0.05), Roughness=0.8))
+    gold = principled("Gold", (1.0, 0.78, 0.34), Roughness=0.25, Metallic=1.0)
+    gold.prism.conductor = "AU"
+    monkey.data.materials.append(gold)
     bpy.ops.object.shade_smooth()
     add_mesh_object("Box", box_mesh("Box"), principled("Teal", (0.05, 0.45, 0.5), Roughness=0.9),
                     location=(1.0, 0.8, 0.35), rotation=(0, 0, math.radians(25)), scale=(0.35, 0.35, 0.35))
-    add_mesh_object("Glass prism", prism_mesh(), principled("Glass", (1, 1, 1), Roughness=0.0,
-                    **{"Transmission Weight": 1.0, "IOR": 1.7847}),
-                    location=(0.45, -0.6, 0.0), rotation=(0, 0, math.radians(10)))
+    glass = principled("Flint glass", (1, 1, 1), Roughness=0.0, **{"Transmission Weight": 1.0, "IOR": 1.7847})
+    glass.prism.glass_source, glass.prism.glass_name = "CATALOGUE", "N-SF11"
+    add_mesh_object("Glass prism", prism_mesh(), glass, location=(0.45, -0.6, 0.0), rotation=(0, 0, math.radians(10)))
 
     area_data = bpy.data.lights.new("Key", "AREA")
-    area_data.energy, area_data.size, area_data.color = 400.0, 1.0, (1.0, 0.85, 0.7)
+    area_data.energy, area_data.size = 90.0, 1.0
+    area_data.prism.color_source, area_data.prism.temperature_k = "BLACKBODY", 3200.0
     area = bpy.data.objects.new("Key", area_data)
     area.location, area.rotation_euler = (-1.5, -1.5, 2.9), (math.radians(20), math.radians(-25), 0)
     scene.collection.objects.link(area)
     point_data = bpy.data.lights.new("Fill", "POINT")
-    point_data.energy, point_data.shadow_soft_size, point_data.color = 150.0, 0.0, (0.7, 0.8, 1.0)
+    point_data.energy, point_data.shadow_soft_size = 40.0, 0.0
+    point_data.prism.color_source, point_data.prism.temperature_k = "BLACKBODY", 9000.0
     point = bpy.data.objects.new("Fill", point_data)
     point.location = (1.8, -1.2, 1.6)
     scene.collection.objects.link(point)
