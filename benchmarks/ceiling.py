@@ -72,49 +72,63 @@ def _clean(batch):
     return kind, o, d, (None if tmax is None else np.ascontiguousarray(tmax[ok]))
 
 
-def replay_seconds(vertices, triangles, batches, threads: int, repeats: int = 3) -> float:
-    """Median wall time for bare embreex to cast ``batches`` with ``threads`` threads
-    (each batch split evenly over the threads, as the renderer's Accel does)."""
-    from embreex import rtcore_scene
-    from embreex.mesh_construction import TriangleMesh
+class Replayer:
+    """Bare embreex scene of the same triangles, ready to cast recorded batches
+    with ``threads`` threads (pieces of at least 16,384 rays, as the renderer's Accel)."""
 
-    scene = rtcore_scene.EmbreeScene()
-    TriangleMesh(scene, np.ascontiguousarray(vertices, np.float32), np.ascontiguousarray(triangles, np.int32))
-    batches = [_clean(b) for b in batches]
-    pool = ThreadPoolExecutor(threads) if threads > 1 else None
+    def __init__(self, vertices, triangles, batches, threads: int):
+        from embreex import rtcore_scene
+        from embreex.mesh_construction import TriangleMesh
 
-    def cast(kind, o, d, tmax):
+        self.scene = rtcore_scene.EmbreeScene()
+        TriangleMesh(self.scene, np.ascontiguousarray(vertices, np.float32),
+                     np.ascontiguousarray(triangles, np.int32))
+        self.batches = [_clean(b) for b in batches]
+        self.threads = threads
+        self.pool = ThreadPoolExecutor(threads) if threads > 1 else None
+        self.cast_all()  # warm-up: BVH build, first touch
+
+    def _cast(self, kind, o, d, tmax):
         if kind == "closest":
-            scene.run(o, d, output=1)
+            self.scene.run(o, d, output=1)
         else:
-            scene.run(o, d, dists=tmax, query="OCCLUDED")
+            self.scene.run(o, d, dists=tmax, query="OCCLUDED")
 
-    def run_all():
-        for kind, o, d, tmax in batches:
+    def cast_all(self):
+        for kind, o, d, tmax in self.batches:
             n = len(o)
             if n == 0:
                 continue
-            parts = min(threads, max(1, n // 16384))
-            if pool is None or parts == 1:
-                cast(kind, o, d, tmax)
+            parts = min(self.threads, max(1, n // 16384))
+            if self.pool is None or parts == 1:
+                self._cast(kind, o, d, tmax)
                 continue
             bounds = np.linspace(0, n, parts + 1).astype(int)
             futures = [
-                pool.submit(cast, kind, o[a:b], d[a:b], None if tmax is None else tmax[a:b])
+                self.pool.submit(self._cast, kind, o[a:b], d[a:b], None if tmax is None else tmax[a:b])
                 for a, b in zip(bounds[:-1], bounds[1:])
             ]
             for f in futures:
                 f.result()
 
-    run_all()  # warm-up (BVH build, page faults)
-    times = []
-    for _ in range(repeats):
+    def seconds(self) -> float:
+        """Wall time of one replay of every batch."""
         start = time.perf_counter()
-        run_all()
-        times.append(time.perf_counter() - start)
-    if pool is not None:
-        pool.shutdown()
-    return float(np.median(times))
+        self.cast_all()
+        return time.perf_counter() - start
+
+    def close(self):
+        if self.pool is not None:
+            self.pool.shutdown()
+
+
+def replay_seconds(vertices, triangles, batches, threads: int, repeats: int = 3) -> float:
+    """Median wall time for bare embreex to cast ``batches`` with ``threads`` threads."""
+    replayer = Replayer(vertices, triangles, batches, threads)
+    try:
+        return float(np.median([replayer.seconds() for _ in range(repeats)]))
+    finally:
+        replayer.close()
 
 
 def synthetic_path_batches(scene, samples_per_pixel: int, depth: int, seed: int = 0):

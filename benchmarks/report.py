@@ -152,7 +152,8 @@ def write_all(results, images, results_dir: Path, docs_path: Path):
             path = results_dir / f"{name}.png"
             plot_scene(name, entry, path)
             plots[name] = path
-    plot_references(images, results_dir / "references.png")
+    if images:
+        plot_references(images, results_dir / "references.png")
     results["peer_comparisons"] = peer_comparisons(results)
     results["hero"] = hero_comparison(results)
     tables = {name: scene_table(name, e) for name, e in results["scenes"].items() if e.get("strategies")}
