@@ -239,14 +239,20 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true", help="32x32, fewer samples and repeats")
     parser.add_argument("--scenes", nargs="*", default=list(EXPERIMENTS), choices=list(EXPERIMENTS))
     parser.add_argument("--no-peers", action="store_true")
-    parser.add_argument("--docs", default=str(references.REPO_ROOT / "docs" / "performance.md"))
+    parser.add_argument("--docs", default=None,
+                        help="document to write (default docs/performance.md; with --quick "
+                             "benchmarks/results/quick/performance.md)")
     parser.add_argument("--report-only", action="store_true",
                         help="rewrite the tables, plots and document from results/results.json")
     args = parser.parse_args(argv)
+    # a quick run never overwrites the committed full results
+    results_dir = RESULTS_DIR / "quick" if args.quick else RESULTS_DIR
+    docs = Path(args.docs) if args.docs else (
+        results_dir / "performance.md" if args.quick else references.REPO_ROOT / "docs" / "performance.md")
     if args.report_only:
-        results = json.loads((RESULTS_DIR / "results.json").read_text())
-        report.write_all(results, {}, RESULTS_DIR, Path(args.docs))
-        log(f"rewrote {RESULTS_DIR} and {args.docs} from results.json")
+        results = json.loads((results_dir / "results.json").read_text())
+        report.write_all(results, {}, results_dir, docs)
+        log(f"rewrote {results_dir} and {docs} from results.json")
         return 0
     cfg = QUICK if args.quick else FULL
     warnings.simplefilter("ignore", RuntimeWarning)
@@ -299,8 +305,8 @@ def main(argv=None):
                     results["scenes"][name].pop("_ref_image", None)
     results["machine"]["load_end"] = list(os.getloadavg())
     results["total_seconds"] = time.perf_counter() - started
-    report.write_all(results, images, RESULTS_DIR, Path(args.docs))
-    log(f"done in {results['total_seconds']:.0f} s; wrote {RESULTS_DIR} and {args.docs}")
+    report.write_all(results, images, results_dir, docs)
+    log(f"done in {results['total_seconds']:.0f} s; wrote {results_dir} and {docs}")
     return 0
 
 
