@@ -148,11 +148,14 @@ class RenderSession:
             self._print(f"Prism: warning: {message}")
         engine.update_stats("", "Prism | Preparing (BVH, spectra)")
         target = settings.samples
-        renderer = Renderer(tracer_scene, settings)
-        try:
+        with Renderer(tracer_scene, settings) as renderer:
             if req.sample_offset:
-                self._start_at(renderer, req.sample_offset)
-            self._passes(renderer, border, width, height, target, warnings)
+                renderer.start_at_sample(req.sample_offset)
+            try:
+                self._passes(renderer, border, width, height, target, warnings)
+            finally:
+                if self.cancelled:
+                    renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
             if req.keep_film and not self.cancelled:
                 last_film = FilmSnapshot(
                     mean=renderer.film.mean(),
@@ -160,24 +163,6 @@ class RenderSession:
                     sample_offset=req.sample_offset,
                     seed=settings.seed,
                 )
-        finally:
-            if self.cancelled:
-                # Drop the chunks still queued so Esc returns within a chunk's time, not a pass's.
-                renderer._pool.shutdown(wait=True, cancel_futures=True)
-            renderer.close()
-
-    @staticmethod
-    def _start_at(renderer, offset: int) -> None:
-        """Continue the seed's sample sequence from sample ``offset`` (chunked batch renders)."""
-        per_pass = renderer.settings.samples_per_pass
-        if offset % per_pass:
-            raise PrismInputError(
-                f"Chunk offset {offset} is not a multiple of Samples per Pass ({per_pass}): "
-                "use --samples that is a multiple of the scene's Samples per Pass."
-            )
-        renderer.settings.samples += offset
-        renderer.samples_done = offset
-        renderer._passes = offset // per_pass  # the pass index seeds the pass's random numbers
 
     def _passes(self, renderer, border, width, height, target, warnings) -> None:
         global last_stats
@@ -206,6 +191,7 @@ class RenderSession:
                 def progress(fraction, done_before=done_before):
                     engine.update_progress(min(1.0, (done_before + fraction * per_pass) / target))
                     if engine.test_break():
+                        renderer.cancel()
                         raise _Cancelled
 
                 renderer.progress = progress

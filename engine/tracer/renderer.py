@@ -5,6 +5,9 @@
     renderer.image_rgb()            # float32 [H, W, 3] scene-linear Rec.709, row 0 = top
     renderer.variance_rgb()         # float32 [H, W, 3] variance of the mean
     renderer.samples_done, renderer.strategy, renderer.stats
+    renderer.start_at_sample(n)     # continue the seed's sequence at sample n (chunked renders)
+    renderer.cancel()               # from any thread: stop the current pass after running chunks
+    renderer.close()                # free the thread pools (or use ``with Renderer(...) as r:``)
 
 A pass is cut into fixed-size chunks of paths (independent of the thread count,
 so the seed alone fixes the image); chunks run on a thread pool, Embree and the
@@ -18,8 +21,9 @@ each chunk with the fraction of the current pass done.
 
 from __future__ import annotations
 
+import threading
 import time
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import CancelledError, ThreadPoolExecutor
 
 import numpy as np
 
@@ -90,8 +94,13 @@ class Renderer:
         self._rot_lambda = pixel_offsets(settings.seed, count, 1, 3)[:, 0]
         self._workers = _threads(settings.threads)
         self._pool = ThreadPoolExecutor(self._workers)
+        self._cancel = threading.Event()
+        self._jobs_lock = threading.Lock()
+        self._jobs = {}
         self.samples_done = 0
+        self._first_sample = 0
         self._passes = 0
+        self.cancelled = False
         self.strategy = self.analysis.strategy(settings.use_mis, self.pixel_filter)
         warnings = []
         if self.accel.dropped_triangles:
@@ -140,33 +149,96 @@ class Renderer:
         radiance, rays = self.integrator.trace(xy, lens_uv, lam, hero, rng)
         return pixel, self.mode.to_rgb(radiance, lam, lam_pdf), rays
 
+    def start_at_sample(self, first_sample: int) -> None:
+        """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
+        ``samples_per_pass``), before the first pass: chunks of a render made this way
+        merge bit-identically with one render of all samples. ``settings.samples`` more
+        samples are then rendered (``samples_done`` counts from ``first_sample``)."""
+        per_pass = self.settings.samples_per_pass
+        first_sample = int(first_sample)
+        if first_sample < 0 or first_sample % per_pass:
+            raise PrismInputError(
+                f"Chunk offset {first_sample} is not a multiple of Samples per Pass ({per_pass}): "
+                "use --samples that is a multiple of the scene's Samples per Pass."
+            )
+        if self._passes != self._first_sample // per_pass:
+            raise RuntimeError("start_at_sample must be called before the first pass")
+        self._first_sample = first_sample
+        self.samples_done = first_sample
+        self._passes = first_sample // per_pass  # the pass index seeds the pass's random numbers
+
+    def cancel(self) -> None:
+        """Stop the pass in progress (thread-safe, returns at once): queued chunks are
+        dropped, running ones finish; ``render_pass`` then returns early without
+        counting the pass (and later passes do nothing). The film keeps the chunks
+        already added."""
+        self._cancel.set()
+        with self._jobs_lock:
+            jobs = list(self._jobs.values())
+        for job in jobs:
+            job.cancel()
+
     def render_pass(self) -> None:
         """Add ``samples_per_pass`` samples (fewer on the last pass) to every pixel."""
+        if self._cancel.is_set():
+            self.cancelled = True
+            return
         started = time.perf_counter()
-        remaining = self.settings.samples - self.samples_done
+        remaining = self.settings.samples - (self.samples_done - self._first_sample)
         spp = min(self.settings.samples_per_pass, remaining) if remaining > 0 else self.settings.samples_per_pass
         total = len(self._pixels) * spp
         bounds = list(range(0, total, chunk_size(total))) + [total]
         chunks = list(zip(bounds[:-1], bounds[1:]))
         window = 2 * self._workers  # chunks in flight: bounded memory for huge frames
-        jobs = {}
-        for i in range(len(chunks)):
-            for j in range(i, min(i + window, len(chunks))):
-                if j not in jobs:
-                    jobs[j] = self._pool.submit(self._chunk, *chunks[j], spp, j)
-            pixel, rgb, rays = jobs.pop(i).result()
-            self.film.add(pixel, rgb)
-            self.stats["rays_cast"] += rays
-            if self.progress is not None:
-                self.progress((i + 1) / len(chunks))
+        jobs = self._jobs
+        try:
+            for i in range(len(chunks)):
+                with self._jobs_lock:
+                    for j in range(i, min(i + window, len(chunks))):
+                        if j not in jobs and not self._cancel.is_set():
+                            jobs[j] = self._pool.submit(self._chunk, *chunks[j], spp, j)
+                job = jobs.get(i)
+                if job is None:
+                    break
+                try:
+                    pixel, rgb, rays = job.result()
+                except CancelledError:
+                    break
+                with self._jobs_lock:
+                    del jobs[i]
+                self.film.add(pixel, rgb)
+                self.stats["rays_cast"] += rays
+                if self.progress is not None:
+                    self.progress((i + 1) / len(chunks))
+                if self._cancel.is_set():
+                    break
+        finally:
+            self._drop_jobs()
+            self.stats["seconds"] += time.perf_counter() - started
+        if self._cancel.is_set():
+            self.cancelled = True
+            return
         self.samples_done += spp
         self._passes += 1
         self._glass_warnings()
         self.stats["paths"] += total
         self.stats["nan_samples"] = self.film.nan_samples
         self.stats["rejected_rays"] = self.accel.rejected_rays
-        self.stats["seconds"] += time.perf_counter() - started
         self.stats["samples"] = self.samples_done
+
+    def _drop_jobs(self):
+        """Cancel queued chunks and wait for running ones (after a cancel or an error)."""
+        with self._jobs_lock:
+            jobs = list(self._jobs.values())
+            self._jobs.clear()
+        for job in jobs:
+            job.cancel()
+        for job in jobs:
+            if not job.cancelled():
+                try:
+                    job.result()
+                except Exception:  # noqa: BLE001 - the pass is abandoned anyway
+                    pass
 
     def _glass_warnings(self):
         for b in self.bsdfs:
@@ -188,12 +260,22 @@ class Renderer:
         return self.film.variance_of_mean().astype(np.float32)
 
     def close(self) -> None:
-        self._pool.shutdown(wait=True)
+        """Cancel outstanding work and free the thread pools (idempotent)."""
+        self._cancel.set()
+        self._drop_jobs()
+        self._pool.shutdown(wait=True, cancel_futures=True)
         self.accel.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
 
     def __del__(self):
         try:
-            self._pool.shutdown(wait=False)
+            self._pool.shutdown(wait=False, cancel_futures=True)
             self.accel.close()
         except Exception:
             pass
