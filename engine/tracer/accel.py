@@ -15,6 +15,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+from .sampling import dot, rows_finite
+
 _MIN_CHUNK = 16384
 REJECTED = -2  # triangle index reported for rays that were not sent (non-finite)
 _FAR = np.float32(1e30)
@@ -70,7 +72,7 @@ class Accel:
     def _prepare(self, origins, directions, tmax=None):
         o = np.asarray(origins, dtype=np.float32)
         d = np.asarray(directions, dtype=np.float32)
-        ok = np.isfinite(o).all(axis=1) & np.isfinite(d).all(axis=1) & ((d * d).sum(axis=1) > 0)
+        ok = rows_finite(o) & rows_finite(d) & (dot(d, d) > 0)
         if tmax is not None:
             tmax = np.minimum(np.asarray(tmax, dtype=np.float64), 1e30)
             ok &= ~np.isnan(tmax) & (tmax > 0)

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import PrismInputError
-from .sampling import concentric_disk
+from .sampling import concentric_disk, norm
 
 
 class PinholeCamera:
@@ -48,7 +48,7 @@ class PinholeCamera:
 
     def _to_world(self, origins_cam, directions_cam):
         d = directions_cam @ self._rotation.T
-        d /= np.linalg.norm(d, axis=1, keepdims=True)
+        d /= norm(d)[:, None]
         o = origins_cam @ self._rotation.T + self._origin
         return o, d
 

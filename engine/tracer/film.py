@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .sampling import rows_finite
+
 
 class Film:
     """Accumulates samples for a ``width`` x ``height`` image (row 0 = top)."""
@@ -29,7 +31,7 @@ class Film:
         """Add one sample per entry: ``pixel_index`` [N] (y * width + x), ``rgb`` [N,3]."""
         pixel_index = np.asarray(pixel_index, dtype=np.int64)
         rgb = np.asarray(rgb, dtype=np.float64)
-        bad = ~np.isfinite(rgb).all(axis=1)
+        bad = ~rows_finite(rgb)
         if bad.any():
             self.nan_samples += int(bad.sum())
             rgb = np.where(bad[:, None], 0.0, rgb)

@@ -27,8 +27,9 @@ from __future__ import annotations
 import numpy as np
 
 from .accel import REJECTED
-from .path_state import collapse_to_hero, offset_distance, offset_origin, roll_columns, shading_frame, unroll_columns
-from .sampling import dot, power_heuristic, to_local, to_world
+from .path_state import (collapse_to_hero, compact, offset_distance, offset_origin, roll_columns, shading_frame,
+                         unroll_columns)
+from .sampling import dot, power_heuristic, row_max, rows_finite, to_local, to_world
 from .shadows import ShadowTester
 from .spectra import PathWavelengths
 
@@ -102,9 +103,9 @@ class Integrator:
         radiance = np.zeros((n, k))
         idx = np.arange(n)
         collapsed = np.full(n, cam_collapsed)
-        live = (beta.max(axis=1) > 0) & np.isfinite(beta).all(axis=1)
+        live = (row_max(beta) > 0) & rows_finite(beta)
         if not live.all():  # e.g. rays a real lens blocks: nothing to trace
-            idx, o, d, beta, lam, hero, collapsed = (a[live] for a in (idx, o, d, beta, lam, hero, collapsed))
+            idx, o, d, beta, lam, hero, collapsed = compact(live, idx, o, d, beta, lam, hero, collapsed)
         mis_o = o.copy()  # last vertex that was not a film crossing: light pdfs are measured from it
         prev_pdf = np.zeros(len(idx))
         prev_delta = np.ones(len(idx), dtype=bool)
@@ -118,9 +119,8 @@ class Integrator:
             rays += len(idx)
             sent = tri != REJECTED
             if not sent.all():  # a non-finite ray: the path ends here, adding nothing
-                idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta = (
-                    a[sent] for a in (idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o,
-                                      prev_pdf, prev_delta))
+                idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta = compact(
+                    sent, idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta)
             light_id = np.full(len(idx), -1)
             if depth > 0:
                 for li, light in lights.hittable:
@@ -136,9 +136,8 @@ class Integrator:
                 break
             keep = tri >= 0
             if not keep.all():
-                idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta = (
-                    a[keep] for a in (idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o,
-                                      prev_pdf, prev_delta))
+                idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta = compact(
+                    keep, idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta)
             if len(idx) == 0:
                 break
             p, ng, ns = self.tris.surface(tri, bu, bv)
@@ -165,12 +164,12 @@ class Integrator:
             wi_l, weight, pdf, delta, es = self._sample(mat, wo_l, lam, u, hero, collapsed)
             wi = to_world(wi_l, *frame)
             cos_ig = dot(wi, ng)
-            ok = self._consistent(cos_og, cos_ig, wo_l, wi_l) & (weight > 0).any(1)
+            ok = self._consistent(cos_og, cos_ig, wo_l, wi_l) & (row_max(weight) > 0)
             beta = beta * weight
             eta_scale = eta_scale * es
             if depth + 1 >= self.rr_depth:
                 k_eff = np.where(collapsed, k, 1)
-                survive = np.minimum(1.0, beta.max(1) / k_eff * eta_scale)
+                survive = np.minimum(1.0, row_max(beta) / k_eff * eta_scale)
                 alive = rng.random(len(idx)) < survive
                 beta = beta / np.where(alive, survive, 1.0)[:, None]
                 ok &= alive
@@ -184,8 +183,8 @@ class Integrator:
             else:
                 prev_pdf, prev_delta, mis_o = pdf, delta, p
             if not ok.all():
-                idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta, mis_o = (
-                    a[ok] for a in (idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta, mis_o))
+                idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta, mis_o = compact(
+                    ok, idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta, mis_o)
         return radiance, rays
 
     @staticmethod
@@ -287,7 +286,7 @@ class Integrator:
         contrib = beta * f
         contrib *= li_val
         contrib *= scale[:, None]
-        send = contrib.max(axis=1) > 0
+        send = row_max(contrib) > 0
         if not send.any():
             return out, 0
         s = np.flatnonzero(send)

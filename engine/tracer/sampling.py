@@ -22,6 +22,30 @@ def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", a, b)
 
 
+def row_max(a: np.ndarray) -> np.ndarray:
+    """Largest entry [N] of each row of [N,K] (column by column: numpy's reductions
+    along a short last axis are several times slower than K element-wise maxima)."""
+    out = a[:, 0].copy()
+    for j in range(1, a.shape[1]):
+        np.maximum(out, a[:, j], out=out)
+    return out
+
+
+def row_sum(a: np.ndarray) -> np.ndarray:
+    """Sum [N] of each row of [N,K], column by column (see ``row_max``)."""
+    out = a[:, 0].copy()
+    for j in range(1, a.shape[1]):
+        out += a[:, j]
+    return out
+
+
+def rows_finite(a: np.ndarray) -> np.ndarray:
+    """True [N] where every entry of a row of [N,K] is finite (a row sum is finite
+    exactly then, short of overflow, which counts as non-finite too)."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        return np.isfinite(row_sum(a))
+
+
 def pass_rng(seed: int, pass_index: int, chunk_index: int = 0) -> np.random.Generator:
     """The generator of one chunk of one pass (independent streams)."""
     return np.random.Generator(np.random.PCG64([int(seed) & 0xFFFFFFFF, int(pass_index), int(chunk_index)]))
@@ -110,9 +134,14 @@ def to_world(v: np.ndarray, s: np.ndarray, t: np.ndarray, n: np.ndarray) -> np.n
     return v[:, 0:1] * s + v[:, 1:2] * t + v[:, 2:3] * n
 
 
+def norm(v: np.ndarray) -> np.ndarray:
+    """Lengths [N] of vectors [N,3]."""
+    return np.sqrt(dot(v, v))
+
+
 def normalize(v: np.ndarray) -> np.ndarray:
     """Unit vectors [N,3] (zero vectors stay zero)."""
-    n = np.sqrt((v * v).sum(axis=1, keepdims=True))
+    n = norm(v)[:, None]
     return v / np.where(n > 0, n, 1.0)
 
 

@@ -21,7 +21,7 @@ class PathWavelengths(np.ndarray):
 
     A path keeps its wavelengths for life, so every spectrum (albedo, emitter) is
     evaluated once per chunk and then looked up at each bounce: indexing rows
-    (``lam[mask]``, ``lam[indices]``) keeps the link; anything else gives a plain array.
+    (``lam[mask]``, ``lam[indices]``, ``np.compress(mask, lam, axis=0)``) keeps the link; anything else gives a plain array.
     """
 
     def __new__(cls, wavelength_nm):
@@ -36,6 +36,15 @@ class PathWavelengths(np.ndarray):
         self._rows = None
         self._cache = None
         self._full = None
+
+    def compress(self, condition, axis=None, out=None):
+        out_arr = super().compress(condition, axis=axis, out=out)
+        if self._rows is not None and axis == 0 and out is None:
+            out_arr._rows = self._rows.compress(condition)
+            out_arr._cache = self._cache
+            out_arr._full = self._full
+            return out_arr
+        return out_arr.view(np.ndarray)
 
     def __getitem__(self, key):
         out = super().__getitem__(key)

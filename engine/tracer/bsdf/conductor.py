@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import dot
+from ..sampling import dot, norm
 
 from .base import BSDF, BSDFSample
 from .microfacet import ggx_d, ggx_g1, ggx_g2, reflect, sample_visible_normal, visible_normal_pdf
@@ -31,7 +31,7 @@ class Conductor(BSDF):
             return np.zeros((n, k)), np.zeros(n)
         ok = (wo[:, 2] > 0) & (wi[:, 2] > 0)
         wm = wo + wi
-        wm /= np.maximum(np.linalg.norm(wm, axis=1, keepdims=True), 1e-300)
+        wm /= np.maximum(norm(wm), 1e-300)[:, None]
         cos_om = np.clip(dot(wo, wm), 0.0, 1.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             scalar = ggx_d(wm, self.alpha) * ggx_g2(wo, wi, self.alpha) / (4.0 * wo[:, 2] * wi[:, 2])

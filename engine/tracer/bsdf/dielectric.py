@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import dot
+from ..sampling import dot, norm, row_sum, rows_finite
 
 from .base import BSDF, BSDFSample, hero_column
 from .microfacet import ggx_d, ggx_g1, ggx_g2, sample_visible_normal, visible_normal_pdf
@@ -27,7 +27,7 @@ SMOOTH_ALPHA = 1e-3
 
 def choice_probability(r: np.ndarray, hero: np.ndarray, collapsed: np.ndarray) -> np.ndarray:
     """Probability [n] of picking reflection given per-column reflectances [n,K]."""
-    return np.clip(np.where(collapsed, hero_column(r, hero), r.mean(axis=1)), 0.0, 1.0)
+    return np.clip(np.where(collapsed, hero_column(r, hero), row_sum(r) / r.shape[1]), 0.0, 1.0)
 
 
 class Dielectric(BSDF):
@@ -111,7 +111,7 @@ class Dielectric(BSDF):
                 reflect[:, None], r / p[:, None], (1.0 - r) / (1.0 - p[:, None]) / (etap * etap)[:, None]
             )
         weight = ratio[:, None] * w
-        valid &= np.isfinite(pdf) & (pdf > 0) & np.isfinite(weight).all(1)
+        valid &= np.isfinite(pdf) & (pdf > 0) & rows_finite(weight)
         eta_scale = np.where(reflect, 1.0, etap * etap)
         return BSDFSample(
             wi, np.where(valid[:, None], weight, 0.0), np.where(valid, pdf, 0.0), np.zeros(n, dtype=bool), eta_scale
@@ -124,7 +124,7 @@ class Dielectric(BSDF):
         reflect = cos_o * cos_i > 0
         etap = np.where(reflect, 1.0, np.where(cos_o > 0, eta, 1.0 / eta))
         wm = wi * etap[:, None] + wo
-        length = np.linalg.norm(wm, axis=1)
+        length = norm(wm)
         ok = (cos_o != 0) & (cos_i != 0) & (length > 0)
         wm = wm / np.where(length > 0, length, 1.0)[:, None]
         wm *= np.where(wm[:, 2] < 0, -1.0, 1.0)[:, None]
@@ -143,5 +143,5 @@ class Dielectric(BSDF):
             f_t = f_t[:, None] * (1.0 - r)
             pdf = np.where(reflect, pdf_wm / (4.0 * np.abs(cos_om)) * p, pdf_wm * np.abs(cos_im) / denom * (1.0 - p))
         f = np.where(reflect[:, None], f_r, f_t)
-        ok &= np.isfinite(pdf) & np.isfinite(f).all(1)
+        ok &= np.isfinite(pdf) & rows_finite(f)
         return np.where(ok[:, None], f, 0.0), np.where(ok, pdf, 0.0)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import dot
+from ..sampling import dot, norm
 
 
 def ggx_d(wm: np.ndarray, alpha: np.ndarray | float) -> np.ndarray:
@@ -59,7 +59,7 @@ def sample_visible_normal(w: np.ndarray, alpha, u: np.ndarray) -> np.ndarray:
     alpha = np.broadcast_to(np.asarray(alpha, dtype=np.float64), (len(w),))
     w_up = w * np.where(w[:, 2] < 0, -1.0, 1.0)[:, None]
     vh = np.column_stack([alpha * w_up[:, 0], alpha * w_up[:, 1], w_up[:, 2]])
-    vh /= np.linalg.norm(vh, axis=1, keepdims=True)
+    vh /= norm(vh)[:, None]
     lensq = vh[:, 0] ** 2 + vh[:, 1] ** 2
     inv = np.where(lensq > 0, 1.0 / np.sqrt(np.where(lensq > 0, lensq, 1.0)), 0.0)
     t1 = np.where(
@@ -75,7 +75,7 @@ def sample_visible_normal(w: np.ndarray, alpha, u: np.ndarray) -> np.ndarray:
     p3 = np.sqrt(np.maximum(0.0, 1.0 - p1 * p1 - p2 * p2))
     nh = p1[:, None] * t1 + p2[:, None] * t2 + p3[:, None] * vh
     ne = np.column_stack([alpha * nh[:, 0], alpha * nh[:, 1], np.maximum(1e-12, nh[:, 2])])
-    return ne / np.linalg.norm(ne, axis=1, keepdims=True)
+    return ne / norm(ne)[:, None]
 
 
 def reflect(w: np.ndarray, n: np.ndarray) -> np.ndarray:
