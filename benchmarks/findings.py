@@ -73,7 +73,7 @@ def _targets(results):
         for c in comps:
             note = " (extrapolated)" if c["extrapolated"] else ""
             lines.append(f"| equal-time relMSE no worse than {c['peer']} ({c['scene']}) | Prism / peer = "
-                         f"{c['ratio']:.2f} at {c['seconds']:.1f} s{note} | {_status(c['ratio'] <= 1.0)} |")
+                         f"{c['ratio']:.2f} at {c['seconds']:.2f} s{note} | {_status(c['ratio'] <= 1.0)} |")
     else:
         lines.append("| equal-time relMSE no worse than Mitsuba 3 and Cycles | not measured | - |")
     hero = results.get("hero")
@@ -103,11 +103,16 @@ def _reading(results):
     for c in results.get("peer_comparisons", []):
         direction = "lower" if c["ratio"] < 1 else "higher"
         ttime = "" if not np.isfinite(c["time_ratio"]) else (
-            f"; {c['peer']} reaches Prism's final error in {c['peer_seconds_to_prism_error']:.2f} s, "
+            f"; {c['peer']} reaches that error of Prism's in {c['peer_seconds_to_prism_error']:.2f} s, "
             f"{c['time_ratio']:.1f}x sooner" + (" (extrapolated)" if c["time_extrapolated"] else ""))
         out.append(
-            f"- **{c['peer']} on {c['scene']}.** At {c['seconds']:.1f} s Prism's relMSE is {c['prism_relmse']:.3g}, "
+            f"- **{c['peer']} on {c['scene']}.** At {c['seconds']:.2f} s" + (" (a curve extended)" if c["extrapolated"]
+                                                                       else "") +
+            f" Prism's relMSE is {c['prism_relmse']:.3g}, "
             f"{c['peer']}'s {c['peer_relmse']:.3g}: Prism's error is {c['ratio']:.2f}x, i.e. {direction}{ttime}. "
+            + ("" if not np.isfinite(c.get("ratio_render_only", float("nan"))) else
+               f"Without scene set-up on either side (Prism's Renderer construction, Mitsuba's load_dict: "
+               f"both build a BVH) the ratio at equal render time is {c['ratio_render_only']:.2f}x. ") +
             f"Median pixel ratio of the two references (peer / Prism) is {c['convention_ratio']:.3f}, so the light "
             "units agree; each renderer is still scored against its own reference (different pixel filters).")
     hero = results.get("hero")

@@ -32,7 +32,7 @@ def progressive(scene, settings: RenderSettings, checkpoints, on_renderer=None):
     settings = replace(settings, samples=checkpoints[-1])
     start = time.perf_counter()
     renderer = Renderer(scene, settings)
-    elapsed = time.perf_counter() - start
+    elapsed = setup = time.perf_counter() - start
     if on_renderer is not None:
         on_renderer(renderer)
     out = []
@@ -43,7 +43,7 @@ def progressive(scene, settings: RenderSettings, checkpoints, on_renderer=None):
                 t0 = time.perf_counter()
                 renderer.render_pass()
                 elapsed += time.perf_counter() - t0
-            out.append(dict(spp=renderer.samples_done, seconds=elapsed, image=renderer.image_rgb(),
+            out.append(dict(spp=renderer.samples_done, seconds=elapsed, setup=setup, image=renderer.image_rgb(),
                             rays_cast=int(renderer.stats["rays_cast"])))
         stats = dict(renderer.stats)
         stats["strategy"] = renderer.strategy

@@ -103,20 +103,32 @@ def scene_table(name, entry):
 
 
 def peer_comparisons(results):
-    """Equal-time relMSE ratios Prism / peer, at Prism's longest measured time."""
+    """Equal-time relMSE ratios Prism / peer at the longest time both measured
+    (each curve interpolated log-log; flagged when one had to be extended)."""
     out = []
     for name, entry in results["scenes"].items():
         if not entry.get("strategies"):
             continue
         prism_curve = entry["strategies"][0]["curve"]
-        t_star = prism_curve[-1]["seconds"]
-        prism_err = prism_curve[-1]["relmse"]
+        qt, qe = _times(prism_curve)
         for peer in entry.get("peers", []):
             pt, pe = _times(peer["curve"])
-            peer_err, extrapolated = error_at_time(pt, pe, t_star)
+            t_star = min(max(qt), max(pt))
+            prism_err, ext_a = error_at_time(qt, qe, t_star)
+            peer_err, ext_b = error_at_time(pt, pe, t_star)
             t_peer, ext2 = time_to_error(pt, pe, prism_err)
+            render_only = float("nan")
+            if "load_seconds" in peer["info"] and "setup" in prism_curve[-1]:
+                # both without scene set-up (BVH builds): Prism's passes vs Mitsuba's render calls
+                setup = prism_curve[-1]["setup"]
+                rt = [t - peer["info"]["load_seconds"] for t in pt]
+                t_r = min(max(qt) - setup, max(rt))
+                e_q, x_q = error_at_time([t - setup for t in qt], qe, t_r)
+                e_r, x_r = error_at_time(rt, pe, t_r)
+                render_only = float("nan") if (x_q or x_r) else e_q / e_r
             out.append(dict(scene=name, peer=peer["info"]["renderer"], seconds=t_star, prism_relmse=prism_err,
-                            peer_relmse=peer_err, ratio=prism_err / peer_err, extrapolated=extrapolated,
+                            ratio_render_only=render_only,
+                            peer_relmse=peer_err, ratio=prism_err / peer_err, extrapolated=ext_a or ext_b,
                             peer_seconds_to_prism_error=t_peer, time_ratio=t_star / t_peer,
                             time_extrapolated=ext2,
                             convention_ratio=peer["convention_ratio_median"]))

@@ -107,6 +107,7 @@ def curve_stats(runs, reference):
         errs = [metrics.relmse(p["image"], reference["image"]) for p in points]
         flips = [metrics.flip(p["image"], reference["image"]) for p in points]
         out.append(dict(spp=points[0]["spp"], seconds=float(np.median([p["seconds"] for p in points])),
+                        setup=float(np.median([p["setup"] for p in points])),
                         relmse=float(np.median(errs)), flip=float(np.median(flips)),
                         relmse_all=[float(e) for e in errs],
                         rays=float(np.median([p["rays_cast"] for p in points]))))

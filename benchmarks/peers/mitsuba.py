@@ -5,7 +5,8 @@ libLLVM that Dr.Jit can drive is found (LLVM 15 aborts on x86 ``fminimum``;
 Debian's ``libllvm19`` works: ``apt-get install libllvm19``), else
 ``scalar_spectral``. ``DRJIT_LIBLLVM_PATH`` overrides the search.
 
-Conventions matched to Prism: the same triangles (written to PLY), two-sided
+Conventions matched to Prism: the same triangles (Mitsuba meshes built in memory
+from the Scene's arrays; the timed ``load_dict`` builds the BVH), two-sided
 Lambertian grey, a Blender area light as a one-sided ``rectangle`` area emitter
 of radiance P / (pi A), RGB white upsampled with Mitsuba's illuminant (D65-white)
 convention, pinhole camera with the same horizontal field of view, box pixel
@@ -22,9 +23,7 @@ import glob
 import os
 import re
 import sys
-import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -52,26 +51,22 @@ def choose_variant():
     return "scalar_spectral"
 
 
-def write_ply(path, vertices, triangles, normals=None):
-    """Binary little-endian PLY of a triangle mesh (``normals`` per vertex or None)."""
-    vertices = np.asarray(vertices, np.float32)
-    fields = [("x", "<f4"), ("y", "<f4"), ("z", "<f4")]
+def make_mesh(name, vertices, triangles, normals, bsdf, emitter=None):
+    """A Mitsuba mesh built in memory from numpy arrays (no file round trip)."""
+    import mitsuba as mi
+
+    props = mi.Properties()
+    props["bsdf"] = mi.load_dict(bsdf)
+    if emitter is not None:
+        props["emitter"] = mi.load_dict(emitter)
+    mesh = mi.Mesh(name, len(vertices), len(triangles), props, has_vertex_normals=normals is not None)
+    params = mi.traverse(mesh)
+    params["vertex_positions"] = mi.Float(np.ascontiguousarray(vertices, np.float32).ravel())
+    params["faces"] = mi.UInt32(np.ascontiguousarray(triangles, np.uint32).ravel())
     if normals is not None:
-        fields += [("nx", "<f4"), ("ny", "<f4"), ("nz", "<f4")]
-    vdata = np.empty(len(vertices), dtype=fields)
-    vdata["x"], vdata["y"], vdata["z"] = vertices.T
-    if normals is not None:
-        vdata["nx"], vdata["ny"], vdata["nz"] = np.asarray(normals, np.float32).T
-    fdata = np.empty(len(triangles), dtype=[("n", "u1"), ("i", "<i4", (3,))])
-    fdata["n"] = 3
-    fdata["i"] = triangles
-    header = ["ply", "format binary_little_endian 1.0", f"element vertex {len(vertices)}"]
-    header += [f"property float {name}" for name, _ in fields]
-    header += [f"element face {len(triangles)}", "property list uchar int vertex_indices", "end_header"]
-    with open(path, "wb") as f:
-        f.write(("\n".join(header) + "\n").encode("ascii"))
-        f.write(vdata.tobytes())
-        f.write(fdata.tobytes())
+        params["vertex_normals"] = mi.Float(np.ascontiguousarray(normals, np.float32).ravel())
+    params.update()
+    return mesh
 
 
 def _matrix(m):
@@ -80,9 +75,9 @@ def _matrix(m):
     return mi.ScalarTransform4f(np.asarray(m, dtype=np.float64).tolist())
 
 
-def scene_dict(scene, folder, max_bounces=8):
+def scene_dict(scene, max_bounces=8):
     """A Mitsuba 3 scene dict of a Prism ``Scene`` (diffuse/emissive materials, area
-    lights, pinhole camera); meshes are written as PLY files into ``folder``."""
+    lights, pinhole camera); meshes are Mitsuba meshes built from the same arrays."""
     import mitsuba as mi
 
     cam = scene.camera
@@ -119,14 +114,13 @@ def scene_dict(scene, folder, max_bounces=8):
         else:
             used, tris = np.unique(tris, return_inverse=True)
             vertices, normals, tris = scene.vertices[used], None, tris.reshape(-1, 3)
-        path = str(Path(folder) / f"material_{index}.ply")
-        write_ply(path, vertices, tris, normals)
-        shape = {"type": "ply", "filename": path, "face_normals": normals is None,
-                 "bsdf": {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": {
-                     "type": "rgb", "value": [float(c) for c in material.base_color]}}}}
+        bsdf = {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": {
+            "type": "rgb", "value": [float(c) for c in material.base_color]}}}
+        emitter = None
         if material.emission_strength > 0:
-            shape["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": [
+            emitter = {"type": "area", "radiance": {"type": "rgb", "value": [
                 float(c) * material.emission_strength for c in material.emission.rgb]}}
+        shape = make_mesh(f"material_{index}", vertices, tris, normals, bsdf, emitter)
         out[f"mesh_{index}"] = shape
     for k, light in enumerate(scene.lights):
         if light.kind != "area" or light.area_shape != "rectangle" or light.spectrum.kind != "rgb":
@@ -163,10 +157,10 @@ def main():
     from benchmarks.scenes import build
 
     scene = build(args.scene, (args.resolution, args.resolution))
-    with tempfile.TemporaryDirectory() as folder:
-        start = time.perf_counter()
-        mi_scene = mi.load_dict(scene_dict(scene, folder, args.max_bounces))
-        load_seconds = time.perf_counter() - start
+    description = scene_dict(scene, args.max_bounces)
+    start = time.perf_counter()
+    mi_scene = mi.load_dict(description)  # BVH build and scene set-up
+    load_seconds = time.perf_counter() - start
 
     def render(spp, seed):
         start = time.perf_counter()
