@@ -1,12 +1,14 @@
 """Where on the rear element rays from a film point can get through: exit-pupil bounds.
 
-For film points on the +x axis at radii spanning the film, a dense grid of rays toward the
-plane of the rear vertex is traced out through the lens; the surviving rays' crossing
-points give an axis-aligned box per radial bin. Because the lens is rotationally
-symmetric, a film point at angle phi uses its bin's box rotated by phi. Sampling the box
-instead of the whole rear element wastes few rays, and the radiometric weight keeps
-vignetting physical (the method of pbrt-v3's RealisticCamera; this is our own code).
-"""
+For film points on the +x axis at radii spanning the film, grids of rays toward the plane
+of the rear vertex are traced out through the lens (coarse over the whole reachable
+square, then finer inside what passed, at the ends of the visible range); the surviving
+rays' crossing points give, per radial bin, an axis-aligned box and an ellipse that hold
+them (grown by one grid cell), and the smaller of the two is sampled uniformly. Because
+the lens is rotationally symmetric, a film point at azimuth phi uses its bin's shape
+rotated by phi. Sampling that shape instead of the whole rear element wastes few rays;
+the radiometric weight (area / distance^2 x cos^4) keeps vignetting physical (the method
+of pbrt-v3's RealisticCamera, extended with the ellipse; this is our own code)."""
 
 from __future__ import annotations
 
@@ -23,7 +25,8 @@ COARSE_GRID = 40
 MAX_COARSE_GRID = 200
 COARSE_CELLS_PER_PUPIL = 6
 COARSE_BIN_STEP = 4
-FINE_GRID = 32
+MIDDLE_GRID = 24
+FINE_GRID = 40
 # The pupil edge moves a little with wavelength; bound it over the visible range.
 BOUND_WAVELENGTHS_NM = (380.0, 780.0)
 
@@ -124,8 +127,24 @@ class ExitPupilBounds:
         if not found.any():
             return boxes, ellipses, use_ellipse
         radii = np.column_stack([edges[:-1], 0.5 * (edges[:-1] + edges[1:]), edges[1:]])[found].ravel()
+        # A medium grid narrows each bin's search box to its pupil, so the
+        # fine grid's cells (and the safety margin of one cell) are small.
+        middle, middle_cell, _ = self._passing_boxes(radii, np.repeat(search[found], 3, axis=0), MIDDLE_GRID,
+                                                     BOUND_WAVELENGTHS_NM)
+        middle += 1.5 * np.column_stack([-middle_cell[:, 0], middle_cell[:, 0], -middle_cell[:, 1], middle_cell[:, 1]])
+        middle = middle.reshape(-1, 3, 4)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            narrow = np.column_stack([
+                np.nanmin(middle[:, :, 0], axis=1), np.nanmax(middle[:, :, 1], axis=1),
+                np.nanmin(middle[:, :, 2], axis=1), np.nanmax(middle[:, :, 3], axis=1),
+            ])
+        narrow[:, [0, 2]] = np.maximum(narrow[:, [0, 2]], square[[0, 2]])
+        narrow[:, [1, 3]] = np.minimum(narrow[:, [1, 3]], square[[1, 3]])
+        missed = ~np.isfinite(narrow).all(axis=1)
+        narrow[missed] = search[found][missed]
         fine, fine_cell, (passed, px, py) = self._passing_boxes(
-            radii, np.repeat(search[found], 3, axis=0), FINE_GRID, BOUND_WAVELENGTHS_NM)
+            radii, np.repeat(narrow, 3, axis=0), FINE_GRID, BOUND_WAVELENGTHS_NM)
         fine += np.column_stack([-fine_cell[:, 0], fine_cell[:, 0], -fine_cell[:, 1], fine_cell[:, 1]])
         per_bin = fine.reshape(-1, 3, 4)
         with warnings.catch_warnings():
@@ -138,7 +157,7 @@ class ExitPupilBounds:
         union[empty] = 0.0
         boxes[found] = union
         # An ellipse with the box's centre and aspect, scaled to hold every passing point
-        # and grown by a grid-cell diagonal, wastes far less than the box on round pupils.
+        # and grown by one grid cell, wastes far less than the box on round pupils.
         centre_x, centre_y = 0.5 * (union[:, 0] + union[:, 1]), 0.5 * (union[:, 2] + union[:, 3])
         half_x = np.maximum(0.5 * (union[:, 1] - union[:, 0]), 1e-12)
         half_y = np.maximum(0.5 * (union[:, 3] - union[:, 2]), 1e-12)
@@ -147,7 +166,7 @@ class ExitPupilBounds:
                 + ((py.reshape(nb, -1) - centre_y[:, None]) / half_y[:, None]) ** 2)
         scale = np.sqrt(np.where(passed.reshape(nb, -1), rho2, 0.0).max(axis=1))
         cell = fine_cell.reshape(nb, 3, 2).max(axis=1)
-        margin = np.hypot(cell[:, 0], cell[:, 1])
+        margin = cell.max(axis=1)
         semi_x, semi_y = scale * half_x + margin, scale * half_y + margin
         ellipses[found] = np.column_stack([centre_x, centre_y, semi_x, semi_y])
         use_ellipse[found] = (np.pi * semi_x * semi_y < 4.0 * half_x * half_y) & ~empty

@@ -68,9 +68,9 @@ def test_bounded_sampling_is_unbiased_and_wastes_little():
         assert e_bounded == pytest.approx(e_whole, abs=4 * np.hypot(se_bounded, se_whole))
         assert se_bounded < se_whole  # the point of the bounds
         wasted.append(waste)
-    # Measured: about 23 % at the centre of this f/2 double Gauss (a round pupil in the
-    # rear element wastes 80 % or more when the whole rear element is sampled).
-    assert max(wasted) < 0.4 and waste_whole > 0.5
+    # Measured (seeded): 16 % wasted at the centre, 19 % at 10 mm, 25 % at 18 mm for this f/2
+    # double Gauss; sampling the whole rear element wastes 45 %, 63 % and 80 %.
+    assert max(wasted) < 0.3 and waste_whole > 0.7
     # Vignetting: the off-axis irradiance falls (cos^4 and the cat's-eye pupil).
     centre = _irradiance(lens, bounded, 0.0, 20000, 3)[0]
     edge = _irradiance(lens, bounded, 20.0, 20000, 4)[0]
