@@ -99,11 +99,4 @@ class PRISM_OT_autofocus(bpy.types.Operator):
 _CLASSES = (PRISM_OT_autofocus,)
 
 
-def register():
-    for cls in _CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(_CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(_CLASSES)

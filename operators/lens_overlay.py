@@ -60,11 +60,4 @@ class PRISM_OT_export_lens_diagram(bpy.types.Operator, ExportHelper):
 _CLASSES = (PRISM_OT_toggle_lens_overlay, PRISM_OT_export_lens_diagram)
 
 
-def register():
-    for cls in _CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(_CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(_CLASSES)

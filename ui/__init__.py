@@ -1,33 +1,21 @@
 """Panels and viewport drawing.
 
-Each module listed in ``_MODULE_NAMES`` has ``register()`` and ``unregister()``;
-they run in this order and are undone in reverse.
+The submodules below each have ``register()`` and ``unregister()``; they run in
+this order and are undone in reverse.
 """
 
-import importlib
+import bpy
 
-_MODULE_NAMES: tuple[str, ...] = (
-    "compat_panels",
-    "spectral_plot",
-    "panels_render",
-    "panels_camera",
-    "panels_light",
-    "panels_material",
-    "lens_overlay_draw",
-    "lens_overlay_export",
-    "lens_overlay_panel",
+register, unregister = bpy.utils.register_submodule_factory(
+    __name__,
+    (
+        "compat_panels",
+        "spectral_plot",
+        "panels_render",
+        "panels_camera",
+        "panels_light",
+        "panels_material",
+        "lens_overlay_draw",
+        "lens_overlay_panel",
+    ),
 )
-
-
-def _modules():
-    return [importlib.import_module(f".{name}", __name__) for name in _MODULE_NAMES]
-
-
-def register():
-    for module in _modules():
-        module.register()
-
-
-def unregister():
-    for module in reversed(_modules()):
-        module.unregister()

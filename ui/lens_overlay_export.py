@@ -240,11 +240,3 @@ def write_lens_diagram_png(scene, filepath, width=1200, height=600):
     pixels = render_diagram_pixels(diagram, int(width), int(height), focus_mm=inputs[3], fstop=inputs[2])
     save_png(pixels, bpy.path.abspath(str(filepath)))
     return diagram
-
-
-def register():
-    pass
-
-
-def unregister():
-    pass

@@ -138,11 +138,4 @@ class PRISM_PT_camera_focus(PrismPanel, bpy.types.Panel):
 CLASSES = (PRISM_PT_camera_lens, PRISM_PT_camera_focus)
 
 
-def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -87,11 +87,4 @@ class PRISM_PT_light_beam(PrismPanel, bpy.types.Panel):
 CLASSES = (PRISM_PT_light, PRISM_PT_light_beam)
 
 
-def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -143,11 +143,4 @@ class PRISM_PT_material_films(PrismPanel, bpy.types.Panel):
 CLASSES = (PRISM_PT_material, PRISM_PT_material_glass, PRISM_PT_material_metal, PRISM_PT_material_films)
 
 
-def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -114,11 +114,4 @@ class PRISM_PT_passes(PrismPanel, bpy.types.Panel):
 CLASSES = (PRISM_PT_sampling, PRISM_PT_light_paths, PRISM_PT_wavelengths, PRISM_PT_performance, PRISM_PT_passes)
 
 
-def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -1,23 +1,18 @@
 """Settings stored in .blend files: one PropertyGroup per data-block.
 
-Each module listed in ``_MODULE_NAMES`` has ``register()`` and ``unregister()``;
-they run in this order and are undone in reverse.
+The submodules below each have ``register()`` and ``unregister()``; they run in
+this order and are undone in reverse.
 """
 
-import importlib
+import bpy
 
-_MODULE_NAMES: tuple[str, ...] = ("lens_overlay", "scene", "camera", "light", "material")
-
-
-def _modules():
-    return [importlib.import_module(f".{name}", __name__) for name in _MODULE_NAMES]
-
-
-def register():
-    for module in _modules():
-        module.register()
-
-
-def unregister():
-    for module in reversed(_modules()):
-        module.unregister()
+register, unregister = bpy.utils.register_submodule_factory(
+    __name__,
+    (
+        "lens_overlay",
+        "scene",
+        "camera",
+        "light",
+        "material",
+    ),
+)
