@@ -69,6 +69,30 @@ def field_of_view_deg(system, sensor_distance_mm, sensor_width_mm=DEFAULT_SENSOR
     return 2.0 * math.degrees(math.atan2(math.hypot(d[0], d[1]), -d[2]))
 
 
+def image_circle_diameter_mm(system, sensor_distance_mm, wavelength_nm=D_LINE_NM, steps=240):
+    """Diameter of the film area any light reaches; inf when larger than the scan (1.5 EFL + 10 mm radius).
+
+    Film radii are scanned in ``steps`` steps, each with a grid of rays toward the rear element.
+    """
+    from .exit_pupil import rear_search_half_width_mm
+
+    max_radius_mm = 1.5 * abs(paraxial_data(system, wavelength_nm).efl_mm) + 10.0
+    film_z = system.rear_z_mm + float(sensor_distance_mm)
+    radii = np.linspace(0.0, max_radius_mm, steps + 1)
+    reach = rear_search_half_width_mm(system, film_z, max_radius_mm)
+    u = np.linspace(-reach, reach, 33)
+    gx, gy = (g.ravel() for g in np.meshgrid(u, u))
+    film = np.zeros((len(radii) * len(gx), 3))
+    film[:, 0] = np.repeat(radii, len(gx))
+    film[:, 2] = film_z
+    target = np.column_stack([np.tile(gx, len(radii)), np.tile(gy, len(radii)), np.full(len(film), system.rear_z_mm)])
+    alive = system.trace(film, target - film, wavelength_nm, toward=TOWARD_SCENE).alive.reshape(len(radii), -1)
+    lit = np.flatnonzero(alive.any(axis=1))
+    if not len(lit):
+        return 0.0
+    return math.inf if lit[-1] == steps else 2.0 * float(radii[lit[-1]])
+
+
 def lens_readouts(path, fstop=None, focus_distance_m=None, sensor_width_mm=DEFAULT_SENSOR_WIDTH_MM) -> dict:
     """Label -> text of what a user wants to know about a lens at an f-stop and focus distance.
 
@@ -92,10 +116,11 @@ def lens_readouts(path, fstop=None, focus_distance_m=None, sensor_width_mm=DEFAU
         except PrismInputError as error:
             out["Film at focus"] = str(error)
     fov = field_of_view_deg(system, infinity, sensor_width_mm)
-    out["Field of view"] = (
-        f"{fov:.1f}° across {sensor_width_mm:g} mm" if fov is not None
-        else f"image circle narrower than {sensor_width_mm:g} mm"
-    )
+    if fov is not None:
+        out["Field of view"] = f"{fov:.1f}° across {sensor_width_mm:g} mm"
+    else:
+        circle = image_circle_diameter_mm(system, infinity)
+        out["Field of view"] = f"image circle {circle:.1f} mm, narrower than {sensor_width_mm:g} mm"
     shift = _focus_shift(system)
     out["Axial colour (F–C)"] = f"{shift * 1000:.0f} µm" if abs(shift) < 0.1 else f"{shift:.2f} mm"
     out["Length"] = f"{system.rear_z_mm:.1f} mm, {len(system.surfaces)} surfaces"
@@ -139,6 +164,7 @@ def lens_report(path, wavelength_nm=D_LINE_NM, focus_distance_mm=None, fstop=Non
             "traced": field_of_view_deg(system, at_infinity.sensor_distance_mm, sensor_width_mm, wavelength_nm),
             "paraxial": 2.0 * math.degrees(math.atan(0.5 * sensor_width_mm / data.efl_mm)),
         },
+        "image_circle_diameter_mm": image_circle_diameter_mm(system, at_infinity.sensor_distance_mm, wavelength_nm),
         "focus_shift_486_656_mm": {
             "infinity_paraxial": focus_shift_mm(system, math.inf),
             "infinity_best_focus": focus_shift_mm(system, math.inf, refine=True),
