@@ -225,18 +225,13 @@ def _prism_medium(row, at, resolver):
     try:
         return resolver.by_name(glass)
     except UnknownGlassError as exc:
-        raise LensFileError(f"{at('glass')}: {_unknown_glass_message(glass, exc)}") from exc
+        raise LensFileError(f"{at('glass')}: {_unknown_glass_message(glass)}") from exc
 
 
-def _unknown_glass_message(name, exc) -> str:
-    try:
-        from ..glass import glass_names
+def _unknown_glass_message(name) -> str:
+    from ..glass import glass_names
 
-        known = ", ".join(glass_names())
-    except ImportError:
-        known = ""
-    message = f"unknown glass '{name}'."
-    return message + (f" Known glasses: {known}; or give 'nd' and 'vd'." if known else f" ({exc})")
+    return f"unknown glass '{name}'. Known glasses: {', '.join(glass_names())}; or give 'nd' and 'vd'."
 
 
 def _optional_positive(doc, key, lines, path):

@@ -130,7 +130,13 @@ class LensSystem:
 
     @property
     def stop_index(self) -> int:
-        return next(i for i, s in enumerate(self.surfaces) if s.is_stop)
+        """Index of the aperture stop; ``PrismInputError`` if the system has none."""
+        for i, s in enumerate(self.surfaces):
+            if s.is_stop:
+                return i
+        from ..errors import PrismInputError
+
+        raise PrismInputError(f"Lens '{self.name}' has no aperture stop: mark one surface as the stop.")
 
     @property
     def stop_diameter_mm(self) -> float:

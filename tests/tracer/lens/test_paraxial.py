@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from engine.tracer.lens.media import AIR, D_LINE_NM, constant_medium
+from engine.tracer.lens.media import AIR, D_LINE_NM, catalogue_medium, constant_medium
 from engine.tracer.lens.paraxial import image_distance_mm, paraxial_data, sensor_distance_for_focus
 from engine.tracer.lens.system import LensSystem, Surface
 
@@ -25,12 +25,7 @@ def _lensmaker(n, r1, r2, t):
 
 
 def _bk7():
-    try:
-        from engine.tracer.lens.media import catalogue_medium
-
-        return catalogue_medium("N-BK7")
-    except ImportError:  # glass catalogue not landed yet
-        return constant_medium(1.5168, "N-BK7 (n_d only)")
+    return catalogue_medium("N-BK7")
 
 
 def test_thick_biconvex_matches_the_lensmaker_formula():
