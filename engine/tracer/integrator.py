@@ -27,9 +27,9 @@ from __future__ import annotations
 import numpy as np
 
 from .accel import REJECTED
-from .path_state import (collapse_to_hero, compact, offset_distance, offset_origin, roll_columns, shading_frame,
-                         unroll_columns)
-from .sampling import dot, power_heuristic, row_max, rows_finite, to_local, to_world
+from .path_state import (add_rows, collapse_to_hero, compact, offset_distance, offset_origin, roll_columns,
+                         shading_frame, unroll_columns)
+from .sampling import dot, power_heuristic, row_max, rows_finite, to_local, to_world, where_rows
 from .shadows import ShadowTester
 from .spectra import PathWavelengths
 
@@ -100,7 +100,7 @@ class Integrator:
         n, k = lam.shape
         o, d, beta, cam_collapsed = self.camera_rays(pixel_xy, lens_uv, lam, hero)
         lam = PathWavelengths(lam)
-        radiance = np.zeros((n, k))
+        radiance = np.zeros((k, n))  # wavelength-major: see add_rows
         idx = np.arange(n)
         collapsed = np.full(n, cam_collapsed)
         live = (row_max(beta) > 0) & rows_finite(beta)
@@ -153,12 +153,13 @@ class Integrator:
             cos_og = dot(wo, ng)
             eps = offset_distance(p)
             flip = self.two_sided[mat] & (cos_og < 0)
-            nf = np.where(flip[:, None], -ns, ns)
+            nf = where_rows(flip, -ns, ns)
             frame = shading_frame(nf)
             wo_l = to_local(wo, *frame)
             if len(lights):
-                add, r = self._next_event(p, ng, frame, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta, rng)
-                radiance[idx] += add
+                rows, add, r = self._next_event(p, ng, frame, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta,
+                                                rng)
+                add_rows(radiance, np.take(idx, rows), add)
                 rays += r
             u = rng.random((len(idx), 3))
             wi_l, weight, pdf, delta, es = self._sample(mat, wo_l, lam, u, hero, collapsed)
@@ -179,13 +180,13 @@ class Integrator:
                 null = self.film_material[mat] & (wo_l[:, 2] * wi_l[:, 2] < 0)  # straight through a film
                 prev_pdf = np.where(null, prev_pdf, pdf)
                 prev_delta = np.where(null, prev_delta, delta)
-                mis_o = np.where(null[:, None], mis_o, p)
+                mis_o = where_rows(null, mis_o, p)
             else:
                 prev_pdf, prev_delta, mis_o = pdf, delta, p
             if not ok.all():
                 idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta, mis_o = compact(
                     ok, idx, o, d, beta, lam, hero, collapsed, eta_scale, prev_pdf, prev_delta, mis_o)
-        return radiance, rays
+        return np.ascontiguousarray(radiance.T), rays
 
     @staticmethod
     def _consistent(cos_og, cos_ig, wo_l, wi_l):
@@ -213,17 +214,17 @@ class Integrator:
                 le = light.emitted(mis_o[rows], d[rows], t[rows], lam[rows])
                 pdf_l = sel[li] * light.pdf(mis_o[rows], d[rows], t_mis[rows])
                 w = self._mis_emitter(pdf_l, prev_pdf[rows], prev_delta[rows])
-                radiance[idx[rows]] += beta[rows] * le * w[:, None]
+                add_rows(radiance, idx[rows], beta[rows] * le * w[:, None])
         escaped = (tri < 0) & (light_id < 0)
         if escaped.any():
             rows = np.flatnonzero(escaped)
             if not lights.world.black:
-                radiance[idx[rows]] += beta[rows] * lights.world.escaped(d[rows], lam[rows])
+                add_rows(radiance, idx[rows], beta[rows] * lights.world.escaped(d[rows], lam[rows]))
             if depth > 0:
                 for li, sun in lights.distant:
                     le = sun.escaped(d[rows], lam[rows])
                     w = self._mis_emitter(sel[li] * sun.pdf_escaped(d[rows]), prev_pdf[rows], prev_delta[rows])
-                    radiance[idx[rows]] += beta[rows] * le * w[:, None]
+                    add_rows(radiance, idx[rows], beta[rows] * le * w[:, None])
         mesh = lights.mesh
         if mesh is not None:
             hit = tri >= 0
@@ -236,21 +237,21 @@ class Integrator:
                 else:
                     pdf_l = sel[lights.mesh_index] * mesh.pdf(mis_o[rows], d[rows], t_mis[rows], tri[rows])
                     w = self._mis_emitter(pdf_l, prev_pdf[rows], prev_delta[rows])
-                radiance[idx[rows]] += beta[rows] * le * w[:, None]
+                add_rows(radiance, idx[rows], beta[rows] * le * w[:, None])
 
     def _next_event(self, p, ng, frame, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta, rng):
-        """Light-sampled contribution [n,K] at the current vertices (only rows whose
-        material is not a pure delta get one), and the number of shadow rays cast."""
+        """Light-sampled contributions at the current vertices: (rows [m] of the vertices
+        that get one, their values [m,K], shadow rays cast). Pure-delta materials get none."""
         n, k = lam.shape
-        out = np.zeros((n, k))
+        nothing = np.zeros(0, dtype=np.int64), np.zeros((0, k)), 0
         nee = ~self.delta_material[mat]
         if not nee.all():
             rows = np.flatnonzero(nee)
             if len(rows) == 0:
-                return out, 0
-            p, ng, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta = (
-                a[rows] for a in (p, ng, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta))
-            frame = tuple(a[rows] for a in frame)
+                return nothing
+            p, ng, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta = compact(
+                nee, p, ng, mat, cos_og, eps, wo_l, lam, hero, collapsed, beta)
+            frame = tuple(compact(nee, *frame))
         else:
             rows = None
         lights = self.lights
@@ -288,12 +289,11 @@ class Integrator:
         contrib *= scale[:, None]
         send = row_max(contrib) > 0
         if not send.any():
-            return out, 0
+            return nothing
         s = np.flatnonzero(send)
-        origin = offset_origin(p[s], ng[s], wi[s], eps[s], cos_ig[s])
-        ds = dist[s]
+        p, ng, wi, eps, cos_ig, ds, lam, contrib = compact(send, p, ng, wi, eps, cos_ig, dist, lam, contrib)
+        origin = offset_origin(p, ng, wi, eps, cos_ig)
         tmax = np.where(np.isfinite(ds), ds * (1.0 - SHADOW_SHORTEN), 1e30)
-        trans, cast = self.shadows.transmittance(origin, wi[s], tmax, lam[s])
-        target = s if rows is None else rows[s]
-        out[target] = contrib[s] * trans
-        return out, cast
+        trans, cast = self.shadows.transmittance(origin, wi, tmax, lam)
+        contrib *= trans
+        return (s if rows is None else rows[s]), contrib, cast

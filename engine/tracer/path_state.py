@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .sampling import dot, norm, orthonormal_basis, row_max
+from .sampling import dot, norm, orthonormal_basis, row_max, where_rows
 
 # Secondary rays start this far (relative to the largest coordinate of the hit
 # point) off the surface: ~30 float32 ulps, above Embree's float32 error.
@@ -43,7 +43,7 @@ class TriangleData:
         ns = (1.0 - u - v)[:, None] * cn[:, 0] + u[:, None] * cn[:, 1] + v[:, None] * cn[:, 2]
         length = norm(ns)
         good = (length > 1e-12) & np.isfinite(length)
-        ns = np.where(good[:, None], ns / np.where(good, length, 1.0)[:, None], ng)
+        ns = where_rows(good, ns / np.where(good, length, 1.0)[:, None], ng)
         ns *= np.where(dot(ns, ng) < 0, -1.0, 1.0)[:, None]  # same side as the face
         return p, ng, ns
 
@@ -52,6 +52,13 @@ def compact(keep: np.ndarray, *arrays: np.ndarray) -> list:
     """The rows of each array where ``keep`` [n] is True (``np.compress``: several
     times faster than boolean indexing of 2-D arrays)."""
     return [np.compress(keep, a, axis=0) for a in arrays]
+
+
+def add_rows(total_t: np.ndarray, rows: np.ndarray, values: np.ndarray) -> None:
+    """``total_t.T[rows] += values`` for distinct ``rows`` [m], with ``total_t`` stored
+    wavelength-major [K,N] (1-D scatters per column: several times faster)."""
+    for j in range(values.shape[1]):
+        total_t[j, rows] += values[:, j]
 
 
 def offset_distance(p: np.ndarray) -> np.ndarray:

@@ -37,6 +37,15 @@ class PathWavelengths(np.ndarray):
         self._cache = None
         self._full = None
 
+    def take(self, indices, axis=None, out=None, mode="raise"):
+        out_arr = super().take(indices, axis=axis, out=out, mode=mode)
+        if self._rows is not None and axis == 0 and out is None and np.ndim(indices) == 1:
+            out_arr._rows = self._rows.take(indices)
+            out_arr._cache = self._cache
+            out_arr._full = self._full
+            return out_arr
+        return out_arr.view(np.ndarray)
+
     def compress(self, condition, axis=None, out=None):
         out_arr = super().compress(condition, axis=axis, out=out)
         if self._rows is not None and axis == 0 and out is None:
@@ -67,7 +76,7 @@ def cached(key, fn, lam) -> np.ndarray:
     table = lam._cache.get(key)
     if table is None:
         table = lam._cache[key] = np.asarray(fn(lam._full), dtype=np.float64)
-    return table[rows]
+    return np.take(table, rows, axis=0)
 
 
 class GuidedVisibleWavelengths:

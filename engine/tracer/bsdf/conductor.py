@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import dot, norm
+from ..sampling import dot, norm, where_rows
 
 from .base import BSDF, BSDFSample
 from .microfacet import ggx_d, ggx_g1, ggx_g2, reflect, sample_visible_normal, visible_normal_pdf
@@ -45,7 +45,7 @@ class Conductor(BSDF):
         if self.delta:
             wi = wo * np.array([-1.0, -1.0, 1.0])
             ok = wo[:, 2] > 0
-            weight = np.where(ok[:, None], self.fresnel(np.clip(wo[:, 2], 0, 1), lam), 0.0)
+            weight = where_rows(ok, self.fresnel(np.clip(wo[:, 2], 0, 1), lam), 0.0)
             return BSDFSample(wi, weight, np.where(ok, np.inf, 0.0), np.ones(n, dtype=bool), np.ones(n))
         wm = sample_visible_normal(wo, self.alpha, u[:, 1:3])
         wi = reflect(wo, wm)
@@ -55,5 +55,5 @@ class Conductor(BSDF):
             ratio = ggx_g2(wo, wi, self.alpha) / ggx_g1(wo, self.alpha)
             pdf = visible_normal_pdf(wo, wm, self.alpha) / (4.0 * cos_om)
         ok &= np.isfinite(ratio) & np.isfinite(pdf) & (pdf > 0)
-        weight = np.where(ok[:, None], ratio[:, None] * self.fresnel(cos_om, lam), 0.0)
+        weight = where_rows(ok, ratio[:, None] * self.fresnel(cos_om, lam), 0.0)
         return BSDFSample(wi, weight, np.where(ok, pdf, 0.0), np.zeros(n, dtype=bool), np.ones(n))

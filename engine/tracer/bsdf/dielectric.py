@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import dot, norm, row_sum, rows_finite
+from ..sampling import dot, norm, row_sum, rows_finite, where_rows
 
 from .base import BSDF, BSDFSample, hero_column
 from .microfacet import ggx_d, ggx_g1, ggx_g2, sample_visible_normal, visible_normal_pdf
@@ -77,11 +77,11 @@ class Dielectric(BSDF):
         p = choice_probability(r, hero, collapsed)
         wt, etap, tir = refract(wo, np.broadcast_to([0.0, 0.0, 1.0], (n, 3)), eta)
         reflect = (u[:, 0] < p) | tir
-        wi = np.where(reflect[:, None], wo * np.array([-1.0, -1.0, 1.0]), wt)
+        wi = where_rows(reflect, wo * np.array([-1.0, -1.0, 1.0]), wt)
         with np.errstate(divide="ignore", invalid="ignore"):
-            w_r = np.where(tir[:, None], 1.0, r / p[:, None])
+            w_r = where_rows(tir, 1.0, r / p[:, None])
             w_t = (1.0 - r) / (1.0 - p[:, None]) / (etap * etap)[:, None]
-        weight = np.where(reflect[:, None], w_r, w_t)
+        weight = where_rows(reflect, w_r, w_t)
         weight = np.where(np.isfinite(weight), weight, 0.0)
         eta_scale = np.where(reflect, 1.0, etap * etap)
         return BSDFSample(wi, weight, np.full(n, np.inf), np.ones(n, dtype=bool), eta_scale)
@@ -96,7 +96,7 @@ class Dielectric(BSDF):
         reflect = u[:, 0] < p
         wi_r = 2.0 * cos_om[:, None] * wm - wo
         wi_t, etap, tir = refract(wo, wm, eta)
-        wi = np.where(reflect[:, None], wi_r, wi_t)
+        wi = where_rows(reflect, wi_r, wi_t)
         cos_i = wi[:, 2]
         valid = np.where(reflect, wo[:, 2] * cos_i > 0, (~tir) & (wo[:, 2] * cos_i < 0))
         ratio = ggx_g2(wo, wi, self.alpha) / ggx_g1(wo, self.alpha)
@@ -114,7 +114,7 @@ class Dielectric(BSDF):
         valid &= np.isfinite(pdf) & (pdf > 0) & rows_finite(weight)
         eta_scale = np.where(reflect, 1.0, etap * etap)
         return BSDFSample(
-            wi, np.where(valid[:, None], weight, 0.0), np.where(valid, pdf, 0.0), np.zeros(n, dtype=bool), eta_scale
+            wi, where_rows(valid, weight, 0.0), np.where(valid, pdf, 0.0), np.zeros(n, dtype=bool), eta_scale
         )
 
     def _eval_rough(self, wo, wi, lam, hero, collapsed):
@@ -142,6 +142,6 @@ class Dielectric(BSDF):
             f_t = d * g * np.abs(cos_im * cos_om) / (np.abs(cos_i * cos_o) * denom) / (etap * etap)
             f_t = f_t[:, None] * (1.0 - r)
             pdf = np.where(reflect, pdf_wm / (4.0 * np.abs(cos_om)) * p, pdf_wm * np.abs(cos_im) / denom * (1.0 - p))
-        f = np.where(reflect[:, None], f_r, f_t)
+        f = where_rows(reflect, f_r, f_t)
         ok &= np.isfinite(pdf) & rows_finite(f)
-        return np.where(ok[:, None], f, 0.0), np.where(ok, pdf, 0.0)
+        return where_rows(ok, f, 0.0), np.where(ok, pdf, 0.0)

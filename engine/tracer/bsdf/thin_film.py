@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..sampling import where_rows
 from .base import BSDF, BSDFSample
 from .dielectric import choice_probability
 
@@ -30,8 +31,8 @@ class ThinFilm(BSDF):
         r = np.clip(self.reflectance(np.clip(np.abs(wo[:, 2]), 0.0, 1.0), lam), 0.0, 1.0)
         p = choice_probability(r, hero, collapsed)
         reflect = u[:, 0] < p
-        wi = np.where(reflect[:, None], wo * np.array([-1.0, -1.0, 1.0]), -wo)
+        wi = where_rows(reflect, wo * np.array([-1.0, -1.0, 1.0]), -wo)
         with np.errstate(divide="ignore", invalid="ignore"):
-            weight = np.where(reflect[:, None], r / p[:, None], (1.0 - r) / (1.0 - p[:, None]))
+            weight = where_rows(reflect, r / p[:, None], (1.0 - r) / (1.0 - p[:, None]))
         weight = np.where(np.isfinite(weight), weight, 0.0)
         return BSDFSample(wi, weight, np.full(n, np.inf), np.ones(n, dtype=bool), np.ones(n))

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import dot, uniform_triangle
+from ..sampling import dot, uniform_triangle, where_rows
 
 
 class MeshEmitters:
@@ -60,7 +60,7 @@ class MeshEmitters:
         ok = (cos_l > 0) & (dist > 0) & (self.area[rows] > 0)
         area = np.where(ok, self.area[rows], 1.0)
         pdf = np.where(ok, self.select[rows] / area * safe**2 / np.where(ok, cos_l, 1.0), 0.0)
-        li = np.where(ok[:, None], self._radiance_rows(rows, lam), 0.0)
+        li = where_rows(ok, self._radiance_rows(rows, lam), 0.0)
         return wi, dist, li, pdf
 
     def radiance(self, triangle, lam):
