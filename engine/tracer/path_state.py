@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .sampling import dot, norm, orthonormal_basis, row_max, where_rows
+from .sampling import along, dot, norm, orthonormal_basis, row_max, where_rows
 
 # Secondary rays start this far (relative to the largest coordinate of the hit
 # point) off the surface: ~30 float32 ulps, above Embree's float32 error.
@@ -35,7 +35,7 @@ class TriangleData:
     def surface(self, tri, u, v):
         """Hit point [n,3], unit geometric normal [n,3] and shading normal [n,3] (f64)."""
         rows = np.take(self._table, tri, axis=0)
-        p = rows[:, 0:3] + u[:, None] * rows[:, 3:6] + v[:, None] * rows[:, 6:9]
+        p = along(along(rows[:, 0:3], u, rows[:, 3:6]), v, rows[:, 6:9])
         ng = rows[:, 9:12]
         if self.corner_normals is None:
             return p, ng, ng
@@ -71,7 +71,7 @@ def offset_origin(p: np.ndarray, ng: np.ndarray, toward: np.ndarray, eps=None, c
     (``eps`` from ``offset_distance`` and ``cos_toward`` = toward . ng if known)."""
     eps = offset_distance(p) if eps is None else eps
     cos_toward = dot(toward, ng) if cos_toward is None else cos_toward
-    return p + np.where(cos_toward >= 0, eps, -eps)[:, None] * ng
+    return along(p, np.where(cos_toward >= 0, eps, -eps), ng)
 
 
 def shading_frame(n: np.ndarray):

@@ -148,8 +148,27 @@ def to_local(v: np.ndarray, s: np.ndarray, t: np.ndarray, n: np.ndarray) -> np.n
 
 
 def to_world(v: np.ndarray, s: np.ndarray, t: np.ndarray, n: np.ndarray) -> np.ndarray:
-    """Local vectors [N,3] in the frame (s, t, n) back to world space."""
-    return v[:, 0:1] * s + v[:, 1:2] * t + v[:, 2:3] * n
+    """Local vectors [N,3] in the frame (s, t, n) back to world space (column by
+    column: broadcasting [N,1] x [N,3] runs numpy's inner loop 3 elements at a time)."""
+    out = np.empty(np.broadcast_shapes(s.shape, v.shape))
+    a, b, c = v[:, 0], v[:, 1], v[:, 2]
+    for k in range(3):
+        out[:, k] = a * s[:, k] + b * t[:, k] + c * n[:, k]
+    return out
+
+
+def along(points: np.ndarray, distance: np.ndarray, direction: np.ndarray) -> np.ndarray:
+    """``points + distance[:, None] * direction`` [N,3], column by column (see ``to_world``)."""
+    out = np.empty(np.broadcast_shapes(np.shape(points), direction.shape))
+    for k in range(3):
+        out[:, k] = points[..., k] + distance * direction[:, k]
+    return out
+
+
+def dot_vector(v: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Dot products [N] of vectors [N,3] with one vector ``c`` [3] (no BLAS call: its
+    threads spin against ours on a busy machine)."""
+    return v[:, 0] * c[0] + v[:, 1] * c[1] + v[:, 2] * c[2]
 
 
 def norm(v: np.ndarray) -> np.ndarray:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import concentric_disk, dot
+from ..sampling import along, concentric_disk, dot, dot_vector
 
 
 class AreaLight:
@@ -40,32 +40,36 @@ class AreaLight:
             xy = concentric_disk(u[:, :2])
         else:
             xy = 2.0 * u[:, :2] - 1.0
-        q = self.center + (xy[:, 0:1] * self.half_u) * self.axis_u + (xy[:, 1:2] * self.half_v) * self.axis_v
-        wi = q - p
+        su, sv = xy[:, 0] * self.half_u, xy[:, 1] * self.half_v
+        wi = np.empty((len(p), 3))
+        for k in range(3):  # q - p, column by column
+            wi[:, k] = self.center[k] + su * self.axis_u[k] + sv * self.axis_v[k] - p[:, k]
         dist = np.sqrt(dot(wi, wi))
         safe = np.where(dist > 0, dist, 1.0)
-        wi = wi / safe[:, None]
-        cos_l = -(wi @ self.normal)
+        wi /= safe[:, None]
+        cos_l = -dot_vector(wi, self.normal)
         ok = (cos_l > 0) & (dist > 0)
         pdf = np.where(ok, safe**2 / (self.area * np.where(ok, cos_l, 1.0)), 0.0)
-        li = np.where(ok, self.radiance, 0.0)[:, None] * self.spectrum(lam)
+        li = self.spectrum(lam) * self.radiance
+        if not ok.all():
+            li[~ok] = 0.0
         return wi, dist, li, pdf
 
     def intersect(self, o, d):
         """Distance to the front face along rays (inf: miss or back face)."""
-        denom = d @ self.normal
+        denom = dot_vector(d, self.normal)
         front = denom < 0
         with np.errstate(divide="ignore", invalid="ignore"):
-            t = ((self.center - o) @ self.normal) / np.where(front, denom, -1.0)
-        q = o + t[:, None] * d - self.center
-        x = (q @ self.axis_u) / self.half_u
-        y = (q @ self.axis_v) / self.half_v
+            t = (self.center @ self.normal - dot_vector(o, self.normal)) / np.where(front, denom, -1.0)
+        q = along(o - self.center, t, d)
+        x = dot_vector(q, self.axis_u) / self.half_u
+        y = dot_vector(q, self.axis_v) / self.half_v
         inside = (x * x + y * y <= 1.0) if self.disk else ((np.abs(x) <= 1.0) & (np.abs(y) <= 1.0))
         return np.where(front & (t > 0) & inside, t, np.inf)
 
     def emitted(self, o, d, t, lam):
-        return np.full(len(o), self.radiance)[:, None] * self.spectrum(lam)
+        return self.spectrum(lam) * self.radiance
 
     def pdf(self, o, d, t):
-        cos_l = np.abs(d @ self.normal)
+        cos_l = np.abs(dot_vector(d, self.normal))
         return t * t / (self.area * np.maximum(cos_l, 1e-300))
