@@ -223,7 +223,8 @@ def document(results, tables, plots, rel):
         f"- Images {cfg['resolution']} x {cfg['resolution']} unless a scene says otherwise (the prism is "
         "smaller, to afford the samples its rainbow needs); Prism renders progressively in passes of "
         f"{cfg['pass_spp']} spp and is measured at {', '.join(map(str, cfg['checkpoints']))} spp (per scene below); "
-        f"{cfg['repeats']} repeats with different seeds, medians of time and error reported. "
+        f"{cfg['repeats']} repeats with different seeds, run round-robin over a scene's strategies (a change in the "
+        "machine's load falls on all of them), medians of time and error reported. "
         f"{cfg['threads']} threads unless the strategy says otherwise.",
         "- Time = from the scene in memory to the image: Prism's `Renderer(...)` construction (scene analysis, "
         "BVH) plus its passes; Mitsuba's `load_dict` plus `render`; Cycles' `bpy.ops.render.render` (scene "

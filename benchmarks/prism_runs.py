@@ -80,7 +80,7 @@ class InlineExecutor:
             future.set_exception(exc)
         return future
 
-    def shutdown(self, wait=True):
+    def shutdown(self, *args, **kwargs):
         pass
 
 

@@ -125,24 +125,27 @@ def run_scene(name, cfg, results, images):
         ref_over = _reference_overrides(overrides)
         ref_name = json.dumps(ref_over, sort_keys=True)
         if ref_name not in refs:
-            refs[ref_name] = references.prism_reference(name, scene, ref_over, cfg["ref_spp"], cfg["ref_max_seconds"],
-                                                        THREADS, log=log)
-            ref = refs[ref_name]
+            refs[ref_name] = ref = references.prism_reference(name, scene, ref_over, cfg["ref_spp"],
+                                                              cfg["ref_max_seconds"], THREADS, log=log)
             entry.setdefault("references", {})[ref_over.get("wavelength_mode", "cie")] = dict(
                 spp=ref["spp"], seconds=ref["seconds"], cached=ref["cached"],
                 noise_floor=metrics.relmse_noise_floor(ref["image"], ref["variance"]),
                 negative_fraction=float((np.asarray(ref["image"]) < 0).any(axis=2).mean()))
             images[(name, ref_over.get("wavelength_mode", "cie"))] = ref["image"]
-        reference = refs[ref_name]
-        runs, strategy = [], ""
-        for r in range(cfg["repeats"]):
+    # repeats outermost: a change in the machine's load falls on every strategy alike
+    runs = {label: [] for label, _ in EXPERIMENTS[name]}
+    strategies = {}
+    for r in range(cfg["repeats"]):
+        for label, overrides in EXPERIMENTS[name]:
             threads = overrides.get("threads", THREADS)
             settings = settings_for({k: v for k, v in overrides.items() if k != "threads"}, 1, seed=r, threads=threads)
             points, stats = progressive(scene, settings, cfg["checkpoints"])
-            runs.append(points)
-            strategy = stats["strategy"]
-        curve = curve_stats(runs, reference)
-        entry["strategies"].append(dict(label=label, overrides=overrides, strategy=strategy, curve=curve,
+            runs[label].append(points)
+            strategies[label] = stats["strategy"]
+    for label, overrides in EXPERIMENTS[name]:
+        ref_over = _reference_overrides(overrides)
+        curve = curve_stats(runs[label], refs[json.dumps(ref_over, sort_keys=True)])
+        entry["strategies"].append(dict(label=label, overrides=overrides, strategy=strategies[label], curve=curve,
                                         reference=ref_over.get("wavelength_mode", "cie")))
         last = curve[-1]
         log(f"  {name} / {label}: {last['spp']} spp {last['seconds']:.2f} s relMSE {last['relmse']:.3g} "
@@ -286,8 +289,11 @@ def main(argv=None):
     if PROFILE_SCENE in results["scenes"]:
         log("profiling a pass")
         res = scene_config(cfg, PROFILE_SCENE)["resolution"]
-        results["profile"] = dict(scene=PROFILE_SCENE, resolution=res,
-                                  **profile_pass(scenes.build(PROFILE_SCENE, (res, res)), {}))
+        try:
+            results["profile"] = dict(scene=PROFILE_SCENE, resolution=res,
+                                      **profile_pass(scenes.build(PROFILE_SCENE, (res, res)), {}))
+        except Exception as exc:
+            results["errors"].append(f"profile: {type(exc).__name__}: {exc}")
     if not args.no_peers:
         for name in [n for n in args.scenes if n in results["scenes"]]:
             for peer in scenes.SCENES[name].peers:
