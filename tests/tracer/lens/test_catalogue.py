@@ -31,7 +31,7 @@ def test_bundled_lenses_are_id_name_path():
 def test_readouts_for_the_panel():
     out = lens_readouts(LENS_DIRECTORY / "double_gauss_50mm.lens", fstop=4.0, focus_distance_m=2.0)
     assert out["Lens"] == "Double Gauss 50mm f/2"
-    assert out["Focal length"] == "50.34 mm"
+    assert out["Focal length"] == "50.36 mm"
     assert out["f-number"].startswith("f/4.06")  # the stop scaled from the design's f/2
     assert out["Film at focus"].startswith("37.4")
     assert out["Field of view"].startswith("39.")
