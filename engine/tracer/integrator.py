@@ -56,35 +56,34 @@ class Integrator:
         self.shadows = ShadowTester(accel, triangles, bsdfs, self.film_material)
 
     # -- helpers over material groups ------------------------------------------------
-    def _groups(self, mat):
-        for m in np.unique(mat):
-            yield int(m), np.flatnonzero(mat == m)
+    def _by_material(self, mat, call, inputs, n_outputs):
+        """Run ``call(m, *inputs_of_m)`` per material ``m`` present in ``mat`` [n] and
+        reassemble its ``n_outputs`` row arrays in row order. One stable argsort per call:
+        gathers and the final un-permutation are ``np.take`` (row fancy indexing of 2-D
+        arrays is several times slower), rows keep their order within a material."""
+        if len(mat) == 0 or mat.min() == mat.max():  # one material: no gather/scatter
+            return call(int(mat[0]) if len(mat) else 0, *inputs)
+        order = np.argsort(mat, kind="stable")
+        sorted_mat = np.take(mat, order)
+        cuts = np.flatnonzero(sorted_mat[1:] != sorted_mat[:-1]) + 1
+        parts = []
+        for a, b in zip(np.concatenate([[0], cuts]), np.concatenate([cuts, [len(mat)]])):
+            rows = order[a:b]
+            parts.append(call(int(sorted_mat[a]), *(np.take(x, rows, axis=0) for x in inputs)))
+        inverse = np.empty_like(order)
+        inverse[order] = np.arange(len(order))
+        return tuple(np.take(np.concatenate([part[j] for part in parts]), inverse, axis=0)
+                     for j in range(n_outputs))
 
     def _eval(self, mat, wo, wi, lam, hero, collapsed):
-        if len(mat) and mat.min() == mat.max():  # one material: no gather/scatter
-            return self.bsdfs[int(mat[0])].eval(wo, wi, lam, hero, collapsed)
-        f = np.zeros(lam.shape)
-        pdf = np.zeros(len(mat))
-        for m, rows in self._groups(mat):
-            fm, pm = self.bsdfs[m].eval(wo[rows], wi[rows], lam[rows], hero[rows], collapsed[rows])
-            f[rows], pdf[rows] = fm, pm
-        return f, pdf
+        return self._by_material(mat, lambda m, *a: self.bsdfs[m].eval(*a), (wo, wi, lam, hero, collapsed), 2)
 
     def _sample(self, mat, wo, lam, u, hero, collapsed):
-        if len(mat) and mat.min() == mat.max():
-            s = self.bsdfs[int(mat[0])].sample(wo, lam, u, hero, collapsed)
+        def call(m, *a):
+            s = self.bsdfs[m].sample(*a)
             return s.wi, s.weight, s.pdf, s.delta, s.eta_scale
-        n = len(mat)
-        wi = np.zeros((n, 3))
-        weight = np.zeros(lam.shape)
-        pdf = np.zeros(n)
-        delta = np.zeros(n, dtype=bool)
-        eta_scale = np.ones(n)
-        for m, rows in self._groups(mat):
-            s = self.bsdfs[m].sample(wo[rows], lam[rows], u[rows], hero[rows], collapsed[rows])
-            wi[rows], weight[rows], pdf[rows], delta[rows], eta_scale[rows] = (
-                s.wi, s.weight, s.pdf, s.delta, s.eta_scale)
-        return wi, weight, pdf, delta, eta_scale
+
+        return self._by_material(mat, call, (wo, lam, u, hero, collapsed), 5)
 
     # -- camera ----------------------------------------------------------------------
     def camera_rays(self, pixel_xy, lens_uv, lam, hero):
