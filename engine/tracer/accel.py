@@ -124,8 +124,11 @@ class Accel:
 
         self._map(work, m)
         hit = prim >= 0
-        prim_out = np.where(hit, self.kept_triangles[np.where(hit, prim, 0)], -1)
-        tf = np.where(hit, tf, np.inf)
+        if self.dropped_triangles:
+            prim_out = np.where(hit, self.kept_triangles[np.where(hit, prim, 0)], -1)
+        else:  # Embree's ids are ours
+            prim_out = np.where(hit, prim, -1)
+        tf[~hit] = np.inf
         if idx is None:
             return prim_out, tf, uu, vv
         tri[:] = REJECTED

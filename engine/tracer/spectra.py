@@ -37,35 +37,28 @@ class PathWavelengths(np.ndarray):
         self._cache = None
         self._full = None
 
+    def _linked(self, out, linked, rows):
+        """``out`` keeps the link to the chunk's cache when it holds whole rows."""
+        if self._rows is None or not linked or out.ndim != 2:
+            return out.view(np.ndarray)
+        out._rows, out._cache, out._full = rows(), self._cache, self._full
+        return out
+
     def take(self, indices, axis=None, out=None, mode="raise"):
-        out_arr = super().take(indices, axis=axis, out=out, mode=mode)
-        if self._rows is not None and axis == 0 and out is None and np.ndim(indices) == 1:
-            out_arr._rows = self._rows.take(indices)
-            out_arr._cache = self._cache
-            out_arr._full = self._full
-            return out_arr
-        return out_arr.view(np.ndarray)
+        result = super().take(indices, axis=axis, out=out, mode=mode)
+        linked = axis == 0 and out is None and np.ndim(indices) == 1
+        return self._linked(result, linked, lambda: self._rows.take(indices))
 
     def compress(self, condition, axis=None, out=None):
-        out_arr = super().compress(condition, axis=axis, out=out)
-        if self._rows is not None and axis == 0 and out is None:
-            out_arr._rows = self._rows.compress(condition)
-            out_arr._cache = self._cache
-            out_arr._full = self._full
-            return out_arr
-        return out_arr.view(np.ndarray)
+        result = super().compress(condition, axis=axis, out=out)
+        return self._linked(result, axis == 0 and out is None, lambda: self._rows.compress(condition))
 
     def __getitem__(self, key):
-        out = super().__getitem__(key)
-        if not isinstance(out, np.ndarray):
-            return out
-        rows_key = isinstance(key, slice) or (isinstance(key, np.ndarray) and key.ndim == 1)
-        if self._rows is not None and rows_key and out.ndim == 2:
-            out._rows = self._rows[key]
-            out._cache = self._cache
-            out._full = self._full
-            return out
-        return out.view(np.ndarray)
+        result = super().__getitem__(key)
+        if not isinstance(result, np.ndarray):
+            return result
+        linked = isinstance(key, slice) or (isinstance(key, np.ndarray) and key.ndim == 1)
+        return self._linked(result, linked, lambda: self._rows[key])
 
 
 def cached(key, fn, lam) -> np.ndarray:

@@ -20,6 +20,7 @@ from ..sampling import dot, norm, row_sum, rows_finite, where_rows
 
 from .base import BSDF, BSDFSample, hero_column
 from .microfacet import ggx_d, ggx_g1, ggx_g2, sample_visible_normal, visible_normal_pdf
+from .microfacet import reflect as mirror
 from .optics import fresnel_dielectric, refract
 
 SMOOTH_ALPHA = 1e-3
@@ -94,7 +95,7 @@ class Dielectric(BSDF):
         r = self.reflectance(cos_om, eta, lam)
         p = choice_probability(r, hero, collapsed)
         reflect = u[:, 0] < p
-        wi_r = 2.0 * cos_om[:, None] * wm - wo
+        wi_r = mirror(wo, wm)
         wi_t, etap, tir = refract(wo, wm, eta)
         wi = where_rows(reflect, wi_r, wi_t)
         cos_i = wi[:, 2]
