@@ -134,9 +134,11 @@ class Integrator:
             if depth == self.max_depth + 1:
                 break
             keep = tri >= 0
-            if not keep.all():
-                idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta = compact(
-                    keep, idx, o, d, t, tri, bu, bv, beta, lam, hero, collapsed, eta_scale, mis_o, prev_pdf, prev_delta)
+            if not keep.all():  # o and t are not used below; the MIS data only through films
+                idx, d, tri, bu, bv, beta, lam, hero, collapsed, eta_scale = compact(
+                    keep, idx, d, tri, bu, bv, beta, lam, hero, collapsed, eta_scale)
+                if self.shadows.see_through:
+                    mis_o, prev_pdf, prev_delta = compact(keep, mis_o, prev_pdf, prev_delta)
             if len(idx) == 0:
                 break
             p, ng, ns = self.tris.surface(tri, bu, bv)
