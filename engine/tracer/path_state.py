@@ -40,12 +40,17 @@ class TriangleData:
         if self.corner_normals is None:
             return p, ng, ng
         cn = np.take(self.corner_normals, tri, axis=0).astype(np.float64)
-        ns = (1.0 - u - v)[:, None] * cn[:, 0] + u[:, None] * cn[:, 1] + v[:, None] * cn[:, 2]
+        w = 1.0 - u - v
+        ns = np.empty_like(p)
+        for k in range(3):  # column by column: see sampling.to_world
+            ns[:, k] = w * cn[:, 0, k] + u * cn[:, 1, k] + v * cn[:, 2, k]
         length = norm(ns)
         good = (length > 1e-12) & np.isfinite(length)
-        ns = where_rows(good, ns / np.where(good, length, 1.0)[:, None], ng)
-        ns *= np.where(dot(ns, ng) < 0, -1.0, 1.0)[:, None]  # same side as the face
-        return p, ng, ns
+        scale = np.where(good, length, 1.0)
+        scale = np.where(dot(ns, ng) < 0, -scale, scale)  # same side as the face
+        for k in range(3):
+            ns[:, k] /= scale
+        return p, ng, where_rows(good, ns, ng)
 
 
 def compact(keep: np.ndarray, *arrays: np.ndarray) -> list:
