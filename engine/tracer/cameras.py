@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import PrismInputError
-from .sampling import concentric_disk, norm
+from .sampling import concentric_disk, norm, transform_rows
 
 
 class PinholeCamera:
@@ -47,9 +47,9 @@ class PinholeCamera:
         return np.column_stack([x, y, -np.ones_like(x)])
 
     def _to_world(self, origins_cam, directions_cam):
-        d = directions_cam @ self._rotation.T
+        d = transform_rows(directions_cam, self._rotation)
         d /= norm(d)[:, None]
-        o = origins_cam @ self._rotation.T + self._origin
+        o = transform_rows(origins_cam, self._rotation) + self._origin
         return o, d
 
     def generate_rays(self, pixel_xy, lens_uv, wavelength_nm):

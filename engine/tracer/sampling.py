@@ -170,9 +170,19 @@ def along(points: np.ndarray, distance: np.ndarray, direction: np.ndarray) -> np
     return out
 
 
+def transform_rows(v: np.ndarray, matrix: np.ndarray) -> np.ndarray:
+    """``v @ matrix.T`` for vectors [N,3] and a 3x3 ``matrix``, without BLAS (see
+    ``dot_vector``)."""
+    out = np.empty((len(v), 3))
+    for i in range(3):
+        out[:, i] = v[:, 0] * matrix[i, 0] + v[:, 1] * matrix[i, 1] + v[:, 2] * matrix[i, 2]
+    return out
+
+
 def dot_vector(v: np.ndarray, c: np.ndarray) -> np.ndarray:
-    """Dot products [N] of vectors [N,3] with one vector ``c`` [3] (no BLAS call: its
-    threads spin against ours on a busy machine)."""
+    """Dot products [N] of vectors [N,3] with one vector ``c`` [3]. No BLAS in the
+    render loop: after each call OpenBLAS's helper threads spin for a while, which
+    cost ~50 % extra CPU time (a whole second core) in a one-thread render."""
     return v[:, 0] * c[0] + v[:, 1] * c[1] + v[:, 2] * c[2]
 
 

@@ -148,7 +148,10 @@ class WavelengthMode:
         from . import cie
 
         if self.mode == "cie":
-            return cie.xyz_to_linear_rec709(cie.spectral_samples_to_xyz(radiance, wavelength_nm, pdf))
+            from .sampling import transform_rows
+
+            # cie.xyz_to_linear_rec709 without its BLAS matmul (see sampling.dot_vector)
+            return transform_rows(cie.spectral_samples_to_xyz(radiance, wavelength_nm, pdf), cie.XYZ_TO_LINEAR_REC709)
         return cie.gaussian_channel_samples_to_rgb(radiance, wavelength_nm, pdf, self.channels)
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import dot, orthonormal_basis, to_world, uniform_cone
+from ..sampling import dot, dot_vector, orthonormal_basis, to_world, uniform_cone
 
 
 def spot_falloff(cos_angle, cos_half_size, blend):
@@ -49,7 +49,7 @@ class PointLight:
             return np.ones(len(points))
         to_point = points - self.position
         dist = np.linalg.norm(to_point, axis=1)
-        cos_a = (to_point @ self.axis) / np.where(dist > 0, dist, 1.0)
+        cos_a = dot_vector(to_point, self.axis) / np.where(dist > 0, dist, 1.0)
         return spot_falloff(cos_a, self.cos_half_size, self.blend)
 
     def sample(self, p, u, lam):

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sampling import orthonormal_basis, to_world, uniform_cone
+from ..sampling import dot_vector, orthonormal_basis, to_world, uniform_cone
 
 
 class SunLight:
@@ -41,9 +41,9 @@ class SunLight:
 
     def escaped(self, d, lam):
         """Radiance [n,K] along escaping rays ``d`` (0 outside the sun's disk)."""
-        inside = (d @ self.to_sun) >= self.cos_max
+        inside = dot_vector(d, self.to_sun) >= self.cos_max
         return np.where(inside, self.radiance, 0.0)[:, None] * self.spectrum(lam)
 
     def pdf_escaped(self, d):
-        inside = (d @ self.to_sun) >= self.cos_max
+        inside = dot_vector(d, self.to_sun) >= self.cos_max
         return np.where(inside, 1.0 / (2.0 * np.pi * self.one_minus_cos), 0.0)
