@@ -82,9 +82,14 @@ def plot_references(images, path):
     plt.close(fig)
 
 
+def _spread(point):
+    times = point.get("seconds_all")
+    return f"[{min(times):.2f}-{max(times):.2f}]" if times else ""
+
+
 def scene_table(name, entry):
     base = entry["strategies"][0]["curve"][-1]
-    rows = ["| strategy | spp | time (s) | relMSE | FLIP | efficiency vs first row | rays/sample |",
+    rows = ["| strategy | spp | time (s), median [min-max] | relMSE | FLIP | efficiency vs first row | rays/sample |",
             "|---|---:|---:|---:|---:|---:|---:|"]
     for s in entry["strategies"]:
         p = s["curve"][-1]
@@ -93,12 +98,12 @@ def scene_table(name, entry):
         else:
             eff = float("nan")  # different reference image: compare by time-to-error instead
         rays = p.get("rays", float("nan")) / (p["spp"] * entry["_pixels"]) if entry.get("_pixels") else float("nan")
-        rows.append(f"| {s['label']} | {p['spp']} | {p['seconds']:.2f} | {_fmt(p['relmse'])} | {p['flip']:.3f} | "
+        rows.append(f"| {s['label']} | {p['spp']} | {p['seconds']:.2f} {_spread(p)} | {_fmt(p['relmse'])} | {p['flip']:.3f} | "
                     f"{_fmt(eff)} | {_fmt(rays)} |")
     for peer in entry.get("peers", []):
         p = peer["curve"][-1]
         rows.append(f"| {peer['info']['renderer']} ({peer['info'].get('variant', 'CPU')}) | {p['spp']} | "
-                    f"{p['seconds']:.2f} | {_fmt(p['relmse'])} | {p['flip']:.3f} | (own reference) | |")
+                    f"{p['seconds']:.2f} {_spread(p)} | {_fmt(p['relmse'])} | {p['flip']:.3f} | (own reference) | |")
     return "\n".join(rows)
 
 

@@ -32,7 +32,8 @@ FULL = dict(resolution=64, checkpoints=[4, 8, 16, 32], repeats=3, ref_spp=512, r
             peer_ref_spp={"mitsuba": 8192, "cycles": 1024}, ceiling_passes=3,
             per_scene={"prism": dict(resolution=32, checkpoints=[16, 32, 64, 128, 256, 512], ref_spp=4096,
                                      ref_max_seconds=150.0),
-                       "mesh_1m": dict(peer_spp={"mitsuba": [4, 8, 16, 32, 64, 128]}, peer_ref_spp={"mitsuba": 2048})})
+                       "mesh_1m": dict(peer_spp={"mitsuba": [4, 8, 16, 32, 64, 128, 256, 512]},
+                                       peer_ref_spp={"mitsuba": 2048})})
 QUICK = dict(resolution=32, checkpoints=[2, 4, 8, 16], repeats=2, ref_spp=256, ref_max_seconds=30.0,
              peer_spp={"mitsuba": [2, 4, 8, 16, 32, 64], "cycles": [2, 4, 8, 16, 32, 64]},
              peer_ref_spp={"mitsuba": 2048, "cycles": 512}, ceiling_passes=2,
@@ -108,6 +109,7 @@ def curve_stats(runs, reference):
         flips = [metrics.flip(p["image"], reference["image"]) for p in points]
         out.append(dict(spp=points[0]["spp"], seconds=float(np.median([p["seconds"] for p in points])),
                         setup=float(np.median([p["setup"] for p in points])),
+                        seconds_all=[float(p["seconds"]) for p in points],
                         relmse=float(np.median(errs)), flip=float(np.median(flips)),
                         relmse_all=[float(e) for e in errs],
                         rays=float(np.median([p["rays_cast"] for p in points]))))
@@ -195,6 +197,42 @@ def measure_ceiling(name, cfg):
                 embree_rays_per_second=recorder.ray_count / embree_seconds)
 
 
+def measure_thread_scaling(name, cfg):
+    """Pass time with 1 and 2 threads against embreex replaying the same rays with 1
+    and 2 threads, interleaved: how much of Embree's scaling the renderer keeps."""
+    cfg = scene_config(cfg, name)
+    scene = scenes.build(name, (cfg["resolution"], cfg["resolution"]))
+    from engine.tracer.renderer import Renderer
+
+    renderers = {t: Renderer(scene, settings_for({}, samples=10**6, seed=11, threads=t)) for t in (1, 2)}
+    try:
+        recorder = ceiling.RayRecorder(ceiling.find_accel(renderers[2]))
+        for r in renderers.values():
+            r.render_pass()  # warm-up
+        recorder.active = True
+        renderers[2].render_pass()
+        recorder.active = False
+        recorder.uninstall()
+        replayers = {t: ceiling.Replayer(scene.vertices, scene.triangles, recorder.batches, t) for t in (1, 2)}
+        times = {("prism", t): [] for t in (1, 2)}
+        times.update({("embree", t): [] for t in (1, 2)})
+        for _ in range(cfg["ceiling_passes"]):
+            for t in (1, 2):
+                t0 = time.perf_counter()
+                renderers[t].render_pass()
+                times[("prism", t)].append(time.perf_counter() - t0)
+                times[("embree", t)].append(replayers[t].seconds())
+        for rep in replayers.values():
+            rep.close()
+    finally:
+        for r in renderers.values():
+            r.close()
+    med = {k: float(np.median(v)) for k, v in times.items()}
+    return dict(scene=name, prism_1=med[("prism", 1)], prism_2=med[("prism", 2)], embree_1=med[("embree", 1)],
+                embree_2=med[("embree", 2)], prism_speedup=med[("prism", 1)] / med[("prism", 2)],
+                embree_speedup=med[("embree", 1)] / med[("embree", 2)])
+
+
 def run_peer(peer, name, cfg, prism_entry):
     """Run a peer in its own process; return its curve against its own reference."""
     cfg = scene_config(cfg, name)
@@ -226,7 +264,8 @@ def run_peer(peer, name, cfg, prism_entry):
         flips = [metrics.flip(data["images"][r, k], ref["image"]) for r in range(len(data["images"]))]
         curve.append(dict(spp=int(spp), seconds=float(np.median(data["seconds"][:, k])),
                           relmse=float(np.median(errs)), flip=float(np.median(flips)),
-                          relmse_all=[float(e) for e in errs]))
+                          relmse_all=[float(e) for e in errs],
+                          seconds_all=[float(t) for t in data["seconds"][:, k]]))
     prism_ref = prism_entry["_ref_image"]
     ratio = ref["image"] / np.maximum(prism_ref, 1e-6)
     lit = prism_ref > 0.05 * prism_ref.mean()
@@ -286,6 +325,13 @@ def main(argv=None):
                 f"{c['ceiling_samples_per_second']:.0f} samples/s)")
         except Exception as exc:
             results["errors"].append(f"ceiling {name}: {type(exc).__name__}: {exc}")
+    if CEILING_SCENE in results["scenes"]:
+        try:
+            results["thread_scaling"] = ts = measure_thread_scaling(CEILING_SCENE, cfg)
+            log(f"threads 1 -> 2 on {CEILING_SCENE}: Prism x{ts['prism_speedup']:.2f}, "
+                f"embreex x{ts['embree_speedup']:.2f}")
+        except Exception as exc:
+            results["errors"].append(f"thread scaling: {type(exc).__name__}: {exc}")
     if PROFILE_SCENE in results["scenes"]:
         log("profiling a pass")
         res = scene_config(cfg, PROFILE_SCENE)["resolution"]
