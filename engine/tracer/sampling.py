@@ -21,8 +21,8 @@ def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Row-wise dot products [N] of [N,D] arrays: one product, then its columns added
     (~1.6x faster than einsum, ~5x faster than (a*b).sum(1))."""
     m = a * b
-    out = m[..., 0].copy()
-    for j in range(1, m.shape[-1]):
+    out = m[..., 0] + m[..., 1] if m.shape[-1] > 1 else m[..., 0].copy()
+    for j in range(2, m.shape[-1]):
         out += m[..., j]
     return out
 
