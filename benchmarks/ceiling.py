@@ -74,7 +74,7 @@ def _clean(batch):
 
 class Replayer:
     """Bare embreex scene of the same triangles, ready to cast recorded batches
-    with ``threads`` threads (pieces of at least 16,384 rays, as the renderer's Accel)."""
+    with ``threads`` threads (pieces of about 16,384 rays, as the renderer's Accel)."""
 
     def __init__(self, vertices, triangles, batches, threads: int):
         from embreex import rtcore_scene
@@ -95,21 +95,27 @@ class Replayer:
             self.scene.run(o, d, dists=tmax, query="OCCLUDED")
 
     def cast_all(self):
+        """Cast every batch; with threads, all pieces of all batches go to the pool at
+        once (the renderer also runs its chunks concurrently), so no thread idles
+        while another finishes a batch."""
+        if self.pool is None:
+            for batch in self.batches:
+                if len(batch[1]):
+                    self._cast(*batch)
+            return
+        futures = []
         for kind, o, d, tmax in self.batches:
             n = len(o)
             if n == 0:
                 continue
-            parts = min(self.threads, max(1, n // 16384))
-            if self.pool is None or parts == 1:
-                self._cast(kind, o, d, tmax)
-                continue
+            parts = max(1, n // 16384)
             bounds = np.linspace(0, n, parts + 1).astype(int)
-            futures = [
+            futures += [
                 self.pool.submit(self._cast, kind, o[a:b], d[a:b], None if tmax is None else tmax[a:b])
                 for a, b in zip(bounds[:-1], bounds[1:])
             ]
-            for f in futures:
-                f.result()
+        for f in futures:
+            f.result()
 
     def seconds(self) -> float:
         """Wall time of one replay of every batch."""
