@@ -21,8 +21,14 @@ CACHE_DIR = BENCH_DIR / "cache"
 REPO_ROOT = BENCH_DIR.parent
 
 
+_FINGERPRINT: list[str] = []
+
+
 def code_fingerprint() -> str:
-    """Hash of engine/tracer/**.py, lenses/ and the scene builders."""
+    """Hash of engine/tracer/**.py, lenses/ and the scene builders, taken once per
+    process (the code a run imported), so one run's references share one key."""
+    if _FINGERPRINT:
+        return _FINGERPRINT[0]
     digest = hashlib.sha256()
     files = sorted((REPO_ROOT / "engine" / "tracer").rglob("*.py"))
     files += sorted((REPO_ROOT / "lenses").glob("*"))
@@ -31,7 +37,8 @@ def code_fingerprint() -> str:
         if path.is_file():
             digest.update(str(path.relative_to(REPO_ROOT)).encode())
             digest.update(path.read_bytes())
-    return digest.hexdigest()[:16]
+    _FINGERPRINT.append(digest.hexdigest()[:16])
+    return _FINGERPRINT[0]
 
 
 def scene_fingerprint() -> str:

@@ -306,6 +306,7 @@ def main(argv=None):
                                 load_start=list(os.getloadavg())),
                    started=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), scenes={}, errors=[])
     images = {}
+    references.code_fingerprint()  # the tracer code this run imports
     log("warming up (imports, spectral tables)")
     _warm_up(cfg)
     for name in args.scenes:
