@@ -251,7 +251,9 @@ def document(results, tables, plots, rel):
         f"{cfg['pass_spp']} spp and is measured at {', '.join(map(str, cfg['checkpoints']))} spp (per scene below); "
         f"{cfg['repeats']} repeats with different seeds, run round-robin over a scene's strategies (a change in the "
         "machine's load falls on all of them), medians of time and error reported. "
-        f"{cfg['threads']} threads unless the strategy says otherwise.",
+        f"{cfg['threads']} threads unless the strategy says otherwise. On a shared 2-core machine a strategy's "
+        "time moves between runs (the tables show each point's min-max over the repeats): read efficiency "
+        "ratios near 1 as ties. Errors are deterministic for a seed, so relMSE and FLIP repeat exactly.",
         "- Time = from the scene in memory to the image: Prism's `Renderer(...)` construction (scene analysis, "
         "BVH) plus its passes; Mitsuba's `load_dict` plus `render`; Cycles' `bpy.ops.render.render` (scene "
         "sync, BVH, render). Each process is warmed up once first (imports, JIT kernels), untimed.",
