@@ -22,9 +22,9 @@ OBSERVATIONS = [
     (["sampling.py", "(along)"],
      "Vectors are [N, 3] row-major and processed column by column (`along`, `to_world`, `offset_origin`): "
      "each column is a strided view. A structure-of-arrays layout ([3, N]) makes those passes contiguous."),
-    (["c_einsum>"],
-     "Row-wise dot products go through `np.einsum` (one call per dot, hundreds per pass); with a [3, N] "
-     "layout a dot is three contiguous multiply-adds."),
+    (["sampling.py", "(dot)"],
+     "Row-wise dot products (`sampling.dot`, called hundreds of times a pass) each read two strided [N, 3] "
+     "arrays; with a [3, N] layout a dot is three contiguous multiply-adds."),
     (["cie.py", "lerp_uniform_table"],
      "The colour-matching functions are already looked up by direct index (no binary search); what is left "
      "is their evaluation for every wavelength of every path, which the estimator needs."),
