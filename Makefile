@@ -29,7 +29,11 @@ extension: $(STAMP)
 	$(PY) tools/build_extension.py
 
 # Speed-against-error benchmarks; writes benchmarks/results/ and docs/performance.md.
+# Mitsuba's fast variant needs libLLVM >= 19 (Debian: libllvm19); without it the slower scalar one runs.
 bench: $(STAMP)
+	@dpkg-query -W -f='$${Status}' libllvm19 2>/dev/null | grep -q "install ok installed" || \
+	  (test "$$(id -u)" = 0 && apt-get install -y -qq libllvm19) || \
+	  echo "note: install libllvm19 for Mitsuba's llvm variant (apt-get install libllvm19)"
 	$(PY) -m pip install --quiet -r benchmarks/requirements.txt
 	$(PY) -m benchmarks.run
 
