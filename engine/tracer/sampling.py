@@ -20,10 +20,9 @@ _R1 = 0.61803398874989484820  # golden ratio conjugate
 def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Row-wise dot products [N] of [N,D] arrays: one product, then its columns added
     (~1.6x faster than einsum, ~5x faster than (a*b).sum(1))."""
-    m = a * b
-    out = m[..., 0] + m[..., 1] if m.shape[-1] > 1 else m[..., 0].copy()
-    for j in range(2, m.shape[-1]):
-        out += m[..., j]
+    out = a[..., 0] * b[..., 0]  # no [N,D] temporary; same sum order as (a*b) column adds
+    for j in range(1, np.shape(a)[-1]):
+        out += a[..., j] * b[..., j]
     return out
 
 
@@ -157,16 +156,24 @@ def to_world(v: np.ndarray, s: np.ndarray, t: np.ndarray, n: np.ndarray) -> np.n
     column: broadcasting [N,1] x [N,3] runs numpy's inner loop 3 elements at a time)."""
     out = np.empty(np.broadcast_shapes(s.shape, v.shape))
     a, b, c = v[:, 0], v[:, 1], v[:, 2]
-    for k in range(3):
-        out[:, k] = a * s[:, k] + b * t[:, k] + c * n[:, k]
+    tmp = np.empty(len(out))
+    for k in range(3):  # into preallocated buffers: temporaries cost as much as the maths
+        col = out[:, k]
+        np.multiply(a, s[:, k], out=tmp)
+        np.multiply(b, t[:, k], out=col)
+        tmp += col
+        np.multiply(c, n[:, k], out=col)
+        np.add(tmp, col, out=col)
     return out
 
 
 def along(points: np.ndarray, distance: np.ndarray, direction: np.ndarray) -> np.ndarray:
     """``points + distance[:, None] * direction`` [N,3], column by column (see ``to_world``)."""
     out = np.empty(np.broadcast_shapes(np.shape(points), direction.shape))
+    tmp = np.empty(len(out))
     for k in range(3):
-        out[:, k] = points[..., k] + distance * direction[:, k]
+        np.multiply(distance, direction[:, k], out=tmp)
+        np.add(points[..., k], tmp, out=out[:, k])
     return out
 
 
