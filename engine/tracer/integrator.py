@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from .accel import REJECTED
+from .bsdf.diffuse import Diffuse, DiffuseSet
 from .path_state import (add_rows, collapse_to_hero, compact, offset_distance, offset_origin, roll_columns,
                          shading_frame, unroll_columns)
 from .sampling import dot, power_heuristic, row_max, rows_finite, to_local, to_world, where_rows
@@ -54,36 +55,52 @@ class Integrator:
         self.disperses = np.array([b is not None and b.disperses for b in bsdfs] + [False], dtype=bool)
         self.film_material = np.array([b is not None and b.kind == "thin_film" for b in bsdfs] + [False], dtype=bool)
         self.shadows = ShadowTester(accel, triangles, bsdfs, self.film_material)
+        # All plain diffuse materials form one shading group (one call, see DiffuseSet).
+        self.group = np.arange(len(bsdfs) + 1)
+        diffuse = {i: b for i, b in enumerate(bsdfs) if type(b) is Diffuse}
+        self.diffuse_set = DiffuseSet(diffuse, len(bsdfs) + 1) if len(diffuse) > 1 else None
+        self.diffuse_group = min(diffuse) if self.diffuse_set is not None else -1
+        self.group[list(diffuse)] = self.diffuse_group
 
     # -- helpers over material groups ------------------------------------------------
-    def _by_material(self, mat, call, inputs, n_outputs):
-        """Run ``call(m, *inputs_of_m)`` per material ``m`` present in ``mat`` [n] and
-        reassemble its ``n_outputs`` row arrays in row order. One stable argsort per call:
-        gathers and the final un-permutation are ``np.take`` (row fancy indexing of 2-D
-        arrays is several times slower), rows keep their order within a material."""
-        if len(mat) == 0 or mat.min() == mat.max():  # one material: no gather/scatter
-            return call(int(mat[0]) if len(mat) else 0, *inputs)
-        order = np.argsort(mat, kind="stable")
-        sorted_mat = np.take(mat, order)
-        cuts = np.flatnonzero(sorted_mat[1:] != sorted_mat[:-1]) + 1
+    def _by_material(self, mat, method, inputs, n_outputs, outputs=None):
+        """Run BSDF ``method`` per shading group (a material, or all diffuse materials)
+        present in ``mat`` [n] and reassemble its ``n_outputs`` row arrays in row order
+        (``outputs(result)`` -> tuple). One stable argsort per call: gathers and the final
+        un-permutation are ``np.take`` (row fancy indexing of 2-D arrays is several times
+        slower), rows keep their order within a group."""
+        outputs = outputs or (lambda r: r)
+        if len(mat) == 0:
+            return outputs(getattr(self.bsdfs[0], method)(*inputs))
+        key = self.group[mat] if self.diffuse_set is not None else mat
+        if key.min() == key.max():  # one group: no gather/scatter
+            return outputs(self._call(int(key[0]), mat, method, inputs))
+        order = np.argsort(key, kind="stable")
+        sorted_key = np.take(key, order)
+        cuts = np.flatnonzero(sorted_key[1:] != sorted_key[:-1]) + 1
         parts = []
         for a, b in zip(np.concatenate([[0], cuts]), np.concatenate([cuts, [len(mat)]])):
             rows = order[a:b]
-            parts.append(call(int(sorted_mat[a]), *(np.take(x, rows, axis=0) for x in inputs)))
+            g = int(sorted_key[a])
+            sub_mat = np.take(mat, rows) if g == self.diffuse_group else None
+            parts.append(outputs(self._call(g, sub_mat, method, tuple(np.take(x, rows, axis=0) for x in inputs))))
         inverse = np.empty_like(order)
         inverse[order] = np.arange(len(order))
         return tuple(np.take(np.concatenate([part[j] for part in parts]), inverse, axis=0)
                      for j in range(n_outputs))
 
+    def _call(self, g, mat, method, inputs):
+        if g == self.diffuse_group and mat.min() != mat.max():
+            return getattr(self.diffuse_set, method)(mat, *inputs)
+        m = int(mat[0]) if g == self.diffuse_group else g
+        return getattr(self.bsdfs[m], method)(*inputs)
+
     def _eval(self, mat, wo, wi, lam, hero, collapsed):
-        return self._by_material(mat, lambda m, *a: self.bsdfs[m].eval(*a), (wo, wi, lam, hero, collapsed), 2)
+        return self._by_material(mat, "eval", (wo, wi, lam, hero, collapsed), 2)
 
     def _sample(self, mat, wo, lam, u, hero, collapsed):
-        def call(m, *a):
-            s = self.bsdfs[m].sample(*a)
-            return s.wi, s.weight, s.pdf, s.delta, s.eta_scale
-
-        return self._by_material(mat, call, (wo, lam, u, hero, collapsed), 5)
+        return self._by_material(mat, "sample", (wo, lam, u, hero, collapsed), 5,
+                                 lambda s: (s.wi, s.weight, s.pdf, s.delta, s.eta_scale))
 
     # -- camera ----------------------------------------------------------------------
     def camera_rays(self, pixel_xy, lens_uv, lam, hero):

@@ -44,6 +44,12 @@ class PathWavelengths(np.ndarray):
         out._rows, out._cache, out._full = rows(), self._cache, self._full
         return out
 
+    def whole_chunk(self) -> "PathWavelengths":
+        """All of the chunk's paths, in order, sharing this array's spectrum cache."""
+        out = self._full.view(PathWavelengths)
+        out._rows, out._cache, out._full = np.arange(len(self._full)), self._cache, self._full
+        return out
+
     def take(self, indices, axis=None, out=None, mode="raise"):
         result = super().take(indices, axis=axis, out=out, mode=mode)
         linked = axis == 0 and out is None and np.ndim(indices) == 1
