@@ -68,8 +68,8 @@ class Renderer:
         self.scene = scene
         self.settings = settings
         self.progress = progress
-        self.pixel_filter = getattr(settings, "pixel_filter", "box")
-        self.filter_width = float(getattr(settings, "filter_width_px", 1.5))
+        self.pixel_filter = settings.pixel_filter
+        self.filter_width = float(settings.filter_width_px)
         if self.pixel_filter not in ("box", "gaussian") or not self.filter_width > 0:
             raise PrismInputError(f"Pixel filter '{self.pixel_filter}' is not supported: use box or gaussian.")
         self.camera = make_camera(scene.camera, settings)
