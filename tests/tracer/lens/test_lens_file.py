@@ -12,19 +12,6 @@ from engine.tracer.lens.paraxial import paraxial_data
 
 # The pbrt/CS184 table of the double Gauss (Tronnier, US 2,673,491; W. J. Smith, Modern Lens
 # Design, p. 312; scaled to 50 mm): radius, thickness, n_d, aperture diameter, mm.
-DOUBLE_GAUSS_LEGACY_TABLE = """# D-GAUSS F/2 22deg HFOV
-29.475 3.76 1.67 25.2
-84.83 0.12 1 25.2
-19.275 4.025 1.67 23
-40.77 3.275 1.699 23
-12.75 5.705 1 18
-0 4.5 0 17.1
--14.495 1.18 1.603 17
-40.77 6.065 1.658 20
--20.385 0.19 1 20
-437.065 3.22 1.717 20
--39.73 0 1 20
-"""
 DGAUSS_DAT = """# D-GAUSS F/2
 #    radius	 axpos	N	aperture
 29.475	3.76	1.67	25.2
@@ -82,8 +69,7 @@ def test_every_bundled_lens_loads_and_has_its_nominal_focal_length():
 
 def test_bundled_double_gauss_matches_its_reference_table(tmp_path):
     prism = load_lens(LENS_DIRECTORY / "double_gauss_50mm.lens")
-    (tmp_path / "dgauss.50mm.dat").write_text(DOUBLE_GAUSS_LEGACY_TABLE)
-    legacy = load_lens(tmp_path / "dgauss.50mm.dat")
+    legacy = load_lens(_write(tmp_path, "dgauss.50mm.dat", DGAUSS_DAT))
     assert len(prism.surfaces) == len(legacy.surfaces) == 11
     for a, b in zip(prism.surfaces, legacy.surfaces):
         assert (a.radius_mm, a.thickness_mm, a.aperture_mm, a.is_stop) == (b.radius_mm, b.thickness_mm, b.aperture_mm, b.is_stop)
