@@ -9,15 +9,12 @@ import bpy
 import numpy as np
 import pytest
 
-from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+from helpers.bpy_scenes import build_lit_card_scene
 
 
 @pytest.fixture
 def batch(prism_addon, fresh_scene):
-    add_plane("Floor", 6.0, color=(0.6, 0.6, 0.6))
-    add_plane("Card", 0.8, color=(0.8, 0.2, 0.1), location=(0.0, 0.0, 0.5))
-    add_point_light("Bulb", 300.0, (0.3, 0.2, 2.0))
-    add_camera((0.0, -3.0, 2.5), (0.9, 0.0, 0.0), resolution=(16, 12))
+    build_lit_card_scene(resolution=(16, 12))
     return importlib.import_module("render"), importlib.import_module(f"{prism_addon.__name__}.engine.chunks")
 
 

@@ -8,7 +8,7 @@ import bpy
 import numpy as np
 import pytest
 
-from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+from helpers.bpy_scenes import add_camera, add_plane, build_lit_card_scene
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 
@@ -24,10 +24,7 @@ def run_render_script(*arguments):
 
 @pytest.fixture
 def lit_scene_file(fresh_scene, tmp_path):
-    add_plane("Floor", 6.0, color=(0.6, 0.6, 0.6))
-    add_plane("Card", 0.8, color=(0.8, 0.2, 0.1), location=(0.0, 0.0, 0.5))
-    add_point_light("Bulb", 300.0, (0.3, 0.2, 2.0))
-    add_camera((0.0, -3.0, 2.5), (0.9, 0.0, 0.0), resolution=(24, 16))
+    build_lit_card_scene(resolution=(24, 16))
     path = tmp_path / "lit.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(path))
     return path

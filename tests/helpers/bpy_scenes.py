@@ -63,3 +63,11 @@ def render_linear_rgb(scene, samples: int, seed: int = 0) -> np.ndarray:
         image.pixels.foreach_get(pixels)
         bpy.data.images.remove(image)
     return pixels.reshape(height, width, 4)[::-1, :, :3]
+
+
+def build_lit_card_scene(resolution=(24, 16)):
+    """A grey floor, a red card above it and a point light: lit geometry with a shadow."""
+    add_plane("Floor", 6.0, color=(0.6, 0.6, 0.6))
+    add_plane("Card", 0.8, color=(0.8, 0.2, 0.1), location=(0.0, 0.0, 0.5))
+    add_point_light("Bulb", 300.0, (0.3, 0.2, 2.0))
+    return add_camera((0.0, -3.0, 2.5), (0.9, 0.0, 0.0), resolution=resolution)
