@@ -6,8 +6,8 @@ Run once by a developer (not by Blender, not by a render):
 
 It optimises the table with colour-science's ``LUT3D_Jakob2019`` for linear
 Rec.709 (ITU-R BT.709 primaries, D65) over 360-830 nm and writes
-``engine/tracer/data/rec709_jakob2019.coeff`` (colour's/the paper's ``.coeff``
-format, float32). ``engine/tracer/rgb_to_spectrum.py`` loads it lazily and
+``engine/tracer/spectra/data/rec709_jakob2019.coeff`` (colour's/the paper's ``.coeff``
+format, float32). ``engine/tracer/spectra/rgb_to_spectrum.py`` loads it lazily and
 polishes each looked-up colour with a few Levenberg-Marquardt steps, so a small
 table is enough. colour takes about 0.08 s per table cell on one unloaded core,
 so a size-N table costs about 3·N³ × 0.08 s (size 8: 2 min); see docs/colour.md
@@ -32,7 +32,7 @@ def d65_spectral_distribution(shape):
     import colour
 
     sys.path.insert(0, str(ROOT))
-    from engine.tracer.rgb_to_spectrum import _d65_table
+    from engine.tracer.spectra.rgb_to_spectrum import _d65_table
 
     wavelength_nm, power = _d65_table()
     return colour.SpectralDistribution(power, wavelength_nm).align(shape)

@@ -63,7 +63,7 @@ def display_colours(wavelengths_nm):
 def _display_colour(wavelength_nm):
     import numpy as np
 
-    from ..engine.tracer.cie import monochromatic_rgb
+    from ..engine.tracer.spectra.cie import monochromatic_rgb
 
     linear = np.clip(np.asarray(monochromatic_rgb(np.array([wavelength_nm])), dtype=np.float64)[0], 0.0, 1.0)
     encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1.0 / 2.4) - 0.055)

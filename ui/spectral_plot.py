@@ -25,7 +25,7 @@ _plot_key = None
 def cmf_curves(wavelength_nm) -> tuple[np.ndarray, str]:
     """CIE 1931 x̄, ȳ, z̄ at ``wavelength_nm`` ([N, 3]) and where they came from.
 
-    Uses ``engine.tracer.cie``'s tables once colour-science is loaded (after a
+    Uses ``engine.tracer.spectra.cie``'s tables once colour-science is loaded (after a
     render); until then the analytic fit, so drawing a panel never stalls Blender
     for the second colour-science takes to import.
     """
@@ -33,7 +33,7 @@ def cmf_curves(wavelength_nm) -> tuple[np.ndarray, str]:
 
     if "colour" in sys.modules:
         try:
-            from ..engine.tracer import cie
+            from ..engine.tracer.spectra import cie
 
             return np.asarray(cie.cie_xyz_cmf(wavelength_nm), dtype=np.float64), "table"
         except Exception:  # noqa: BLE001 - the plot falls back to the fit rather than fail to draw

@@ -19,7 +19,7 @@ DEFAULT_MATERIAL = Material(name="Default", kind="diffuse", base_color=(0.8, 0.8
 
 
 def _glass(material, settings, exported: Material) -> None:
-    from ..tracer import glass as glass_catalogue
+    from ..tracer.spectra import glass as glass_catalogue
 
     name = material.name
     if settings.glass_source == "CATALOGUE":

@@ -32,7 +32,7 @@ _glass_cache = DynamicEnumCache("NONE", "No glass catalogue", "The glass catalog
 def glass_catalogue_names() -> list[str]:
     """Names of the catalogue glasses (empty when the catalogue is unavailable)."""
     try:
-        glass = importlib.import_module("..tracer.glass", __package__)
+        glass = importlib.import_module("..tracer.spectra.glass", __package__)
         return sorted(str(name) for name in glass.glass_names())
     except Exception:  # noqa: BLE001 - an enum callback must never raise
         return []

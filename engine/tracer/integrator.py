@@ -35,7 +35,7 @@ from .path_state import (add_rows, collapse_to_hero, compact, offset_distance, o
                          shading_frame, unroll_columns)
 from .sampling import dot, power_heuristic, row_max, rows_finite, to_local, to_world, where_rows
 from .shadows import ShadowTester
-from .spectra import PathWavelengths
+from .path_spectra import PathWavelengths
 
 SHADOW_SHORTEN = 1e-4  # shadow rays stop this fraction short of the light sample
 

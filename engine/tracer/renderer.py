@@ -27,7 +27,7 @@ from concurrent.futures import CancelledError, ThreadPoolExecutor
 
 import numpy as np
 
-from . import spectra
+from . import path_spectra as spectra
 from .accel import Accel, _threads
 from .analysis import analyse
 from .bsdf import make_bsdf

@@ -73,7 +73,7 @@ def _centroids_px(image):
 
 
 def test_prism_splits_the_stripe_as_snell_predicts(prism_addon, fresh_scene):
-    glass_module = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.glass")
+    glass_module = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.spectra.glass")
     sf11 = glass_module.glass_by_name("SF11")
     n_red, n_green, n_blue = (float(sf11.index(np.array([w]))[0]) for w in (600.0, 550.0, 450.0))
     glass = _prism_scene(n_green)

@@ -49,7 +49,7 @@ def test_principled_glass_becomes_dispersive_catalogue_glass(prism_addon, basic)
     exported = _material(_export(prism_addon))
     assert exported.kind == "dielectric" and exported.glass == "SF11"
     # The tracer's glass for it disperses: n(450 nm) > n(650 nm), n_d as published (Schott SF11 1.78472).
-    glass = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.glass").glass_by_name(exported.glass)
+    glass = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.spectra.glass").glass_by_name(exported.glass)
     n_blue, n_d, n_red = (float(np.asarray(glass.index(np.array([w])))[0]) for w in (450.0, 587.56, 650.0))
     assert n_blue > n_d > n_red and n_d == pytest.approx(1.78472, abs=2e-4)
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from engine.tracer.renderer import Renderer
-from engine.tracer.rgb_to_spectrum import white_rgb
+from engine.tracer.spectra.rgb_to_spectrum import white_rgb
 from engine.tracer.scene import Light, Material, SpectrumSpec
 
 from .test_renderer import _gaussian_white

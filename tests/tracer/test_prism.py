@@ -6,7 +6,7 @@ import pytest
 
 from engine.tracer.accel import Accel
 from engine.tracer.bsdf import Dielectric
-from engine.tracer.glass import glass_by_name
+from engine.tracer.spectra.glass import glass_by_name
 from engine.tracer.path_state import TriangleData, offset_origin, shading_frame
 from engine.tracer.renderer import Renderer
 from engine.tracer.sampling import to_local, to_world

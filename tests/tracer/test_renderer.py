@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 
 from engine.tracer.cameras import PinholeCamera
-from engine.tracer.emission_spectrum import emission_spectrum
+from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import SpectrumSpec
-from engine.tracer.wavelengths import GaussianChannels
+from engine.tracer.spectra.wavelengths import GaussianChannels
 
 from .tracer_scenes import plane_under_point_light, settings
 

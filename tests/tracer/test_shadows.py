@@ -3,11 +3,11 @@ light through films counted once (MIS on and off agree)."""
 
 import numpy as np
 
-from engine.tracer import cie
-from engine.tracer.emission_spectrum import emission_spectrum
+from engine.tracer.spectra import cie
+from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Light, Material, SpectrumSpec
-from engine.tracer.thin_film import thin_film_reflectance
+from engine.tracer.spectra.thin_film import thin_film_reflectance
 
 from .tracer_scenes import look_at, make_scene, quad, settings
 

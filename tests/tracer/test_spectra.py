@@ -3,8 +3,9 @@
 import numpy as np
 from scipy import stats
 
-from engine.tracer import cie, spectra
-from engine.tracer.emission_spectrum import emission_spectrum
+from engine.tracer import path_spectra as spectra
+from engine.tracer.spectra import cie
+from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import SpectrumSpec
 

@@ -4,7 +4,7 @@ import numpy as np
 
 from engine.tracer.path_state import add_rows, compact
 from engine.tracer.sampling import row_max, row_sum, rows_finite, where_rows
-from engine.tracer.spectra import PathWavelengths, cached
+from engine.tracer.path_spectra import PathWavelengths, cached
 
 
 def test_row_reductions_match_numpy():

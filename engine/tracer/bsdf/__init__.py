@@ -50,7 +50,7 @@ def _measured(name):
 
 
 def make_bsdf(material, spectra) -> BSDF:
-    """The BSDF of a material; ``spectra`` is the ``engine.tracer.spectra`` module."""
+    """The BSDF of a material; ``spectra`` is the ``engine.tracer.path_spectra`` module."""
     kind = material.kind
     if kind == "diffuse":
         return Diffuse(spectra.reflectance(material.base_color))

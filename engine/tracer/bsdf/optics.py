@@ -13,7 +13,7 @@ import numpy as np
 
 from ..sampling import dot
 
-from .. import fresnel as _fresnel
+from ..spectra import fresnel as _fresnel
 
 
 def _cos(c):
@@ -41,7 +41,7 @@ def refract(w: np.ndarray, n: np.ndarray, eta: np.ndarray):
 
 def conductor_fresnel(cos_i: np.ndarray, name: str, lam: np.ndarray) -> np.ndarray:
     """Reflectance [n,K] of a named metal (measured n, k) at ``cos_i`` [n]."""
-    from ..spectra import conductor_nk
+    from ..path_spectra import conductor_nk
 
     n, k = conductor_nk(name, lam)
     return _fresnel.fresnel_conductor(np.abs(_cos(cos_i))[:, None], n, k)
@@ -49,7 +49,7 @@ def conductor_fresnel(cos_i: np.ndarray, name: str, lam: np.ndarray) -> np.ndarr
 
 def coating_reflectance(thickness_nm: float, coating_ior: float):
     """R(cos_i [n], n_incident [n], n_substrate [n], lam [n,K]) -> [n,K] of a film on a dielectric."""
-    from ..thin_film import thin_film_reflectance
+    from ..spectra.thin_film import thin_film_reflectance
 
     def reflectance(cos_i, n_incident, n_substrate, lam):
         return thin_film_reflectance(np.abs(_cos(cos_i))[:, None], lam, thickness_nm, n_incident[:, None],
@@ -61,8 +61,8 @@ def coating_reflectance(thickness_nm: float, coating_ior: float):
 def coated_conductor_fresnel(material, spectra):
     """F(cos_i [n], lam [n,K]) of a thin film of index ``coating_ior`` over a metal: the
     named metal's n + ik, or (base colour only) the real index with that normal reflectance."""
-    from ..spectra import conductor_nk
-    from ..thin_film import thin_film_reflectance
+    from ..path_spectra import conductor_nk
+    from ..spectra.thin_film import thin_film_reflectance
 
     d, n_film = float(material.coating_thickness_nm), float(material.coating_ior)
     f0 = None if material.conductor else spectra.reflectance(material.base_color)
@@ -81,7 +81,7 @@ def coated_conductor_fresnel(material, spectra):
 
 def free_film_reflectance(thickness_nm: float, film_ior: float):
     """R(cos_i [n], lam [n,K]) -> [n,K] of a free-standing film in air."""
-    from ..thin_film import thin_film_reflectance
+    from ..spectra.thin_film import thin_film_reflectance
 
     def reflectance(cos_i, lam):
         return thin_film_reflectance(np.abs(_cos(cos_i))[:, None], lam, thickness_nm, 1.0, film_ior, 1.0)

@@ -30,7 +30,7 @@ TOP_KEYS = {"format", "name", "source", "focal_length_mm", "f_number", "notes", 
 
 
 class CatalogueResolver:
-    """Turns glass references into media using ``engine.tracer.glass``."""
+    """Turns glass references into media using ``engine.tracer.spectra.glass``."""
 
     def by_name(self, name):
         return media.catalogue_medium(name)
@@ -229,7 +229,7 @@ def _prism_medium(row, at, resolver):
 
 
 def _unknown_glass_message(name) -> str:
-    from ..glass import glass_names
+    from ..spectra.glass import glass_names
 
     return f"unknown glass '{name}'. Known glasses: {', '.join(glass_names())}; or give 'nd' and 'vd'."
 

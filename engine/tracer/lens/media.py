@@ -2,7 +2,7 @@
 
 A medium is any object with ``index(wavelength_nm) -> ndarray`` (float64, same shape),
 ``n_d`` (index at the helium d line, 587.56 nm) and ``label`` (for messages and the
-overlay). Glasses come from ``engine.tracer.glass``; this module only adapts them, so
+overlay). Glasses come from ``engine.tracer.spectra.glass``; this module only adapts them, so
 the lens code never keeps a second glass catalogue.
 """
 
@@ -84,14 +84,14 @@ def constant_medium(n: float, label: str | None = None) -> FunctionMedium:
 
 def catalogue_medium(name: str) -> GlassMedium:
     """The catalogue glass ``name``; raises ``UnknownGlassError`` if it does not exist."""
-    from ..glass import glass_by_name
+    from ..spectra.glass import glass_by_name
 
     return GlassMedium(glass_by_name(name), name)
 
 
 def abbe_medium(n_d: float, v_d: float, label: str | None = None) -> GlassMedium:
     """A glass given by its catalogue-style n_d and V_d."""
-    from ..glass import glass_from_abbe
+    from ..spectra.glass import glass_from_abbe
 
     return GlassMedium(glass_from_abbe(float(n_d), float(v_d)), label or f"n_d {n_d:g}, V_d {v_d:g}")
 
@@ -101,7 +101,7 @@ def assumed_medium(n_d: float) -> tuple[GlassMedium, str]:
 
     Returns the medium and the name of the catalogue glass whose V_d was assumed.
     """
-    from ..glass import glass_from_abbe, nearest_catalogue_glass
+    from ..spectra.glass import glass_from_abbe, nearest_catalogue_glass
 
     nearest = nearest_catalogue_glass(float(n_d))
     name = getattr(nearest, "name", None) or str(nearest)

@@ -5,7 +5,7 @@ import pytest
 
 from engine.tracer.bsdf import Dielectric
 from engine.tracer.bsdf.optics import fresnel_dielectric
-from engine.tracer.glass import constant_ior, glass_by_name
+from engine.tracer.spectra.glass import constant_ior, glass_by_name
 
 from .bsdf_checks import chi2_sampling_test, direction, weight_matches_eval
 

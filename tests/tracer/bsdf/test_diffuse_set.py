@@ -2,10 +2,10 @@
 
 import numpy as np
 
-from engine.tracer import spectra
+from engine.tracer import path_spectra as spectra
 from engine.tracer.bsdf.diffuse import Diffuse, DiffuseSet
 from engine.tracer.path_state import compact
-from engine.tracer.spectra import PathWavelengths
+from engine.tracer.path_spectra import PathWavelengths
 
 
 def _members():

@@ -3,11 +3,11 @@
 import numpy as np
 import pytest
 
-from engine.tracer import spectra
+from engine.tracer import path_spectra as spectra
 from engine.tracer.bsdf import emission_spectrum_of, is_emissive
-from engine.tracer.cie import spectral_samples_to_xyz
+from engine.tracer.spectra.cie import spectral_samples_to_xyz
 from engine.tracer.scene import Material, SpectrumSpec
-from engine.tracer.wavelengths import sample_visible_wavelengths
+from engine.tracer.spectra.wavelengths import sample_visible_wavelengths
 
 
 def test_which_materials_emit():

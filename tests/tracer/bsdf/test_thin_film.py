@@ -3,11 +3,11 @@
 import numpy as np
 import pytest
 
-from engine.tracer import spectra
+from engine.tracer import path_spectra as spectra
 from engine.tracer.bsdf import Dielectric, ThinFilm, make_bsdf
-from engine.tracer.glass import constant_ior
+from engine.tracer.spectra.glass import constant_ior
 from engine.tracer.scene import Material
-from engine.tracer.thin_film import thin_film_reflectance
+from engine.tracer.spectra.thin_film import thin_film_reflectance
 
 from .bsdf_checks import albedo, direction
 

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from engine.tracer.glass import glass_by_name
+from engine.tracer.spectra.glass import glass_by_name
 from engine.tracer.lens.catalogue import LENS_DIRECTORY
 from engine.tracer.lens.focus import axial_bundle, best_focus, focus, focus_shift_mm, rms_spot_radius_mm
 from engine.tracer.lens.lens_file import load_lens

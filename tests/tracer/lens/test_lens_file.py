@@ -5,7 +5,7 @@ import math
 import pytest
 
 from engine.tracer.errors import LensFileError, PrismInputError
-from engine.tracer.glass import glass_by_name, nearest_catalogue_glass
+from engine.tracer.spectra.glass import glass_by_name, nearest_catalogue_glass
 from engine.tracer.lens.catalogue import LENS_DIRECTORY, bundled_lenses
 from engine.tracer.lens.lens_file import load_lens
 from engine.tracer.lens.paraxial import paraxial_data

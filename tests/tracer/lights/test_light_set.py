@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from engine.tracer import spectra
+from engine.tracer import path_spectra as spectra
 from engine.tracer.lights import LightSet
 from engine.tracer.scene import Light, Material, SpectrumSpec
 

@@ -2,8 +2,8 @@ import numpy as np
 import pytest
 from scipy import constants, optimize
 
-from engine.tracer import cie
-from engine.tracer.blackbody import (
+from engine.tracer.spectra import cie
+from engine.tracer.spectra.blackbody import (
     MAX_TEMPERATURE_K,
     MIN_TEMPERATURE_K,
     blackbody_luminance,
@@ -11,7 +11,7 @@ from engine.tracer.blackbody import (
     planck_spectral_radiance,
 )
 from engine.tracer.errors import PrismInputError
-from engine.tracer.wavelengths import sample_visible_wavelengths
+from engine.tracer.spectra.wavelengths import sample_visible_wavelengths
 
 WIEN_NM_K = 2.897771955e6
 

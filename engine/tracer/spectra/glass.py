@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import PrismInputError, UnknownGlassError
+from ..errors import PrismInputError, UnknownGlassError
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
 LAMBDA_D_NM = 587.5618

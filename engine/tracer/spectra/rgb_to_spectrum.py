@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from .cie import check_rgb, import_colour, lerp_uniform_table
-from .errors import PrismInputError
+from ..errors import PrismInputError
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
 TABLE_PATH = Path(__file__).resolve().parent / "data" / "rec709_jakob2019.coeff"

@@ -1,16 +1,16 @@
 import numpy as np
 import pytest
 
-from engine.tracer import cie
+from engine.tracer.spectra import cie
 from engine.tracer.errors import PrismInputError
-from engine.tracer.rgb_to_spectrum import (
+from engine.tracer.spectra.rgb_to_spectrum import (
     RGBEmission,
     d65_relative_power,
     evaluate_sigmoid_polynomial,
     reflectance_coefficients,
     white_rgb,
 )
-from engine.tracer.wavelengths import sample_visible_wavelengths
+from engine.tracer.spectra.wavelengths import sample_visible_wavelengths
 
 WAVELENGTHS_NM = np.arange(360.0, 830.5, 1.0)
 

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import PrismInputError
+from ..errors import PrismInputError
 
 
 def _interface(n_i, q_i, n_j, q_j):

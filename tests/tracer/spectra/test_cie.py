@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from engine.tracer import cie
-from engine.tracer.wavelengths import GaussianChannels, sample_visible_wavelengths
+from engine.tracer.spectra import cie
+from engine.tracer.spectra.wavelengths import GaussianChannels, sample_visible_wavelengths
 
 
 def test_cmf_table_values_and_range():
@@ -73,17 +73,17 @@ def test_importing_the_physics_modules_is_cheap():
     modules = "wavelengths cie rgb_to_spectrum blackbody emission_spectrum glass fresnel conductors thin_film".split()
     code = (
         "import sys\n"
-        + "".join(f"import engine.tracer.{m}\n" for m in modules)
+        + "".join(f"import engine.tracer.spectra.{m}\n" for m in modules)
         + "heavy = [m for m in ('colour', 'scipy') if m in sys.modules]\n"
         + "assert not heavy, heavy\n"
     )
-    root = Path(__file__).resolve().parents[2]
+    root = Path(__file__).resolve().parents[3]
     result = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
 
 
 def test_lazy_constants_import_by_name():
-    from engine.tracer.cie import CMF_Y_INTEGRAL, XYZ_TO_LINEAR_REC709
+    from engine.tracer.spectra.cie import CMF_Y_INTEGRAL, XYZ_TO_LINEAR_REC709
 
     assert CMF_Y_INTEGRAL == cie.CMF_Y_INTEGRAL
     assert XYZ_TO_LINEAR_REC709.shape == (3, 3) and not XYZ_TO_LINEAR_REC709.flags.writeable

@@ -3,7 +3,7 @@ import pytest
 from scipy import integrate, stats
 
 from engine.tracer.errors import PrismInputError
-from engine.tracer.wavelengths import (
+from engine.tracer.spectra.wavelengths import (
     VISIBLE_MAX_NM,
     VISIBLE_MIN_NM,
     GaussianChannels,

@@ -23,7 +23,7 @@ import numpy as np
 
 from . import cie
 from .blackbody import blackbody_luminance, check_temperature, planck_spectral_radiance
-from .errors import PrismInputError
+from ..errors import PrismInputError
 from .rgb_to_spectrum import RGBEmission
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import PrismInputError
+from ..errors import PrismInputError
 
 
 def _check_cos(cos_theta_i):

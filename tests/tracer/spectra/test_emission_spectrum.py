@@ -1,11 +1,11 @@
 import numpy as np
 import pytest
 
-from engine.tracer import cie
-from engine.tracer.emission_spectrum import emission_spectrum
+from engine.tracer.spectra import cie
+from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.errors import PrismInputError
 from engine.tracer.scene import SpectrumSpec
-from engine.tracer.wavelengths import sample_visible_wavelengths
+from engine.tracer.spectra.wavelengths import sample_visible_wavelengths
 
 
 def _estimated_xyz(spectrum, n=4096):

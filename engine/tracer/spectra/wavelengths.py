@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import PrismInputError
+from ..errors import PrismInputError
 
 VISIBLE_MIN_NM = 360.0
 VISIBLE_MAX_NM = 830.0

@@ -4,9 +4,9 @@ import warnings
 import numpy as np
 import pytest
 
-from engine.tracer import glass as glass_module
+from engine.tracer.spectra import glass as glass_module
 from engine.tracer.errors import PrismInputError, UnknownGlassError
-from engine.tracer.glass import (
+from engine.tracer.spectra.glass import (
     catalogue_values,
     constant_ior,
     glass_by_name,
@@ -114,7 +114,7 @@ def test_below_valid_range_clamps_warns_once_and_counts(monkeypatch):
 
 
 def test_dispersion_validation_rejects_a_pole_in_the_visible():
-    from engine.tracer.glass import SellmeierGlass, _validate_dispersion
+    from engine.tracer.spectra.glass import SellmeierGlass, _validate_dispersion
 
     bad = SellmeierGlass("Broken", [1.0, 0.0, 0.0], [0.25, 0.01, 100.0], (300.0, 2500.0))  # pole at 500 nm
     with pytest.raises(PrismInputError, match="Broken"):

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import PrismInputError
+from ..errors import PrismInputError
 
 DATA_PATH = Path(__file__).resolve().parent / "data" / "conductors_nk.tsv"
 _TABLES = None  # {name: (wavelength_nm, n, k)}

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import PrismInputError
+from ..errors import PrismInputError
 
 _CMF_TABLE = None  # (wavelength_nm [M], xyz [M, 3]) once loaded
 _LAZY = {}

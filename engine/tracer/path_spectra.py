@@ -92,7 +92,7 @@ class GuidedVisibleWavelengths:
     CELL_NM = 0.1
 
     def __init__(self, lines, line_fraction=0.5):
-        from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM, visible_wavelength_pdf
+        from .spectra.wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM, visible_wavelength_pdf
 
         cells = int(round((VISIBLE_MAX_NM - VISIBLE_MIN_NM) / self.CELL_NM))
         self.edges = np.linspace(VISIBLE_MIN_NM, VISIBLE_MAX_NM, cells + 1)
@@ -129,7 +129,7 @@ class WavelengthMode:
             if lines:
                 self.guided = GuidedVisibleWavelengths(list(lines))
         else:
-            from .wavelengths import GaussianChannels
+            from .spectra.wavelengths import GaussianChannels
 
             self.count = 3
             self.channels = GaussianChannels(settings.channel_means_nm, settings.channel_sigmas_nm)
@@ -144,14 +144,14 @@ class WavelengthMode:
         if self.mode == "cie":
             if self.guided is not None:
                 return self.guided.sample(u[:, 0], self.count)
-            from .wavelengths import sample_visible_wavelengths
+            from .spectra.wavelengths import sample_visible_wavelengths
 
             return sample_visible_wavelengths(u[:, 0], self.count)
         return self.channels.sample(u)
 
     def to_rgb(self, radiance, wavelength_nm, pdf) -> np.ndarray:
         """Per-path spectral radiance [n,K] to scene-linear Rec.709 [n,3]."""
-        from . import cie
+        from .spectra import cie
 
         if self.mode == "cie":
             from .sampling import transform_rows
@@ -171,7 +171,7 @@ class _Constant:
 
 class _Reflectance:
     def __init__(self, rgb):
-        from .rgb_to_spectrum import reflectance_coefficients
+        from .spectra.rgb_to_spectrum import reflectance_coefficients
 
         self.coefficients = reflectance_coefficients(np.asarray(rgb, dtype=np.float64))
 
@@ -179,7 +179,7 @@ class _Reflectance:
         return cached(self, self._evaluate, lam)
 
     def _evaluate(self, lam):
-        from .rgb_to_spectrum import evaluate_sigmoid_polynomial
+        from .spectra.rgb_to_spectrum import evaluate_sigmoid_polynomial
 
         return evaluate_sigmoid_polynomial(self.coefficients, lam)
 
@@ -209,7 +209,7 @@ def _cached_reflectance(rgb):
 
 class _Emission:
     def __init__(self, spec: SpectrumSpec):
-        from .emission_spectrum import emission_spectrum
+        from .spectra.emission_spectrum import emission_spectrum
 
         self.spectrum = emission_spectrum(spec)
 
@@ -230,7 +230,7 @@ def world_emission(color) -> callable:
 
 def glass_of(material):
     """The material's ``Glass`` (catalogue name, n_d/V_d, or constant ``ior``)."""
-    from . import glass
+    from .spectra import glass
 
     if material.glass:
         return glass.glass_by_name(material.glass)
@@ -243,7 +243,7 @@ def glass_of(material):
 
 def conductor_nk(name: str, lam: np.ndarray):
     """Complex index parts (n [n,K], k [n,K]) of a named metal (cached per chunk)."""
-    from .conductors import conductor_nk as nk
+    from .spectra.conductors import conductor_nk as nk
 
     nk_stack = cached(("nk", name), lambda wl: np.stack(nk(name, wl), axis=-1), lam)
     return nk_stack[..., 0], nk_stack[..., 1]

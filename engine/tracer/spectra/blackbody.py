@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import PrismInputError
+from ..errors import PrismInputError
 
 MIN_TEMPERATURE_K = 1000.0
 MAX_TEMPERATURE_K = 40000.0
