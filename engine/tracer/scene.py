@@ -143,7 +143,9 @@ class World:
 class Scene:
     """Triangle soup plus materials, lights, camera and world.
 
-    ``vertices`` float32 [V, 3] (m), ``triangles`` int32 [T, 3],
+    ``vertices`` float64 [V, 3] (m, world space: float64 keeps small objects far from the origin
+    exact; the tracer subtracts the camera position before handing geometry to Embree in float32),
+    ``triangles`` int32 [T, 3],
     ``triangle_material`` int32 [T] indexes ``materials``, ``triangle_object``
     int32 [T] indexes ``object_names`` (for messages), ``corner_normals`` float32
     [T, 3, 3] (unit shading normals at each triangle corner) or None for flat
