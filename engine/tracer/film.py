@@ -1,18 +1,15 @@
-"""The film: per-pixel running mean and variance of RGB samples (float64).
+"""The film: per-pixel running sums of RGB samples and their squares (float64), and sample counts.
 
-Each sample is already converted to scene-linear Rec.709 by the integrator (the
-spectral-to-RGB conversion is linear, so the mean of converted samples is the
-converted mean). Sums and sums of squares are kept in float64 per pixel with a
-per-pixel sample count; samples that are NaN or infinite never reach the sums:
-they are counted (``nan_samples``) and the pixel's count still advances, which
-keeps the estimator unbiased when they are rare (a dropped sample counts as 0).
+Samples arrive already converted to scene-linear Rec.709 (the spectral-to-RGB map is linear, so the
+mean of converted samples is the converted mean). ``add`` splats them one by one (``stages.film``):
+non-finite samples are counted in ``nan_samples`` and dropped, the pixel's count still advancing.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .sampling import rows_finite
+from .stages.film import splat
 
 
 class Film:
@@ -28,23 +25,10 @@ class Film:
         self.nan_samples = 0
 
     def add(self, pixel_index: np.ndarray, rgb: np.ndarray) -> None:
-        """Add one sample per entry: ``pixel_index`` [N] (y * width + x), ``rgb`` [N,3]."""
-        pixel_index = np.asarray(pixel_index, dtype=np.int64)
-        rgb = np.asarray(rgb, dtype=np.float64)
-        bad = ~rows_finite(rgb)
-        if bad.any():
-            self.nan_samples += int(bad.sum())
-            rgb = np.where(bad[:, None], 0.0, rgb)
-        if len(pixel_index) == 0:
-            return
-        # a chunk covers a narrow range of pixels: bin over that range only
-        lo = int(pixel_index.min())
-        hi = int(pixel_index.max()) + 1
-        local = pixel_index - lo
-        self._count[lo:hi] += np.bincount(local, minlength=hi - lo)
-        for c in range(3):
-            self._sum[lo:hi, c] += np.bincount(local, weights=rgb[:, c], minlength=hi - lo)
-            self._sum_sq[lo:hi, c] += np.bincount(local, weights=rgb[:, c] ** 2, minlength=hi - lo)
+        """Add one sample per entry: ``pixel_index`` [N] (y * width + x), ``rgb`` [N, 3]."""
+        pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
+        rgb = np.ascontiguousarray(rgb, dtype=np.float64).reshape(-1, 3)
+        self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, pixel_index, rgb, len(pixel_index)))
 
     @property
     def counts(self) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""The Renderer API (see TEAM.md): progressive spectral path tracing of a ``Scene``.
+"""The Renderer: progressive spectral path tracing of a ``Scene`` with compiled stages.
 
     renderer = Renderer(scene, settings, progress=None)
     renderer.render_pass()          # + settings.samples_per_pass samples per pixel
@@ -7,57 +7,63 @@
     renderer.samples_done, renderer.strategy, renderer.stats
     renderer.start_at_sample(n)     # continue the seed's sequence at sample n (chunked renders)
     renderer.cancel()               # from any thread: stop the current pass after running chunks
-    renderer.close()                # free the thread pools (or use ``with Renderer(...) as r:``)
+    renderer.close()                # free the thread pool (or use ``with Renderer(...) as r:``)
 
-A pass is cut into fixed-size chunks of paths (independent of the thread count,
-so the seed alone fixes the image); chunks run on a thread pool, Embree and the
-large numpy kernels release the GIL. Pixel positions come from a per-pixel
-rotated R2 sequence indexed by the pixel's sample number; with the "box" filter
-they are uniform in the pixel, with "gaussian" they follow a Gaussian of
-standard deviation ``filter_width_px`` / 3 truncated at ``filter_width_px``
-(filter importance sampling, weight 1). ``progress(fraction)`` is called after
-each chunk with the fraction of the current pass done.
+Set-up turns the scene into tables once (``geometry``, ``spectra.table``, ``materials``, ``lights``,
+``spectra.wavelength_sampling``, the camera) with every position relative to the camera. A pass is cut
+into chunks of paths that run on Prism's thread pool; a chunk runs the stages of ``stages`` bounce by
+bounce, Embree queries in between (kernels and Embree release the GIL). Every random number comes from
+the sampler indexed by (pixel, sample, dimension) and the film adds samples in path order, so the image
+depends on the seed only — not on the thread count or the chunk size.
 """
 
 from __future__ import annotations
 
+import os
 import threading
 import time
 from concurrent.futures import CancelledError, ThreadPoolExecutor
 
 import numpy as np
 
-from . import path_spectra as spectra
-from .accel import Accel, _threads
-from .analysis import analyse
-from .bsdf import make_bsdf
+from .accel import Accel
+from .analysis import SceneAnalysis
 from .cameras import make_camera
 from .errors import PrismInputError
 from .film import Film
-from .integrator import Integrator
-from .lights import LightSet
-from .path_state import TriangleData
-from .sampling import pass_rng, pixel_offsets, r1_samples, r2_samples
+from .geometry import prepare_geometry
+from .lights.table import build_lights
+from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials, is_emissive
+from .sampler import SAMPLERS
+from .spectra import wavelength_sampling
+from .spectra.table import SpectrumTable
+from .stages.settings import KernelSettings
+from .state import ChunkBuffers
 
-CHUNK_PATHS = 1 << 15  # largest wavefront one thread traces at once
-MIN_CHUNK_PATHS = 2048  # below this, per-bounce Python overhead dominates
-
-
-def chunk_size(path_count: int) -> int:
-    """Paths per chunk: at least two chunks when there is enough work, so both cores
-    trace; depends only on the pass size (never the thread count), so seeds stay exact."""
-    return int(max(MIN_CHUNK_PATHS, min(CHUNK_PATHS, -(-path_count // 2))))
+MAX_CHUNK_PATHS = 1 << 16  # largest chunk one thread traces at once (memory ~0.5 kB per path)
+MIN_CHUNK_PATHS = 4096  # below this, per-bounce Python overhead dominates
 
 
-def _filter_offsets(u, kind, width):
-    if kind == "box":
-        return u
-    from scipy.special import ndtr, ndtri
+def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int:
+    """Paths per chunk: about two chunks per thread (load balance), within the bounds above, and a
+    multiple of ``samples_per_pixel`` (a chunk never splits a pixel's samples of a pass: see ``film``)."""
+    size = max(MIN_CHUNK_PATHS, min(MAX_CHUNK_PATHS, -(-path_count // (2 * max(threads, 1)))))
+    return int(max(samples_per_pixel, size - size % samples_per_pixel))
 
-    sigma = width / 3.0
-    lo = ndtr(-width / sigma)
-    p = lo + u * (1.0 - 2.0 * lo)
-    return 0.5 + sigma * ndtri(np.clip(p, 1e-12, 1 - 1e-12))
+
+def worker_threads(requested: int) -> int:
+    return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
+
+
+def _monochromatic_lines(scene, used):
+    from .spectra.emission_spectrum import emission_spectrum
+
+    specs = [light.spectrum for light in scene.lights if light.spectrum.kind == "monochromatic"]
+    for m in used:
+        material = scene.materials[m]
+        if is_emissive(material) and material.emission is not None and material.emission.kind == "monochromatic":
+            specs.append(material.emission)
+    return [emission_spectrum(spec) for spec in dict.fromkeys(specs)]
 
 
 class Renderer:
@@ -65,57 +71,80 @@ class Renderer:
         started = time.perf_counter()
         settings.validate()
         scene.validate()
+        if settings.pixel_filter not in ("box", "gaussian") or not settings.filter_width_px > 0:
+            raise PrismInputError(f"Pixel filter '{settings.pixel_filter}' is not supported: use box or gaussian.")
+        if settings.sampler not in SAMPLERS:
+            raise PrismInputError(f"Sampler '{settings.sampler}' is unknown: use one of {', '.join(SAMPLERS)}.")
         self.scene = scene
         self.settings = settings
         self.progress = progress
-        self.pixel_filter = settings.pixel_filter
-        self.filter_width = float(settings.filter_width_px)
-        if self.pixel_filter not in ("box", "gaussian") or not self.filter_width > 0:
-            raise PrismInputError(f"Pixel filter '{self.pixel_filter}' is not supported: use box or gaussian.")
         self.camera = make_camera(scene.camera, settings)
-        width, height = (int(r) for r in scene.camera.resolution)
-        self.width, self.height = width, height
-        used = set(np.unique(np.asarray(scene.triangle_material)).tolist()) if len(scene.triangles) else set()
-        self.bsdfs = [make_bsdf(m, spectra) if i in used else None for i, m in enumerate(scene.materials)]
-        self.analysis = analyse(scene, settings, self.bsdfs, self.camera)
-        lines = spectra.monochromatic_lines(scene, self.analysis.used_materials)
-        self.mode = spectra.WavelengthMode(settings, lines)
-        self.analysis.guided_lines = len(lines) if self.mode.guided is not None else 0
-        self.accel = Accel(scene.vertices, scene.triangles, settings.threads)
-        self.lights = LightSet(scene, spectra, use_mesh_lights=self.analysis.mesh_lights)
-        self.integrator = Integrator(
-            self.accel, TriangleData(scene), self.bsdfs, self.lights, self.mode, self.camera, settings, self.analysis
-        )
-        self.film = Film(width, height)
+        self.width, self.height = (int(r) for r in scene.camera.resolution)
+        self.geometry, self._original_triangle, dropped = prepare_geometry(scene, self.camera.position)
+        used = sorted(set(np.unique(self.geometry.material).tolist()))
+        if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
+            raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
+        spectra = SpectrumTable()
+        self.material_table = build_materials(scene.materials, set(used), spectra)
+        materials = self.material_table.arrays
+        self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
+                                        self.geometry.material, materials.emission_strength, self.camera.position)
+        self.analysis = self._analyse(used)
+        lines = _monochromatic_lines(scene, used) if settings.wavelength_mode == "cie" else []
+        self.wavelengths = wavelength_sampling.build(settings, lines)
+        self.analysis.guided_lines = len(lines)
+        self.spectra = spectra.arrays()
+        self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
+                                              bool(settings.use_mis), SAMPLERS[settings.sampler],
+                                              int(settings.seed) & 0xFFFFFFFF)
+        self.accel = Accel(self.geometry)
+        self.film = Film(self.width, self.height)
         self._pixels = self._pixel_list(settings.border)
-        count = width * height
-        self._rot_pixel = pixel_offsets(settings.seed, count, 2, 1)
-        self._rot_lens = pixel_offsets(settings.seed, count, 2, 2)
-        self._rot_lambda = pixel_offsets(settings.seed, count, 1, 3)[:, 0]
-        self._workers = _threads(settings.threads)
+        self._workers = worker_threads(settings.threads)
         self._pool = ThreadPoolExecutor(self._workers)
+        self._local = threading.local()
         self._cancel = threading.Event()
         self._jobs_lock = threading.Lock()
         self._jobs = {}
+        self._glass_clamps = np.zeros(len(materials.glasses), np.int64)
         self.samples_done = 0
         self._first_sample = 0
         self._passes = 0
         self.cancelled = False
-        self.strategy = self.analysis.strategy(settings.use_mis, self.pixel_filter)
+        self.strategy = self.analysis.strategy(settings.use_mis, settings.pixel_filter)
         warnings = []
-        if self.accel.dropped_triangles:
-            warnings.append(f"{self.accel.dropped_triangles} zero-area triangle(s) dropped")
+        if dropped:
+            warnings.append(f"{dropped} zero-area triangle(s) dropped")
         self.stats = {
             "rays_cast": 0,
             "seconds": 0.0,
             "setup_seconds": time.perf_counter() - started,
             "nan_samples": 0,
             "rejected_rays": 0,
-            "dropped_triangles": self.accel.dropped_triangles,
+            "dropped_triangles": dropped,
             "paths": 0,
             "warnings": warnings,
             "strategy": self.strategy,
         }
+
+    def _analyse(self, used) -> SceneAnalysis:
+        s = self.settings
+        k = int(s.wavelengths_per_path) if s.wavelength_mode == "cie" else 3
+        a = SceneAnalysis(s.wavelength_mode, k, list(used), sampler=s.sampler)
+        flags = self.material_table.arrays.flags
+        for m in used:
+            if flags[m] & MAT_DISPERSIVE:
+                material = self.scene.materials[m]
+                a.dispersive.append(material.glass or material.name)
+        a.mesh_lights = any(flags[m] & MAT_EMISSIVE for m in used)
+        a.see_through_films = any(flags[m] & MAT_NULL for m in used)
+        a.camera_disperses = self.camera.disperses
+        a.camera_strategy = self.camera.strategy
+        a.dispersion = bool(a.dispersive) or a.camera_disperses
+        a.light_kinds = [light.kind for light in self.scene.lights]
+        a.features = list(self.material_table.features)
+        a.world = self.light_table.arrays.world_strength > 0
+        return a
 
     def _pixel_list(self, border):
         if border is None:
@@ -128,26 +157,21 @@ class Renderer:
         ys, xs = np.mgrid[y0:y1, x0:x1]
         return (ys * self.width + xs).ravel().astype(np.int64)
 
-    def _paths(self, start, stop, spp):
-        """Pixel index and sample number of paths ``start:stop`` of this pass."""
-        path = np.arange(start, stop, dtype=np.int64)
-        return self._pixels[path // spp], self.samples_done + path % spp
+    def _buffers(self, paths: int) -> ChunkBuffers:
+        buffers = getattr(self._local, "buffers", None)
+        if buffers is None or buffers.capacity < paths:
+            buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count)
+        return buffers
 
-    def _chunk(self, start, stop, spp, chunk_index):
-        rng = pass_rng(self.settings.seed, self._passes, chunk_index)
-        pixel, sample = self._paths(start, stop, spp)
-        n = len(pixel)
-        xy = np.column_stack([pixel % self.width, pixel // self.width]).astype(np.float64)
-        xy += _filter_offsets(r2_samples(sample, self._rot_pixel[pixel]), self.pixel_filter, self.filter_width)
-        lens_uv = r2_samples(sample, self._rot_lens[pixel])
-        if self.mode.dimensions == 1:
-            u_lam = r1_samples(sample, self._rot_lambda[pixel])[:, None]
-        else:
-            u_lam = rng.random((n, 3))
-        lam, lam_pdf = self.mode.sample(u_lam)
-        hero = rng.integers(0, lam.shape[1], n)
-        radiance, rays = self.integrator.trace(xy, lens_uv, lam, hero, rng)
-        return pixel, self.mode.to_rgb(radiance, lam, lam_pdf), rays
+    def _chunk(self, start, stop, spp):
+        """Trace paths ``start .. stop`` of the pass; returns (pixel [n], rgb [n, 3], rays, counters)."""
+        from .stages.trace import trace_chunk
+
+        count = stop - start
+        buffers = self._buffers(count)
+        clamps = np.zeros_like(self._glass_clamps)
+        rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
+        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
@@ -165,7 +189,7 @@ class Renderer:
             raise RuntimeError("start_at_sample must be called before the first pass")
         self._first_sample = first_sample
         self.samples_done = first_sample
-        self._passes = first_sample // per_pass  # the pass index seeds the pass's random numbers
+        self._passes = first_sample // per_pass
 
     def cancel(self) -> None:
         """Stop the pass in progress (thread-safe, returns at once): queued chunks are
@@ -187,7 +211,8 @@ class Renderer:
         remaining = self.settings.samples - (self.samples_done - self._first_sample)
         spp = min(self.settings.samples_per_pass, remaining) if remaining > 0 else self.settings.samples_per_pass
         total = len(self._pixels) * spp
-        bounds = list(range(0, total, chunk_size(total))) + [total]
+        size = chunk_size(total, self._workers, spp)
+        bounds = list(range(0, total, size)) + [total]
         chunks = list(zip(bounds[:-1], bounds[1:]))
         window = 2 * self._workers  # chunks in flight: bounded memory for huge frames
         jobs = self._jobs
@@ -196,18 +221,20 @@ class Renderer:
                 with self._jobs_lock:
                     for j in range(i, min(i + window, len(chunks))):
                         if j not in jobs and not self._cancel.is_set():
-                            jobs[j] = self._pool.submit(self._chunk, *chunks[j], spp, j)
+                            jobs[j] = self._pool.submit(self._chunk, *chunks[j], spp)
                 job = jobs.get(i)
                 if job is None:
                     break
                 try:
-                    pixel, rgb, rays = job.result()
+                    pixel, rgb, rays, rejected, clamps = job.result()
                 except CancelledError:
                     break
                 with self._jobs_lock:
                     del jobs[i]
                 self.film.add(pixel, rgb)
                 self.stats["rays_cast"] += rays
+                self.stats["rejected_rays"] += rejected
+                self._glass_clamps += clamps
                 if self.progress is not None:
                     self.progress((i + 1) / len(chunks))
                 if self._cancel.is_set():
@@ -223,7 +250,6 @@ class Renderer:
         self._glass_warnings()
         self.stats["paths"] += total
         self.stats["nan_samples"] = self.film.nan_samples
-        self.stats["rejected_rays"] = self.accel.rejected_rays
         self.stats["samples"] = self.samples_done
 
     def _drop_jobs(self):
@@ -241,15 +267,13 @@ class Renderer:
                     pass
 
     def _glass_warnings(self):
-        for b in self.bsdfs:
-            glass = getattr(b, "glass", None)
-            count = int(getattr(glass, "out_of_range_count", 0) or 0)
+        for glass, count in zip(self.material_table.glasses, self._glass_clamps):
             if count:
                 lo, hi = glass.valid_range_nm
-                text = (f"Glass '{glass.name}' is specified for {lo:g}-{hi:g} nm only: "
-                        f"the index was clamped at the range edge for {{}} wavelength sample(s)")
-                msgs = self.stats["warnings"]
-                msgs[:] = [m for m in msgs if not m.startswith(text.split("{")[0])] + [text.format(count)]
+                prefix = f"Glass '{glass.name}' is specified for {lo:g}-{hi:g} nm only: "
+                text = prefix + f"the index was clamped at the range edge for {count} wavelength sample(s)"
+                messages = self.stats["warnings"]
+                messages[:] = [m for m in messages if not m.startswith(prefix)] + [text]
 
     def image_rgb(self) -> np.ndarray:
         """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top."""
@@ -260,11 +284,10 @@ class Renderer:
         return self.film.variance_of_mean().astype(np.float32)
 
     def close(self) -> None:
-        """Cancel outstanding work and free the thread pools (idempotent)."""
+        """Cancel outstanding work and free the thread pool (idempotent)."""
         self._cancel.set()
         self._drop_jobs()
         self._pool.shutdown(wait=True, cancel_futures=True)
-        self.accel.close()
 
     def __enter__(self):
         return self
@@ -276,6 +299,5 @@ class Renderer:
     def __del__(self):
         try:
             self._pool.shutdown(wait=False, cancel_futures=True)
-            self.accel.close()
         except Exception:
             pass

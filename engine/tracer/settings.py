@@ -39,6 +39,9 @@ class RenderSettings:
     # deviation filter_width_px / 3, truncated at filter_width_px from the centre).
     pixel_filter: str = "box"
     filter_width_px: float = 1.5
+    # Where every path's uniform numbers come from: "sobol" (Owen-scrambled, the default) or
+    # "independent" (hashed random numbers, the reference the benchmark measures Sobol against).
+    sampler: str = "sobol"
 
     def validate(self) -> None:
         """Raise ``PrismInputError`` for settings no render can use."""

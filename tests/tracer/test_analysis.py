@@ -17,7 +17,7 @@ def _with_material(mat):
 def test_plain_scene_keeps_all_wavelengths_and_no_mesh_lights():
     r = Renderer(plane_under_point_light(size=8), settings())
     a = r.analysis
-    assert not a.dispersion and not a.mesh_lights and r.lights.mesh is None
+    assert not a.dispersion and not a.mesh_lights and r.light_table.arrays.mesh_index == -1
     assert "no dispersion" in r.strategy and "lights: point" in r.strategy and "cie x4" in r.strategy
 
 
@@ -32,7 +32,7 @@ def test_dispersive_glass_turns_on_hero_termination_constant_glass_does_not():
 def test_emissive_material_turns_on_mesh_lights_and_features_are_listed():
     mat = Material("glow", emission=SpectrumSpec(kind="blackbody", temperature_k=4000), emission_strength=2.0)
     r = Renderer(_with_material(mat), settings(wavelength_mode="gaussian_rgb", use_mis=False))
-    assert r.analysis.mesh_lights and r.lights.mesh is not None and len(r.lights.mesh.triangles) == 2
+    assert r.analysis.mesh_lights and len(r.light_table.arrays.mesh.triangle) == 2
     assert "emissive meshes" in r.strategy and "gaussian_rgb x3" in r.strategy and "no MIS" in r.strategy
     r = Renderer(_with_material(Material("m", kind="conductor", conductor="Cu", roughness=0.4,
                                          coating_thickness_nm=200.0)), settings(pixel_filter="gaussian"))

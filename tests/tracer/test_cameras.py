@@ -3,11 +3,12 @@
 import numpy as np
 import pytest
 
-from engine.tracer.cameras import PinholeCamera, ThinLensCamera, make_camera
+from engine.tracer.cameras import make_camera
 from engine.tracer.errors import PrismInputError
 from engine.tracer.scene import Camera
+from engine.tracer.stages.camera import PINHOLE, THIN_LENS
 
-from .tracer_scenes import look_at
+from .tracer_scenes import camera_rays, look_at, settings
 
 
 def _cam(**kw):
@@ -18,42 +19,40 @@ def _cam(**kw):
 
 
 def test_pinhole_frustum_orientation_and_shift():
-    cam = PinholeCamera(_cam())
-    lam = np.zeros((3, 2))
     xy = np.array([[32.0, 16.0], [64.0, 16.0], [32.0, 0.0]])  # centre, right edge, top edge
-    o, d, w = cam.generate_rays(xy, np.zeros((3, 2)), lam)
-    assert np.allclose(o, [1, 2, 3]) and np.allclose(w, 1) and w.shape == (3, 2)
+    o, d = camera_rays(_cam(), xy)
+    assert np.allclose(o, [1, 2, 3])
     assert np.allclose(d[0], [0, 0, -1])
     assert d[1][0] / -d[1][2] == pytest.approx(18.0 / 50.0)  # half film width / focal length, towards +X
     assert d[2][1] / -d[2][2] == pytest.approx(9.0 / 50.0)  # top row looks up (+Y here)
-    shifted = PinholeCamera(_cam(shift_x=0.1, shift_y=-0.2))
-    _, ds, _ = shifted.generate_rays(xy[:1], np.zeros((1, 2)), lam[:1])
+    _, ds = camera_rays(_cam(shift_x=0.1, shift_y=-0.2), xy[:1])
     assert ds[0][0] / -ds[0][2] == pytest.approx(0.1 * 36 / 50)
     assert ds[0][1] / -ds[0][2] == pytest.approx(-0.2 * 36 / 50)
 
 
 def test_thin_lens_focuses_at_focus_distance():
-    cam = ThinLensCamera(_cam(model="thin_lens", fstop=2.0, focus_distance_m=2.5))
-    assert cam.aperture_radius_m == pytest.approx(0.05 / 4)
+    cam = _cam(model="thin_lens", fstop=2.0, focus_distance_m=2.5)
+    aperture = make_camera(cam, settings()).data.aperture_radius_m
+    assert aperture == pytest.approx(0.05 / 4)
     rng = np.random.default_rng(0)
     n = 1000
     xy = np.tile([[10.3, 20.7]], (n, 1))
-    o, d, w = cam.generate_rays(xy, rng.random((n, 2)), np.zeros((n, 1)))
+    o, d = camera_rays(cam, xy, rng.random((n, 2)))
     assert np.allclose(np.linalg.norm(d, axis=1), 1)
     t = 2.5 / -d[:, 2]  # world -Z is the view axis here; the focus plane is z = 3 - 2.5
     p = o + t[:, None] * d
     assert np.allclose(p, p[0], atol=1e-9)
     radius = np.linalg.norm(o[:, :2] - [1, 2], axis=1)
-    assert radius.max() <= cam.aperture_radius_m + 1e-12 and radius.max() > 0.9 * cam.aperture_radius_m
+    assert radius.max() <= aperture + 1e-12 and radius.max() > 0.9 * aperture
 
 
 def test_factory_and_errors():
-    assert isinstance(make_camera(_cam(), None), PinholeCamera)
-    assert isinstance(make_camera(_cam(model="thin_lens"), None), ThinLensCamera)
+    assert make_camera(_cam(), settings()).data.kind == PINHOLE
+    assert make_camera(_cam(model="thin_lens"), settings()).data.kind == THIN_LENS
     with pytest.raises(PrismInputError, match="'c'"):
-        make_camera(_cam(model="fisheye"), None)
+        make_camera(_cam(model="fisheye"), settings())
     with pytest.raises(PrismInputError):
-        make_camera(_cam(focal_length_mm=0.0), None)
+        make_camera(_cam(focal_length_mm=0.0), settings())
 
 
 @pytest.mark.parametrize("mode", ["cie", "gaussian_rgb"])

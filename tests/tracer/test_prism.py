@@ -5,13 +5,14 @@ import numpy as np
 import pytest
 
 from engine.tracer.accel import Accel
-from engine.tracer.bsdf import Dielectric
-from engine.tracer.spectra.glass import glass_by_name
-from engine.tracer.path_state import TriangleData, offset_origin, shading_frame
+from engine.tracer.geometry import offset_origin, prepare_geometry, surface_at
 from engine.tracer.renderer import Renderer
-from engine.tracer.sampling import to_local, to_world
 from engine.tracer.scene import Camera, Material, SpectrumSpec, World
+from engine.tracer.spectra.glass import glass_by_name
+from engine.tracer.state import new_ray_queue
+from engine.tracer.vec3 import tangents, to_local, to_world
 
+from .bsdf.bsdf_checks import MaterialBSDF
 from .tracer_scenes import look_at, make_scene, settings
 
 APEX = np.radians(60.0)
@@ -39,8 +40,9 @@ def test_rays_through_prism_follow_snell_at_both_faces():
     verts, tris = prism()
     scene = make_scene([(verts, tris, 0)], [Material("prism", kind="dielectric", glass="N-SF11")],
                        Camera("c", np.eye(4), (1, 1)))
-    acc, data = Accel(scene.vertices, scene.triangles, threads=1), TriangleData(scene)
-    bsdf = Dielectric(glass, 0.0)
+    geometry, _, _ = prepare_geometry(scene, np.zeros(3))
+    acc = Accel(geometry)
+    bsdf = MaterialBSDF(scene.materials[0])
     lam = np.linspace(400.0, 700.0, 31)[:, None]
     n = len(lam)
     left_normal = np.array([-np.sqrt(3) / 2, 0.5, 0.0])
@@ -51,15 +53,18 @@ def test_rays_through_prism_follow_snell_at_both_faces():
     hit_point = np.array([-0.5, np.sqrt(3) / 2, 0.1])
     o = np.repeat((hit_point - 3 * d_in)[None], n, 0)
     d = np.repeat(d_in[None], n, 0)
+    rays = new_ray_queue(n)
     for face in (6, 4):  # enters the left face, leaves the right face
-        tri, t, bu, bv = acc.intersect(o, d)
+        rays.origin[:], rays.direction[:] = o, d
+        tri, t, bu, bv = acc.intersect(rays, n)
         assert set(tri) <= {face, face + 1}
-        p, ng, _ = data.surface(tri, bu, bv)
-        frame = shading_frame(ng)
+        hits = [surface_at(geometry, int(tri[j]), float(bu[j]), float(bv[j])) for j in range(n)]
+        frames = [(*tangents(ng), ng) for _, ng, _ in hits]
+        wo = np.array([to_local(tuple(-dj), *f) for dj, f in zip(d, frames)])
         u = np.tile([0.99999, 0.5, 0.5], (n, 1))  # choose refraction
-        s = bsdf.sample(to_local(-d, *frame), lam, u, np.zeros(n, int), np.ones(n, bool))
-        d = to_world(s.wi, *frame)
-        o = offset_origin(p, ng, d)
+        s = bsdf.sample(wo, lam, u, np.zeros(n, int), np.ones(n, bool))
+        d = np.array([to_world(tuple(w), *f) for w, f in zip(s.wi, frames)])
+        o = np.array([offset_origin(p, ng, tuple(dj)) for (p, ng, _), dj in zip(hits, d)])
     index = glass.index(lam[:, 0])
     expected = _deviation(theta1, index)
     measured = np.arccos(np.clip(d @ d_in, -1, 1))

@@ -3,22 +3,20 @@
 import numpy as np
 import pytest
 
-from engine.tracer.cameras import PinholeCamera
 from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import SpectrumSpec
 from engine.tracer.spectra.wavelengths import GaussianChannels
 
-from .tracer_scenes import plane_under_point_light, settings
+from .tracer_scenes import camera_rays, plane_under_point_light, settings
 
 
 def _closed_form(scene, power, albedo, height):
     """I rho cos(theta) / (pi r^2) at each pixel centre of the plane z = 0."""
-    cam = PinholeCamera(scene.camera)
-    h, w = cam.height, cam.width
+    w, h = scene.camera.resolution
     ys, xs = np.mgrid[0:h, 0:w]
     xy = np.stack([xs.ravel() + 0.5, ys.ravel() + 0.5], 1)
-    o, d, _ = cam.generate_rays(xy, None, np.zeros((len(xy), 1)))
+    o, d = camera_rays(scene.camera, xy)
     p = o - (o[:, 2] / d[:, 2])[:, None] * d
     to_light = np.array([0.0, 0.0, height]) - p
     r2 = (to_light**2).sum(1)
@@ -82,14 +80,22 @@ def test_progressive_passes_and_border():
 def test_gaussian_pixel_filter_offsets_and_chunking():
     from scipy import stats
 
-    from engine.tracer.renderer import _filter_offsets, chunk_size
+    from engine.tracer.cameras import make_camera
+    from engine.tracer.renderer import chunk_size
+    from engine.tracer.stages.camera import filter_offset
 
-    u = np.random.default_rng(0).random((100_000, 2))
-    off = _filter_offsets(u, "gaussian", 1.5)
-    assert np.all(np.abs(off - 0.5) <= 1.5) and np.allclose(off.mean(0), 0.5, atol=0.01)
-    assert np.allclose(off.std(0), 0.5 * np.sqrt(1 - 6 * stats.norm.pdf(3) / (1 - 2 * stats.norm.cdf(-3))), rtol=0.02)
-    assert np.array_equal(_filter_offsets(u, "box", 1.5), u)
-    assert chunk_size(4096) == 2048 and chunk_size(10**7) == 1 << 15 and chunk_size(100) == 2048
+    scene = plane_under_point_light(size=4)
+    gaussian = make_camera(scene.camera, settings(pixel_filter="gaussian", filter_width_px=1.5)).data
+    box = make_camera(scene.camera, settings()).data
+    u = np.random.default_rng(0).random(100_000)
+    off = np.array([filter_offset(gaussian, x) for x in u])
+    assert np.all(np.abs(off - 0.5) <= 1.5) and off.mean() == pytest.approx(0.5, abs=0.01)
+    # a Gaussian of sigma 0.5 px truncated at 3 sigma
+    assert off.std() == pytest.approx(0.5 * np.sqrt(1 - 6 * stats.norm.pdf(3) / (1 - 2 * stats.norm.cdf(-3))),
+                                      rel=0.02)
+    assert np.array_equal([filter_offset(box, x) for x in u[:100]], u[:100])
+    assert chunk_size(4096, 2) == 4096 and chunk_size(10**7, 2) == 1 << 16 and chunk_size(10**5, 2) == 25000
+    assert chunk_size(10**5, 2, 3) % 3 == 0 and chunk_size(10, 2, 64) == 4096
 
 
 def test_dispersive_glass_out_of_range_is_reported():

@@ -57,12 +57,12 @@ def merge(*parts):
         tris.append(t + offset)
         mats.append(np.full(len(t), m))
         offset += len(v)
-    return (np.concatenate(verts).astype(np.float32), np.concatenate(tris).astype(np.int32),
+    return (np.concatenate(verts).astype(np.float64), np.concatenate(tris).astype(np.int32),
             np.concatenate(mats).astype(np.int32))
 
 
 def make_scene(parts, materials, camera, lights=(), world=None):
-    v, t, m = merge(*parts) if parts else (np.zeros((0, 3), np.float32), np.zeros((0, 3), np.int32),
+    v, t, m = merge(*parts) if parts else (np.zeros((0, 3)), np.zeros((0, 3), np.int32),
                                            np.zeros(0, np.int32))
     return Scene(vertices=v, triangles=t, triangle_material=m, materials=list(materials), camera=camera,
                  lights=list(lights), world=world or World())
@@ -100,3 +100,16 @@ def inside_glowing_sphere(size=16, albedo=0.5, strength=1.0):
     sphere = uv_sphere((0, 0, 0), 1.0, rings=12, segments=24, inward=True)
     mat = Material("glow", base_color=(albedo,) * 3, emission=SpectrumSpec(), emission_strength=strength)
     return make_scene([(*sphere, 0)], [mat], cam)
+
+
+def camera_rays(camera, xy, lens_uv=None, render_settings=None):
+    """World-space (origins [N,3], unit directions [N,3]) of a pinhole or thin-lens ``scene.Camera``
+    through raster positions ``xy`` [N,2] (pixels from the top-left) and lens samples [N,2]."""
+    from engine.tracer.cameras import make_camera
+    from engine.tracer.stages.camera import camera_ray
+
+    setup = make_camera(camera, render_settings or RenderSettings())
+    lens_uv = np.zeros((len(xy), 2)) if lens_uv is None else lens_uv
+    rays = [camera_ray(setup.data, float(x), float(y), float(u), float(v)) for (x, y), (u, v) in zip(xy, lens_uv)]
+    origins = np.array([o for o, _ in rays]) + setup.position
+    return origins, np.array([d for _, d in rays])

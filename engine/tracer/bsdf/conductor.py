@@ -1,59 +1,84 @@
-"""Conductors: perfect mirror (alpha < 1e-3) or rough GGX with visible-normal sampling.
+"""Conductors (metals): perfect mirror below ``SMOOTH_ALPHA``, else GGX with visible-normal sampling.
 
-``fresnel(cos_i [n], lam [n,K]) -> F [n,K]`` is the reflectance of the interface
-(measured n, k; Schlick from a base colour; or a thin-film coating over either).
-Rough: f = D G2 F / (4 cos_o cos_i); sampled by D_wo, weight F G2 / G1(wo).
+Reflectance per wavelength: measured n + ik (``spectral[0]``, ``spectral[1]``), or Schlick's form of a
+normal-incidence reflectance ``spectral[0]`` (a base colour); either under an optional thin-film coating
+(then the base colour becomes the real index with that normal reflectance). Rough:
+f = D G2 F / (4 cos_o cos_i), sampled by D_wo with weight F G2 / G1(wo).
 """
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
-from ..sampling import dot, norm, where_rows
-
-from .base import BSDF, BSDFSample
+from ..jit import kernel
+from .closure import C_ALPHA, C_COAT_IOR, C_COAT_NM, C_N, SAMPLED_DELTA, SMOOTH_ALPHA
 from .microfacet import ggx_d, ggx_g1, ggx_g2, reflect, sample_visible_normal, visible_normal_pdf
+from .optics import fresnel_conductor, thin_film_reflectance
 
-SMOOTH_ALPHA = 1e-3
+
+@kernel
+def reflectance(row, spectral, cos_i, wavelength_nm, k):
+    """Reflectance of the interface at wavelength column ``k`` for incidence cosine ``cos_i``."""
+    cos_i = min(abs(cos_i), 1.0)
+    coated = row[C_COAT_NM] > 0.0
+    if row[C_N] >= 0.0:
+        if coated:
+            return thin_film_reflectance(cos_i, wavelength_nm[k], row[C_COAT_NM], 1.0, row[C_COAT_IOR],
+                                         complex(spectral[0, k], spectral[1, k]))
+        return fresnel_conductor(cos_i, spectral[0, k], spectral[1, k])
+    f0 = spectral[0, k]
+    if coated:
+        r = math.sqrt(min(max(f0, 0.0), 0.999))
+        return thin_film_reflectance(cos_i, wavelength_nm[k], row[C_COAT_NM], 1.0, row[C_COAT_IOR],
+                                     complex((1.0 + r) / (1.0 - r), 0.0))
+    c = 1.0 - cos_i
+    return f0 + (1.0 - f0) * c * c * c * c * c
 
 
-class Conductor(BSDF):
-    kind = "conductor"
+@kernel
+def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+    """(wi, pdf, sampled flags, eta scale); ``weight[k]`` = f |cos wi| / pdf (F for the mirror)."""
+    alpha = row[C_ALPHA]
+    if alpha < SMOOTH_ALPHA:
+        wi = (-wo[0], -wo[1], wo[2])
+        if wo[2] <= 0.0:
+            weight[:] = 0.0
+            return wi, 0.0, SAMPLED_DELTA, 1.0
+        for k in range(weight.shape[0]):
+            weight[k] = reflectance(row, spectral, wo[2], wavelength_nm, k)
+        return wi, math.inf, SAMPLED_DELTA, 1.0
+    wm = sample_visible_normal(wo, alpha, u1, u2)
+    wi = reflect(wo, wm)
+    cos_om = min(max(wo[0] * wm[0] + wo[1] * wm[1] + wo[2] * wm[2], 0.0), 1.0)
+    pdf = visible_normal_pdf(wo, wm, alpha) / (4.0 * cos_om) if cos_om > 0.0 else 0.0
+    ratio = ggx_g2(wo, wi, alpha) / ggx_g1(wo, alpha)
+    if wo[2] <= 0.0 or wi[2] <= 0.0 or not (pdf > 0.0 and math.isfinite(pdf)) or not math.isfinite(ratio):
+        weight[:] = 0.0
+        return wi, 0.0, 0, 1.0
+    for k in range(weight.shape[0]):
+        weight[k] = ratio * reflectance(row, spectral, cos_om, wavelength_nm, k)
+    return wi, pdf, 0, 1.0
 
-    def __init__(self, alpha: float, fresnel):
-        self.alpha = float(alpha)
-        self.fresnel = fresnel
-        self.delta = self.alpha < SMOOTH_ALPHA
 
-    def eval(self, wo, wi, lam, hero=None, collapsed=None):
-        n, k = lam.shape
-        if self.delta:
-            return np.zeros((n, k)), np.zeros(n)
-        ok = (wo[:, 2] > 0) & (wi[:, 2] > 0)
-        wm = wo + wi
-        wm /= np.maximum(norm(wm), 1e-300)[:, None]
-        cos_om = np.clip(dot(wo, wm), 0.0, 1.0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            scalar = ggx_d(wm, self.alpha) * ggx_g2(wo, wi, self.alpha) / (4.0 * wo[:, 2] * wi[:, 2])
-            pdf = visible_normal_pdf(wo, wm, self.alpha) / (4.0 * cos_om)
-        scalar = np.where(ok & np.isfinite(scalar), scalar, 0.0)
-        pdf = np.where(ok & np.isfinite(pdf), pdf, 0.0)
-        return scalar[:, None] * self.fresnel(cos_om, lam), pdf
-
-    def sample(self, wo, lam, u, hero, collapsed):
-        n = len(wo)
-        if self.delta:
-            wi = wo * np.array([-1.0, -1.0, 1.0])
-            ok = wo[:, 2] > 0
-            weight = where_rows(ok, self.fresnel(np.clip(wo[:, 2], 0, 1), lam), 0.0)
-            return BSDFSample(wi, weight, np.where(ok, np.inf, 0.0), np.ones(n, dtype=bool), np.ones(n))
-        wm = sample_visible_normal(wo, self.alpha, u[:, 1:3])
-        wi = reflect(wo, wm)
-        ok = (wo[:, 2] > 0) & (wi[:, 2] > 0)
-        cos_om = np.clip(dot(wo, wm), 0.0, 1.0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = ggx_g2(wo, wi, self.alpha) / ggx_g1(wo, self.alpha)
-            pdf = visible_normal_pdf(wo, wm, self.alpha) / (4.0 * cos_om)
-        ok &= np.isfinite(ratio) & np.isfinite(pdf) & (pdf > 0)
-        weight = where_rows(ok, ratio[:, None] * self.fresnel(cos_om, lam), 0.0)
-        return BSDFSample(wi, weight, np.where(ok, pdf, 0.0), np.zeros(n, dtype=bool), np.ones(n))
+@kernel
+def evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
+    """``f[k]`` (without the cosine); returns the pdf of ``sample`` for ``wi`` (0 for the mirror)."""
+    alpha = row[C_ALPHA]
+    f[:] = 0.0
+    if alpha < SMOOTH_ALPHA or wo[2] <= 0.0 or wi[2] <= 0.0:
+        return 0.0
+    hx, hy, hz = wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]
+    n = math.sqrt(hx * hx + hy * hy + hz * hz)
+    if n <= 0.0:
+        return 0.0
+    wm = (hx / n, hy / n, hz / n)
+    cos_om = min(max(wo[0] * wm[0] + wo[1] * wm[1] + wo[2] * wm[2], 0.0), 1.0)
+    if cos_om <= 0.0:
+        return 0.0
+    scalar = ggx_d(wm, alpha) * ggx_g2(wo, wi, alpha) / (4.0 * wo[2] * wi[2])
+    pdf = visible_normal_pdf(wo, wm, alpha) / (4.0 * cos_om)
+    if not (math.isfinite(scalar) and math.isfinite(pdf)):
+        return 0.0
+    for k in range(f.shape[0]):
+        f[k] = scalar * reflectance(row, spectral, cos_om, wavelength_nm, k)
+    return pdf

@@ -1,148 +1,153 @@
-"""Dielectric interfaces (glass): smooth (delta) or rough GGX, optionally coated.
+"""Dielectric interfaces (glass): smooth (delta) or rough GGX, optionally under a thin-film coating.
 
-The local frame's +Z is the outward normal: wo.z > 0 means the ray arrives from
-outside (index 1), wo.z < 0 from inside the glass. ``eta`` is the glass index at
-the path's hero wavelength when the glass disperses (the integrator has then kept
-only the hero wavelength), otherwise its constant index. Refracted radiance is
-scaled by 1/eta'^2 (non-symmetric transport for radiance, Veach 1997 §5.2).
-
-Reflection vs refraction is chosen with probability p = mean reflectance over the
-carried wavelengths (hero only once collapsed); each column is weighted R_j / p or
-(1 - R_j) / (1 - p). Rough transmission follows Walter et al. 2007 with
-visible-normal sampling (Heitz 2018).
+The local +Z is the outward normal: wo.z > 0 arrives from outside (index 1), wo.z < 0 from inside.
+``eta`` is the glass index: at the path's hero wavelength when the glass disperses (the path then
+carries only its hero), else the constant index. Refracted radiance is scaled by 1/eta'² (radiance is
+not symmetric under refraction, Veach 1997 §5.2). Reflection or refraction is chosen with probability
+p = mean reflectance over the carried wavelengths (the hero's once collapsed), each column weighted
+R_k / p or (1 - R_k) / (1 - p). Rough transmission follows Walter et al. 2007 with visible-normal
+sampling (Heitz 2018).
 """
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
-from ..sampling import dot, norm, row_sum, rows_finite, where_rows
-
-from .base import BSDF, BSDFSample, hero_column
-from .microfacet import ggx_d, ggx_g1, ggx_g2, sample_visible_normal, visible_normal_pdf
-from .microfacet import reflect as mirror
-from .optics import fresnel_dielectric, refract
-
-SMOOTH_ALPHA = 1e-3
+from ..jit import kernel
+from .closure import C_ALPHA, C_COAT_IOR, C_COAT_NM, SAMPLED_DELTA, SAMPLED_TRANSMISSION, SMOOTH_ALPHA
+from .microfacet import ggx_d, ggx_g1, ggx_g2, reflect, sample_visible_normal, visible_normal_pdf
+from .optics import fresnel_dielectric, refract, thin_film_reflectance
 
 
-def choice_probability(r: np.ndarray, hero: np.ndarray, collapsed: np.ndarray) -> np.ndarray:
-    """Probability [n] of picking reflection given per-column reflectances [n,K]."""
-    return np.clip(np.where(collapsed, hero_column(r, hero), row_sum(r) / r.shape[1]), 0.0, 1.0)
+@kernel
+def interface_reflectance(row, eta, cos_i, wavelength_nm, out):
+    """``out[k]`` = reflectance for signed ``cos_i`` (< 0: from inside) at every carried wavelength."""
+    if row[C_COAT_NM] <= 0.0:
+        r = fresnel_dielectric(cos_i, eta)
+        for k in range(out.shape[0]):
+            out[k] = r
+        return
+    n_in, n_out = (1.0, eta) if cos_i >= 0.0 else (eta, 1.0)
+    for k in range(out.shape[0]):
+        out[k] = thin_film_reflectance(cos_i, wavelength_nm[k], row[C_COAT_NM], n_in, row[C_COAT_IOR],
+                                       complex(n_out, 0.0))
 
 
-class Dielectric(BSDF):
-    kind = "dielectric"
-    two_sided = False
+@kernel
+def choice_probability(reflectance, hero, collapsed):
+    """Probability of reflecting: the hero's reflectance once collapsed, else the mean over columns."""
+    if collapsed:
+        p = reflectance[hero]
+    else:
+        p = 0.0
+        for k in range(reflectance.shape[0]):
+            p += reflectance[k]
+        p /= reflectance.shape[0]
+    return min(max(p, 0.0), 1.0)
 
-    def __init__(self, glass, alpha: float, coating=None):
-        """``glass`` has ``index(lambda_nm)`` and ``is_dispersive``; ``coating`` is None or a
-        callable (cos_i [n], eta_outside [n], eta_inside [n], lam [n,K]) -> R [n,K]."""
-        self.glass = glass
-        self.disperses = bool(glass.is_dispersive)
-        self.alpha = float(alpha)
-        self.delta = self.alpha < SMOOTH_ALPHA
-        self.coating = coating
-        self._constant_eta = None if self.disperses else float(np.asarray(glass.index(550.0)))
 
-    def eta(self, lam, hero):
-        """Relative index (glass / outside) per path [n]."""
-        if self._constant_eta is not None:
-            return np.full(len(lam), self._constant_eta)
-        return np.asarray(self.glass.index(hero_column(lam, hero)), dtype=np.float64)
+@kernel
+def _finite_or_zero(weight):
+    for k in range(weight.shape[0]):
+        if not math.isfinite(weight[k]):
+            weight[k] = 0.0
 
-    def reflectance(self, cos_i, eta, lam):
-        """R [n,K] for a wave arriving with signed cosine ``cos_i`` (< 0: from inside)."""
-        if self.coating is None:
-            return np.broadcast_to(fresnel_dielectric(cos_i, eta)[:, None], lam.shape)
-        outside = cos_i >= 0
-        n_in = np.where(outside, 1.0, eta)
-        n_out = np.where(outside, eta, 1.0)
-        return self.coating(np.abs(cos_i), n_in, n_out, lam)
 
-    def sample(self, wo, lam, u, hero, collapsed):
-        if self.delta:
-            return self._sample_smooth(wo, lam, u, hero, collapsed)
-        return self._sample_rough(wo, lam, u, hero, collapsed)
+@kernel
+def _sample_smooth(row, eta, wo, wavelength_nm, hero, collapsed, u0, weight):
+    interface_reflectance(row, eta, wo[2], wavelength_nm, weight)
+    p = choice_probability(weight, hero, collapsed)
+    wt, etap, tir = refract(wo, (0.0, 0.0, 1.0), eta)
+    if tir or u0 < p:
+        for k in range(weight.shape[0]):
+            weight[k] = 1.0 if tir else weight[k] / p
+        _finite_or_zero(weight)
+        return (-wo[0], -wo[1], wo[2]), math.inf, SAMPLED_DELTA, 1.0
+    scale = 1.0 / ((1.0 - p) * etap * etap)
+    for k in range(weight.shape[0]):
+        weight[k] = (1.0 - weight[k]) * scale
+    _finite_or_zero(weight)
+    return wt, math.inf, SAMPLED_DELTA | SAMPLED_TRANSMISSION, etap * etap
 
-    def eval(self, wo, wi, lam, hero, collapsed):
-        n, k = lam.shape
-        if self.delta:
-            return np.zeros((n, k)), np.zeros(n)
-        return self._eval_rough(wo, wi, lam, hero, collapsed)
 
-    def _sample_smooth(self, wo, lam, u, hero, collapsed):
-        n = len(wo)
-        eta = self.eta(lam, hero)
-        r = self.reflectance(wo[:, 2], eta, lam)
-        p = choice_probability(r, hero, collapsed)
-        wt, etap, tir = refract(wo, np.broadcast_to([0.0, 0.0, 1.0], (n, 3)), eta)
-        reflect = (u[:, 0] < p) | tir
-        wi = where_rows(reflect, wo * np.array([-1.0, -1.0, 1.0]), wt)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            w_r = where_rows(tir, 1.0, r / p[:, None])
-            w_t = (1.0 - r) / (1.0 - p[:, None]) / (etap * etap)[:, None]
-        weight = where_rows(reflect, w_r, w_t)
-        weight = np.where(np.isfinite(weight), weight, 0.0)
-        eta_scale = np.where(reflect, 1.0, etap * etap)
-        return BSDFSample(wi, weight, np.full(n, np.inf), np.ones(n, dtype=bool), eta_scale)
+@kernel
+def _sample_rough(row, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+    alpha = row[C_ALPHA]
+    wm = sample_visible_normal(wo, alpha, u1, u2)
+    cos_om = wo[0] * wm[0] + wo[1] * wm[1] + wo[2] * wm[2]
+    interface_reflectance(row, eta, cos_om, wavelength_nm, weight)
+    p = choice_probability(weight, hero, collapsed)
+    pdf_wm = visible_normal_pdf(wo, wm, alpha)
+    if u0 < p:
+        wi = reflect(wo, wm)
+        valid = wo[2] * wi[2] > 0.0
+        pdf = pdf_wm / (4.0 * abs(cos_om)) * p
+        scale = 1.0 / p
+        flags = 0
+        etap = 1.0
+    else:
+        wi, etap, tir = refract(wo, wm, eta)
+        valid = (not tir) and wo[2] * wi[2] < 0.0
+        cos_im = wi[0] * wm[0] + wi[1] * wm[1] + wi[2] * wm[2]
+        denom = cos_im + cos_om / etap
+        pdf = pdf_wm * abs(cos_im) / (denom * denom) * (1.0 - p)
+        scale = 1.0 / ((1.0 - p) * etap * etap)
+        flags = SAMPLED_TRANSMISSION
+    ratio = ggx_g2(wo, wi, alpha) / ggx_g1(wo, alpha)
+    for k in range(weight.shape[0]):
+        weight[k] = ratio * (weight[k] if flags == 0 else 1.0 - weight[k]) * scale
+        valid = valid and math.isfinite(weight[k])
+    if not (valid and math.isfinite(pdf) and pdf > 0.0):
+        weight[:] = 0.0
+        return wi, 0.0, flags, 1.0
+    return wi, pdf, flags, etap * etap
 
-    def _sample_rough(self, wo, lam, u, hero, collapsed):
-        n = len(wo)
-        eta = self.eta(lam, hero)
-        wm = sample_visible_normal(wo, self.alpha, u[:, 1:3])
-        cos_om = dot(wo, wm)
-        r = self.reflectance(cos_om, eta, lam)
-        p = choice_probability(r, hero, collapsed)
-        reflect = u[:, 0] < p
-        wi_r = mirror(wo, wm)
-        wi_t, etap, tir = refract(wo, wm, eta)
-        wi = where_rows(reflect, wi_r, wi_t)
-        cos_i = wi[:, 2]
-        valid = np.where(reflect, wo[:, 2] * cos_i > 0, (~tir) & (wo[:, 2] * cos_i < 0))
-        ratio = ggx_g2(wo, wi, self.alpha) / ggx_g1(wo, self.alpha)
-        pdf_wm = visible_normal_pdf(wo, wm, self.alpha)
-        cos_im = dot(wi, wm)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            denom = (cos_im + cos_om / etap) ** 2
-            pdf = np.where(
-                reflect, pdf_wm / (4.0 * np.abs(cos_om)) * p, pdf_wm * np.abs(cos_im) / denom * (1.0 - p)
-            )
-            w = np.where(
-                reflect[:, None], r / p[:, None], (1.0 - r) / (1.0 - p[:, None]) / (etap * etap)[:, None]
-            )
-        weight = ratio[:, None] * w
-        valid &= np.isfinite(pdf) & (pdf > 0) & rows_finite(weight)
-        eta_scale = np.where(reflect, 1.0, etap * etap)
-        return BSDFSample(
-            wi, where_rows(valid, weight, 0.0), np.where(valid, pdf, 0.0), np.zeros(n, dtype=bool), eta_scale
-        )
 
-    def _eval_rough(self, wo, wi, lam, hero, collapsed):
-        n, k = lam.shape
-        eta = self.eta(lam, hero)
-        cos_o, cos_i = wo[:, 2], wi[:, 2]
-        reflect = cos_o * cos_i > 0
-        etap = np.where(reflect, 1.0, np.where(cos_o > 0, eta, 1.0 / eta))
-        wm = wi * etap[:, None] + wo
-        length = norm(wm)
-        ok = (cos_o != 0) & (cos_i != 0) & (length > 0)
-        wm = wm / np.where(length > 0, length, 1.0)[:, None]
-        wm *= np.where(wm[:, 2] < 0, -1.0, 1.0)[:, None]
-        cos_om = dot(wo, wm)
-        cos_im = dot(wi, wm)
-        ok &= (cos_im * cos_i > 0) & (cos_om * cos_o > 0)
-        r = self.reflectance(cos_om, eta, lam)
-        p = choice_probability(r, hero, collapsed)
-        d = ggx_d(wm, self.alpha)
-        g = ggx_g2(wo, wi, self.alpha)
-        pdf_wm = visible_normal_pdf(wo, wm, self.alpha)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            denom = (cos_im + cos_om / etap) ** 2
-            f_r = (d * g / (4.0 * np.abs(cos_i * cos_o)))[:, None] * r
-            f_t = d * g * np.abs(cos_im * cos_om) / (np.abs(cos_i * cos_o) * denom) / (etap * etap)
-            f_t = f_t[:, None] * (1.0 - r)
-            pdf = np.where(reflect, pdf_wm / (4.0 * np.abs(cos_om)) * p, pdf_wm * np.abs(cos_im) / denom * (1.0 - p))
-        f = where_rows(reflect, f_r, f_t)
-        ok &= np.isfinite(pdf) & rows_finite(f)
-        return where_rows(ok, f, 0.0), np.where(ok, pdf, 0.0)
+@kernel
+def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+    """(wi, pdf, sampled flags, eta scale = eta'² on refraction); ``weight[k]`` = f |cos wi| / pdf."""
+    if row[C_ALPHA] < SMOOTH_ALPHA:
+        return _sample_smooth(row, eta, wo, wavelength_nm, hero, collapsed, u0, weight)
+    return _sample_rough(row, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
+
+
+@kernel
+def evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
+    """``f[k]`` (without the cosine); returns the pdf of ``sample`` for ``wi`` (0 when smooth)."""
+    alpha = row[C_ALPHA]
+    f[:] = 0.0
+    cos_o, cos_i = wo[2], wi[2]
+    if alpha < SMOOTH_ALPHA or cos_o == 0.0 or cos_i == 0.0:
+        return 0.0
+    is_reflection = cos_o * cos_i > 0.0
+    etap = 1.0 if is_reflection else (eta if cos_o > 0.0 else 1.0 / eta)
+    hx, hy, hz = wi[0] * etap + wo[0], wi[1] * etap + wo[1], wi[2] * etap + wo[2]
+    n = math.sqrt(hx * hx + hy * hy + hz * hz)
+    if n <= 0.0:
+        return 0.0
+    sign = -1.0 if hz < 0.0 else 1.0
+    wm = (sign * hx / n, sign * hy / n, sign * hz / n)
+    cos_om = wo[0] * wm[0] + wo[1] * wm[1] + wo[2] * wm[2]
+    cos_im = wi[0] * wm[0] + wi[1] * wm[1] + wi[2] * wm[2]
+    if not (cos_im * cos_i > 0.0 and cos_om * cos_o > 0.0):
+        return 0.0
+    interface_reflectance(row, eta, cos_om, wavelength_nm, f)
+    p = choice_probability(f, hero, collapsed)
+    d = ggx_d(wm, alpha)
+    g = ggx_g2(wo, wi, alpha)
+    pdf_wm = visible_normal_pdf(wo, wm, alpha)
+    denom = (cos_im + cos_om / etap) ** 2
+    if is_reflection:
+        scalar = d * g / (4.0 * abs(cos_i * cos_o))
+        pdf = pdf_wm / (4.0 * abs(cos_om)) * p
+    else:
+        scalar = d * g * abs(cos_im * cos_om) / (abs(cos_i * cos_o) * denom) / (etap * etap)
+        pdf = pdf_wm * abs(cos_im) / denom * (1.0 - p)
+    ok = math.isfinite(pdf)
+    for k in range(f.shape[0]):
+        f[k] = scalar * (f[k] if is_reflection else 1.0 - f[k])
+        ok = ok and math.isfinite(f[k])
+    if not ok:
+        f[:] = 0.0
+        return 0.0
+    return pdf

@@ -1,83 +1,93 @@
-"""Isotropic GGX (Trowbridge-Reitz) microfacet distribution in a local frame (+Z = normal).
+"""Isotropic GGX (Trowbridge-Reitz) microfacets in the local frame (+Z = normal), per path.
 
-Visible-normal sampling follows Heitz, "Sampling the GGX Distribution of Visible
-Normals", JCGT 7(4), 2018; masking-shadowing is Smith's height-correlated form
-G2 = 1 / (1 + Lambda(wo) + Lambda(wi)). ``alpha`` is Blender's roughness squared.
+Visible-normal sampling follows Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4),
+2018; masking-shadowing is Smith's height-correlated G2 = 1 / (1 + Λ(wo) + Λ(wi)). ``alpha`` is
+Blender's roughness squared.
 """
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
-from ..sampling import dot, norm
-
-
-def ggx_d(wm: np.ndarray, alpha: np.ndarray | float) -> np.ndarray:
-    """Normal distribution D(wm) [n] (per steradian of microfacet normal)."""
-    cos2 = wm[:, 2] ** 2
-    a2 = np.asarray(alpha, dtype=np.float64) ** 2
-    denom = cos2 * (a2 - 1.0) + 1.0
-    return np.where(wm[:, 2] > 0, a2 / (np.pi * denom * denom), 0.0)
+from ..jit import kernel
 
 
-def ggx_lambda(w: np.ndarray, alpha) -> np.ndarray:
-    """Smith's Lambda(w) [n]."""
-    cos2 = w[:, 2] ** 2
-    sin2 = np.maximum(0.0, 1.0 - cos2)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        tan2 = sin2 / cos2
-    tan2 = np.where(cos2 > 0, tan2, np.inf)
-    a2 = np.asarray(alpha, dtype=np.float64) ** 2
-    return 0.5 * (np.sqrt(1.0 + a2 * tan2) - 1.0)
+@kernel
+def ggx_d(wm, alpha):
+    """Normal distribution D(wm) (per steradian of microfacet normal)."""
+    if wm[2] <= 0.0:
+        return 0.0
+    a2 = alpha * alpha
+    denom = wm[2] * wm[2] * (a2 - 1.0) + 1.0
+    return a2 / (math.pi * denom * denom)
 
 
-def ggx_g1(w, alpha) -> np.ndarray:
-    """Smith masking G1(w) [n]."""
+@kernel
+def ggx_lambda(w, alpha):
+    cos2 = w[2] * w[2]
+    if cos2 <= 0.0:
+        return math.inf
+    tan2 = max(0.0, 1.0 - cos2) / cos2
+    return 0.5 * (math.sqrt(1.0 + alpha * alpha * tan2) - 1.0)
+
+
+@kernel
+def ggx_g1(w, alpha):
     return 1.0 / (1.0 + ggx_lambda(w, alpha))
 
 
-def ggx_g2(wo, wi, alpha) -> np.ndarray:
-    """Height-correlated masking-shadowing G2(wo, wi) [n]."""
+@kernel
+def ggx_g2(wo, wi, alpha):
     return 1.0 / (1.0 + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha))
 
 
-def visible_normal_pdf(w, wm, alpha) -> np.ndarray:
-    """Density of visible normals D_w(wm) = G1(w) max(0, w.wm) D(wm) / |cos w| [n]
-    (``w`` may be below the surface: it is mirrored up, as in sampling)."""
-    w_up = w * np.where(w[:, 2] < 0, -1.0, 1.0)[:, None]
-    cos_m = np.maximum(dot(w_up, wm), 0.0)
-    cos = np.abs(w[:, 2])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        pdf = ggx_g1(w_up, alpha) * cos_m * ggx_d(wm, alpha) / cos
-    return np.where(cos > 0, pdf, 0.0)
+@kernel
+def _upper(w):
+    return (w[0], w[1], w[2]) if w[2] >= 0.0 else (-w[0], -w[1], -w[2])
 
 
-def sample_visible_normal(w: np.ndarray, alpha, u: np.ndarray) -> np.ndarray:
-    """Microfacet normals [n,3] distributed by D_w (Heitz 2018); ``u`` [n,2] uniform.
-
-    ``w`` below the surface is mirrored to the upper hemisphere first."""
-    alpha = np.broadcast_to(np.asarray(alpha, dtype=np.float64), (len(w),))
-    w_up = w * np.where(w[:, 2] < 0, -1.0, 1.0)[:, None]
-    vh = np.column_stack([alpha * w_up[:, 0], alpha * w_up[:, 1], w_up[:, 2]])
-    vh /= norm(vh)[:, None]
-    lensq = vh[:, 0] ** 2 + vh[:, 1] ** 2
-    inv = np.where(lensq > 0, 1.0 / np.sqrt(np.where(lensq > 0, lensq, 1.0)), 0.0)
-    t1 = np.where(
-        (lensq > 0)[:, None], np.column_stack([-vh[:, 1] * inv, vh[:, 0] * inv, np.zeros(len(w))]), [1.0, 0.0, 0.0]
-    )
-    t2 = np.cross(vh, t1)
-    r = np.sqrt(u[:, 0])
-    phi = 2.0 * np.pi * u[:, 1]
-    p1 = r * np.cos(phi)
-    p2 = r * np.sin(phi)
-    s = 0.5 * (1.0 + vh[:, 2])
-    p2 = (1.0 - s) * np.sqrt(np.maximum(0.0, 1.0 - p1 * p1)) + s * p2
-    p3 = np.sqrt(np.maximum(0.0, 1.0 - p1 * p1 - p2 * p2))
-    nh = p1[:, None] * t1 + p2[:, None] * t2 + p3[:, None] * vh
-    ne = np.column_stack([alpha * nh[:, 0], alpha * nh[:, 1], np.maximum(1e-12, nh[:, 2])])
-    return ne / norm(ne)[:, None]
+@kernel
+def visible_normal_pdf(w, wm, alpha):
+    """D_w(wm) = G1(w) max(0, w.wm) D(wm) / |cos w| (``w`` below the surface is mirrored up)."""
+    cos = abs(w[2])
+    if cos <= 0.0:
+        return 0.0
+    up = _upper(w)
+    cos_m = max(up[0] * wm[0] + up[1] * wm[1] + up[2] * wm[2], 0.0)
+    return ggx_g1(up, alpha) * cos_m * ggx_d(wm, alpha) / cos
 
 
-def reflect(w: np.ndarray, n: np.ndarray) -> np.ndarray:
+@kernel
+def sample_visible_normal(w, alpha, u1, u2):
+    """A microfacet normal distributed by D_w (``w`` below the surface is mirrored up first)."""
+    up = _upper(w)
+    vx, vy, vz = alpha * up[0], alpha * up[1], up[2]
+    n = math.sqrt(vx * vx + vy * vy + vz * vz)
+    vx, vy, vz = vx / n, vy / n, vz / n
+    lensq = vx * vx + vy * vy
+    if lensq > 0.0:
+        inv = 1.0 / math.sqrt(lensq)
+        t1 = (-vy * inv, vx * inv, 0.0)
+    else:
+        t1 = (1.0, 0.0, 0.0)
+    t2 = (vy * t1[2] - vz * t1[1], vz * t1[0] - vx * t1[2], vx * t1[1] - vy * t1[0])
+    r = math.sqrt(u1)
+    phi = 2.0 * math.pi * u2
+    p1 = r * math.cos(phi)
+    p2 = r * math.sin(phi)
+    s = 0.5 * (1.0 + vz)
+    p2 = (1.0 - s) * math.sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2
+    p3 = math.sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2))
+    hx = p1 * t1[0] + p2 * t2[0] + p3 * vx
+    hy = p1 * t1[1] + p2 * t2[1] + p3 * vy
+    hz = p1 * t1[2] + p2 * t2[2] + p3 * vz
+    ex, ey, ez = alpha * hx, alpha * hy, max(1e-12, hz)
+    n = math.sqrt(ex * ex + ey * ey + ez * ez)
+    return (ex / n, ey / n, ez / n)
+
+
+@kernel
+def reflect(w, n):
     """Mirror ``w`` (pointing away from the surface) about ``n``: 2 (w.n) n - w."""
-    return 2.0 * dot(w, n)[:, None] * n - w
+    d = 2.0 * (w[0] * n[0] + w[1] * n[1] + w[2] * n[2])
+    return (d * n[0] - w[0], d * n[1] - w[1], d * n[2] - w[2])

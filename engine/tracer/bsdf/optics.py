@@ -1,89 +1,104 @@
-"""Interface optics in the BSDFs' conventions, as thin adapters over the physics
-modules (``fresnel``, ``thin_film``, ``conductors``).
+"""Interface optics per path, in the BSDFs' local frame (+Z = normal, directions point away).
 
-BSDF conventions: directions point away from the surface; ``eta`` = index behind
-the surface / index in front (front = the +normal side). Inputs are sanitised
-(cosines clipped, NaN zeroed) so one degenerate path cannot abort a render; the
-integrator drops the path instead.
+Scalar forms of ``spectra.fresnel`` and ``spectra.thin_film`` (those stay the vectorised references
+the tests compare against): dielectric and conductor Fresnel, Snell refraction, and the Airy
+reflectance of one thin film over a substrate (complex indices allowed).
 """
 
 from __future__ import annotations
 
-import numpy as np
+import cmath
+import math
 
-from ..sampling import dot
-
-from ..spectra import fresnel as _fresnel
-
-
-def _cos(c):
-    return np.clip(np.nan_to_num(np.asarray(c, dtype=np.float64)), -1.0, 1.0)
+from ..jit import kernel
 
 
-def fresnel_dielectric(cos_i: np.ndarray, eta: np.ndarray) -> np.ndarray:
-    """Unpolarised reflectance [n] for signed ``cos_i`` (< 0: arriving from behind,
-    the index ratio is inverted); 1 under total internal reflection."""
-    return _fresnel.fresnel_dielectric(_cos(cos_i), eta)
+@kernel
+def fresnel_dielectric(cos_i, eta):
+    """Unpolarised reflectance for signed ``cos_i`` (< 0: arriving from behind, so eta -> 1/eta),
+    ``eta`` = index behind / index in front of the surface; 1 under total internal reflection."""
+    cos_i = min(max(cos_i, -1.0), 1.0)
+    if cos_i < 0.0:
+        eta = 1.0 / eta
+        cos_i = -cos_i
+    sin2_t = (1.0 - cos_i * cos_i) / (eta * eta)
+    if sin2_t >= 1.0:
+        return 1.0
+    cos_t = math.sqrt(max(1.0 - sin2_t, 0.0))
+    r_s = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
+    r_p = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
+    return 0.5 * (r_s * r_s + r_p * r_p)
 
 
-def refract(w: np.ndarray, n: np.ndarray, eta: np.ndarray):
-    """Refract ``w`` [n,3] (pointing away) through the interface with normal ``n``.
-
-    Returns (transmitted direction [n,3] (pointing away on the other side),
-    eta' [n] = relative index actually crossed (n_t / n_i), tir [n] bool)."""
-    eta = np.broadcast_to(np.asarray(eta, dtype=np.float64), (len(w),))
-    inside = dot(w, n) < 0
-    etap = np.where(inside, 1.0 / eta, eta)
-    facing = np.where(inside[:, None], -n, n)
-    t, tir = _fresnel.refract(-np.nan_to_num(w), facing, etap)
-    return t, etap, tir
-
-
-def conductor_fresnel(cos_i: np.ndarray, name: str, lam: np.ndarray) -> np.ndarray:
-    """Reflectance [n,K] of a named metal (measured n, k) at ``cos_i`` [n]."""
-    from ..path_spectra import conductor_nk
-
-    n, k = conductor_nk(name, lam)
-    return _fresnel.fresnel_conductor(np.abs(_cos(cos_i))[:, None], n, k)
-
-
-def coating_reflectance(thickness_nm: float, coating_ior: float):
-    """R(cos_i [n], n_incident [n], n_substrate [n], lam [n,K]) -> [n,K] of a film on a dielectric."""
-    from ..spectra.thin_film import thin_film_reflectance
-
-    def reflectance(cos_i, n_incident, n_substrate, lam):
-        return thin_film_reflectance(np.abs(_cos(cos_i))[:, None], lam, thickness_nm, n_incident[:, None],
-                                     coating_ior, n_substrate[:, None])
-
-    return reflectance
+@kernel
+def refract(w, m, eta):
+    """Refract ``w`` (pointing away) through the interface with unit normal ``m`` of the local frame's
+    upper side; ``eta`` = index below / index above. Returns (wt pointing away on the other side,
+    eta' = index actually entered / index left, total internal reflection)."""
+    cos_i = w[0] * m[0] + w[1] * m[1] + w[2] * m[2]
+    etap = eta
+    nx, ny, nz = m[0], m[1], m[2]
+    if cos_i < 0.0:  # arriving from below: the interface is seen the other way round
+        etap = 1.0 / eta
+        cos_i = -cos_i
+        nx, ny, nz = -nx, -ny, -nz
+    sin2_t = (1.0 - cos_i * cos_i) / (etap * etap)
+    if sin2_t >= 1.0:
+        return (0.0, 0.0, 0.0), etap, True
+    cos_t = math.sqrt(1.0 - sin2_t)
+    inv = 1.0 / etap
+    return ((-w[0]) * inv + (cos_i * inv - cos_t) * nx,
+            (-w[1]) * inv + (cos_i * inv - cos_t) * ny,
+            (-w[2]) * inv + (cos_i * inv - cos_t) * nz), etap, False
 
 
-def coated_conductor_fresnel(material, spectra):
-    """F(cos_i [n], lam [n,K]) of a thin film of index ``coating_ior`` over a metal: the
-    named metal's n + ik, or (base colour only) the real index with that normal reflectance."""
-    from ..path_spectra import conductor_nk
-    from ..spectra.thin_film import thin_film_reflectance
+@kernel
+def fresnel_conductor(cos_i, n, k):
+    """Unpolarised reflectance of a conductor of complex index n + ik seen from vacuum."""
+    cos_i = min(abs(cos_i), 1.0)
+    cos2 = cos_i * cos_i
+    sin2 = 1.0 - cos2
+    eta2 = n * n
+    kappa2 = k * k
+    t0 = eta2 - kappa2 - sin2
+    a2b2 = math.sqrt(t0 * t0 + 4.0 * eta2 * kappa2)
+    a = math.sqrt(max(0.5 * (a2b2 + t0), 0.0))
+    t1 = a2b2 + cos2
+    t2 = 2.0 * cos_i * a
+    t3 = cos2 * a2b2 + sin2 * sin2
+    t4 = t2 * sin2
+    r_s = (t1 - t2) / (t1 + t2)
+    r_p = r_s * (t3 - t4) / (t3 + t4)
+    r = 0.5 * (r_s + r_p)
+    return r if math.isfinite(r) else 1.0
 
-    d, n_film = float(material.coating_thickness_nm), float(material.coating_ior)
-    f0 = None if material.conductor else spectra.reflectance(material.base_color)
 
-    def fresnel(cos_i, lam):
-        if f0 is None:
-            n, k = conductor_nk(material.conductor, lam)
-            index = n + 1j * k
-        else:
-            r = np.sqrt(np.clip(f0(lam), 0.0, 0.999))
-            index = (1.0 + r) / (1.0 - r)
-        return thin_film_reflectance(np.abs(_cos(cos_i))[:, None], lam, d, 1.0, n_film, index)
-
-    return fresnel
+@kernel
+def _interface(n_i, q_i, n_j, q_j):
+    r_s = (q_i - q_j) / (q_i + q_j)
+    den_p = n_j * n_j * q_i + n_i * n_i * q_j
+    r_p = (n_j * n_j * q_i - n_i * n_i * q_j) / den_p
+    return r_s, r_p
 
 
-def free_film_reflectance(thickness_nm: float, film_ior: float):
-    """R(cos_i [n], lam [n,K]) -> [n,K] of a free-standing film in air."""
-    from ..spectra.thin_film import thin_film_reflectance
-
-    def reflectance(cos_i, lam):
-        return thin_film_reflectance(np.abs(_cos(cos_i))[:, None], lam, thickness_nm, 1.0, film_ior, 1.0)
-
-    return reflectance
+@kernel
+def thin_film_reflectance(cos_i, wavelength_nm, thickness_nm, n_incident, n_film, n_substrate):
+    """Airy reflectance of a film (index ``n_film``, real) of ``thickness_nm`` between a medium of real
+    index ``n_incident`` and a substrate of complex index ``n_substrate``, unpolarised."""
+    cos_i = min(abs(cos_i), 1.0)
+    if cos_i == 0.0:
+        return 1.0
+    n0 = complex(n_incident, 0.0)
+    n1 = complex(n_film, 0.0)
+    n2 = n_substrate + 0j
+    s2 = n_incident * n_incident * (1.0 - cos_i * cos_i)
+    q0 = n0 * cos_i
+    q1 = cmath.sqrt(n1 * n1 - s2)
+    q2 = cmath.sqrt(n2 * n2 - s2)
+    r01s, r01p = _interface(n0, q0, n1, q1)
+    r12s, r12p = _interface(n1, q1, n2, q2)
+    phase2 = cmath.exp(2j * (2.0 * math.pi / wavelength_nm) * q1 * thickness_nm)
+    rs = (r01s + r12s * phase2) / (1.0 + r01s * r12s * phase2)
+    rp = (r01p + r12p * phase2) / (1.0 + r01p * r12p * phase2)
+    r = 0.5 * (rs.real * rs.real + rs.imag * rs.imag + rp.real * rp.real + rp.imag * rp.imag)
+    return min(max(r, 0.0), 1.0)

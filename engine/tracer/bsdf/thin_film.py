@@ -1,38 +1,47 @@
-"""Free-standing thin film (soap bubble): a layer of index ``film_ior`` and thickness
-``film_thickness_nm`` in air. Both faces are parallel, so the transmitted ray leaves
-undeviated (wi = -wo); reflection is specular. Airy reflectance R(lambda, theta)
-per wavelength, T = 1 - R (no absorption). Both lobes are deltas; the lobe is
-chosen with p = mean R over the carried wavelengths, weights R_j/p, T_j/(1-p).
+"""Free-standing thin film (soap bubble): a layer of index ``C_FILM_IOR`` and thickness ``C_FILM_NM`` in
+air. Its faces are parallel, so transmitted light leaves undeviated (wi = -wo); reflection is specular.
+Airy reflectance R(λ, θ) per wavelength, T = 1 - R (no absorption). Both lobes are deltas, chosen with
+p = mean R over the carried wavelengths, weights R_k / p and T_k / (1 - p). Shadow rays pass through
+films (``stages.shadow``), attenuated by T.
 """
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
-from ..sampling import where_rows
-from .base import BSDF, BSDFSample
+from ..jit import kernel
+from .closure import C_FILM_IOR, C_FILM_NM, SAMPLED_DELTA, SAMPLED_TRANSMISSION
 from .dielectric import choice_probability
+from .optics import thin_film_reflectance
 
 
-class ThinFilm(BSDF):
-    kind = "thin_film"
-    delta = True
+@kernel
+def film_reflectance(row, cos_i, wavelength_nm):
+    """Reflectance of the film in air at one wavelength."""
+    return thin_film_reflectance(cos_i, wavelength_nm, row[C_FILM_NM], 1.0, row[C_FILM_IOR], complex(1.0, 0.0))
 
-    def __init__(self, reflectance):
-        """``reflectance(cos_i [n], lam [n,K]) -> R [n,K]`` of the film in air."""
-        self.reflectance = reflectance
 
-    def eval(self, wo, wi, lam, hero=None, collapsed=None):
-        n, k = lam.shape
-        return np.zeros((n, k)), np.zeros(n)
+@kernel
+def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+    """(wi, pdf, sampled flags, eta scale); ``weight[k]`` = R_k / p or T_k / (1 - p)."""
+    for k in range(weight.shape[0]):
+        weight[k] = film_reflectance(row, wo[2], wavelength_nm[k])
+    p = choice_probability(weight, hero, collapsed)
+    if u0 < p:
+        for k in range(weight.shape[0]):
+            weight[k] = weight[k] / p
+            if not math.isfinite(weight[k]):
+                weight[k] = 0.0
+        return (-wo[0], -wo[1], wo[2]), math.inf, SAMPLED_DELTA, 1.0
+    for k in range(weight.shape[0]):
+        weight[k] = (1.0 - weight[k]) / (1.0 - p)
+        if not math.isfinite(weight[k]):
+            weight[k] = 0.0
+    return (-wo[0], -wo[1], -wo[2]), math.inf, SAMPLED_DELTA | SAMPLED_TRANSMISSION, 1.0
 
-    def sample(self, wo, lam, u, hero, collapsed):
-        n = len(wo)
-        r = np.clip(self.reflectance(np.clip(np.abs(wo[:, 2]), 0.0, 1.0), lam), 0.0, 1.0)
-        p = choice_probability(r, hero, collapsed)
-        reflect = u[:, 0] < p
-        wi = where_rows(reflect, wo * np.array([-1.0, -1.0, 1.0]), -wo)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            weight = where_rows(reflect, r / p[:, None], (1.0 - r) / (1.0 - p[:, None]))
-        weight = np.where(np.isfinite(weight), weight, 0.0)
-        return BSDFSample(wi, weight, np.full(n, np.inf), np.ones(n, dtype=bool), np.ones(n))
+
+@kernel
+def evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
+    """Both lobes are deltas: nothing to evaluate."""
+    f[:] = 0.0
+    return 0.0

@@ -1,75 +1,96 @@
-"""Area lights: rectangle or disk (ellipse), one-sided, emitting along ``direction``.
+"""Area lights: rectangle or disk (ellipse), one-sided, emitting along their normal (the light's -Z).
 
-A light of power P and area A has radiance P / (pi A) (Cycles' convention), times
-its luminance-normalised spectrum. Sampled uniformly by area, converted to solid
-angle; rays that hit its front face see it (its back is invisible).
+Power P over area A gives radiance P / (π A) (Cycles' convention). Sampled uniformly by area and
+converted to solid angle; rays that hit the front face see it, the back is invisible.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from ..sampling import along, concentric_disk, dot, dot_vector
+from ..jit import kernel
+from ..warps import concentric_disk
+from .row import (DISK, L_AREA, L_HALF_U, L_HALF_V, L_KIND, L_NX, L_NZ, L_PX, L_PY, L_PZ, L_SCALE, L_SPECTRUM, L_UX,
+                  L_UY, L_UZ, L_VX, L_VY, L_VZ, LIGHT_ROW, RECTANGLE, L_NY)
 
 
-class AreaLight:
-    delta = False
-    hittable = True
+def area_row(light, spectrum_id, offset):
+    """The row of an area ``scene.Light`` (``offset``: the camera position, m)."""
+    row = np.zeros(LIGHT_ROW)
+    normal = np.asarray(light.direction, np.float64)
+    normal = normal / np.linalg.norm(normal)
+    u = np.asarray(light.axis_u, np.float64)
+    u = u - normal * (u @ normal)
+    u = u / np.linalg.norm(u)
+    v = np.cross(normal, u)
+    if np.asarray(light.axis_v, np.float64) @ v < 0:
+        v = -v
+    disk = light.area_shape == "disk"
+    half_u, half_v = 0.5 * float(light.size_u_m), 0.5 * float(light.size_v_m)
+    area = (math.pi if disk else 4.0) * half_u * half_v
+    row[L_KIND] = DISK if disk else RECTANGLE
+    row[L_SPECTRUM] = spectrum_id
+    row[L_SCALE] = float(light.power_w) / (math.pi * area) if area > 0 else 0.0
+    row[L_PX:L_PZ + 1] = np.asarray(light.position, np.float64) - offset
+    row[L_NX:L_NZ + 1] = normal
+    row[L_UX:L_UZ + 1] = u
+    row[L_VX:L_VZ + 1] = v
+    row[L_HALF_U], row[L_HALF_V], row[L_AREA] = half_u, half_v, area
+    return row
 
-    def __init__(self, light, spectrum):
-        self.name = light.name
-        self.center = np.asarray(light.position, dtype=np.float64)
-        n = np.asarray(light.direction, dtype=np.float64)
-        self.normal = n / np.linalg.norm(n)
-        u = np.asarray(light.axis_u, dtype=np.float64)
-        u = u - self.normal * (u @ self.normal)
-        self.axis_u = u / np.linalg.norm(u)
-        self.axis_v = np.cross(self.normal, self.axis_u)
-        if np.asarray(light.axis_v) @ self.axis_v < 0:
-            self.axis_v = -self.axis_v
-        self.half_u = 0.5 * float(light.size_u_m)
-        self.half_v = 0.5 * float(light.size_v_m)
-        self.disk = light.area_shape == "disk"
-        self.area = (np.pi if self.disk else 4.0) * self.half_u * self.half_v
-        self.radiance = float(light.power_w) / (np.pi * self.area) if self.area > 0 else 0.0
-        self.spectrum = spectrum
 
-    def sample(self, p, u, lam):
-        """Uniform point on the light seen from ``p`` [n,3]: (wi, distance, Li [n,K], pdf)."""
-        if self.disk:
-            xy = concentric_disk(u[:, :2])
-        else:
-            xy = 2.0 * u[:, :2] - 1.0
-        su, sv = xy[:, 0] * self.half_u, xy[:, 1] * self.half_v
-        wi = np.empty((len(p), 3))
-        for k in range(3):  # q - p, column by column
-            wi[:, k] = self.center[k] + su * self.axis_u[k] + sv * self.axis_v[k] - p[:, k]
-        dist = np.sqrt(dot(wi, wi))
-        safe = np.where(dist > 0, dist, 1.0)
-        wi /= safe[:, None]
-        cos_l = -dot_vector(wi, self.normal)
-        ok = (cos_l > 0) & (dist > 0)
-        pdf = np.where(ok, safe**2 / (self.area * np.where(ok, cos_l, 1.0)), 0.0)
-        li = self.spectrum(lam) * self.radiance
-        if not ok.all():
-            li[~ok] = 0.0
-        return wi, dist, li, pdf
+def area_power(row) -> float:
+    return row[L_SCALE] * math.pi * row[L_AREA]
 
-    def intersect(self, o, d):
-        """Distance to the front face along rays (inf: miss or back face)."""
-        denom = dot_vector(d, self.normal)
-        front = denom < 0
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (self.center @ self.normal - dot_vector(o, self.normal)) / np.where(front, denom, -1.0)
-        q = along(o - self.center, t, d)
-        x = dot_vector(q, self.axis_u) / self.half_u
-        y = dot_vector(q, self.axis_v) / self.half_v
-        inside = (x * x + y * y <= 1.0) if self.disk else ((np.abs(x) <= 1.0) & (np.abs(y) <= 1.0))
-        return np.where(front & (t > 0) & inside, t, np.inf)
 
-    def emitted(self, o, d, t, lam):
-        return self.spectrum(lam) * self.radiance
+@kernel
+def sample_li(row, p, u1, u2):
+    """(wi, distance, solid-angle pdf, radiance factor) for a uniform point on the light."""
+    if row[L_KIND] == DISK:
+        x, y = concentric_disk(u1, u2)
+    else:
+        x, y = 2.0 * u1 - 1.0, 2.0 * u2 - 1.0
+    su, sv = x * row[L_HALF_U], y * row[L_HALF_V]
+    wx = row[L_PX] + su * row[L_UX] + sv * row[L_VX] - p[0]
+    wy = row[L_PY] + su * row[L_UY] + sv * row[L_VY] - p[1]
+    wz = row[L_PZ] + su * row[L_UZ] + sv * row[L_VZ] - p[2]
+    dist = math.sqrt(wx * wx + wy * wy + wz * wz)
+    if dist <= 0.0:
+        return (0.0, 0.0, 1.0), 0.0, 0.0, 0.0
+    wi = (wx / dist, wy / dist, wz / dist)
+    cos_l = -(wi[0] * row[L_NX] + wi[1] * row[L_NY] + wi[2] * row[L_NZ])
+    if cos_l <= 0.0:
+        return wi, dist, 0.0, 0.0
+    return wi, dist, dist * dist / (row[L_AREA] * cos_l), row[L_SCALE]
 
-    def pdf(self, o, d, t):
-        cos_l = np.abs(dot_vector(d, self.normal))
-        return t * t / (self.area * np.maximum(cos_l, 1e-300))
+
+@kernel
+def intersect(row, o, d):
+    """Distance to the front face along the ray (inf: miss or back face)."""
+    denom = d[0] * row[L_NX] + d[1] * row[L_NY] + d[2] * row[L_NZ]
+    if denom >= 0.0:
+        return math.inf
+    t = ((row[L_PX] - o[0]) * row[L_NX] + (row[L_PY] - o[1]) * row[L_NY] + (row[L_PZ] - o[2]) * row[L_NZ]) / denom
+    if not t > 0.0:
+        return math.inf
+    qx, qy, qz = o[0] + t * d[0] - row[L_PX], o[1] + t * d[1] - row[L_PY], o[2] + t * d[2] - row[L_PZ]
+    x = (qx * row[L_UX] + qy * row[L_UY] + qz * row[L_UZ]) / row[L_HALF_U]
+    y = (qx * row[L_VX] + qy * row[L_VY] + qz * row[L_VZ]) / row[L_HALF_V]
+    if row[L_KIND] == DISK:
+        inside = x * x + y * y <= 1.0
+    else:
+        inside = abs(x) <= 1.0 and abs(y) <= 1.0
+    return t if inside else math.inf
+
+
+@kernel
+def pdf_li(row, o, d, t):
+    cos_l = abs(d[0] * row[L_NX] + d[1] * row[L_NY] + d[2] * row[L_NZ])
+    return t * t / (row[L_AREA] * max(cos_l, 1e-300))
+
+
+@kernel
+def le(row, o, d, t):
+    return row[L_SCALE]

@@ -1,83 +1,99 @@
-"""Emissive triangles (materials with ``emission_strength`` > 0) as one light.
+"""Emissive triangles (materials with emission) as one light.
 
-Emission is two-sided with radiance strength x spectrum (Cycles' Emission). For
-next-event estimation a triangle is picked with probability proportional to
-area x strength and a point uniformly on it; densities are converted to solid
-angle so BSDF-sampled hits on the same triangles can be weighted by MIS.
+Emission is two-sided with radiance strength × spectrum (Cycles' Emission). For light sampling a
+triangle is picked with probability ∝ area × strength and a point uniformly on it; densities are
+converted to solid angle so BSDF-sampled hits on the same triangles are weighted by MIS.
+
+``MeshEmitters``: ``triangle`` int32 [E] (geometry triangle ids), ``material`` int32 [E], ``geometry`` float64 [E, 13] (v0, e1,
+e2, unit normal, area; camera-relative metres), ``cdf`` / ``probability`` float64 [E], ``of_triangle``
+int32 [T] (emitter row of each geometry triangle, -1 if it does not emit), ``total`` (Σ area ×
+strength, for light selection).
 """
 
 from __future__ import annotations
 
+import math
+from collections import namedtuple
+
 import numpy as np
 
-from ..sampling import dot, uniform_triangle, where_rows
+from ..jit import kernel
+from ..warps import uniform_triangle
+
+MeshEmitters = namedtuple("MeshEmitters", "triangle material geometry cdf probability of_triangle")
 
 
-class MeshEmitters:
-    delta = False
-    hittable = False
-    name = "emissive meshes"
+def build_mesh_emitters(vertices, triangles, triangle_material, strength_of_material):
+    """Emitters of the triangles whose material has strength > 0 (``strength_of_material`` [M]).
+    Returns (``MeshEmitters``, total area × strength) — (empty tables, 0) when nothing emits."""
+    strength = strength_of_material[triangle_material] if len(triangle_material) else np.zeros(0)
+    emitting = np.flatnonzero(strength > 0)
+    corners = np.asarray(vertices, np.float64)[np.asarray(triangles)[emitting]]
+    e1 = corners[:, 1] - corners[:, 0]
+    e2 = corners[:, 2] - corners[:, 0]
+    cross = np.cross(e1, e2)
+    double_area = np.linalg.norm(cross, axis=1)
+    keep = np.isfinite(double_area) & (double_area > 0)
+    emitting, corners, e1, e2, cross, double_area = (a[keep] for a in (emitting, corners, e1, e2, cross, double_area))
+    of_triangle = np.full(len(triangles), -1, np.int32)
+    if len(emitting) == 0:
+        empty = MeshEmitters(np.zeros(0, np.int32), np.zeros(0, np.int32), np.zeros((0, 13)), np.zeros(0),
+                             np.zeros(0), of_triangle)
+        return empty, 0.0
+    area = 0.5 * double_area
+    geometry = np.concatenate([corners[:, 0], e1, e2, cross / double_area[:, None], area[:, None]], axis=1)
+    weight = area * strength[emitting]
+    total = float(weight.sum())
+    probability = weight / total
+    cdf = np.cumsum(probability)
+    cdf[-1] = 1.0
+    of_triangle[emitting] = np.arange(len(emitting), dtype=np.int32)
+    material = np.asarray(triangle_material)[emitting].astype(np.int32)
+    return MeshEmitters(emitting.astype(np.int32), material, geometry, cdf, probability, of_triangle), total
 
-    def __init__(self, vertices, triangles, emissive_triangles, strengths, spectrum_ids, spectra, triangle_count):
-        """``emissive_triangles`` [m] indexes ``triangles``; ``strengths`` [m];
-        ``spectrum_ids`` [m] indexes ``spectra`` (callables lambda [n,K] -> [n,K])."""
-        self.triangles = np.asarray(emissive_triangles, dtype=np.int64)
-        corners = np.asarray(vertices, dtype=np.float64)[np.asarray(triangles)[self.triangles]]
-        self.v0 = corners[:, 0]
-        self.e1 = corners[:, 1] - corners[:, 0]
-        self.e2 = corners[:, 2] - corners[:, 0]
-        cross = np.cross(self.e1, self.e2)
-        double_area = np.linalg.norm(cross, axis=1)
-        self.area = 0.5 * double_area
-        self.normal = cross / np.where(double_area > 0, double_area, 1.0)[:, None]
-        self.strength = np.asarray(strengths, dtype=np.float64)
-        self.spectrum_ids = np.asarray(spectrum_ids, dtype=np.int64)
-        self.spectra = list(spectra)
-        weight = self.area * self.strength
-        self.total = float(weight.sum())
-        self.cdf = np.cumsum(weight) / self.total if self.total > 0 else np.linspace(0, 1, len(weight) + 1)[1:]
-        self.select = weight / self.total if self.total > 0 else np.zeros(len(weight))
-        self.row_of_triangle = np.full(int(triangle_count), -1, dtype=np.int64)
-        self.row_of_triangle[self.triangles] = np.arange(len(self.triangles))
 
-    def _radiance_rows(self, rows, lam):
-        out = np.zeros(lam.shape)
-        sid = self.spectrum_ids[rows]
-        for s in np.unique(sid):
-            m = sid == s
-            out[m] = self.strength[rows[m], None] * self.spectra[s](lam[m])
-        return out
+@kernel
+def pick(emitters, u):
+    """The emitter row whose cdf interval holds ``u``."""
+    cdf = emitters.cdf
+    lo, hi = 0, cdf.shape[0] - 1
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if cdf[mid] <= u:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
 
-    def sample(self, p, u, lam):
-        rows = np.minimum(np.searchsorted(self.cdf, u[:, 2], side="right"), len(self.cdf) - 1)
-        b = uniform_triangle(u[:, :2])
-        q = self.v0[rows] + b[:, 0:1] * self.e1[rows] + b[:, 1:2] * self.e2[rows]
-        wi = q - p
-        dist = np.sqrt(dot(wi, wi))
-        safe = np.where(dist > 0, dist, 1.0)
-        wi = wi / safe[:, None]
-        cos_l = np.abs(dot(wi, self.normal[rows]))
-        ok = (cos_l > 0) & (dist > 0) & (self.area[rows] > 0)
-        area = np.where(ok, self.area[rows], 1.0)
-        pdf = np.where(ok, self.select[rows] / area * safe**2 / np.where(ok, cos_l, 1.0), 0.0)
-        li = where_rows(ok, self._radiance_rows(rows, lam), 0.0)
-        return wi, dist, li, pdf
 
-    def radiance(self, triangle, lam):
-        """Emitted radiance [n,K] of hit triangles (original indices; 0 if not emissive)."""
-        rows = self.row_of_triangle[triangle]
-        out = np.zeros(lam.shape)
-        ok = rows >= 0
-        if ok.any():
-            out[ok] = self._radiance_rows(rows[ok], lam[ok])
-        return out
+@kernel
+def sample_li(emitters, p, u0, u1, u2):
+    """(wi, distance, solid-angle pdf, material) of a point on an emissive triangle."""
+    e = pick(emitters, u0)
+    g = emitters.geometry[e]
+    b1, b2 = uniform_triangle(u1, u2)
+    wx = g[0] + b1 * g[3] + b2 * g[6] - p[0]
+    wy = g[1] + b1 * g[4] + b2 * g[7] - p[1]
+    wz = g[2] + b1 * g[5] + b2 * g[8] - p[2]
+    dist = math.sqrt(wx * wx + wy * wy + wz * wz)
+    material = emitters.material[e]
+    if dist <= 0.0:
+        return (0.0, 0.0, 1.0), 0.0, 0.0, material
+    wi = (wx / dist, wy / dist, wz / dist)
+    cos_l = abs(wi[0] * g[9] + wi[1] * g[10] + wi[2] * g[11])
+    if cos_l <= 0.0:
+        return wi, dist, 0.0, material
+    return wi, dist, emitters.probability[e] / g[12] * dist * dist / cos_l, material
 
-    def pdf(self, o, d, t, triangle):
-        """Solid-angle density of ``sample`` for rays from ``o`` hitting ``triangle`` at ``t``."""
-        rows = self.row_of_triangle[triangle]
-        ok = rows >= 0
-        r = np.where(ok, rows, 0)
-        cos_l = np.abs(dot(d, self.normal[r]))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            pdf = self.select[r] / self.area[r] * t * t / cos_l
-        return np.where(ok & np.isfinite(pdf), pdf, 0.0)
+
+@kernel
+def pdf_li(emitters, triangle, d, t):
+    """Solid-angle density of ``sample_li`` for a ray along ``d`` hitting ``triangle`` at distance ``t``."""
+    e = emitters.of_triangle[triangle]
+    if e < 0:
+        return 0.0
+    g = emitters.geometry[e]
+    cos_l = abs(d[0] * g[9] + d[1] * g[10] + d[2] * g[11])
+    if cos_l <= 0.0:
+        return 0.0
+    return emitters.probability[e] / g[12] * t * t / cos_l

@@ -1,98 +1,116 @@
-"""Point and spot lights, optionally with a soft radius (then a sphere light).
+"""Point and spot lights, optionally with a radius (then a sphere light).
 
-Units as Cycles: a light of power P has radiant intensity I = P / (4 pi) W/sr
-times its luminance-normalised spectrum (spots too, then cut by the cone). With
-``radius_m`` = r > 0 it is a sphere of radiance I / (pi r^2), which is hit by
-rays and sampled uniformly in the cone it subtends.
+Units as Cycles: power P gives intensity I = P / (4π) W/sr (spots too, cut by Blender's smoothstep
+cone falloff). With radius r > 0 it is a sphere of radiance I / (π r²), hit by rays and sampled
+uniformly in the cone it subtends.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from ..sampling import dot, dot_vector, orthonormal_basis, to_world, uniform_cone
+from ..jit import kernel
+from ..vec3 import tangents, to_world
+from ..warps import uniform_cone
+from .row import (L_COS_HALF, L_NX, L_NY, L_NZ, L_PX, L_PY, L_PZ, L_RADIUS, L_SCALE, L_SMOOTH, L_SPECTRUM, L_SPOT,
+                  LIGHT_ROW, POINT, SPHERE, L_KIND)
 
 
-def spot_falloff(cos_angle, cos_half_size, blend):
-    """Blender's spot falloff: 0 outside the cone, smoothstep over the blend region.
+def point_row(light, spectrum_id, offset):
+    """The row of a ``scene.Light`` of kind point or spot (``offset``: the camera position, m)."""
+    row = np.zeros(LIGHT_ROW)
+    radius = float(max(light.radius_m, 0.0))
+    intensity = float(light.power_w) / (4.0 * math.pi)
+    row[L_KIND] = SPHERE if radius > 0 else POINT
+    row[L_SPECTRUM] = spectrum_id
+    row[L_SCALE] = intensity / (math.pi * radius * radius) if radius > 0 else intensity
+    row[L_PX:L_PZ + 1] = np.asarray(light.position, np.float64) - offset
+    axis = np.asarray(light.direction, np.float64)
+    row[L_NX:L_NZ + 1] = axis / np.linalg.norm(axis)
+    row[L_RADIUS] = radius
+    row[L_SPOT] = 1.0 if light.kind == "spot" else 0.0
+    row[L_COS_HALF] = math.cos(min(light.spot_size_rad, math.pi) / 2.0)
+    row[L_SMOOTH] = (1.0 - row[L_COS_HALF]) * float(np.clip(light.spot_blend, 0.0, 1.0))
+    return row
 
-    ``cos_angle`` [n]: cosine between the spot axis and the direction to the lit
-    point; ``blend`` in [0,1] is the fraction of (1 - cos_half_size) that fades."""
-    smooth = (1.0 - cos_half_size) * blend
+
+def point_power(row) -> float:
+    """Radiant power (W, luminance-normalised spectrum) for light selection."""
+    intensity = row[L_SCALE] * (math.pi * row[L_RADIUS] ** 2 if row[L_KIND] == SPHERE else 1.0)
+    return 4.0 * math.pi * intensity
+
+
+@kernel
+def spot_falloff(row, px, py, pz):
+    """Blender's spot falloff at point p: 0 outside the cone, smoothstep over the blend region."""
+    if row[L_SPOT] == 0.0:
+        return 1.0
+    dx, dy, dz = px - row[L_PX], py - row[L_PY], pz - row[L_PZ]
+    dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+    cos_a = (dx * row[L_NX] + dy * row[L_NY] + dz * row[L_NZ]) / dist if dist > 0.0 else 1.0
+    smooth = row[L_SMOOTH]
     if smooth <= 0.0:
-        return (cos_angle > cos_half_size).astype(np.float64)
-    x = np.clip((cos_angle - cos_half_size) / smooth, 0.0, 1.0)
+        return 1.0 if cos_a > row[L_COS_HALF] else 0.0
+    x = min(max((cos_a - row[L_COS_HALF]) / smooth, 0.0), 1.0)
     return x * x * (3.0 - 2.0 * x)
 
 
-class PointLight:
-    """Point (``spot`` False) or spot light; delta unless it has a radius."""
+@kernel
+def sphere_hit_distance(row, o, d):
+    """Distance along the ray to the sphere (inf: miss, or the origin inside it)."""
+    ox, oy, oz = o[0] - row[L_PX], o[1] - row[L_PY], o[2] - row[L_PZ]
+    b = ox * d[0] + oy * d[1] + oz * d[2]
+    c = ox * ox + oy * oy + oz * oz - row[L_RADIUS] * row[L_RADIUS]
+    disc = b * b - c
+    if disc < 0.0 or c <= 0.0:
+        return math.inf
+    root = math.sqrt(disc)
+    t = -b - root
+    if t <= 0.0:
+        t = -b + root
+    return t if t > 0.0 else math.inf
 
-    def __init__(self, light, spectrum, spot: bool = False):
-        self.name = light.name
-        self.position = np.asarray(light.position, dtype=np.float64)
-        self.intensity = float(light.power_w) / (4.0 * np.pi)
-        self.spectrum = spectrum
-        self.radius = float(max(light.radius_m, 0.0))
-        self.delta = self.radius == 0.0
-        self.hittable = not self.delta
-        self.spot = spot
-        axis = np.asarray(light.direction, dtype=np.float64)
-        self.axis = axis / np.linalg.norm(axis)
-        self.cos_half_size = float(np.cos(min(light.spot_size_rad, np.pi) / 2.0))
-        self.blend = float(np.clip(light.spot_blend, 0.0, 1.0))
-        if not self.delta:
-            self.radiance = self.intensity / (np.pi * self.radius**2)
 
-    def _falloff(self, points):
-        if not self.spot:
-            return np.ones(len(points))
-        to_point = points - self.position
-        dist = np.linalg.norm(to_point, axis=1)
-        cos_a = dot_vector(to_point, self.axis) / np.where(dist > 0, dist, 1.0)
-        return spot_falloff(cos_a, self.cos_half_size, self.blend)
+@kernel
+def _one_minus_cos(row, p):
+    dx, dy, dz = row[L_PX] - p[0], row[L_PY] - p[1], row[L_PZ] - p[2]
+    dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+    sin2 = min((row[L_RADIUS] / max(dist, 1e-300)) ** 2, 1.0)
+    return sin2 / (1.0 + math.sqrt(1.0 - sin2)), dist, (dx, dy, dz)
 
-    def sample(self, p, u, lam):
-        """Direction to the light from points ``p`` [n,3]: (wi, distance, Li [n,K], pdf)."""
-        to_c = self.position - p
-        dist_c = np.sqrt(dot(to_c, to_c))
-        safe = np.where(dist_c > 0, dist_c, 1.0)
-        axis = to_c / safe[:, None]
-        falloff = self._falloff(p)
-        if self.delta:
-            li = (self.intensity * falloff / safe**2)[:, None] * self.spectrum(lam)
-            return axis, dist_c, li, np.ones(len(p))
-        sin2 = np.minimum((self.radius / safe) ** 2, 1.0)
-        one_minus_cos = sin2 / (1.0 + np.sqrt(1.0 - sin2))
-        local = uniform_cone(u[:, :2], 1.0 - one_minus_cos)
-        s, t = orthonormal_basis(axis)
-        wi = to_world(local, s, t, axis)
-        dist = self._hit_distance(p, wi)
-        ok = (dist_c > self.radius) & np.isfinite(dist)
-        pdf = np.where(ok, 1.0 / (2.0 * np.pi * np.maximum(one_minus_cos, 1e-300)), 0.0)
-        li = np.where(ok, self.radiance * falloff, 0.0)[:, None] * self.spectrum(lam)
-        return wi, np.where(ok, dist, 0.0), li, pdf
 
-    def _hit_distance(self, o, d):
-        oc = o - self.position
-        b = dot(oc, d)
-        c = dot(oc, oc) - self.radius**2
-        disc = b * b - c
-        root = np.sqrt(np.maximum(disc, 0.0))
-        t = np.where(-b - root > 0, -b - root, -b + root)
-        return np.where((disc >= 0) & (t > 0) & (c > 0), t, np.inf)
+@kernel
+def sample_li(row, p, u1, u2):
+    """(wi, distance, pdf (1 for the delta point), radiance factor) toward the light from ``p``."""
+    falloff = spot_falloff(row, p[0], p[1], p[2])
+    if row[L_KIND] == POINT:
+        dx, dy, dz = row[L_PX] - p[0], row[L_PY] - p[1], row[L_PZ] - p[2]
+        dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+        if dist <= 0.0:
+            return (0.0, 0.0, 1.0), 0.0, 0.0, 0.0
+        return (dx / dist, dy / dist, dz / dist), dist, 1.0, row[L_SCALE] * falloff / (dist * dist)
+    omc, dist_c, to_c = _one_minus_cos(row, p)
+    if not dist_c > row[L_RADIUS]:
+        return (0.0, 0.0, 1.0), 0.0, 0.0, 0.0
+    axis = (to_c[0] / dist_c, to_c[1] / dist_c, to_c[2] / dist_c)
+    s, t = tangents(axis)
+    wi = to_world(uniform_cone(u1, u2, 1.0 - omc), s, t, axis)
+    dist = sphere_hit_distance(row, p, wi)
+    if not math.isfinite(dist):
+        return wi, 0.0, 0.0, 0.0
+    return wi, dist, 1.0 / (2.0 * math.pi * max(omc, 1e-300)), row[L_SCALE] * falloff
 
-    def intersect(self, o, d):
-        """Distance along rays to the sphere (inf: miss); only for soft lights."""
-        return self._hit_distance(o, d)
 
-    def emitted(self, o, d, t, lam):
-        """Radiance [n,K] seen along rays that hit the sphere at ``t``."""
-        return (self.radiance * self._falloff(o))[:, None] * self.spectrum(lam)
+@kernel
+def pdf_li(row, o, d, t):
+    """Solid-angle density of ``sample_li`` from ``o`` for a direction that hits the sphere."""
+    omc, _, _ = _one_minus_cos(row, o)
+    return 1.0 / (2.0 * math.pi * max(omc, 1e-300))
 
-    def pdf(self, o, d, t):
-        """Solid-angle density of ``sample`` for directions ``d`` from ``o`` that hit."""
-        dist_c = np.linalg.norm(self.position - o, axis=1)
-        sin2 = np.minimum((self.radius / np.maximum(dist_c, 1e-300)) ** 2, 1.0)
-        one_minus_cos = sin2 / (1.0 + np.sqrt(1.0 - sin2))
-        return 1.0 / (2.0 * np.pi * np.maximum(one_minus_cos, 1e-300))
+
+@kernel
+def le(row, o, d, t):
+    """Radiance factor seen along a ray from ``o`` that hits the sphere."""
+    return row[L_SCALE] * spot_falloff(row, o[0], o[1], o[2])

@@ -1,49 +1,64 @@
-"""Sun: a distant light of irradiance E (Blender's Strength, W/m^2) on a surface
-facing it. With angular diameter 2 theta > 0 it is a uniform disk of radiance
-E / (pi sin^2 theta), sampled uniformly in its cone and seen by escaping rays;
-with angle 0 it is a delta direction."""
+"""Sun: a distant light of irradiance E (Blender's Strength, W/m²) on a surface facing it. With angular
+diameter 2θ > 0 it is a uniform disc of radiance E / (π sin²θ), sampled uniformly in its cone and seen
+by escaping rays; with angle 0 it is a delta direction."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from ..sampling import dot_vector, orthonormal_basis, to_world, uniform_cone
+from ..jit import kernel
+from ..vec3 import tangents, to_world
+from ..warps import uniform_cone
+from .row import L_COS_MAX, L_KIND, L_NX, L_NY, L_NZ, L_ONE_MINUS_COS, L_SCALE, L_SPECTRUM, LIGHT_ROW, SUN, SUN_DISK
 
 
-class SunLight:
-    def __init__(self, light, spectrum):
-        self.name = light.name
-        d = np.asarray(light.direction, dtype=np.float64)
-        self.to_sun = -d / np.linalg.norm(d)
-        self.irradiance = float(light.irradiance_w_m2)
-        self.spectrum = spectrum
-        half = 0.5 * float(max(light.sun_angle_rad, 0.0))
-        self.delta = half <= 0.0
-        self.hittable = False
-        self.distant = not self.delta
-        if not self.delta:
-            half = min(half, np.pi / 2)
-            self.one_minus_cos = 2.0 * np.sin(half / 2.0) ** 2
-            self.cos_max = 1.0 - self.one_minus_cos
-            self.radiance = self.irradiance / (np.pi * np.sin(half) ** 2)
-            s, t = orthonormal_basis(self.to_sun[None, :])
-            self._frame = (s, t, self.to_sun[None, :])
+def sun_row(light, spectrum_id):
+    """The row of a sun ``scene.Light``."""
+    row = np.zeros(LIGHT_ROW)
+    d = np.asarray(light.direction, np.float64)
+    row[L_NX:L_NZ + 1] = -d / np.linalg.norm(d)
+    row[L_SPECTRUM] = spectrum_id
+    irradiance = float(light.irradiance_w_m2)
+    half = min(0.5 * float(max(light.sun_angle_rad, 0.0)), math.pi / 2)
+    if half <= 0.0:
+        row[L_KIND], row[L_SCALE] = SUN, irradiance
+        return row
+    row[L_KIND] = SUN_DISK
+    row[L_ONE_MINUS_COS] = 2.0 * math.sin(half / 2.0) ** 2
+    row[L_COS_MAX] = 1.0 - row[L_ONE_MINUS_COS]
+    row[L_SCALE] = irradiance / (math.pi * math.sin(half) ** 2)
+    return row
 
-    def sample(self, p, u, lam):
-        n = len(p)
-        if self.delta:
-            wi = np.broadcast_to(self.to_sun, (n, 3)).copy()
-            return wi, np.full(n, np.inf), self.irradiance * self.spectrum(lam), np.ones(n)
-        local = uniform_cone(u[:, :2], self.cos_max)
-        wi = to_world(local, *self._frame)
-        pdf = np.full(n, 1.0 / (2.0 * np.pi * self.one_minus_cos))
-        return wi, np.full(n, np.inf), self.radiance * self.spectrum(lam), pdf
 
-    def escaped(self, d, lam):
-        """Radiance [n,K] along escaping rays ``d`` (0 outside the sun's disk)."""
-        inside = dot_vector(d, self.to_sun) >= self.cos_max
-        return np.where(inside, self.radiance, 0.0)[:, None] * self.spectrum(lam)
+def sun_power(row, scene_radius_m) -> float:
+    """Power through the scene's bounding disc of radius ``scene_radius_m``, for light selection."""
+    irradiance = row[L_SCALE] if row[L_KIND] == SUN else row[L_SCALE] * math.pi * (1 - row[L_COS_MAX] ** 2)
+    return irradiance * math.pi * max(scene_radius_m, 1e-3) ** 2
 
-    def pdf_escaped(self, d):
-        inside = dot_vector(d, self.to_sun) >= self.cos_max
-        return np.where(inside, 1.0 / (2.0 * np.pi * self.one_minus_cos), 0.0)
+
+@kernel
+def sample_li(row, p, u1, u2):
+    """(wi, distance (inf), pdf (1 for the delta sun), radiance or irradiance factor)."""
+    to_sun = (row[L_NX], row[L_NY], row[L_NZ])
+    if row[L_KIND] == SUN:
+        return to_sun, math.inf, 1.0, row[L_SCALE]
+    s, t = tangents(to_sun)
+    wi = to_world(uniform_cone(u1, u2, row[L_COS_MAX]), s, t, to_sun)
+    return wi, math.inf, 1.0 / (2.0 * math.pi * row[L_ONE_MINUS_COS]), row[L_SCALE]
+
+
+@kernel
+def pdf_escaped(row, d):
+    if d[0] * row[L_NX] + d[1] * row[L_NY] + d[2] * row[L_NZ] >= row[L_COS_MAX]:
+        return 1.0 / (2.0 * math.pi * row[L_ONE_MINUS_COS])
+    return 0.0
+
+
+@kernel
+def le_escaped(row, d):
+    """Radiance factor along an escaping ray (0 outside the disc)."""
+    if d[0] * row[L_NX] + d[1] * row[L_NY] + d[2] * row[L_NZ] >= row[L_COS_MAX]:
+        return row[L_SCALE]
+    return 0.0

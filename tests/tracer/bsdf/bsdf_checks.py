@@ -1,5 +1,8 @@
 """Shared statistical checks for BSDF tests (not a test module).
 
+``MaterialBSDF(material)`` is a ``scene.Material``'s BSDF exactly as the render kernels run it
+(material table, spectra resolved at the sampled wavelengths, ``bsdf.dispatch``), vectorised.
+
 ``chi2_sampling_test``: draws directions with ``bsdf.sample`` and compares their
 histogram in (cos theta, phi) with the integral of ``bsdf.eval``'s pdf over each
 bin (Gauss-Legendre quadrature). Each lobe gets its own zoomed rectangle (1st to
@@ -10,8 +13,54 @@ than 5 samples are merged, as in Mitsuba's chi-square tests.
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 from scipy import stats
+
+from engine.tracer.bsdf.closure import SAMPLED_DELTA
+from engine.tracer.materials.table import MAT_DELTA, MAT_DISPERSIVE, build_materials
+from engine.tracer.spectra.table import SpectrumTable
+
+from .bsdf_kernels import evaluate_many, sample_many
+
+
+class MaterialBSDF:
+    """``sample(wo, lam, u, hero, collapsed)`` and ``eval(wo, wi, lam, hero, collapsed)`` over rows."""
+
+    def __init__(self, material, table=None):
+        spectra = SpectrumTable()
+        self.table = table or build_materials([material], {0}, spectra)
+        self.spectra = spectra.arrays()
+        self.delta = bool(self.table.arrays.flags[0] & MAT_DELTA)
+        self.disperses = bool(self.table.arrays.flags[0] & MAT_DISPERSIVE)
+
+    def sample(self, wo, lam, u, hero, collapsed):
+        n, k = np.shape(lam)
+        out = SimpleNamespace(wi=np.empty((n, 3)), weight=np.empty((n, k)), pdf=np.empty(n),
+                              flags=np.empty(n, np.int64), eta_scale=np.empty(n), eta=np.empty(n))
+        sample_many(self.table.arrays, self.spectra, np.ascontiguousarray(wo, dtype=np.float64),
+                    np.ascontiguousarray(lam, dtype=np.float64), np.ascontiguousarray(u, dtype=np.float64),
+                    np.asarray(hero, np.int64), np.asarray(collapsed, bool), out.wi, out.weight, out.pdf, out.flags,
+                    out.eta_scale, out.eta)
+        out.delta = (out.flags & SAMPLED_DELTA) != 0
+        out.pdf = np.where(np.isinf(out.pdf), np.inf, out.pdf)
+        return out
+
+    def eval(self, wo, wi, lam, hero=None, collapsed=None):
+        n, k = np.shape(lam)
+        hero = np.zeros(n, np.int64) if hero is None else np.asarray(hero, np.int64)
+        collapsed = np.zeros(n, bool) if collapsed is None else np.asarray(collapsed, bool)
+        f, pdf = np.empty((n, k)), np.empty(n)
+        evaluate_many(self.table.arrays, self.spectra, np.ascontiguousarray(wo, dtype=np.float64),
+                      np.ascontiguousarray(wi, dtype=np.float64), np.ascontiguousarray(lam, dtype=np.float64), hero,
+                      collapsed, f, pdf)
+        return f, pdf
+
+    def eta(self, lam, hero):
+        """The resolved glass index per row (at the hero wavelength for a dispersive glass)."""
+        n = len(lam)
+        return self.sample(np.tile([0.0, 0.0, 1.0], (n, 1)), lam, np.full((n, 3), 0.5), hero, np.ones(n, bool)).eta
 
 
 def direction(theta_deg, phi_deg=30.0, below=False):

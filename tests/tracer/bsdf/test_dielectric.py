@@ -3,23 +3,27 @@
 import numpy as np
 import pytest
 
-from engine.tracer.bsdf import Dielectric
-from engine.tracer.bsdf.optics import fresnel_dielectric
-from engine.tracer.spectra.glass import constant_ior, glass_by_name
+from engine.tracer.scene import Material
+from engine.tracer.spectra.fresnel import fresnel_dielectric
+from engine.tracer.spectra.glass import glass_by_name
 
-from .bsdf_checks import chi2_sampling_test, direction, weight_matches_eval
+from .bsdf_checks import MaterialBSDF, chi2_sampling_test, direction, weight_matches_eval
+
+
+def glass(ior, alpha=0.0, **kw):
+    return MaterialBSDF(Material("glass", kind="dielectric", ior=ior, roughness=np.sqrt(alpha), **kw))
 
 
 @pytest.mark.parametrize("alpha", [0.01, 0.2, 0.6])
 @pytest.mark.parametrize("theta,below", [(20.0, False), (70.0, False), (30.0, True), (60.0, True)])
 def test_rough_sampling_chi2(alpha, theta, below):
-    b = Dielectric(constant_ior(1.5), alpha)
+    b = glass(1.5, alpha)
     assert chi2_sampling_test(b, direction(theta, below=below), n=200_000, bins=14) > 1e-3
 
 
 @pytest.mark.parametrize("alpha", [0.05, 0.4])
 def test_rough_energy_and_weights(alpha):
-    b = Dielectric(constant_ior(1.5), alpha)
+    b = glass(1.5, alpha)
     rng = np.random.default_rng(0)
     for theta, below in ((0.0, False), (50.0, False), (85.0, False), (20.0, True), (60.0, True)):
         wo = direction(theta, below=below)
@@ -33,7 +37,7 @@ def test_rough_energy_and_weights(alpha):
 
 def test_smooth_glass_fresnel_split_and_snell():
     eta = 1.5
-    b = Dielectric(constant_ior(eta), 0.0)
+    b = glass(eta)
     assert b.delta and not b.disperses
     wo = direction(50.0, 30.0)
     n = 100_000
@@ -54,21 +58,19 @@ def test_smooth_glass_fresnel_split_and_snell():
 
 
 def test_dispersive_glass_uses_hero_index():
-    glass = glass_by_name("N-SF11")
-    b = Dielectric(glass, 0.0)
+    sf11 = glass_by_name("N-SF11")
+    b = MaterialBSDF(Material("flint", kind="dielectric", glass="N-SF11"))
     assert b.disperses
     lam = np.array([[450.0, 650.0], [450.0, 650.0]])
     eta = b.eta(lam, np.array([0, 1]))
-    assert eta[0] == pytest.approx(float(glass.index(450.0))) and eta[1] == pytest.approx(float(glass.index(650.0)))
+    assert eta[0] == pytest.approx(float(sf11.index(450.0))) and eta[1] == pytest.approx(float(sf11.index(650.0)))
 
 
 @pytest.mark.parametrize("theta,below", [(30.0, False), (40.0, True)])
 def test_rough_coated_glass_sampling_chi2_and_weights(theta, below):
     """The coating changes the reflect/refract choice (p = R of the film stack); sampling
     and pdf must still agree."""
-    from engine.tracer.bsdf.optics import coating_reflectance
-
-    b = Dielectric(constant_ior(1.6), 0.15, coating=coating_reflectance(250.0, 1.38))
+    b = glass(1.6, 0.15, coating_thickness_nm=250.0, coating_ior=1.38)
     wo = direction(theta, below=below)
     assert chi2_sampling_test(b, wo, n=150_000, bins=12) > 1e-3
     assert weight_matches_eval(b, wo) < 1e-6

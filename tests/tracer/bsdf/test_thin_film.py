@@ -3,13 +3,10 @@
 import numpy as np
 import pytest
 
-from engine.tracer import path_spectra as spectra
-from engine.tracer.bsdf import Dielectric, ThinFilm, make_bsdf
-from engine.tracer.spectra.glass import constant_ior
 from engine.tracer.scene import Material
 from engine.tracer.spectra.thin_film import thin_film_reflectance
 
-from .bsdf_checks import albedo, direction
+from .bsdf_checks import MaterialBSDF, albedo, direction
 
 
 def _sample(b, wo, lam, n=100_000, seed=0):
@@ -19,8 +16,8 @@ def _sample(b, wo, lam, n=100_000, seed=0):
 
 
 def test_soap_film_reflects_airy_fraction_and_transmits_undeviated():
-    b = make_bsdf(Material("soap", kind="thin_film", film_thickness_nm=400.0, film_ior=1.33), spectra)
-    assert isinstance(b, ThinFilm) and b.delta
+    b = MaterialBSDF(Material("soap", kind="thin_film", film_thickness_nm=400.0, film_ior=1.33))
+    assert b.delta
     wo = direction(35.0, 20.0)
     lam = np.array([450.0, 520.0, 610.0, 700.0])
     s = _sample(b, wo, lam)
@@ -35,9 +32,9 @@ def test_soap_film_reflects_airy_fraction_and_transmits_undeviated():
 
 
 def test_coated_glass_conserves_energy_and_changes_reflectance():
-    coated = Dielectric(constant_ior(1.5), 0.0, coating=None)
+    coated = MaterialBSDF(Material("bare", kind="dielectric", ior=1.5))
     mat = Material("ar", kind="dielectric", ior=1.5, coating_thickness_nm=100.0, coating_ior=1.38)
-    ar = make_bsdf(mat, spectra)
+    ar = MaterialBSDF(mat)
     lam = np.array([450.0, 550.0, 650.0])
     wo = direction(10.0)
     for b in (coated, ar):
@@ -50,13 +47,13 @@ def test_coated_glass_conserves_energy_and_changes_reflectance():
 
 
 def test_measured_and_coated_conductors():
-    gold = make_bsdf(Material("gold", kind="conductor", conductor="Au", roughness=0.0), spectra)
+    gold = MaterialBSDF(Material("gold", kind="conductor", conductor="Au", roughness=0.0))
     a = albedo(gold, direction(0.0), n=10, lam=np.array([450.0, 650.0]))
     assert a[0] < 0.5 < 0.9 < a[1]
-    coated = make_bsdf(Material("tinted", kind="conductor", conductor="Au", coating_thickness_nm=250.0,
-                                coating_ior=1.5), spectra)
-    rough = make_bsdf(Material("brushed", kind="conductor", base_color=(0.9, 0.6, 0.3), roughness=0.5,
-                               coating_thickness_nm=300.0), spectra)
+    coated = MaterialBSDF(Material("tinted", kind="conductor", conductor="Au", coating_thickness_nm=250.0,
+                                   coating_ior=1.5))
+    rough = MaterialBSDF(Material("brushed", kind="conductor", base_color=(0.9, 0.6, 0.3), roughness=0.5,
+                                  coating_thickness_nm=300.0))
     lam = np.linspace(400, 700, 7)
     for b in (coated, rough):
         for theta in (0.0, 60.0):

@@ -1,0 +1,90 @@
+"""The render's triangles, relative to the camera, and the hit-point maths the kernels share.
+
+World positions are float64 (``scene.Scene``); the camera position is subtracted in float64 before
+anything becomes float32, so Embree's float32 precision is spent near the camera: a scene moved 1e7 m
+from the origin renders as it does at the origin. Zero-area and non-finite triangles are dropped here
+(Embree ids are then this table's rows; ``original`` maps them back for messages).
+
+``Geometry``: ``vertices`` float32 [V, 3] (camera-relative metres), ``triangles`` int32 [T, 3],
+``material`` int32 [T], ``normals`` float32 [T, 3, 3] (unit shading normals at the corners) or
+[0, 3, 3] for flat shading.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import namedtuple
+
+import numpy as np
+
+from .jit import kernel
+
+Geometry = namedtuple("Geometry", "vertices triangles material normals")
+
+# Secondary rays start this far (relative to the largest coordinate of the hit point) off the surface:
+# ~30 float32 ulps, above Embree's float32 error.
+OFFSET_RELATIVE = 4e-6
+OFFSET_ABSOLUTE = 1e-7
+
+
+def prepare_geometry(scene, offset):
+    """(``Geometry``, original triangle index [T] int64, dropped count) for ``scene`` with ``offset``
+    (the camera position, m) subtracted."""
+    vertices = np.asarray(scene.vertices, dtype=np.float64) - np.asarray(offset, dtype=np.float64)
+    triangles = np.asarray(scene.triangles, dtype=np.int64).reshape(-1, 3)
+    relative32 = vertices.astype(np.float32)
+    if len(triangles):
+        corners = relative32[triangles].astype(np.float64)
+        double_area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+        keep = np.isfinite(double_area) & (double_area > 0.0)
+    else:
+        keep = np.zeros(0, dtype=bool)
+    original = np.flatnonzero(keep)
+    material = np.asarray(scene.triangle_material, dtype=np.int32)[original]
+    normals = np.zeros((0, 3, 3), np.float32)
+    if scene.corner_normals is not None and len(scene.corner_normals) == len(triangles):
+        normals = np.ascontiguousarray(np.asarray(scene.corner_normals, dtype=np.float32)[original])
+    geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
+                        np.ascontiguousarray(material), normals)
+    return geometry, original, int(len(triangles) - len(original))
+
+
+@kernel
+def surface_at(geometry, triangle, u, v):
+    """(point, unit geometric normal, unit shading normal on the geometric normal's side) at
+    barycentrics (u, v) of ``triangle`` (corner weights 1 - u - v, u, v)."""
+    a = geometry.triangles[triangle, 0]
+    b = geometry.triangles[triangle, 1]
+    c = geometry.triangles[triangle, 2]
+    vs = geometry.vertices
+    ax, ay, az = float(vs[a, 0]), float(vs[a, 1]), float(vs[a, 2])
+    e1 = (float(vs[b, 0]) - ax, float(vs[b, 1]) - ay, float(vs[b, 2]) - az)
+    e2 = (float(vs[c, 0]) - ax, float(vs[c, 1]) - ay, float(vs[c, 2]) - az)
+    p = (ax + u * e1[0] + v * e2[0], ay + u * e1[1] + v * e2[1], az + u * e1[2] + v * e2[2])
+    nx = e1[1] * e2[2] - e1[2] * e2[1]
+    ny = e1[2] * e2[0] - e1[0] * e2[2]
+    nz = e1[0] * e2[1] - e1[1] * e2[0]
+    n = math.sqrt(nx * nx + ny * ny + nz * nz)
+    ng = (nx / n, ny / n, nz / n)
+    if geometry.normals.shape[0] == 0:
+        return p, ng, ng
+    w = 1.0 - u - v
+    cn = geometry.normals[triangle]
+    sx = w * cn[0, 0] + u * cn[1, 0] + v * cn[2, 0]
+    sy = w * cn[0, 1] + u * cn[1, 1] + v * cn[2, 1]
+    sz = w * cn[0, 2] + u * cn[1, 2] + v * cn[2, 2]
+    length = math.sqrt(sx * sx + sy * sy + sz * sz)
+    if not (length > 1e-12 and math.isfinite(length)):
+        return p, ng, ng
+    if sx * ng[0] + sy * ng[1] + sz * ng[2] < 0.0:
+        length = -length
+    return p, ng, (sx / length, sy / length, sz / length)
+
+
+@kernel
+def offset_origin(p, ng, toward):
+    """``p`` moved off its surface along ``ng`` to the side of direction ``toward``."""
+    eps = OFFSET_RELATIVE * max(abs(p[0]), abs(p[1]), abs(p[2])) + OFFSET_ABSOLUTE
+    if toward[0] * ng[0] + toward[1] * ng[1] + toward[2] * ng[2] < 0.0:
+        eps = -eps
+    return (p[0] + eps * ng[0], p[1] + eps * ng[1], p[2] + eps * ng[2])

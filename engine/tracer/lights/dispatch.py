@@ -1,0 +1,110 @@
+"""Light sampling and light hits, dispatched on each light's kind."""
+
+from __future__ import annotations
+
+from ..jit import kernel
+from ..spectra.table import spectrum_value
+from . import area, mesh, point, sun
+from .row import DISK, L_KIND, L_SPECTRUM, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
+
+
+@kernel
+def pick_light(lights, u):
+    """(light index, u rescaled to [0, 1) within its interval) for a light chosen ∝ select_prob."""
+    cdf = lights.select_cdf
+    lo, hi = 0, cdf.shape[0] - 1
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if cdf[mid] <= u:
+            lo = mid + 1
+        else:
+            hi = mid
+    below = cdf[lo - 1] if lo > 0 else 0.0
+    prob = lights.select_prob[lo]
+    return lo, min(max((u - below) / prob, 0.0), 0.9999999999999999) if prob > 0.0 else 0.0
+
+
+@kernel
+def sample_light(lights, materials, spectra, p, u_select, u1, u2, wavelength_nm, li):
+    """Sample one light for the point ``p``: (wi, distance (inf: distant), pdf including the light's
+    selection probability, delta); ``li[k]`` = incident radiance (irradiance for delta lights)."""
+    index, u_rest = pick_light(lights, u_select)
+    row = lights.rows[index]
+    kind = int(row[L_KIND])
+    if kind == MESH:
+        wi, dist, pdf, material = mesh.sample_li(lights.mesh, p, u_rest, u1, u2)
+        strength = materials.emission_strength[material]
+        sid = materials.emission_spectrum[material]
+        for k in range(li.shape[0]):
+            li[k] = strength * spectrum_value(spectra, sid, wavelength_nm[k])
+        return wi, dist, pdf * lights.select_prob[index], False
+    if kind == POINT or kind == SPHERE:
+        wi, dist, pdf, factor = point.sample_li(row, p, u1, u2)
+    elif kind == RECTANGLE or kind == DISK:
+        wi, dist, pdf, factor = area.sample_li(row, p, u1, u2)
+    else:
+        wi, dist, pdf, factor = sun.sample_li(row, p, u1, u2)
+    sid = int(row[L_SPECTRUM])
+    for k in range(li.shape[0]):
+        li[k] = factor * spectrum_value(spectra, sid, wavelength_nm[k])
+    return wi, dist, pdf * lights.select_prob[index], kind == POINT or kind == SUN
+
+
+@kernel
+def intersect_light(lights, o, d, t_max):
+    """The closest hittable light along the ray before ``t_max``: (light index or -1, distance)."""
+    best = -1
+    t_best = t_max
+    for h in range(lights.hittable.shape[0]):
+        index = lights.hittable[h]
+        row = lights.rows[index]
+        kind = int(row[L_KIND])
+        if kind == SPHERE:
+            t = point.sphere_hit_distance(row, o, d)
+        else:
+            t = area.intersect(row, o, d)
+        if t < t_best:
+            best = index
+            t_best = t
+    return best, t_best
+
+
+@kernel
+def light_hit(lights, index, o, d, t):
+    """(radiance factor, light-sampling pdf incl. selection) of hittable light ``index`` seen along a
+    ray from ``o`` at distance ``t``."""
+    row = lights.rows[index]
+    if int(row[L_KIND]) == SPHERE:
+        return point.le(row, o, d, t), point.pdf_li(row, o, d, t) * lights.select_prob[index]
+    return area.le(row, o, d, t), area.pdf_li(row, o, d, t) * lights.select_prob[index]
+
+
+@kernel
+def emitter_pdf(lights, triangle, d, t):
+    """Light-sampling pdf (incl. selection) of an emissive triangle hit along ``d`` at distance ``t``."""
+    if lights.mesh_index < 0:
+        return 0.0
+    return mesh.pdf_li(lights.mesh, triangle, d, t) * lights.select_prob[lights.mesh_index]
+
+
+@kernel
+def light_spectrum(lights, index):
+    return int(lights.rows[index, L_SPECTRUM])
+
+
+@kernel
+def is_distant(lights, index):
+    return int(lights.rows[index, L_KIND]) == SUN_DISK
+
+
+@kernel
+def distant_hit(lights, index, d):
+    """(radiance factor, pdf incl. selection) of sun disc ``index`` along an escaping ray ``d``."""
+    row = lights.rows[index]
+    return sun.le_escaped(row, d), sun.pdf_escaped(row, d) * lights.select_prob[index]
+
+
+@kernel
+def light_count(lights):
+    return lights.select_prob.shape[0]
+

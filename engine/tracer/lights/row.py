@@ -1,0 +1,25 @@
+"""A light as a row of numbers (float64 [LIGHT_ROW]), positions in metres relative to the camera.
+
+Columns: ``L_KIND``; ``L_SPECTRUM`` (spectrum-table id of its luminance-normalised spectrum);
+``L_SCALE`` (intensity W/sr of a point/spot, radiance of a sphere, area light or sun disc, irradiance
+W/m² of a delta sun); ``L_P*`` (position or centre); ``L_N*`` (spot axis, area normal — the side that
+emits — or the direction toward the sun); ``L_U*``, ``L_V*`` (area axes); ``L_HALF_U``, ``L_HALF_V``,
+``L_AREA``; ``L_RADIUS`` (sphere); ``L_SPOT`` (1 for spots), ``L_COS_HALF`` (cosine of half the spot
+size), ``L_SMOOTH`` ((1 - cos_half) · blend); ``L_COS_MAX``, ``L_ONE_MINUS_COS`` (sun disc).
+"""
+
+from __future__ import annotations
+
+POINT = 0  # delta (spot when L_SPOT)
+SPHERE = 1  # a point/spot light with a radius
+RECTANGLE = 2
+DISK = 3
+SUN = 4  # delta direction
+SUN_DISK = 5  # a sun with an angular diameter, seen by escaping rays
+MESH = 6  # every emissive triangle, one light for selection
+KIND_NAMES = {POINT: "point", SPHERE: "point", RECTANGLE: "area", DISK: "area", SUN: "sun", SUN_DISK: "sun",
+              MESH: "emissive meshes"}
+
+(L_KIND, L_SPECTRUM, L_SCALE, L_PX, L_PY, L_PZ, L_NX, L_NY, L_NZ, L_UX, L_UY, L_UZ, L_VX, L_VY, L_VZ, L_HALF_U,
+ L_HALF_V, L_AREA, L_RADIUS, L_SPOT, L_COS_HALF, L_SMOOTH, L_COS_MAX, L_ONE_MINUS_COS) = range(24)
+LIGHT_ROW = 24

@@ -1,0 +1,113 @@
+"""``scene.Light`` list + emissive materials + world → ``LightArrays``, with selection probabilities.
+
+Light sampling picks one light with probability ∝ its power (spectra are luminance-normalised, so
+powers compare): P for point, spot and area lights, E π R² for a sun (R: the scene's bounding-sphere
+radius), π Σ area × strength for the emissive meshes; every light keeps at least 1/(20 n) so none
+starves. The world (a constant background, ``world_spectrum`` × ``world_strength``) is found by
+escaping rays only.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import PrismInputError
+from ..scene import SpectrumSpec
+from .area import area_power, area_row
+from .mesh import build_mesh_emitters
+from .point import point_power, point_row
+from .row import L_KIND, LIGHT_ROW, MESH, RECTANGLE, DISK, SPHERE, SUN, SUN_DISK, KIND_NAMES, POINT
+from .sun import sun_power, sun_row
+
+LightArrays = namedtuple(
+    "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index world_spectrum world_strength"
+)
+
+
+@dataclass
+class LightTable:
+    arrays: LightArrays
+    names: list  # one per row
+    kinds: list  # Blender kinds ("point", "area", "sun", "emissive meshes") per row
+
+
+def _emits(light) -> bool:
+    if light.kind == "sun":
+        return light.irradiance_w_m2 > 0
+    if light.kind == "area" and not (light.size_u_m > 0 and light.size_v_m > 0):
+        return False
+    return light.power_w > 0
+
+
+def _light_row(light, spectra, offset):
+    spectrum = spectra.emission(light.spectrum)
+    if light.kind in ("point", "spot"):
+        return point_row(light, spectrum, offset)
+    if light.kind == "area":
+        if light.area_shape not in ("rectangle", "disk"):
+            raise PrismInputError(
+                f"Light '{light.name}': area shape '{light.area_shape}' is not supported; use Rectangle or Disk."
+            )
+        return area_row(light, spectrum, offset)
+    if light.kind == "sun":
+        return sun_row(light, spectrum)
+    raise PrismInputError(f"Light '{light.name}': unknown light type '{light.kind}'.")
+
+
+def _power(row, scene_radius_m, mesh_total):
+    kind = int(row[L_KIND])
+    if kind in (POINT, SPHERE):
+        return point_power(row)
+    if kind in (RECTANGLE, DISK):
+        return area_power(row)
+    if kind in (SUN, SUN_DISK):
+        return sun_power(row, scene_radius_m)
+    return np.pi * mesh_total
+
+
+def build_lights(scene, spectra, vertices, triangles, triangle_material, emission_strength, offset,
+                 use_mesh_lights=True) -> LightTable:
+    """Rows for the scene's lights; ``vertices``/``triangles``/``triangle_material`` are the render's
+    camera-relative geometry, ``emission_strength`` [M] the materials' (0 = not emissive), ``offset``
+    the camera position subtracted from every position."""
+    rows, names, kinds = [], [], []
+    for light in scene.lights:
+        if _emits(light):
+            rows.append(_light_row(light, spectra, offset))
+            names.append(light.name)
+            kinds.append(light.kind)
+    strength = np.asarray(emission_strength, np.float64) if use_mesh_lights else np.zeros(len(emission_strength))
+    mesh, mesh_total = build_mesh_emitters(vertices, triangles, triangle_material, strength)
+    mesh_index = -1
+    if mesh_total > 0:
+        row = np.zeros(LIGHT_ROW)
+        row[L_KIND] = MESH
+        mesh_index = len(rows)
+        rows.append(row)
+        names.append(KIND_NAMES[MESH])
+        kinds.append(KIND_NAMES[MESH])
+    verts = np.asarray(vertices, np.float64)
+    radius = 0.5 * float(np.linalg.norm(np.ptp(verts, axis=0))) if len(verts) else 1.0
+    power = np.array([_power(r, radius, mesh_total) for r in rows], dtype=np.float64)
+    power = np.maximum(np.nan_to_num(power), 0.0)
+    n = len(rows)
+    if n:
+        prob = power / power.sum() if power.sum() > 0 else np.full(n, 1.0 / n)
+        prob = np.maximum(prob, 1.0 / (20 * n))
+        prob /= prob.sum()
+    else:
+        prob = np.zeros(0)
+    cdf = np.cumsum(prob)
+    if n:
+        cdf[-1] = 1.0
+    table = np.array(rows, dtype=np.float64).reshape(-1, LIGHT_ROW)
+    hittable = np.array([i for i, r in enumerate(rows) if int(r[L_KIND]) in (SPHERE, RECTANGLE, DISK)], np.int32)
+    world = scene.world
+    black = not (world.strength > 0 and max(world.color) > 0)
+    world_spectrum = spectra.emission(SpectrumSpec(kind="rgb", rgb=tuple(float(c) for c in world.color)))
+    arrays = LightArrays(table if n else np.zeros((1, LIGHT_ROW)), prob, cdf, hittable, mesh, mesh_index,
+                         world_spectrum, 0.0 if black else float(world.strength))
+    return LightTable(arrays, names, kinds)

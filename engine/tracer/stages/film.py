@@ -1,0 +1,62 @@
+"""Stage 5: each path's spectral radiance as scene-linear Rec.709, and the film's running sums.
+
+``film_kernel`` converts per path (CIE observer or Gaussian channels, ``spectra.wavelength_sampling``).
+``splat`` adds a chunk's samples to the film pixel by pixel (a pass's samples of a pixel are consecutive
+paths in one chunk, so a pixel's sum does not depend on how a pass was cut into chunks or threads);
+non-finite samples are counted and dropped (the pixel's
+count still advances: a dropped sample counts as 0, which keeps the mean unbiased when they are rare).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..jit import kernel
+from ..spectra.wavelength_sampling import radiance_to_rgb
+
+
+@kernel
+def film_kernel(state, count, ws, rgb):
+    """``rgb[i]`` = Rec.709 of path ``i``'s radiance, for paths 0 .. count-1."""
+    for i in range(count):
+        r, g, b = radiance_to_rgb(ws, state.radiance[i], state.wavelength[i], state.wavelength_pdf[i])
+        rgb[i, 0] = r
+        rgb[i, 1] = g
+        rgb[i, 2] = b
+
+
+@kernel
+def splat(total, total_sq, samples, pixels, rgb, count):
+    """Add ``rgb[j]`` to pixel ``pixels[j]`` for j < count; returns how many samples were not finite.
+
+    A pixel's consecutive samples are summed first and their sum added to the film once (as the sum
+    of a pass), so a render split into sample chunks (``Renderer.start_at_sample``) merges to the same
+    float64 sums as one render: chunk boundaries never split a pixel's samples within a pass."""
+    dropped = 0
+    j = 0
+    while j < count:
+        p = pixels[j]
+        r_sum = g_sum = b_sum = 0.0
+        r_sq = g_sq = b_sq = 0.0
+        run = 0
+        while j < count and pixels[j] == p:
+            r, g, b = rgb[j, 0], rgb[j, 1], rgb[j, 2]
+            run += 1
+            j += 1
+            if not (math.isfinite(r) and math.isfinite(g) and math.isfinite(b)):
+                dropped += 1
+                continue
+            r_sum += r
+            g_sum += g
+            b_sum += b
+            r_sq += r * r
+            g_sq += g * g
+            b_sq += b * b
+        samples[p] += run
+        total[p, 0] += r_sum
+        total[p, 1] += g_sum
+        total[p, 2] += b_sum
+        total_sq[p, 0] += r_sq
+        total_sq[p, 1] += g_sq
+        total_sq[p, 2] += b_sq
+    return dropped

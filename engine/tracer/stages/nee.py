@@ -1,0 +1,72 @@
+"""Light sampling (next-event estimation) at a path vertex: one light chosen ∝ power, one point on it,
+the BSDF evaluated toward it, the power heuristic against BSDF sampling; the result waits in the shadow
+queue until its shadow ray is traced (``stages.shadow``).
+
+Called by the shading kernel for each vertex (the material is evaluated there once for both light and
+BSDF sampling; a separate pass would evaluate it twice).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..bsdf.dispatch import bsdf_evaluate
+from ..geometry import offset_origin
+from ..jit import kernel
+from ..lights.dispatch import sample_light
+from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
+from ..vec3 import to_local
+from ..warps import power_heuristic
+
+SHADOW_SHORTEN = 1e-4  # shadow rays stop this fraction short of the light sample
+FAR = 1e30  # tmax of shadow rays toward distant lights (float32-representable)
+
+
+@kernel
+def consistent(cos_og, cos_ig, wo_z, wi_z):
+    """Reflection must stay on wo's side of the geometric surface and transmission cross it."""
+    return (wo_z * wi_z > 0.0) == (cos_og * cos_ig > 0.0)
+
+
+@kernel
+def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, count, lights, materials, spectra,
+                  settings, depth, collapsed, shadows, slot, li, f, scratch):
+    """Queue the light-sampled contribution of vertex ``p`` of path ``i`` at ``slot`` of ``shadows``;
+    returns 1 if queued, else 0."""
+    ps = state.seed[i]
+    sample = state.sample[i]
+    u_select = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT))
+    u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT_POINT))
+    lam = state.wavelength[i]
+    wi, dist, pdf_light, delta = sample_light(lights, materials, spectra, p, u_select, u1, u2, lam, li)
+    if not pdf_light > 0.0:
+        return 0
+    wi_l = to_local(wi, frame[0], frame[1], frame[2])
+    cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
+    if not consistent(cos_og, cos_ig, wo_l[2], wi_l[2]):
+        return 0
+    pdf_bsdf = bsdf_evaluate(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, f, scratch)
+    weight = 1.0 if (delta or not settings.use_mis) else power_heuristic(pdf_light, pdf_bsdf)
+    scale = weight * abs(wi_l[2]) / pdf_light
+    contribution = shadows.contribution[slot]
+    any_light = False
+    for k in range(li.shape[0]):
+        contribution[k] = state.throughput[i, k] * f[k] * li[k] * scale
+        any_light = any_light or contribution[k] > 0.0
+    if not any_light:
+        return 0
+    origin = offset_origin(p, ng, wi)
+    distance = dist * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
+    if not (math.isfinite(origin[0]) and math.isfinite(origin[1]) and math.isfinite(origin[2])
+            and math.isfinite(wi[0]) and math.isfinite(wi[1]) and math.isfinite(wi[2]) and distance > 0.0):
+        return 0
+    rays = shadows.rays
+    for c in range(3):
+        rays.origin[slot, c] = origin[c]
+        rays.direction[slot, c] = wi[c]
+        shadows.origin[slot, c] = origin[c]
+        shadows.direction[slot, c] = wi[c]
+    rays.tmax[slot] = distance
+    shadows.distance[slot] = distance
+    rays.path[slot] = i
+    return 1

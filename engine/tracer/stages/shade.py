@@ -1,0 +1,108 @@
+"""Stage 3: what happens at each surface a path reached this bounce.
+
+The hit point and its frame (the shading normal flipped to face the ray unless the material is
+one-sided glass); dispersion (a path meeting a dispersive material keeps only its hero wavelength, ×K
+— each column stays unbiased because the hero is uniform over columns); the material resolved at the
+hit; light sampling (``nee``) unless every lobe is a delta; BSDF sampling; roulette; and the path's
+next ray, queued. A free-standing film crossed straight through is a null event for MIS: the path
+keeps the pdf and ``mis_origin`` of the vertex before it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..bsdf.closure import CLOSURE_ROW, MAX_CLOSURES, SAMPLED_DELTA
+from ..bsdf.dispatch import bsdf_sample
+from ..geometry import offset_origin, surface_at
+from ..jit import kernel
+from ..materials.resolve import resolve_material
+from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
+from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
+from ..state import COLLAPSED, PREV_DELTA
+from ..vec3 import tangents, to_local, to_world
+from .nee import consistent, sample_direct
+from .queue import push_ray
+from .roulette import survives
+
+
+@kernel
+def collapse_to_hero(state, i):
+    """Keep only path ``i``'s hero wavelength, ×K (the others carry nothing from now on)."""
+    k = state.throughput.shape[1]
+    hero = state.hero[i]
+    for c in range(k):
+        state.throughput[i, c] = state.throughput[i, c] * k if c == hero else 0.0
+    state.flags[i] |= COLLAPSED
+
+
+@kernel
+def shade_kernel(state, surface, count, geometry, materials, lights, spectra, settings, depth, next_rays, shadows,
+                 glass_clamps, rejected):
+    """Shade the ``count`` paths listed in ``surface``; returns (rays queued in ``next_rays``, shadow
+    rays queued in ``shadows``). ``glass_clamps`` and ``rejected`` (int64 counters) are incremented."""
+    k = state.wavelength.shape[1]
+    rows = np.empty((MAX_CLOSURES, CLOSURE_ROW))
+    spectral = np.empty((MAX_CLOSURES, 2, k))
+    eta = np.empty(MAX_CLOSURES)
+    weight = np.empty(k)
+    li = np.empty(k)
+    f = np.empty(k)
+    scratch = np.empty((2, k))
+    has_lights = lights.select_prob.shape[0] > 0
+    queued = 0
+    shadowed = 0
+    for s in range(count):
+        i = surface.path[s]
+        triangle = state.hit_triangle[i]
+        p, ng, ns = surface_at(geometry, triangle, state.hit_u[i], state.hit_v[i])
+        material = geometry.material[triangle]
+        mflags = materials.flags[material]
+        if mflags & MAT_DISPERSIVE and not state.flags[i] & COLLAPSED:
+            collapse_to_hero(state, i)
+        collapsed = state.flags[i] & COLLAPSED != 0
+        wo = (-state.direction[i, 0], -state.direction[i, 1], -state.direction[i, 2])
+        cos_og = wo[0] * ng[0] + wo[1] * ng[1] + wo[2] * ng[2]
+        n = ns
+        if cos_og < 0.0 and not mflags & MAT_ONE_SIDED:
+            n = (-ns[0], -ns[1], -ns[2])
+        tangent, bitangent = tangents(n)
+        frame = (tangent, bitangent, n)
+        wo_l = to_local(wo, tangent, bitangent, n)
+        lam = state.wavelength[i]
+        hero = state.hero[i]
+        closures = resolve_material(materials, spectra, material, lam, hero, rows, spectral, eta, glass_clamps)
+        if has_lights and not mflags & MAT_DELTA:
+            shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
+                                      materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
+                                      scratch)
+        ps = state.seed[i]
+        sample = state.sample[i]
+        u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
+        u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
+        wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, lam, hero, collapsed, u_lobe,
+                                                    u1, u2, weight, scratch)
+        wi = to_world(wi_l, tangent, bitangent, n)
+        cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
+        largest = 0.0
+        for c in range(k):
+            largest = max(largest, weight[c])
+        if not (largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])):
+            continue
+        for c in range(k):
+            state.throughput[i, c] *= weight[c]
+        state.eta_scale[i] *= eta_scale
+        if not survives(state, i, depth, settings, collapsed):
+            continue
+        if not (mflags & MAT_NULL and wo_l[2] * wi_l[2] < 0.0):
+            state.prev_pdf[i] = pdf
+            if sampled & SAMPLED_DELTA:
+                state.flags[i] |= PREV_DELTA
+            else:
+                state.flags[i] &= ~PREV_DELTA
+            for c in range(3):
+                state.mis_origin[i, c] = p[c]
+        pushed = push_ray(state, next_rays, queued, i, offset_origin(p, ng, wi), wi)
+        queued += pushed
+        rejected[0] += 1 - pushed
+    return queued, shadowed

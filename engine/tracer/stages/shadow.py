@@ -1,0 +1,70 @@
+"""Stage 4: light that reached its vertex. A shadow ray that Embree finds free adds its contribution.
+
+Free-standing films (``MAT_NULL``) transmit undeviated, so light behind them reaches a point along the
+straight shadow ray, attenuated by T = 1 - R(λ, θ) per wavelength. In scenes with films, shadow rays
+are traced as closest-hit queries layer by layer (``film_layer_kernel`` keeps the rays that crossed a
+film, attenuated and moved past it; anything else blocks), up to ``MAX_FILM_LAYERS``; one occlusion
+query settles the rest.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..bsdf.thin_film import film_reflectance
+from ..geometry import offset_origin, surface_at
+from ..jit import kernel
+from ..materials.table import MAT_NULL
+
+MAX_FILM_LAYERS = 8
+
+
+@kernel
+def shadow_kernel(state, shadows, count, occluded):
+    """Add the contribution of every queued shadow ray whose occlusion result is -1 (nothing in the way)."""
+    for j in range(count):
+        if occluded[j] != 0:
+            i = shadows.rays.path[j]
+            for k in range(state.radiance.shape[1]):
+                state.radiance[i, k] += shadows.contribution[j, k]
+
+
+@kernel
+def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials):
+    """One layer of closest hits (before each ray's ``tmax``): rays that hit nothing deliver their
+    contribution; rays that hit a film are attenuated, moved past it and kept (compacted to the front);
+    others are blocked. Returns the number kept."""
+    kept = 0
+    for j in range(count):
+        i = shadows.rays.path[j]
+        triangle = hit_triangle[j]
+        if triangle < 0:
+            for k in range(state.radiance.shape[1]):
+                state.radiance[i, k] += shadows.contribution[j, k]
+            continue
+        material = geometry.material[triangle]
+        if not materials.flags[material] & MAT_NULL:
+            continue
+        row = materials.closures[materials.closure_start[material]]
+        d = (shadows.direction[j, 0], shadows.direction[j, 1], shadows.direction[j, 2])
+        p, ng, _ = surface_at(geometry, triangle, float(hit_u[j]), float(hit_v[j]))
+        cos = min(abs(d[0] * ng[0] + d[1] * ng[1] + d[2] * ng[2]), 1.0)
+        for k in range(state.radiance.shape[1]):
+            shadows.contribution[kept, k] = shadows.contribution[j, k] * (
+                1.0 - min(max(film_reflectance(row, cos, state.wavelength[i, k]), 0.0), 1.0))
+        origin = offset_origin(p, ng, d)
+        travelled = math.sqrt((origin[0] - shadows.origin[j, 0]) ** 2 + (origin[1] - shadows.origin[j, 1]) ** 2
+                              + (origin[2] - shadows.origin[j, 2]) ** 2)
+        remaining = shadows.distance[j] - travelled
+        if not remaining > 0.0:
+            remaining = 1e-9
+        for c in range(3):
+            shadows.origin[kept, c] = origin[c]
+            shadows.direction[kept, c] = d[c]
+            shadows.rays.origin[kept, c] = origin[c]
+            shadows.rays.direction[kept, c] = d[c]
+        shadows.distance[kept] = remaining
+        shadows.rays.tmax[kept] = remaining
+        shadows.rays.path[kept] = i
+        kept += 1
+    return kept

@@ -1,0 +1,72 @@
+"""One chunk of paths, bounce by bounce: the stage kernels in order, Embree queries in between.
+
+This is the only Python that runs per bounce: a handful of kernel calls and Embree queries on whole
+queues, never a loop over rays.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .camera import camera_kernel
+from .emission import emission_kernel
+from .film import film_kernel
+from .shade import shade_kernel
+from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
+
+
+def _trace_shadows(renderer, state, shadows, count):
+    """Deliver the light of the first ``count`` shadow rays that reach their lights; returns rays cast."""
+    accel = renderer.accel
+    rays = 0
+    if renderer.analysis.see_through_films:
+        for _ in range(MAX_FILM_LAYERS):
+            if count == 0:
+                return rays
+            hit = accel.intersect_before(shadows.rays, count)
+            rays += count
+            count = film_layer_kernel(state, shadows, count, *hit, renderer.geometry, renderer.material_table.arrays)
+    if count:
+        occluded = accel.occluded(shadows.rays, count)
+        rays += count
+        shadow_kernel(state, shadows, count, occluded)
+    return rays
+
+
+def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample, glass_clamps):
+    """Trace paths ``first .. first + count`` of the pass into ``buffers`` (``buffers.rgb[:count]`` holds
+    their colours afterwards); returns (rays cast, rays dropped as non-finite)."""
+    state = buffers.state
+    settings = renderer.kernel_settings
+    materials = renderer.material_table.arrays
+    lights = renderer.light_table.arrays
+    geometry = renderer.geometry
+    spectra = renderer.spectra
+    rejected = np.zeros(1, np.int64)
+    current = buffers.rays[0]
+    if renderer.camera.lens is None:
+        queued = camera_kernel(state, current, renderer.camera.data, renderer.wavelengths, settings,
+                               renderer._pixels, first, count, samples_per_pixel, first_sample)
+    else:
+        from .real_lens import real_lens_camera
+
+        queued = real_lens_camera(renderer, state, current, first, count, samples_per_pixel, first_sample)
+    rejected[0] += count - queued
+    rays_cast = 0
+    for depth in range(settings.max_bounces + 2):
+        if queued == 0:
+            break
+        hit = renderer.accel.intersect(current, queued)
+        rays_cast += queued
+        surfaces = emission_kernel(state, current, queued, *hit, geometry, materials, lights, spectra, settings,
+                                   depth, buffers.surface)
+        if surfaces == 0:
+            break
+        following = buffers.rays[1] if current is buffers.rays[0] else buffers.rays[0]
+        queued, shadowed = shade_kernel(state, buffers.surface, surfaces, geometry, materials, lights, spectra,
+                                        settings, depth, following, buffers.shadows, glass_clamps, rejected)
+        if shadowed:
+            rays_cast += _trace_shadows(renderer, state, buffers.shadows, shadowed)
+        current = following
+    film_kernel(state, count, renderer.wavelengths, buffers.rgb)
+    return rays_cast, int(rejected[0])

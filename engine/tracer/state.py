@@ -1,0 +1,84 @@
+"""The state of a chunk of paths, declared once: ``PathState`` (one row per path) and the ray queues.
+
+Paths never move: the queues hold path indices. A bounce's surviving paths are appended to the next
+ray queue by the shading kernel, which is the compaction (one pass, in path order, so the work is
+deterministic). Embree reads the queues' float32 rays directly.
+
+``PathState`` fields (n paths, K wavelengths per path):
+
+- ``pixel`` int64 (y · width + x), ``sample`` int64 (the sample's number in its pixel's sequence),
+  ``seed`` int64 (the pixel's sampler seed);
+- ``wavelength`` / ``wavelength_pdf`` float64 [n, K] (nm, 1/nm), ``hero`` int32 (the carried wavelength
+  kept when the path meets dispersion);
+- ``flags`` int32 (``COLLAPSED``: only the hero is carried, ×K; ``PREV_DELTA``: the last scattering was
+  a delta lobe or the camera);
+- ``throughput`` and ``radiance`` float64 [n, K]; ``eta_scale`` float64 (Π eta'² of refractions, for
+  Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample);
+- ``origin``, ``direction`` float64 [n, 3] (the current ray, camera-relative metres),
+  ``mis_origin`` float64 [n, 3] (the last vertex that was not a null film crossing: light pdfs of
+  emitters hit later are measured from it);
+- ``hit_triangle`` int32, ``hit_u``, ``hit_v``, ``hit_t`` float64 (the hit handed from the emission
+  stage to the shading stage).
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+
+COLLAPSED = 1
+PREV_DELTA = 2
+
+_PATH_FIELDS = (
+    ("pixel", np.int64, ()), ("sample", np.int64, ()), ("seed", np.int64, ()),
+    ("wavelength", np.float64, ("K",)), ("wavelength_pdf", np.float64, ("K",)), ("hero", np.int32, ()),
+    ("flags", np.int32, ()),
+    ("throughput", np.float64, ("K",)), ("radiance", np.float64, ("K",)),
+    ("eta_scale", np.float64, ()), ("prev_pdf", np.float64, ()),
+    ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
+    ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
+)
+PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
+
+#: Rays for Embree: ``path`` int32 [n] (which path), ``origin`` / ``direction`` float32 [n, 3]
+#: (camera-relative), ``tmax`` float32 [n] (shadow rays: where the light is).
+RayQueue = namedtuple("RayQueue", "path origin direction tmax")
+
+#: Shadow rays and what each brings if it reaches its light: ``contribution`` float64 [n, K]; the
+#: float64 ``origin`` / ``direction`` / ``distance`` let rays continue through free-standing films.
+ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance")
+
+#: A list of paths (e.g. those that hit a surface this bounce).
+PathList = namedtuple("PathList", "path")
+
+
+def _shape(shape, n, k):
+    return (n,) + tuple(k if s == "K" else s for s in shape)
+
+
+def new_path_state(n: int, k: int) -> PathState:
+    """Uninitialised storage for ``n`` paths of ``k`` wavelengths (the camera stage fills it)."""
+    return PathState(*(np.empty(_shape(shape, n, k), dtype) for _, dtype, shape in _PATH_FIELDS))
+
+
+def new_ray_queue(n: int) -> RayQueue:
+    return RayQueue(np.empty(n, np.int32), np.empty((n, 3), np.float32), np.empty((n, 3), np.float32),
+                    np.empty(n, np.float32))
+
+
+def new_shadow_queue(n: int, k: int) -> ShadowQueue:
+    return ShadowQueue(new_ray_queue(n), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n))
+
+
+class ChunkBuffers:
+    """Everything one worker thread needs to trace a chunk of up to ``n`` paths (reused chunk after chunk)."""
+
+    def __init__(self, n: int, k: int):
+        self.capacity = n
+        self.k = k
+        self.state = new_path_state(n, k)
+        self.rays = (new_ray_queue(n), new_ray_queue(n))  # this bounce's and the next
+        self.surface = PathList(np.empty(n, np.int32))
+        self.shadows = new_shadow_queue(n, k)
+        self.rgb = np.empty((n, 3))
