@@ -17,7 +17,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from .jit import kernel
+from .jit import inlined, kernel
 
 Geometry = namedtuple("Geometry", "vertices triangles material normals")
 
@@ -49,7 +49,7 @@ def prepare_geometry(scene, offset):
     return geometry, original, int(len(triangles) - len(original))
 
 
-@kernel
+@inlined
 def surface_at(geometry, triangle, u, v):
     """(point, unit geometric normal, unit shading normal on the geometric normal's side) at
     barycentrics (u, v) of ``triangle`` (corner weights 1 - u - v, u, v)."""

@@ -6,7 +6,8 @@ disk so only the first render on a machine pays for compilation:
 
 - ``configure_cache(directory)`` chooses the cache directory; it must be called before the first kernel
   module is imported (Blender passes a folder under the extension's user directory, which is writable
-  even when the extension itself is installed read-only). Without it the directory is
+  even when the extension itself is installed read-only). Kernels go to a subfolder named after the
+  package this copy of the tracer was imported as (``kernel_directory()``). Without it the directory is
   ``$PRISM_KERNEL_CACHE``, else ``$NUMBA_CACHE_DIR``, else a per-user cache folder
   (``~/.cache/prism-spectral/kernels`` on Linux, ``~/Library/Caches/...`` on macOS,
   ``%LOCALAPPDATA%\\prism-spectral\\kernels`` on Windows).
@@ -25,6 +26,8 @@ import hashlib
 import os
 import sys
 from pathlib import Path
+
+import numba
 
 _TRACER_ROOT = Path(__file__).resolve().parent
 _configured_directory: Path | None = None
@@ -57,29 +60,48 @@ def configure_cache(directory) -> None:
     path = Path(directory)
     path.mkdir(parents=True, exist_ok=True)
     _configured_directory = path
-    os.environ["NUMBA_CACHE_DIR"] = str(path)
-    if "numba" in sys.modules:
-        sys.modules["numba"].config.CACHE_DIR = str(path)
 
 
-def _prepare_numba():
-    directory = cache_directory()
+# The package this copy of the tracer was imported as: "" for ``engine.tracer`` (tests, tools),
+# "prism_spectral" or "bl_ext.<repository>.prism_spectral" in Blender. numba's cache index pickles the
+# kernels' argument types by module name, so one source file imported under two names must not share
+# an index (the other name may not be importable in the next process): each name gets its folder.
+_PACKAGE = __name__[: -len("engine.tracer.jit")].rstrip(".") if __name__.endswith("engine.tracer.jit") else __name__
+
+
+def kernel_directory() -> Path:
+    """The folder this copy of the tracer caches its kernels in (``cache_directory()`` / package name)."""
+    return cache_directory() / (_PACKAGE or "engine")
+
+
+# No NRT (numba's reference-counted memory): every array belongs to the Python caller, kernels
+# allocate nothing (scratch memory is passed in), and no atomic reference counting runs per array
+# access or view -- with it, a bounce cost 3-10x more, and more again with two threads sharing tables.
+_OPTIONS = dict(nogil=True, cache=True, error_model="numpy", _nrt=False)
+_njit = numba.njit(**_OPTIONS)
+_njit_inline = numba.njit(inline="always", **_OPTIONS)
+
+
+def _use_cache_directory():
+    directory = kernel_directory()
     try:
         directory.mkdir(parents=True, exist_ok=True)
+        numba.config.CACHE_DIR = str(directory)  # read by numba when a function is decorated
     except OSError:
-        return  # numba falls back to __pycache__ next to the sources, or compiles in memory
-    os.environ.setdefault("NUMBA_CACHE_DIR", str(directory))
-    import numba
-
-    numba.config.CACHE_DIR = str(directory)
+        pass  # numba falls back to __pycache__ next to the sources, or compiles in memory
 
 
-_prepare_numba()
+def kernel(function):
+    """Decorator for kernels and the small per-path functions they call (compiled on first use, cached)."""
+    _use_cache_directory()
+    return _njit(function)
 
-import numba  # noqa: E402  (after the cache directory is set)
 
-#: Decorator for kernels and the per-path functions they call.
-kernel = numba.njit(nogil=True, cache=True, error_model="numpy")
+def inlined(function):
+    """Decorator for per-path functions that take the scene's tables (named tuples of arrays): inlined
+    where they are called, so the tables are not passed as hundreds of flattened arguments per call."""
+    _use_cache_directory()
+    return _njit_inline(function)
 
 
 def source_fingerprint() -> str:
@@ -93,7 +115,7 @@ def source_fingerprint() -> str:
 
 
 def _stamp() -> Path:
-    return cache_directory() / f"{_STAMP_PREFIX}{source_fingerprint()}.ok"
+    return kernel_directory() / f"{_STAMP_PREFIX}{source_fingerprint()}.ok"
 
 
 def cache_is_warm() -> bool:
@@ -103,7 +125,7 @@ def cache_is_warm() -> bool:
 
 def mark_cache_warm() -> None:
     """Record that every kernel of this tracer source is in the cache (stale stamps are removed)."""
-    directory = cache_directory()
+    directory = kernel_directory()
     try:
         for old in directory.glob(f"{_STAMP_PREFIX}*.ok"):
             old.unlink(missing_ok=True)

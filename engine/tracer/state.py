@@ -52,6 +52,11 @@ ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction dist
 #: A list of paths (e.g. those that hit a surface this bounce).
 PathList = namedtuple("PathList", "path")
 
+#: Per-thread working memory of the shading kernel (kernels allocate nothing): the resolved closures of
+#: one material (``rows`` [MAX_CLOSURES, CLOSURE_ROW], ``spectral`` [MAX_CLOSURES, 2, K], ``eta``
+#: [MAX_CLOSURES]) and spectral values [K] (``weight``, ``li``, ``f``, ``mix`` [2, K]).
+ShadingScratch = namedtuple("ShadingScratch", "rows spectral eta weight li f mix")
+
 
 def _shape(shape, n, k):
     return (n,) + tuple(k if s == "K" else s for s in shape)
@@ -71,6 +76,13 @@ def new_shadow_queue(n: int, k: int) -> ShadowQueue:
     return ShadowQueue(new_ray_queue(n), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n))
 
 
+def new_shading_scratch(k: int) -> ShadingScratch:
+    from .bsdf.closure import CLOSURE_ROW, MAX_CLOSURES
+
+    return ShadingScratch(np.empty((MAX_CLOSURES, CLOSURE_ROW)), np.empty((MAX_CLOSURES, 2, k)),
+                          np.empty(MAX_CLOSURES), np.empty(k), np.empty(k), np.empty(k), np.empty((2, k)))
+
+
 class ChunkBuffers:
     """Everything one worker thread needs to trace a chunk of up to ``n`` paths (reused chunk after chunk)."""
 
@@ -81,4 +93,6 @@ class ChunkBuffers:
         self.rays = (new_ray_queue(n), new_ray_queue(n))  # this bounce's and the next
         self.surface = PathList(np.empty(n, np.int32))
         self.shadows = new_shadow_queue(n, k)
+        self.scratch = new_shading_scratch(k)
         self.rgb = np.empty((n, 3))
+        self.counters = np.zeros(1, np.int64)  # rays dropped as non-finite

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from ..jit import kernel
+from ..jit import inlined
 from ..spectra.table import spectrum_value
 from . import area, mesh, point, sun
 from .row import DISK, L_KIND, L_SPECTRUM, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
 
 
-@kernel
+@inlined
 def pick_light(lights, u):
     """(light index, u rescaled to [0, 1) within its interval) for a light chosen ∝ select_prob."""
     cdf = lights.select_cdf
@@ -24,7 +24,7 @@ def pick_light(lights, u):
     return lo, min(max((u - below) / prob, 0.0), 0.9999999999999999) if prob > 0.0 else 0.0
 
 
-@kernel
+@inlined
 def sample_light(lights, materials, spectra, p, u_select, u1, u2, wavelength_nm, li):
     """Sample one light for the point ``p``: (wi, distance (inf: distant), pdf including the light's
     selection probability, delta); ``li[k]`` = incident radiance (irradiance for delta lights)."""
@@ -50,7 +50,7 @@ def sample_light(lights, materials, spectra, p, u_select, u1, u2, wavelength_nm,
     return wi, dist, pdf * lights.select_prob[index], kind == POINT or kind == SUN
 
 
-@kernel
+@inlined
 def intersect_light(lights, o, d, t_max):
     """The closest hittable light along the ray before ``t_max``: (light index or -1, distance)."""
     best = -1
@@ -69,7 +69,7 @@ def intersect_light(lights, o, d, t_max):
     return best, t_best
 
 
-@kernel
+@inlined
 def light_hit(lights, index, o, d, t):
     """(radiance factor, light-sampling pdf incl. selection) of hittable light ``index`` seen along a
     ray from ``o`` at distance ``t``."""
@@ -79,7 +79,7 @@ def light_hit(lights, index, o, d, t):
     return area.le(row, o, d, t), area.pdf_li(row, o, d, t) * lights.select_prob[index]
 
 
-@kernel
+@inlined
 def emitter_pdf(lights, triangle, d, t):
     """Light-sampling pdf (incl. selection) of an emissive triangle hit along ``d`` at distance ``t``."""
     if lights.mesh_index < 0:
@@ -87,24 +87,24 @@ def emitter_pdf(lights, triangle, d, t):
     return mesh.pdf_li(lights.mesh, triangle, d, t) * lights.select_prob[lights.mesh_index]
 
 
-@kernel
+@inlined
 def light_spectrum(lights, index):
     return int(lights.rows[index, L_SPECTRUM])
 
 
-@kernel
+@inlined
 def is_distant(lights, index):
     return int(lights.rows[index, L_KIND]) == SUN_DISK
 
 
-@kernel
+@inlined
 def distant_hit(lights, index, d):
     """(radiance factor, pdf incl. selection) of sun disc ``index`` along an escaping ray ``d``."""
     row = lights.rows[index]
     return sun.le_escaped(row, d), sun.pdf_escaped(row, d) * lights.select_prob[index]
 
 
-@kernel
+@inlined
 def light_count(lights):
     return lights.select_prob.shape[0]
 

@@ -17,7 +17,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit import inlined
 from ..warps import uniform_triangle
 
 MeshEmitters = namedtuple("MeshEmitters", "triangle material geometry cdf probability of_triangle")
@@ -52,7 +52,7 @@ def build_mesh_emitters(vertices, triangles, triangle_material, strength_of_mate
     return MeshEmitters(emitting.astype(np.int32), material, geometry, cdf, probability, of_triangle), total
 
 
-@kernel
+@inlined
 def pick(emitters, u):
     """The emitter row whose cdf interval holds ``u``."""
     cdf = emitters.cdf
@@ -66,7 +66,7 @@ def pick(emitters, u):
     return lo
 
 
-@kernel
+@inlined
 def sample_li(emitters, p, u0, u1, u2):
     """(wi, distance, solid-angle pdf, material) of a point on an emissive triangle."""
     e = pick(emitters, u0)
@@ -86,7 +86,7 @@ def sample_li(emitters, p, u0, u1, u2):
     return wi, dist, emitters.probability[e] / g[12] * dist * dist / cos_l, material
 
 
-@kernel
+@inlined
 def pdf_li(emitters, triangle, d, t):
     """Solid-angle density of ``sample_li`` for a ray along ``d`` hitting ``triangle`` at distance ``t``."""
     e = emitters.of_triangle[triangle]

@@ -8,12 +8,12 @@ BSDF functions only ever see resolved values.
 from __future__ import annotations
 
 from ..bsdf.closure import C_GLASS, C_K, C_KIND, C_N, C_SPECTRUM, CONDUCTOR, DIELECTRIC, DIFFUSE
-from ..jit import kernel
+from ..jit import inlined
 from ..spectra.dispersion import refractive_index
 from ..spectra.table import spectrum_values
 
 
-@kernel
+@inlined
 def resolve_material(materials, spectra, material, wavelength_nm, hero, rows, spectral, eta, glass_clamps):
     """Fill ``rows[c]``, ``spectral[c]`` (float64 [2, K]) and ``eta[c]`` for each closure of ``material``;
     returns the closure count. ``glass_clamps[g]`` counts indices evaluated outside glass g's range."""
@@ -21,7 +21,8 @@ def resolve_material(materials, spectra, material, wavelength_nm, hero, rows, sp
     count = materials.closure_count[material]
     for c in range(count):
         row = materials.closures[start + c]
-        rows[c, :] = row
+        for j in range(row.shape[0]):
+            rows[c, j] = row[j]
         kind = int(row[C_KIND])
         eta[c] = 1.0
         if kind == DIFFUSE:

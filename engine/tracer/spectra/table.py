@@ -25,7 +25,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit import inlined, kernel
 
 CONSTANT = 0
 SIGMOID = 1
@@ -82,7 +82,7 @@ def planck(wavelength_nm, temperature_k):
     return _PLANCK_C1 / (wavelength_m**5 * math.expm1(exponent)) * 1e-9
 
 
-@kernel
+@inlined
 def spectrum_value(spectra, sid, wavelength_nm):
     """Value of spectrum row ``sid`` of ``spectra`` (a ``SpectrumArrays``) at ``wavelength_nm``."""
     kind = spectra.kind[sid]
@@ -106,7 +106,7 @@ def spectrum_value(spectra, sid, wavelength_nm):
     return 0.0
 
 
-@kernel
+@inlined
 def spectrum_values(spectra, sid, wavelengths_nm, out):
     """``out[k]`` = spectrum ``sid`` at ``wavelengths_nm[k]`` for every carried wavelength."""
     for k in range(wavelengths_nm.shape[0]):

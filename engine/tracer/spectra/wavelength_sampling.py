@@ -19,7 +19,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit import inlined, kernel
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM, _TANH_HI, _TANH_LO, _VISIBLE_A_PER_NM, _VISIBLE_CENTRE_NM
 
 MODE_CIE = 0
@@ -87,7 +87,7 @@ def inverse_normal_cdf(p):
     return -value if q < 0.0 else value
 
 
-@kernel
+@inlined
 def gaussian_pdf(ws, channel, wavelength_nm):
     """Density (1/nm) of channel ``channel``'s truncated normal; 0 outside 360-830 nm."""
     if wavelength_nm < VISIBLE_MIN_NM or wavelength_nm > VISIBLE_MAX_NM:
@@ -97,7 +97,7 @@ def gaussian_pdf(ws, channel, wavelength_nm):
     return math.exp(-0.5 * z * z) / (math.sqrt(2.0 * math.pi) * g[1] * g[3])
 
 
-@kernel
+@inlined
 def _guided_sample(ws, u):
     cdf = ws.guided_cdf
     lo = 0
@@ -114,7 +114,7 @@ def _guided_sample(ws, u):
     return VISIBLE_MIN_NM + (cell + frac) * GUIDED_CELL_NM, mass / GUIDED_CELL_NM
 
 
-@kernel
+@inlined
 def sample_wavelengths(ws, u0, u1, u2, wavelength_nm, pdf):
     """Fill ``wavelength_nm[K]`` and ``pdf[K]`` (1/nm) from uniforms (cie uses ``u0``; gaussian all three)."""
     count = wavelength_nm.shape[0]
@@ -140,7 +140,7 @@ def sample_wavelengths(ws, u0, u1, u2, wavelength_nm, pdf):
             pdf[j] = visible_pdf(lam)
 
 
-@kernel
+@inlined
 def _cmf(ws, wavelength_nm, channel):
     x = wavelength_nm - VISIBLE_MIN_NM
     if not (0.0 <= x <= VISIBLE_MAX_NM - VISIBLE_MIN_NM):
@@ -150,7 +150,7 @@ def _cmf(ws, wavelength_nm, channel):
     return ws.cmf[i, channel] + f * (ws.cmf[i + 1, channel] - ws.cmf[i, channel])
 
 
-@kernel
+@inlined
 def radiance_to_rgb(ws, radiance, wavelength_nm, pdf):
     """Scene-linear Rec.709 (r, g, b) of one path's spectral radiance samples."""
     count = radiance.shape[0]

@@ -17,7 +17,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit import inlined, kernel
 from ..sampler import SLOT_HERO, SLOT_LENS, SLOT_PIXEL, SLOT_WAVELENGTH, pixel_seed, sample_1d, sample_2d
 from ..spectra.wavelength_sampling import inverse_normal_cdf, sample_wavelengths
 from ..state import PREV_DELTA
@@ -55,7 +55,7 @@ def camera_data(camera, settings, kind) -> CameraData:
                       float(settings.filter_width_px), float(ndtr(-settings.filter_width_px / sigma)))
 
 
-@kernel
+@inlined
 def filter_offset(camera, u):
     """Position in the pixel (0..1 for the box; may leave the pixel for the Gaussian) from a uniform."""
     if camera.filter_kind == FILTER_BOX:
@@ -66,14 +66,14 @@ def filter_offset(camera, u):
     return 0.5 + sigma * inverse_normal_cdf(p)
 
 
-@kernel
+@inlined
 def film_direction(camera, x, y):
     """Camera-space direction (not unit) with z = -1 through raster position (x, y) (pixels, y down)."""
     return ((x / camera.width - 0.5) * camera.tan_w + camera.shift_x,
             (0.5 - y / camera.height) * camera.tan_h + camera.shift_y, -1.0)
 
 
-@kernel
+@inlined
 def start_path(state, i, pixel, sample, seed):
     """Reset path ``i`` as sample ``sample`` of ``pixel``; returns the pixel's sampler seed."""
     ps = pixel_seed(pixel, seed)
@@ -88,7 +88,7 @@ def start_path(state, i, pixel, sample, seed):
     return ps
 
 
-@kernel
+@inlined
 def draw_wavelengths(state, i, ws, sampler, ps, sample):
     u0 = sample_1d(sampler, ps, sample, SLOT_WAVELENGTH)
     u1 = sample_1d(sampler, ps, sample, SLOT_WAVELENGTH + 1)
@@ -98,7 +98,7 @@ def draw_wavelengths(state, i, ws, sampler, ps, sample):
     state.hero[i] = min(int(sample_1d(sampler, ps, sample, SLOT_HERO) * k), k - 1)
 
 
-@kernel
+@inlined
 def camera_ray(camera, x, y, lens_u, lens_v):
     """(origin, unit direction) of the camera ray through raster position (x, y) (pixels from the
     top-left corner) and lens sample (lens_u, lens_v), camera-relative world space."""

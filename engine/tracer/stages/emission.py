@@ -11,14 +11,14 @@ from __future__ import annotations
 
 import math
 
-from ..jit import kernel
+from ..jit import inlined, kernel
 from ..lights.dispatch import distant_hit, emitter_pdf, intersect_light, is_distant, light_hit, light_spectrum
 from ..materials.table import MAT_EMISSIVE
 from ..spectra.table import spectrum_value
 from .mis import emitter_weight
 
 
-@kernel
+@inlined
 def _add(state, i, factor, sid, spectra, weight):
     scale = factor * weight
     if scale == 0.0:

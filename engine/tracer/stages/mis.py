@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-from ..jit import kernel
+from ..jit import inlined
 from ..state import PREV_DELTA
 from ..warps import power_heuristic
 
 
-@kernel
+@inlined
 def emitter_weight(state, i, light_pdf, use_mis):
     """Weight of emission that path ``i``'s last BSDF sample found, against light sampling with density
     ``light_pdf``: 1 after a delta lobe (or on camera rays); with MIS the power heuristic; without MIS 0

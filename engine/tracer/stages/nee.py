@@ -12,7 +12,7 @@ import math
 
 from ..bsdf.dispatch import bsdf_evaluate
 from ..geometry import offset_origin
-from ..jit import kernel
+from ..jit import inlined, kernel
 from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..vec3 import to_local
@@ -28,7 +28,7 @@ def consistent(cos_og, cos_ig, wo_z, wi_z):
     return (wo_z * wi_z > 0.0) == (cos_og * cos_ig > 0.0)
 
 
-@kernel
+@inlined
 def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, count, lights, materials, spectra,
                   settings, depth, collapsed, shadows, slot, li, f, scratch):
     """Queue the light-sampled contribution of vertex ``p`` of path ``i`` at ``slot`` of ``shadows``;

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import math
 
-from ..jit import kernel
+from ..jit import inlined
 
 
-@kernel
+@inlined
 def push_ray(state, rays, slot, i, origin, direction):
     """Make (origin, direction) path ``i``'s ray and queue it at ``slot``; returns 1, or 0 (nothing queued,
     the path ends) when the ray is not finite: Embree must never see such rays."""

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from ..jit import kernel
+from ..jit import inlined, kernel
 from ..sampler import BOUNCE_ROULETTE, bounce_slot, sample_1d
 
 
@@ -19,7 +19,7 @@ def continuation_probability(throughput):
     return min(1.0, math.sqrt(max(throughput, 0.0)))
 
 
-@kernel
+@inlined
 def survives(state, i, depth, settings, collapsed):
     """Play roulette for path ``i`` after its vertex at ``depth``: True if it goes on (throughput rescaled)."""
     if depth + 1 < settings.roulette_depth:

@@ -10,12 +10,10 @@ keeps the pdf and ``mis_origin`` of the vertex before it.
 
 from __future__ import annotations
 
-import numpy as np
-
-from ..bsdf.closure import CLOSURE_ROW, MAX_CLOSURES, SAMPLED_DELTA
+from ..bsdf.closure import SAMPLED_DELTA
 from ..bsdf.dispatch import bsdf_sample
 from ..geometry import offset_origin, surface_at
-from ..jit import kernel
+from ..jit import inlined, kernel
 from ..materials.resolve import resolve_material
 from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
@@ -26,7 +24,7 @@ from .queue import push_ray
 from .roulette import survives
 
 
-@kernel
+@inlined
 def collapse_to_hero(state, i):
     """Keep only path ``i``'s hero wavelength, ×K (the others carry nothing from now on)."""
     k = state.throughput.shape[1]
@@ -38,17 +36,12 @@ def collapse_to_hero(state, i):
 
 @kernel
 def shade_kernel(state, surface, count, geometry, materials, lights, spectra, settings, depth, next_rays, shadows,
-                 glass_clamps, rejected):
+                 scratch, glass_clamps, rejected):
     """Shade the ``count`` paths listed in ``surface``; returns (rays queued in ``next_rays``, shadow
-    rays queued in ``shadows``). ``glass_clamps`` and ``rejected`` (int64 counters) are incremented."""
+    rays queued in ``shadows``). ``scratch`` is a ``state.ShadingScratch``; ``glass_clamps`` and
+    ``rejected`` (int64 counters) are incremented."""
     k = state.wavelength.shape[1]
-    rows = np.empty((MAX_CLOSURES, CLOSURE_ROW))
-    spectral = np.empty((MAX_CLOSURES, 2, k))
-    eta = np.empty(MAX_CLOSURES)
-    weight = np.empty(k)
-    li = np.empty(k)
-    f = np.empty(k)
-    scratch = np.empty((2, k))
+    rows, spectral, eta, weight, li, f, mix = scratch
     has_lights = lights.select_prob.shape[0] > 0
     queued = 0
     shadowed = 0
@@ -75,13 +68,13 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         if has_lights and not mflags & MAT_DELTA:
             shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                       materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
-                                      scratch)
+                                      mix)
         ps = state.seed[i]
         sample = state.sample[i]
         u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
         u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
         wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, lam, hero, collapsed, u_lobe,
-                                                    u1, u2, weight, scratch)
+                                                    u1, u2, weight, mix)
         wi = to_world(wi_l, tangent, bitangent, n)
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
         largest = 0.0

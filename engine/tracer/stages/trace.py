@@ -6,8 +6,6 @@ queues, never a loop over rays.
 
 from __future__ import annotations
 
-import numpy as np
-
 from .camera import camera_kernel
 from .emission import emission_kernel
 from .film import film_kernel
@@ -42,7 +40,8 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     lights = renderer.light_table.arrays
     geometry = renderer.geometry
     spectra = renderer.spectra
-    rejected = np.zeros(1, np.int64)
+    rejected = buffers.counters
+    rejected[0] = 0
     current = buffers.rays[0]
     if renderer.camera.lens is None:
         queued = camera_kernel(state, current, renderer.camera.data, renderer.wavelengths, settings,
@@ -64,7 +63,8 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
             break
         following = buffers.rays[1] if current is buffers.rays[0] else buffers.rays[0]
         queued, shadowed = shade_kernel(state, buffers.surface, surfaces, geometry, materials, lights, spectra,
-                                        settings, depth, following, buffers.shadows, glass_clamps, rejected)
+                                        settings, depth, following, buffers.shadows, buffers.scratch, glass_clamps,
+                                        rejected)
         if shadowed:
             rays_cast += _trace_shadows(renderer, state, buffers.shadows, shadowed)
         current = following

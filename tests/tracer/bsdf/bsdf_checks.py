@@ -21,6 +21,7 @@ from scipy import stats
 from engine.tracer.bsdf.closure import SAMPLED_DELTA
 from engine.tracer.materials.table import MAT_DELTA, MAT_DISPERSIVE, build_materials
 from engine.tracer.spectra.table import SpectrumTable
+from engine.tracer.state import new_shading_scratch
 
 from .bsdf_kernels import evaluate_many, sample_many
 
@@ -42,7 +43,7 @@ class MaterialBSDF:
         sample_many(self.table.arrays, self.spectra, np.ascontiguousarray(wo, dtype=np.float64),
                     np.ascontiguousarray(lam, dtype=np.float64), np.ascontiguousarray(u, dtype=np.float64),
                     np.asarray(hero, np.int64), np.asarray(collapsed, bool), out.wi, out.weight, out.pdf, out.flags,
-                    out.eta_scale, out.eta)
+                    out.eta_scale, out.eta, new_shading_scratch(k), self._clamps())
         out.delta = (out.flags & SAMPLED_DELTA) != 0
         out.pdf = np.where(np.isinf(out.pdf), np.inf, out.pdf)
         return out
@@ -54,8 +55,11 @@ class MaterialBSDF:
         f, pdf = np.empty((n, k)), np.empty(n)
         evaluate_many(self.table.arrays, self.spectra, np.ascontiguousarray(wo, dtype=np.float64),
                       np.ascontiguousarray(wi, dtype=np.float64), np.ascontiguousarray(lam, dtype=np.float64), hero,
-                      collapsed, f, pdf)
+                      collapsed, f, pdf, new_shading_scratch(k), self._clamps())
         return f, pdf
+
+    def _clamps(self):
+        return np.zeros(len(self.table.arrays.glasses), np.int64)
 
     def eta(self, lam, hero):
         """The resolved glass index per row (at the hero wavelength for a dispersive glass)."""

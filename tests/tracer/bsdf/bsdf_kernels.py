@@ -1,21 +1,14 @@
 """Compiled loops that run a material's BSDF over many inputs, for the statistical tests (not a test module)."""
 
-import numpy as np
-
-from engine.tracer.bsdf.closure import CLOSURE_ROW, MAX_CLOSURES
 from engine.tracer.bsdf.dispatch import bsdf_evaluate, bsdf_sample
 from engine.tracer.jit import kernel
 from engine.tracer.materials.resolve import resolve_material
 
 
 @kernel
-def sample_many(materials, spectra, wo, lam, u, hero, collapsed, wi, weight, pdf, flags, eta_scale, eta_out):
-    k = lam.shape[1]
-    rows = np.empty((MAX_CLOSURES, CLOSURE_ROW))
-    spectral = np.empty((MAX_CLOSURES, 2, k))
-    eta = np.empty(MAX_CLOSURES)
-    scratch = np.empty((2, k))
-    clamps = np.zeros(materials.glasses.shape[0], np.int64)
+def sample_many(materials, spectra, wo, lam, u, hero, collapsed, wi, weight, pdf, flags, eta_scale, eta_out, work,
+                clamps):
+    rows, spectral, eta, _, _, _, scratch = work
     for i in range(wo.shape[0]):
         count = resolve_material(materials, spectra, 0, lam[i], hero[i], rows, spectral, eta, clamps)
         eta_out[i] = eta[0]
@@ -28,13 +21,8 @@ def sample_many(materials, spectra, wo, lam, u, hero, collapsed, wi, weight, pdf
 
 
 @kernel
-def evaluate_many(materials, spectra, wo, wi, lam, hero, collapsed, f, pdf):
-    k = lam.shape[1]
-    rows = np.empty((MAX_CLOSURES, CLOSURE_ROW))
-    spectral = np.empty((MAX_CLOSURES, 2, k))
-    eta = np.empty(MAX_CLOSURES)
-    scratch = np.empty((2, k))
-    clamps = np.zeros(materials.glasses.shape[0], np.int64)
+def evaluate_many(materials, spectra, wo, wi, lam, hero, collapsed, f, pdf, work, clamps):
+    rows, spectral, eta, _, _, _, scratch = work
     for i in range(wo.shape[0]):
         count = resolve_material(materials, spectra, 0, lam[i], hero[i], rows, spectral, eta, clamps)
         pdf[i] = bsdf_evaluate(rows, spectral, eta, count, (wo[i, 0], wo[i, 1], wo[i, 2]),
