@@ -8,12 +8,13 @@ from __future__ import annotations
 
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Scene
-from .camera import export_camera
+from .border import render_border
+from .camera import export_camera, render_resolution
 from .lights import export_lights
 from .meshes import export_meshes
 from .world import export_world
 
-__all__ = ["PrismInputError", "export_camera", "export_scene"]
+__all__ = ["PrismInputError", "export_camera", "export_scene", "render_border", "render_resolution"]
 
 
 def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:

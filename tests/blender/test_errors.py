@@ -12,6 +12,7 @@ from pathlib import Path
 import bpy
 import pytest
 
+from helpers.batch import run_batch
 from helpers.bpy_scenes import add_camera, add_plane, add_point_light
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -177,8 +178,8 @@ _NEEDS_TMP = {"no lens chosen", "missing lens file", "invalid lens file", "unkno
 
 
 @pytest.mark.parametrize("case", list(CASES))
-def test_error_is_reported_and_stops_the_render(prism_addon, fresh_scene, tmp_path, case):
-    session = importlib.import_module(f"{prism_addon.__name__}.engine.session")
+def test_error_is_reported_and_stops_the_render(prism_addon, fresh_scene, tmp_path, case, capsys, bad_input):
+    requests = importlib.import_module(f"{prism_addon.__name__}.engine.render_request")
     export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
     mutate, message = CASES[case]
     _base_scene()
@@ -187,14 +188,19 @@ def test_error_is_reported_and_stops_the_render(prism_addon, fresh_scene, tmp_pa
     with pytest.raises(export.PrismInputError, match="") as exported:
         export.export_scene(bpy.context.evaluated_depsgraph_get())
     assert message in str(exported.value)
-    with pytest.raises(RuntimeError) as raised:
+    with requests.render_request() as report, pytest.raises(RuntimeError) as raised:
         bpy.ops.render.render()
     if case == "no camera":  # Blender refuses before any engine runs; the batch script names the scene
-        assert "no camera" in str(raised.value)
-        return
-    assert message in str(raised.value)
-    assert session.last_error is not None and message in session.last_error
-    assert "Traceback" not in session.last_error
+        assert "no camera" in str(raised.value) and not report.started
+    else:
+        assert message in str(raised.value)
+        assert report.error is not None and message in report.error
+        assert "Traceback" not in report.error
+    output = tmp_path / "x.png"
+    status, line = run_batch(capsys, "--samples", 1, "--output", output)
+    assert (status, line) == (1, f"Prism: error: {exported.value}")
+    assert not output.exists()
+    bad_input(case, status, line)
 
 
 def test_batch_exits_non_zero_with_the_message(fresh_scene, tmp_path):
