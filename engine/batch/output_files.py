@@ -47,6 +47,14 @@ def _cannot_write(path: Path, error: OSError) -> PrismInputError:
     )
 
 
+def _check_folders(output: Path) -> None:
+    for folder in reversed(output.parents):
+        if folder.exists() and not folder.is_dir():
+            raise PrismInputError(
+                f"Cannot write '{output}': '{folder}' is a file, not a folder. Choose another output folder."
+            )
+
+
 @contextmanager
 def atomic_output(output: Path, signals=None) -> Iterator[Path]:
     """Yield a temporary path for ``output``; when the block ends normally, move it onto ``output``.
@@ -58,6 +66,7 @@ def atomic_output(output: Path, signals=None) -> Iterator[Path]:
     """
     output = Path(output)
     temporary = temporary_sibling(output)
+    _check_folders(output)
     try:
         output.parent.mkdir(parents=True, exist_ok=True)
         temporary.touch()

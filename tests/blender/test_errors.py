@@ -218,19 +218,3 @@ def test_batch_exits_non_zero_with_the_message(fresh_scene, tmp_path):
     last_line = completed.stderr.strip().splitlines()[-1]
     assert last_line.startswith("Prism: error: Light 'Bulb': blackbody temperature 90000 K is outside")
     assert not (tmp_path / "x.png").exists()
-
-
-@pytest.mark.parametrize(
-    ("arguments", "message"),
-    [
-        (["--frames", "5..2"], "the last frame comes before the first"),
-        (["--chunk-seed", "1"], "--chunk-seed needs --samples"),
-        (["--output", "out.jpg"], "--output must end in .png or .exr"),
-        (["--samples", "0"], "--samples must be at least 1"),
-    ],
-)
-def test_batch_argument_errors(prism_addon, arguments, message, capsys):
-    render = importlib.import_module("render")
-    argv = ["scene.blend", "--output", "out.exr", *arguments]
-    assert render.main(argv, in_blender=False) == 2
-    assert message in capsys.readouterr().err
