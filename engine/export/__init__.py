@@ -45,7 +45,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     """
     scene = depsgraph.scene
     camera = export_camera(scene)
-    geometry = export_meshes(depsgraph, warnings)
+    geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
     tracer_scene = Scene(
         vertices=geometry.vertices,
         triangles=geometry.triangles,

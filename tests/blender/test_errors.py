@@ -103,6 +103,18 @@ def _light(**values):
     return mutate
 
 
+def _light_stored(**values):
+    def mutate():
+        settings = bpy.data.lights["Bulb"].prism
+        for key, value in values.items():
+            if isinstance(value, str):
+                setattr(settings, key, value)
+            else:
+                settings[key] = value  # past the property's limits, as a script or an old file can
+
+    return mutate
+
+
 def _nan_vertex():
     mesh = bpy.data.objects["Floor"].data
     mesh.vertices[0].co = (math.nan, 0.0, 0.0)
@@ -149,6 +161,57 @@ def _zero_area_light():
     bpy.context.scene.collection.objects.link(obj)
 
 
+def _set(path, value):
+    """``_set("objects['Floor'].location", v)``: set a property of ``bpy.data`` by its path."""
+
+    def mutate():
+        owner, _, attribute = path.rpartition(".")
+        setattr(eval(f"bpy.data.{owner}"), attribute, value)  # noqa: S307 - test-only paths written above
+
+    return mutate
+
+
+def _principled(**inputs):
+    def mutate():
+        _, node = _floor_material()
+        for socket, value in inputs.items():
+            node.inputs[socket.replace("_", " ")].default_value = value
+
+    return mutate
+
+
+def _prism_material(**values):
+    def mutate():
+        material, node = _floor_material()
+        node.inputs["Metallic"].default_value = 1.0
+        for key, value in values.items():
+            material.prism[key] = value  # as a script or an old file can store it, past the UI's limits
+
+    return mutate
+
+
+def _thin_film_material():
+    material, _ = _floor_material()
+    material.prism.is_thin_film = True
+    material.prism["film_ior"] = 0.5
+
+
+def _far_vertex():
+    bpy.data.objects["Floor"].data.vertices[0].co = (3.4e38, 0.0, 0.0)
+
+
+def _world_strength_nan():
+    world = bpy.data.worlds.new("Sky")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = math.nan
+    bpy.context.scene.world = world
+
+
+def _huge_resolution():
+    render = bpy.context.scene.render
+    render.resolution_x = render.resolution_y = 65536  # Blender's largest: ~4.3 billion pixels
+
+
 CASES = {
     "no camera": (_no_camera, "Scene 'Scene' has no active camera"),
     "camera is not a camera": (_empty_as_camera, "The active camera 'Helper' is not a camera object"),
@@ -173,6 +236,46 @@ CASES = {
     "thin lens focused at 0 m": (_thin_lens_focus(0.0), "Camera 'Camera' focuses at 0 m"),
     "focus object behind camera": (_focus_behind, "focuses on 'Behind', which is behind the camera"),
     "light at NaN location": (_nan_light, "Light 'Bulb' has a non-finite transform"),
+    "camera scaled to zero": (
+        _set("objects['Camera'].scale", (0.0, 0.0, 0.0)),
+        "Camera 'Camera' is scaled to zero (world scale 0, 0, 0), so the direction it looks in is lost",
+    ),
+    "camera flattened on one axis": (_set("objects['Camera'].scale", (1.0, 1.0, 0.0)), "Camera 'Camera' is scaled to zero"),
+    "camera at NaN location": (_set("objects['Camera'].location", (0.0, math.nan, 1.5)), "Camera 'Camera' has a non-finite"),
+    "camera 3e38 m away": (
+        _set("objects['Camera'].location", (3.0e38, -3.0, 1.5)),
+        "Camera 'Camera' is 3e+38 m from the world origin; Prism renders scenes within 1e+15 m of it",
+    ),
+    "vertex at 3.4e38 m": (
+        _far_vertex,
+        "Object 'Floor' has vertices 3.4e+38 m from the world origin; Prism renders scenes within 1e+15 m of it",
+    ),
+    "object scaled to 1e30": (_set("objects['Floor'].scale", (1e30, 1e30, 1e30)), "Object 'Floor' has vertices 2e+30 m"),
+    "light 3e38 m away": (
+        _set("objects['Bulb'].location", (0.0, 3.0e38, 2.0)),
+        "Light 'Bulb' is 3e+38 m from the world origin; Prism renders scenes within 1e+15 m of it",
+    ),
+    "Principled thin film IOR 0 on metal": (
+        _principled(Metallic=1.0, Thin_Film_Thickness=300.0, Thin_Film_IOR=0.0),
+        "Material 'Floor material': Principled BSDF ▸ Thin Film IOR is 0; a film's refractive index must be 1 or more",
+    ),
+    "coating IOR 0 stored past the UI's limit": (
+        _prism_material(coating_thickness_nm=120.0, coating_ior=0.0),
+        "Material 'Floor material': Material ▸ Prism ▸ Coating IOR is 0; a film's refractive index must be 1",
+    ),
+    "thin film IOR 0.5": (_thin_film_material, "Material 'Floor material': Material ▸ Prism ▸ Film IOR is 0.5"),
+    "NaN roughness": (_principled(Roughness=math.nan), "Material 'Floor material': Roughness is nan; enter a finite"),
+    "negative emission strength": (
+        _principled(Emission_Strength=-2.0), "Material 'Floor material': Emission Strength -2 is negative."
+    ),
+    "monochromatic light at 900 nm stored past the UI's limit": (
+        _light_stored(color_source="MONOCHROMATIC", wavelength_nm=900.0),
+        "Light 'Bulb': wavelength 900 nm is outside 360-830 nm",
+    ),
+    "world strength NaN": (_world_strength_nan, "World 'Sky': background colour and strength must be finite"),
+    "resolution larger than memory": (
+        _huge_resolution, "Scene 'Scene': rendering 65536 x 65536 pixels needs about 768 GB of memory"
+    ),
 }
 _NEEDS_TMP = {"no lens chosen", "missing lens file", "invalid lens file", "unknown glass in lens"}
 

@@ -12,9 +12,15 @@ def last_line(stderr: str) -> str:
     return lines[-1] if lines else ""
 
 
-def run_batch(capsys, *arguments, in_blender: bool = True) -> tuple[int, str]:
-    """``render.main`` on ``arguments`` (str()-ed); its exit status and last stderr line."""
+def run_batch_stderr(capsys, *arguments, in_blender: bool = True) -> tuple[int, str]:
+    """``render.main`` on ``arguments`` (str()-ed); its exit status and all it printed on stderr."""
     render = importlib.import_module("render")
     capsys.readouterr()
     status = render.main([str(a) for a in arguments], in_blender=in_blender)
-    return status, last_line(capsys.readouterr().err)
+    return status, capsys.readouterr().err
+
+
+def run_batch(capsys, *arguments, in_blender: bool = True) -> tuple[int, str]:
+    """``render.main`` on ``arguments`` (str()-ed); its exit status and last stderr line."""
+    status, stderr = run_batch_stderr(capsys, *arguments, in_blender=in_blender)
+    return status, last_line(stderr)
