@@ -29,16 +29,16 @@ def frame_range(text: str) -> tuple[int, int]:
     """``"1..24"`` → (1, 24), ``"7"`` → (7, 7), ``"-5..-2"`` → (-5, -2), within Blender's frame limits."""
     match = _FRAMES.fullmatch(text)
     if not match:
-        raise argparse.ArgumentTypeError(f"--frames must look like 1..24 or 7 (got '{text}')")
+        raise argparse.ArgumentTypeError(f"frames must look like 1..24 or 7 (got '{text}')")
     first = int(match.group(1))
     last = int(match.group(2)) if match.group(2) is not None else first
     if last < first:
-        raise argparse.ArgumentTypeError(f"--frames {text}: the last frame comes before the first")
+        raise argparse.ArgumentTypeError(f"'{text}': the last frame comes before the first")
     low, high = FRAME_RANGE
     for frame in (first, last):
         if not low <= frame <= high:
             raise argparse.ArgumentTypeError(
-                f"--frames {text}: frame {frame} is outside Blender's frame range {low}..{high}"
+                f"frame {frame} is outside Blender's frame range {low}..{high}"
             )
     return first, last
 

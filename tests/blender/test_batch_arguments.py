@@ -8,9 +8,9 @@ import pytest
 from helpers.batch import run_batch
 
 ARGUMENT_CASES = [
-    (["--frames", "5..2"], "--frames 5..2: the last frame comes before the first"),
-    (["--frames", "1-3"], "--frames must look like 1..24 or 7 (got '1-3')"),
-    (["--frames", "1048575"], "frame 1048575 is outside Blender's frame range -1048574..1048574"),
+    (["--frames", "5..2"], "argument --frames: '5..2': the last frame comes before the first"),
+    (["--frames", "1-3"], "argument --frames: frames must look like 1..24 or 7 (got '1-3')"),
+    (["--frames", "1048575"], "argument --frames: frame 1048575 is outside Blender's frame range -1048574..1048574"),
     (["--frames", "-2000000..1"], "frame -2000000 is outside Blender's frame range"),
     (["--samples", "0"], "--samples must be at least 1 (got 0)"),
     (["--samples", "3000000000"], "--samples must be at most 2147483647, the Samples setting's limit"),

@@ -209,3 +209,14 @@ def test_frame_ranges_number_the_outputs(batch, tmp_path, capsys):
     assert _run(render, "--frames", "-2..-1", "--samples", 1, "--output", tmp_path / "neg_###.png") == 0
     assert (tmp_path / "neg_-02.png").is_file() and (tmp_path / "neg_-01.png").is_file()
     assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []  # no temporary files left
+
+
+def test_chunk_samples_must_be_whole_passes(batch, tmp_path, capsys, bad_input):
+    bpy.context.scene.prism.samples_per_pass = 2
+    status, line = run_batch(capsys, "--chunk-seed", 1, "--samples", 3, "--output", tmp_path / "c.exr")
+    assert status == 1 and line == (
+        "Prism: error: Chunk offset 3 is not a multiple of Samples per Pass (2): use --samples that is a multiple "
+        "of the scene's Samples per Pass."
+    )
+    assert not (tmp_path / "c.exr").exists()
+    bad_input("--chunk-seed 1 --samples 3 with Samples per Pass 2", status, line)
