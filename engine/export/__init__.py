@@ -6,6 +6,8 @@ Reads the evaluated depsgraph (modifiers and instances applied) with
 
 from __future__ import annotations
 
+import numpy as np
+
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Scene
 from .border import render_border
@@ -25,7 +27,7 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:
         )
     world = tracer_scene.world
     world_lit = world.strength > 0 and max(world.color) > 0
-    used = {int(i) for i in set(tracer_scene.triangle_material.tolist())}
+    used = {int(i) for i in np.unique(tracer_scene.triangle_material)}
     emissive = any(
         tracer_scene.materials[i].emission is not None and tracer_scene.materials[i].emission_strength > 0 for i in used
     )
