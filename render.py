@@ -113,7 +113,8 @@ def check_scene(scene, prism: Prism) -> None:
     prism.export.render_border(scene, width, height)  # Blender says only "Image too small"
 
 
-def render_request(arguments, prism: Prism, signals):
+def batch_request(arguments, prism: Prism, signals):
+    """The RenderRequest of one batch frame: the command line's overrides, no quick first pass."""
     chunked = arguments.chunk_seed is not None
     return prism.requests.RenderRequest(
         samples=arguments.samples,
@@ -143,7 +144,7 @@ def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
     with prism.output_files.atomic_output(output, signals) as temporary:
         scene.render.filepath = str(temporary)
         blender_error = None
-        with prism.requests.render_request(render_request(arguments, prism, signals)) as report:
+        with prism.requests.render_request(batch_request(arguments, prism, signals)) as report:
             try:
                 bpy.ops.render.render(write_still=not chunked)
             except RuntimeError as error:
@@ -164,8 +165,11 @@ def _interrupted(arguments, output: Path, temporary: Path, prism: Prism, signals
     message = f"interrupted by {cause}: '{output}' was not written"
     if arguments.keep_partial and temporary.is_file():
         partial = prism.output_files.partial_output(output)
-        os.replace(temporary, partial)
-        message += f"; the unfinished image is in '{partial}'"
+        try:
+            os.replace(temporary, partial)
+            message += f"; the unfinished image is in '{partial}'"
+        except OSError as error:
+            message += f"; the unfinished image could not be kept as '{partial}' ({error.strerror or error})"
     return prism.stop_signals.Interrupted(message + ".", signals.exit_status)
 
 

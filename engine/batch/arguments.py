@@ -133,6 +133,10 @@ def _check_output(parser, arguments) -> None:
         parser.error(f"--output must end in .png or .exr (got '{arguments.output}')")
     if output.is_dir():
         parser.error(f"--output '{arguments.output}' is a folder: give a file name ending in .png or .exr")
+    if arguments.merge and any(Path(chunk).resolve() == output.resolve() for chunk in arguments.merge):
+        parser.error(f"--output '{arguments.output}' is one of the chunks to merge: give the merge another name")
+    if arguments.lens_diagram is not None and Path(arguments.lens_diagram).resolve() == output.resolve():
+        parser.error("--lens-diagram and --output name the same file: give them different names")
     if (arguments.merge or arguments.chunk_seed is not None) and output.suffix.lower() != ".exr":
         option = "--merge" if arguments.merge else "--chunk-seed"
         parser.error(f"{option} writes an EXR: give --output a .exr name")

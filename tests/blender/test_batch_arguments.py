@@ -49,6 +49,8 @@ def test_wrong_arguments_exit_2_naming_the_option(prism_addon, capsys, bad_input
         (["--merge", "a.exr", "--output", "m.exr", "--keep-partial"], "--merge writes the whole merged image or nothing"),
         (["scene.blend", "--chunk-seed", "0", "--samples", "2", "--output", "c.png"], "--chunk-seed writes an EXR"),
         (["scene.blend", "--lens-diagram", "l.png", "--keep-partial"], "--keep-partial keeps an unfinished --output image"),
+        (["--merge", "a.exr", "b.exr", "--output", "a.exr"], "--output 'a.exr' is one of the chunks to merge"),
+        (["scene.blend", "--output", "x.png", "--lens-diagram", "x.png"], "--lens-diagram and --output name the same file"),
     ],
 )
 def test_wrong_combinations_exit_2(prism_addon, capsys, bad_input, arguments, message):
