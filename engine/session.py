@@ -16,10 +16,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .export import export_scene
-from .export.settings import export_settings
-from .render_engine import enabled_passes
-from .tracer.errors import PrismInputError
+from . import kernel_cache
+
+kernel_cache.configure()  # before anything below imports a tracer kernel module
+
+from .export import export_scene  # noqa: E402
+from .export.settings import export_settings  # noqa: E402
+from .render_engine import enabled_passes  # noqa: E402
+from .tracer.errors import PrismInputError  # noqa: E402
 
 
 @dataclass
@@ -134,7 +138,11 @@ class RenderSession:
         engine = self.engine
         scene = self.depsgraph.scene
         req = self.request
-        engine.update_stats("", "Prism | Exporting scene")
+        compiling = kernel_cache.compiling_notice()
+        notice = f" | {compiling}" if compiling else ""
+        if compiling:
+            self._print(f"Prism: {compiling}")
+        engine.update_stats("", f"Prism | Exporting scene{notice}")
         warnings: list[str] = []
         tracer_scene = export_scene(self.depsgraph, warnings)
         width, height = tracer_scene.camera.resolution
@@ -146,7 +154,7 @@ class RenderSession:
         for message in warnings:
             engine.report({"WARNING"}, message)
             self._print(f"Prism: warning: {message}")
-        engine.update_stats("", "Prism | Preparing (BVH, spectra)")
+        engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
         target = settings.samples
         with Renderer(tracer_scene, settings) as renderer:
             if req.sample_offset:
@@ -156,6 +164,8 @@ class RenderSession:
             finally:
                 if self.cancelled:
                     renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
+            if compiling and not self.cancelled:
+                kernel_cache.mark_compiled()
             if req.keep_film and not self.cancelled:
                 last_film = FilmSnapshot(
                     mean=renderer.film.mean(),
