@@ -1,6 +1,8 @@
 """The installable extension: `tools/build_extension.py` builds a linux-x64 zip that Blender's
-own tool validates, that holds the add-on and its runtime wheels and nothing of the developer
-tree, and that installs through `bpy.ops.extensions.package_install_files` and renders.
+own tool validates, that holds the add-on and its runtime wheels (numba and llvmlite included,
+never numpy) and nothing of the developer tree, and that installs through
+`bpy.ops.extensions.package_install_files` and renders through the compiled core: numba comes
+from the extension's site-packages and the kernels compile into the extension's user folder.
 
 Wheels are cached in the repository's `wheels/` (gitignored), so only the first run downloads
 (the linux wheels only, from PyPI). Without network the build fails with the tool's message.
@@ -24,7 +26,9 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 BUILD_TOOL = REPO_ROOT / "tools" / "build_extension.py"
 INSTALL_CHECK = REPO_ROOT / "tools" / "check_extension_install.py"
 PLATFORM = "linux-x64"
-RUNTIME_WHEELS = ("colour_science", "embreex", "imageio", "pillow", "scipy", "typing_extensions")
+RUNTIME_WHEELS = ("colour_science", "embreex", "imageio", "llvmlite", "numba", "pillow", "scipy",
+                  "typing_extensions")
+COMPILING = "Compiling Prism kernels (first render only)"
 DEV_ONLY_DIRS = ("tests/", "benchmarks/", ".ci/", "docs/", "tools/", ".venv/", ".git/",
                  ".coord/", "build/", "dist/", "demo/")
 
@@ -95,7 +99,8 @@ def test_missing_wheel_error_names_package_and_platform(tmp_path):
         capture_output=True, text=True, timeout=120,
     )
     assert result.returncode == 1
-    assert "macos-arm64" in result.stderr and "embreex==" in result.stderr, result.stderr
+    for expected in ("macos-arm64", "embreex==", "numba=="):
+        assert expected in result.stderr, result.stderr
     assert not (tmp_path / "dist").exists()
 
 
@@ -122,12 +127,27 @@ def test_installed_zip_enables_and_renders(linux_zip, tmp_path):
     assert report["addon_enabled"], "bl_ext.user_default.prism_spectral is not enabled"
     assert "PRISM" in report["engines"]
     assert report["heavy_imported_at_register"] == []
-    for package in ("colour", "scipy", "embreex", "PIL", "imageio"):
+    for package in ("colour", "scipy", "embreex", "PIL", "imageio", "numba", "llvmlite"):
         assert package in report["site_packages_content"]
     # The render used the bundled wheels, not this environment's copies.
-    assert report["modules_from"]["embreex"], "the render did not use embreex"
+    for module in ("embreex", "numba", "llvmlite"):
+        assert report["modules_from"][module], f"the render did not use {module}"
     for module, path in report["modules_from"].items():
         assert path is None or path.startswith(report["site_packages"]), (module, path)
+
+    # Kernels ran, compiled into the extension's user folder (not next to the installed sources).
+    cache = report["kernel_cache"]
+    assert cache["directory"].startswith(str(user_dir)) and cache["directory"].endswith("kernel_cache")
+    assert cache["jit_directory"] == cache["numba_cache_dir"] == cache["directory"]
+    assert cache["kernels_run"], "the render ran no compiled tracer kernel"
+    for kernel in cache["kernels_run"]:
+        function = kernel.split(":")[1]
+        assert any(Path(f).name.startswith(f"{function}-") and f.endswith(".nbi")
+                   for f in cache["files"]), f"{kernel} is not cached in {cache['directory']}"
+    assert cache["warm"]
+    first, second = report["status_bar"]
+    assert any(COMPILING in line for line in first), first
+    assert second and not any(COMPILING in line for line in second), second
 
     image = report["image"]
     assert image["size"] == [16, 16]

@@ -1,19 +1,27 @@
 """The first render on a machine says it is compiling the kernels; a warm cache stays quiet.
 
-Renders go through ``bpy.ops.render.render`` with the add-on as a plain module (no extension
-folder), so the kernel cache is the tracer's default, here pointed at a fresh temporary folder
-through ``$PRISM_KERNEL_CACHE``. The installed-extension case (the extension's user folder) is
-covered by ``test_extension_package.py``.
+The add-on runs as a plain module here (no extension folder), so the kernel cache is the tracer's
+default, pointed at a fresh temporary folder through ``$PRISM_KERNEL_CACHE``. The status bar is
+read through Blender's ``render_stats`` handler (each ``update_stats`` line), the batch progress
+stream from ``render.py``'s stderr. The installed-extension case (the extension's user folder,
+compiled files in it) is covered by ``test_extension_package.py``.
 """
 
 from __future__ import annotations
 
 import importlib
-import io
+import os
+import subprocess
+import sys
+from pathlib import Path
 
+import bpy
 import pytest
 
-from helpers.bpy_scenes import add_camera, add_plane, add_point_light, render_linear_rgb
+from helpers.bpy_scenes import add_camera, add_plane, add_point_light, build_lit_card_scene, render_linear_rgb
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+MESSAGE = "Compiling Prism kernels (first render only)"
 
 
 @pytest.fixture
@@ -26,69 +34,49 @@ def lit_plane(fresh_scene):
 
 
 @pytest.fixture
-def recorded_render(prism_addon, monkeypatch):
-    """Render a scene; returns (status bar lines, progress stream text) of that render."""
-    session = importlib.import_module(f"{prism_addon.__name__}.engine.session")
+def status_bar():
+    """The status bar lines (``update_stats``) Blender reports while the fixture is active."""
+    lines: list[str] = []
 
-    class RecordingEngine:
-        """The real engine, with its status bar lines recorded."""
+    def record(stats, *_):
+        lines.append(stats)
 
-        def __init__(self, engine, lines):
-            self._engine, self._lines = engine, lines
+    bpy.app.handlers.render_stats.append(record)
+    yield lines
+    bpy.app.handlers.render_stats.remove(record)
 
-        def update_stats(self, stats, info):
-            self._lines.append(info)
-            self._engine.update_stats(stats, info)
 
-        def __getattr__(self, name):
-            return getattr(self._engine, name)
-
-    def render(scene):
-        lines, stream = [], io.StringIO()
-        original_init = session.RenderSession.__init__
-
-        def init(self, engine, depsgraph, render_request=None):
-            original_init(self, RecordingEngine(engine, lines), depsgraph, render_request)
-            self.request.progress_stream = stream
-
-        with monkeypatch.context() as patch:
-            patch.setattr(session.RenderSession, "__init__", init)
-            patch.setattr(session, "request", session.RenderRequest())
-            render_linear_rgb(scene, samples=2)
-        assert session.last_error is None
-        return lines, stream.getvalue()
-
-    return render
+def _modules(prism_addon):
+    package = prism_addon.__name__
+    return (importlib.import_module(f"{package}.engine.kernel_cache"),
+            importlib.import_module(f"{package}.engine.tracer.jit"))
 
 
 def test_first_render_says_it_compiles_then_a_warm_cache_stays_quiet(
-    prism_addon, lit_plane, recorded_render, tmp_path, monkeypatch
+    prism_addon, lit_plane, status_bar, tmp_path, monkeypatch
 ):
-    kernel_cache = importlib.import_module(f"{prism_addon.__name__}.engine.kernel_cache")
-    jit = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.jit")
+    kernel_cache, jit = _modules(prism_addon)
     cache = tmp_path / "kernels"
     monkeypatch.setenv("PRISM_KERNEL_CACHE", str(cache))
     assert jit.cache_directory() == cache  # no extension folder: the tracer's default applies
-    message = kernel_cache.COMPILING_MESSAGE
-    assert message == "Compiling Prism kernels (first render only)"
+    assert kernel_cache.COMPILING_MESSAGE == MESSAGE
 
-    lines, progress = recorded_render(lit_plane)
-    assert any(message in line for line in lines), lines
-    assert f"Prism: {message}" in progress.splitlines(), progress
+    render_linear_rgb(lit_plane, samples=2)
+    assert any(MESSAGE in line for line in status_bar), status_bar
     assert jit.cache_is_warm(), "a finished cold render marks the cache warm"
     assert any(cache.glob("prism-kernels-*.ok"))
 
-    lines, progress = recorded_render(lit_plane)
-    assert lines and not any(message in line for line in lines), lines
-    assert message not in progress
-    assert "2/2 spp" in progress  # the render did run and report
+    status_bar.clear()
+    render_linear_rgb(lit_plane, samples=2)
+    assert any("2/2 spp" in line for line in status_bar), status_bar  # the render did report
+    assert not any(MESSAGE in line for line in status_bar), status_bar
 
 
 def test_a_cancelled_first_render_does_not_mark_the_cache_warm(
-    prism_addon, lit_plane, recorded_render, tmp_path, monkeypatch
+    prism_addon, lit_plane, status_bar, tmp_path, monkeypatch
 ):
+    _, jit = _modules(prism_addon)
     session = importlib.import_module(f"{prism_addon.__name__}.engine.session")
-    jit = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.jit")
     monkeypatch.setenv("PRISM_KERNEL_CACHE", str(tmp_path / "kernels"))
     original_passes = session.RenderSession._passes
 
@@ -97,12 +85,36 @@ def test_a_cancelled_first_render_does_not_mark_the_cache_warm(
         self.cancelled = True  # as if Esc was pressed during the last pass
 
     monkeypatch.setattr(session.RenderSession, "_passes", cancel_after_passes)
-    recorded_render(lit_plane)
+    render_linear_rgb(lit_plane, samples=2)
+    assert any(MESSAGE in line for line in status_bar)
     assert not jit.cache_is_warm()
 
 
 def test_without_an_extension_there_is_no_extension_cache_folder(prism_addon):
-    kernel_cache = importlib.import_module(f"{prism_addon.__name__}.engine.kernel_cache")
+    kernel_cache, _ = _modules(prism_addon)
     assert kernel_cache.ADDON_PACKAGE == prism_addon.__name__
     assert kernel_cache.extension_cache_directory() is None
     assert kernel_cache.extension_cache_directory("some_legacy_addon") is None
+
+
+def test_batch_progress_says_it_compiles_on_the_first_render_only(fresh_scene, tmp_path):
+    build_lit_card_scene(resolution=(8, 6))
+    scene_file = tmp_path / "card.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(scene_file))
+    cache = tmp_path / "kernels"
+    env = {**os.environ, "PRISM_KERNEL_CACHE": str(cache)}
+
+    def batch_render() -> str:
+        completed = subprocess.run(
+            [sys.executable, str(REPO_ROOT / "render.py"), str(scene_file), "--samples", "1",
+             "--output", str(tmp_path / "out.png")],
+            capture_output=True, text=True, timeout=300, env=env,
+        )
+        assert completed.returncode == 0, completed.stderr
+        return completed.stderr
+
+    first = batch_render()
+    assert f"Prism: {MESSAGE}" in first.splitlines(), first
+    assert any(cache.glob("prism-kernels-*.ok")), sorted(p.name for p in cache.rglob("*"))
+    second = batch_render()
+    assert "1/1 spp" in second and MESSAGE not in second, second
