@@ -166,7 +166,7 @@ def wheel_requires(wheel: Path, platform: str) -> list[requirements.Requirement]
     return out
 
 
-def _check_constraints(platform: str, pins: dict[str, str],
+def check_constraints(platform: str, pins: dict[str, str],
                        constraints: list[tuple[Pin, requirements.Requirement]]) -> None:
     for parent, req in constraints:
         child = utils.canonicalize_name(req.name)
@@ -204,7 +204,7 @@ def resolve_wheels(platform: str, requirement_pins: dict[str, str], wheels_dir: 
             for req in wheel_requires(path, platform):
                 constraints.append((pin, req))
                 level.append(utils.canonicalize_name(req.name))
-    _check_constraints(platform, pins, constraints)
+    check_constraints(platform, pins, constraints)
     return dict(sorted(chosen.items(), key=lambda item: item[0].name))
 
 

@@ -104,6 +104,42 @@ def test_missing_wheel_error_names_package_and_platform(tmp_path):
     assert not (tmp_path / "dist").exists()
 
 
+def _extension_wheels():
+    """tools/extension_wheels.py, imported once (dataclasses need it in sys.modules)."""
+    name = "prism_tools_extension_wheels"
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(name, REPO_ROOT / "tools" / "extension_wheels.py")
+        sys.modules[name] = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(sys.modules[name])
+    return sys.modules[name]
+
+
+def test_a_wheel_that_needs_a_newer_numpy_than_blender_42_is_refused():
+    ew = _extension_wheels()
+    Requirement = ew.requirements.Requirement
+
+    scipy = ew.Pin("scipy", "1.17.1")
+    with pytest.raises(ew.WheelError, match=r"scipy==1.17.1 requires numpy>=1.26.4 but Blender 4.2 bundles numpy 1.24.3"):
+        ew.check_constraints("linux-x64", {"scipy": "1.17.1"}, [(scipy, Requirement("numpy>=1.26.4"))])
+    numba = ew.Pin("numba", "0.62.1")
+    with pytest.raises(ew.WheelError, match=r"numba==0.62.1 requires llvmlite<0.46"):
+        ew.check_constraints("macos-x64", {"llvmlite": "0.50.0"}, [(numba, Requirement("llvmlite<0.46,>=0.45.0dev0"))])
+    ew.check_constraints("macos-x64", {"llvmlite": "0.45.1"}, [(numba, Requirement("numpy<2.4,>=1.22")),
+                                                                (numba, Requirement("llvmlite<0.46,>=0.45.0dev0"))])
+
+
+def test_linux_wheels_run_with_the_numpy_of_blender_42(tmp_path):
+    """The oldest numpy the zips meet (the test suite itself runs Blender 4.5's 1.26.4)."""
+    oldest = min(_extension_wheels().BLENDER_NUMPY.values(), key=lambda v: tuple(map(int, v.split("."))))
+    result = subprocess.run(
+        [sys.executable, str(REPO_ROOT / "tools" / "check_blender_numpy.py"), "--numpy", oldest,
+         "--work-dir", str(tmp_path)],
+        capture_output=True, text=True, timeout=600,
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert f'"numpy": "{oldest}", "numba": ' in result.stdout, result.stdout
+
+
 def test_installed_zip_enables_and_renders(linux_zip, tmp_path):
     report_path = tmp_path / "report.json"
     user_dir = tmp_path / "blender-user"
