@@ -114,6 +114,26 @@ def _kernels_run() -> list[str]:
     return sorted(found)
 
 
+def _compile_a_tracer_kernel() -> str | None:
+    """Compile one installed tracer kernel (N-BK7's index at the d line); its ``module:function``.
+
+    Shows where a kernel of the installed sources caches even if the render ran none; None if
+    the tracer has no such kernel module.
+    """
+    import numpy as np
+
+    try:
+        dispersion = importlib.import_module(f"{MODULE}.engine.tracer.spectra.dispersion")
+    except ImportError:
+        return None
+    row = np.array([1.0, 300.0, 2500.0, 1.03961212, 0.231792344, 1.01046945,
+                    0.00600069867, 0.0200179144, 103.560653])
+    index, _ = dispersion.refractive_index(row, 587.56)
+    if abs(index - 1.5168) > 1e-4:
+        raise RuntimeError(f"the compiled N-BK7 index is {index}, not 1.5168")
+    return "spectra.dispersion:refractive_index"
+
+
 def _kernel_cache_facts(bpy) -> dict:
     jit = importlib.import_module(f"{MODULE}.engine.tracer.jit")
     expected = Path(bpy.utils.extension_path_user(MODULE, path="kernel_cache"))
@@ -134,6 +154,8 @@ def _render(bpy, image_path: Path, report: dict) -> None:
     report["modules_from"] = {m: getattr(sys.modules.get(m), "__file__", None) for m in HEAVY_MODULES}
     report["kernel_cache"] = _kernel_cache_facts(bpy)
     report["status_bar"].append(_render_once(bpy))  # the cache is warm now: no compile notice
+    report["probe_kernel"] = _compile_a_tracer_kernel()
+    report["kernel_cache_after_probe"] = _kernel_cache_facts(bpy)
     if not image_path.exists():
         return
     image = bpy.data.images.load(str(image_path))
