@@ -18,7 +18,7 @@ from pathlib import Path
 import bpy
 import pytest
 
-from helpers.bpy_scenes import add_camera, add_plane, add_point_light, build_lit_card_scene, render_linear_rgb
+from helpers.bpy_scenes import build_lit_card_scene, render_linear_rgb
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 MESSAGE = "Compiling Prism kernels (first render only)"
@@ -26,10 +26,7 @@ MESSAGE = "Compiling Prism kernels (first render only)"
 
 @pytest.fixture
 def lit_plane(fresh_scene):
-    add_plane("Floor", 4.0, color=(0.8, 0.8, 0.8))
-    add_point_light("Bulb", 200.0, (0.0, 0.0, 2.0))
-    add_camera((0.0, 0.0, 3.0), (0.0, 0.0, 0.0), lens_mm=35.0, resolution=(8, 8))
-    fresh_scene.world = None
+    build_lit_card_scene(resolution=(8, 6))
     return fresh_scene
 
 
