@@ -30,8 +30,8 @@ RUNTIME_ROOTS = ("embreex", "colour-science", "numba")  # numba brings llvmlite
 # numpy is bundled with Blender: an extension must never ship its own.
 PROVIDED_BY_BLENDER = frozenset({"numpy"})
 
-#: The numpy inside the oldest and the newest Blender the extension supports (Blender 4.2 to 4.3
-#: build with numpy 1.24.3, 4.5 and 5.0 with 1.26.4). Every bundled wheel must accept both.
+#: The numpy inside the oldest and the newest Blender the extension supports (Blender 4.2 builds
+#: with numpy 1.24.3, 4.5 and 5.0 with 1.26.4). Every bundled wheel must accept both.
 BLENDER_NUMPY = {"4.2": "1.24.3", "5.0": "1.26.4"}
 
 #: Versions a zip bundles where they differ from requirements.txt (the development set the tests
