@@ -13,13 +13,17 @@ import traceback
 
 import numpy as np
 
-from .export import export_scene
-from .export.border import render_border
-from .export.settings import export_settings
-from .fingerprint import render_fingerprint
-from .render_engine import enabled_passes
-from .render_request import FilmSnapshot, RenderReport, RenderRequest
-from .tracer.errors import PrismInputError
+from . import kernel_cache
+
+kernel_cache.configure()  # before anything below imports a tracer kernel module
+
+from .export import export_scene  # noqa: E402
+from .export.border import render_border  # noqa: E402
+from .export.settings import export_settings  # noqa: E402
+from .fingerprint import render_fingerprint  # noqa: E402
+from .render_engine import enabled_passes  # noqa: E402
+from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
+from .tracer.errors import PrismInputError  # noqa: E402
 
 
 class _Cancelled(Exception):
@@ -73,7 +77,11 @@ class RenderSession:
         engine = self.engine
         scene = self.depsgraph.scene
         req = self.request
-        engine.update_stats("", "Prism | Exporting scene")
+        compiling = kernel_cache.compiling_notice()
+        notice = f" | {compiling}" if compiling else ""
+        if compiling:
+            self._print(f"Prism: {compiling}")
+        engine.update_stats("", f"Prism | Exporting scene{notice}")
         warnings: list[str] = []
         tracer_scene = export_scene(self.depsgraph, warnings)
         width, height = tracer_scene.camera.resolution
@@ -85,7 +93,7 @@ class RenderSession:
         for message in warnings:
             engine.report({"WARNING"}, message)
             self._print(f"Prism: warning: {message}")
-        engine.update_stats("", "Prism | Preparing (BVH, spectra)")
+        engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
         target = settings.samples
         with Renderer(tracer_scene, settings) as renderer:
             if req.sample_offset:
@@ -95,6 +103,8 @@ class RenderSession:
             finally:
                 if self.cancelled:
                     renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
+            if compiling and not self.cancelled:
+                kernel_cache.mark_compiled()
             if req.keep_film and not self.cancelled:
                 self.report.film = FilmSnapshot(
                     mean=renderer.film.mean(),
