@@ -92,15 +92,15 @@ function compileJob(job) {
     for (const frame of request.frames) {
         const finalPath = framePath(request.outputTemplate, frame);
         if (request.chunks === 1) {
-            job.addTask(plainFrameTask(job, request, frame));
+            job.addTask(plainFrameTask(request, frame));
             continue;
         }
-        const frameDir = path.join(chunkRoot, padFrame(frame, 4));
+        const frameDir = path.join(chunkRoot, zeroPadded(frame, 4));
         const chunkTasks = [];
         const chunkPaths = [];
         for (let chunk = 0; chunk < request.chunks; chunk++) {
-            const chunkPath = path.join(frameDir, "chunk_" + padFrame(chunk, 4) + ".exr");
-            const task = chunkTask(job, request, frame, chunk, chunkPath);
+            const chunkPath = path.join(frameDir, "chunk_" + zeroPadded(chunk, 4) + ".exr");
+            const task = chunkTask(request, frame, chunk, chunkPath);
             job.addTask(task);
             chunkTasks.push(task);
             chunkPaths.push(chunkPath);
@@ -197,13 +197,13 @@ function withFrameNumber(output) {
 function framePath(template, frame) {
     const name = path.basename(template);
     const match = /#+(?!.*#)/.exec(name);
-    const numbered = name.slice(0, match.index) + padFrame(frame, match[0].length) +
+    const numbered = name.slice(0, match.index) + zeroPadded(frame, match[0].length) +
                      name.slice(match.index + match[0].length);
     return path.join(path.dirname(template), numbered);
 }
 
 // Python's f"{number:0{width}d}": the sign counts towards the width.
-function padFrame(number, width) {
+function zeroPadded(number, width) {
     const sign = number < 0 ? "-" : "";
     return sign + String(Math.abs(number)).padStart(Math.max(width - sign.length, 0), "0");
 }
@@ -229,7 +229,7 @@ function blenderCommand(blendfile, args) {
     });
 }
 
-function plainFrameTask(job, request, frame) {
+function plainFrameTask(request, frame) {
     const task = author.Task(`render frame ${frame}`, TASK_TYPE);
     task.addCommand(blenderCommand(request.blendfile, blenderArguments(request).concat([
         "--frames", String(frame),
@@ -241,7 +241,7 @@ function plainFrameTask(job, request, frame) {
 }
 
 // render.py's --chunk-seed renders the scene's current frame, so a Python expression sets it first.
-function chunkTask(job, request, frame, chunk, chunkPath) {
+function chunkTask(request, frame, chunk, chunkPath) {
     const task = author.Task(`render frame ${frame} chunk ${chunk + 1}/${request.chunks}`, TASK_TYPE);
     const setFrame = `import bpy; bpy.context.scene.frame_set(${frame})`;
     task.addCommand(blenderCommand(request.blendfile, blenderArguments(request, setFrame).concat([

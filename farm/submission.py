@@ -73,6 +73,9 @@ def frame_range_text(start: int, end: int, step: int = 1) -> str:
     """Blender's frame range in Flamenco's notation: ``1..24``, or the frames listed when step > 1."""
     if end < start:
         raise ValueError(f"Farm: the frame range ends ({end}) before it starts ({start}).")
+    if start < 0:
+        raise ValueError(f"Farm: Flamenco's frame ranges have no negative frames (the range starts at {start}): "
+                         "set the scene's Frame Start to 0 or later.")
     if step == 1:
         return f"{start}..{end}"
     return ",".join(str(frame) for frame in range(start, end + 1, step))

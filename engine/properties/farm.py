@@ -4,6 +4,9 @@
 import bpy
 from bpy.props import IntProperty, StringProperty
 
+# Blender 4.5 warns about a "//" path unless the property says it takes blend-relative paths (4.5+ only).
+_BLEND_RELATIVE = {"PATH_SUPPORTS_BLEND_RELATIVE"} if bpy.app.version >= (4, 5, 0) else set()
+
 
 class PrismFarmSettings(bpy.types.PropertyGroup):
     """Render-farm submission settings of a scene."""
@@ -40,6 +43,7 @@ class PrismFarmSettings(bpy.types.PropertyGroup):
         "becomes the frame number",
         default="//render/prism_####.exr",
         subtype="FILE_PATH",
+        options=_BLEND_RELATIVE,
     )
     render_script: StringProperty(
         name="Render Script",

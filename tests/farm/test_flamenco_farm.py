@@ -159,3 +159,11 @@ def test_one_chunk_renders_plain_frames_without_merges(animated_scene, flamenco_
         _render_in_process(scene, frame, "--frames", frame, "--samples", SAMPLES, "--seed", SEED,
                            "--output", tmp_path / "card.png")
         assert np.array_equal(_pixels(farm_frame), _pixels(tmp_path / f"card_{frame:04d}.png")), f"frame {frame}"
+
+
+def test_a_manager_without_the_job_type_says_how_to_install_it(flamenco_farm):
+    from farm.manager import FlamencoError
+
+    with pytest.raises(FlamencoError, match="has no 'prism-render-v0' job type: copy Prism's farm/prism_render.js "
+                                            "into the scripts/ folder next to the flamenco-manager executable"):
+        flamenco_farm.manager.job_type("prism-render-v0")

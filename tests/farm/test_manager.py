@@ -1,0 +1,29 @@
+"""farm/manager.py without a Manager: addresses it refuses and a Manager that is not there.
+(Talking to a real Manager is in test_flamenco_farm.py.)"""
+
+from __future__ import annotations
+
+import socket
+
+import pytest
+
+from farm.manager import FlamencoError, FlamencoManager
+
+
+@pytest.mark.parametrize("url", ["localhost:8080", "ftp://flamenco.local", "http://", ""])
+def test_addresses_that_are_not_http_urls_are_refused(url):
+    with pytest.raises(FlamencoError, match="is not an http\\(s\\) address: give it as shown by the Manager"):
+        FlamencoManager(url)
+
+
+def test_trailing_slash_and_spaces_are_dropped():
+    assert FlamencoManager("  http://flamenco.local:8080/ ").url == "http://flamenco.local:8080"
+
+
+def test_unreachable_manager_names_the_url_and_what_to_check():
+    with socket.socket() as probe:  # a port nobody listens on
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    manager = FlamencoManager(f"http://127.0.0.1:{port}", timeout_s=2.0)
+    with pytest.raises(FlamencoError, match=f"Cannot reach Flamenco Manager at http://127.0.0.1:{port} .*check that it is running"):
+        manager.version()
