@@ -55,6 +55,7 @@ def job_name(scene) -> str:
 
 def job_summary(scene) -> str:
     """``2 frames × 3 chunks of 16 samples: 6 render tasks + 2 merges`` (``ValueError`` like ``farm_job``)."""
+    frame_range_text(scene.frame_start, scene.frame_end, scene.frame_step)
     frames = len(range(scene.frame_start, scene.frame_end + 1, scene.frame_step))
     chunks = scene.prism.farm.chunks
     per_chunk = samples_per_chunk(scene.prism.samples, chunks)
