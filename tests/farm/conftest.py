@@ -91,6 +91,14 @@ VARIABLE = """\
 """
 
 
+def _signal_group(process: subprocess.Popen, signal_number: int) -> None:
+    """Signal the process group ``process`` leads (started with its own session), if any is left."""
+    try:
+        os.killpg(process.pid, signal_number)
+    except ProcessLookupError:
+        pass
+
+
 class LocalFarm:
     """A Flamenco Manager and Workers started in ``root``; ``stop()`` ends every process it started."""
 
@@ -155,16 +163,17 @@ class LocalFarm:
         return "\n".join(lines)
 
     def stop(self) -> None:
-        """Interrupt every process started here (workers first, with their renders), then make sure."""
-        for name, process in reversed(self.processes):
-            if process.poll() is None:
-                os.killpg(process.pid, signal.SIGINT)
-        for name, process in reversed(self.processes):
+        """Interrupt every process started here (workers first, with the renders they run), wait,
+        then kill whatever of their process groups is left."""
+        for _, process in reversed(self.processes):
+            _signal_group(process, signal.SIGINT)
+        for _, process in reversed(self.processes):
             try:
                 process.wait(timeout=15)
             except subprocess.TimeoutExpired:
-                os.killpg(process.pid, signal.SIGKILL)
+                _signal_group(process, signal.SIGKILL)
                 process.wait(timeout=15)
+            _signal_group(process, signal.SIGKILL)  # a render its worker left behind
         self.processes.clear()
 
     def log_tail(self, name: str, lines: int = 30) -> str:
@@ -226,6 +235,12 @@ class LocalFarm:
                 raise RuntimeError(f"Timed out after {START_TIMEOUT_S:.0f} s waiting for {what}:\n"
                                    + "\n".join(self.log_tail(name) for name, _ in self.processes))
             time.sleep(0.2)
+
+
+@pytest.fixture
+def unreachable_url() -> str:
+    """An http URL on loopback where nothing listens."""
+    return f"http://127.0.0.1:{_free_port()}"
 
 
 @pytest.fixture(scope="module")

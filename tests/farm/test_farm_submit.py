@@ -3,8 +3,6 @@ that stop a submission before anything is written. (Submitting for real: test_fl
 
 from __future__ import annotations
 
-import socket
-
 import bpy
 import pytest
 
@@ -12,12 +10,6 @@ import pytest
 @pytest.fixture
 def submit_module(prism_addon):
     return prism_addon.operators.farm_submit
-
-
-def _closed_port_url():
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return f"http://127.0.0.1:{probe.getsockname()[1]}"
 
 
 def _submit():
@@ -43,9 +35,9 @@ def test_job_follows_the_scene(submit_module, fresh_scene, tmp_path):
     assert submit_module.job_summary(scene) == "4 frames of 48 samples: 4 render tasks"
 
 
-def test_output_relative_to_an_unsaved_file_is_refused(submit_module, fresh_scene):
+def test_output_relative_to_an_unsaved_file_is_refused(submit_module, fresh_scene, unreachable_url):
     fresh_scene.prism.farm.output_path = "//render/prism_####.exr"
-    fresh_scene.prism.farm.manager_url = _closed_port_url()
+    fresh_scene.prism.farm.manager_url = unreachable_url
     result, error = _submit()
     assert result == {"CANCELLED"}
     assert "is relative to the .blend file, which is not saved yet" in error
@@ -59,8 +51,8 @@ def test_samples_that_do_not_split_are_refused_before_contacting_the_manager(sub
     assert result == {"CANCELLED"} and "10 samples do not split into 4 equal chunks" in error
 
 
-def test_unreachable_manager_is_reported_and_nothing_is_written(submit_module, fresh_scene, tmp_path):
-    url = _closed_port_url()
+def test_unreachable_manager_is_reported_and_nothing_is_written(submit_module, fresh_scene, tmp_path, unreachable_url):
+    url = unreachable_url
     fresh_scene.prism.farm.manager_url = url
     fresh_scene.prism.farm.output_path = str(tmp_path / "out" / "prism_####.exr")
     result, error = _submit()
