@@ -248,10 +248,10 @@ def flamenco_farm(tmp_path_factory):
     """A running Manager (with the prism-render job type) and three Workers on loopback."""
     binaries = find_farm_folder()
     if binaries is None or not all((binaries / name).is_file() for name in BINARIES):
-        message = (
-            f"Flamenco binaries not found (looked in ${FARM_ENV}, then shared/farm beside {REPO_ROOT} and its "
-            f"parents; found {binaries}): check out the shared folder next to the repository or set {FARM_ENV}."
-        )
+        where = (f"${FARM_ENV} is {binaries}, which lacks them" if os.environ.get(FARM_ENV)
+                 else f"no shared/farm beside {REPO_ROOT} or its parent folders holds them")
+        message = (f"Flamenco binaries ({', '.join(BINARIES)}) not found: {where}. Check out the shared folder "
+                   f"next to the repository, or set {FARM_ENV} to the folder that holds them.")
         if os.environ.get("CI"):
             pytest.fail(message)
         pytest.skip(message)
