@@ -50,6 +50,10 @@ class FlamencoManager:
                 ) from None
             raise
 
+    def variables(self, platform: str, audience: str = "workers") -> dict:
+        """The Manager's variables as ``audience`` on ``platform`` sees them: ``{name: {"value": ...}}``."""
+        return self._request("GET", f"/configuration/variables/{audience}/{urllib.parse.quote(platform)}")
+
     def check_job(self, submitted_job: dict) -> None:
         """Let the Manager compile ``submitted_job`` without queueing it; raises with its complaint."""
         self._request("POST", "/jobs/check", submitted_job)

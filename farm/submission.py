@@ -6,6 +6,7 @@ a Manager as a ``prism-render`` job (see ``prism_render.js`` for the tasks it be
 
 from __future__ import annotations
 
+import re
 import sys
 from dataclasses import dataclass
 
@@ -13,6 +14,7 @@ from . import JOB_TYPE_NAME
 from .manager import FlamencoError, FlamencoManager
 
 DEFAULT_RENDER_SCRIPT = "{prism}/render.py"
+WORKER_PLATFORMS = ("linux", "windows", "darwin")
 
 
 @dataclass
@@ -92,7 +94,8 @@ def submit(manager: FlamencoManager, job: PrismFarmJob) -> dict:
     """Queue ``job`` on ``manager``; returns the stored job (its ``id`` and ``status``).
 
     Checks first that the Manager has the ``prism-render`` job type with every setting this Prism
-    sends, so an outdated script on the Manager is named instead of failing on the workers.
+    sends, and the variables the render script's path uses, so an outdated script or a missing
+    variable is named here instead of failing on the workers.
     """
     job_type = manager.job_type(JOB_TYPE_NAME)
     known = {setting.get("key") for setting in job_type.get("settings") or []}
@@ -102,4 +105,16 @@ def submit(manager: FlamencoManager, job: PrismFarmJob) -> dict:
             f"The '{JOB_TYPE_NAME}' job type on {manager.url} is older than this Prism (no {', '.join(missing)} "
             "setting): copy this Prism's farm/prism_render.js into the Manager's scripts/ folder and restart it."
         )
+    _check_variables(manager, job.render_script)
     return manager.submit_job(job.submitted_job(type_etag=job_type.get("etag", "")))
+
+
+def _check_variables(manager: FlamencoManager, text: str) -> None:
+    """Every ``{name}`` in ``text`` must be a Manager variable for at least one worker platform."""
+    for name in sorted(set(re.findall(r"\{(\w+)\}", text))):
+        if not any(name in manager.variables(platform) for platform in WORKER_PLATFORMS):
+            raise FlamencoError(
+                f"Flamenco Manager {manager.url} has no '{name}' variable, which Render Script '{text}' uses: add "
+                f"it to flamenco-manager.yaml with the folder Prism is installed in on each worker platform "
+                "(see docs/farm.md), or give Render Script as the full path of render.py on the workers."
+            )

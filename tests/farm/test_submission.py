@@ -65,9 +65,13 @@ class _ManagerWithJobType:
 
     url = "http://flamenco.local:8080"
 
-    def __init__(self, keys):
+    def __init__(self, keys, variables=("prism",)):
         self.job_type_settings = [{"key": key, "type": "string"} for key in keys]
+        self.worker_variables = {name: {"value": "/opt/prism", "is_twoway": False} for name in variables}
         self.submitted = []
+
+    def variables(self, platform):
+        return self.worker_variables if platform == "windows" else {}
 
     def job_type(self, name):
         assert name == JOB_TYPE_NAME
@@ -89,3 +93,11 @@ def test_submit_names_an_outdated_job_type_on_the_manager():
     with pytest.raises(FlamencoError, match="older than this Prism \\(no chunks, render_script setting\\): copy"):
         submit(manager, _job())
     assert manager.submitted == []
+
+
+def test_submit_names_a_variable_the_manager_lacks():
+    manager = _ManagerWithJobType(_job().settings(), variables=("blender",))
+    with pytest.raises(FlamencoError, match="has no 'prism' variable, which Render Script '{prism}/render.py' uses"):
+        submit(manager, _job())
+    assert manager.submitted == []
+    assert submit(manager, _job(render_script="/opt/prism/render.py"))["id"] == "job-1"
