@@ -13,6 +13,9 @@
 // `prism` (or the `render_script` setting) pointing at Prism's render.py on each platform.
 // See docs/farm.md in the Prism repository.
 
+const DEFAULT_RENDER_SCRIPT = "{prism}/render.py";
+const TASK_TYPE = "blender";
+
 const JOB_TYPE = {
     label: "Prism Render",
     description: "Render with Prism, each frame's samples split into chunks over several workers and merged",
@@ -73,15 +76,13 @@ const JOB_TYPE = {
             key: "render_script",
             type: "string",
             subtype: "file_path",
-            default: "{prism}/render.py",
+            default: DEFAULT_RENDER_SCRIPT,
             description:
                 "Prism's render.py as the workers see it; {prism} is a Manager variable holding the folder " +
                 "Prism is installed in on each platform",
         },
     ],
 };
-
-const TASK_TYPE = "blender";
 
 function compileJob(job) {
     const request = readSettings(job.settings);
@@ -146,7 +147,7 @@ function readSettings(settings) {
         samplesPerChunk: samples / chunks,
         seed: seed,
         outputTemplate: withFrameNumber(output),
-        renderScript: settings.render_script ? String(settings.render_script) : "{prism}/render.py",
+        renderScript: settings.render_script ? String(settings.render_script) : DEFAULT_RENDER_SCRIPT,
     };
 }
 

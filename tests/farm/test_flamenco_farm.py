@@ -72,6 +72,13 @@ def test_job_type_is_installed_with_its_settings(flamenco_farm):
     assert keys == {"blendfile", "frames", "samples", "chunks", "seed", "render_output_path", "render_script"}
 
 
+def test_manager_compiles_a_job_with_only_the_required_settings(flamenco_farm):
+    document = {"name": "minimal", "type": "prism-render", "priority": 50, "submitter_platform": "linux",
+                "settings": {"blendfile": "/render/scene.blend", "frames": "1-3, 7", "samples": 8,
+                             "chunks": 1, "render_output_path": "/render/frame.png"}}
+    flamenco_farm.manager.check_job(document)  # seed 0 and {prism}/render.py by default
+
+
 @pytest.mark.parametrize(
     ("changes", "message"),
     [
