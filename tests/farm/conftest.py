@@ -175,6 +175,8 @@ class LocalFarm:
                 process.wait(timeout=15)
             _signal_group(process, signal.SIGKILL)  # a render its worker left behind
         self.processes.clear()
+        for copy in (self.root / "manager" / "flamenco-manager", self.root / "bin" / "flamenco-worker"):
+            copy.unlink(missing_ok=True)  # 47 MB; pytest keeps the logs of the last runs
 
     def log_tail(self, name: str, lines: int = 30) -> str:
         path = self.root / "logs" / f"{name}.log"
