@@ -71,7 +71,7 @@ def test_zip_holds_the_addon_and_its_wheels_only(linux_zip):
     assert "__init__.py" in names
     assert any(n.startswith("engine/tracer/") for n in names)
     # Every file of the add-on's own directories is packaged (lens data included).
-    for folder in ("engine", "lenses", "operators", "ui"):
+    for folder in ("engine", "farm", "lenses", "operators", "ui"):
         for path in (REPO_ROOT / folder).rglob("*"):
             rel = path.relative_to(REPO_ROOT).as_posix()
             if path.is_file() and "__pycache__" not in rel and not rel.endswith(".pyc"):
