@@ -140,6 +140,7 @@ def _kernel_cache_facts(bpy) -> dict:
     files = sorted(p.relative_to(expected).as_posix() for pattern in KERNEL_CACHE_FILES
                    for p in expected.rglob(pattern))
     return {"directory": str(expected), "jit_directory": str(jit.cache_directory()),
+            "kernel_directory": str(jit.kernel_directory()),
             "numba_cache_dir": sys.modules["numba"].config.CACHE_DIR,
             "warm": jit.cache_is_warm(), "kernels_run": _kernels_run(), "files": files}
 

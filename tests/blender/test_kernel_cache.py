@@ -61,7 +61,7 @@ def test_first_render_says_it_compiles_then_a_warm_cache_stays_quiet(
     render_linear_rgb(lit_plane, samples=2)
     assert any(MESSAGE in line for line in status_bar), status_bar
     assert jit.cache_is_warm(), "a finished cold render marks the cache warm"
-    assert any(cache.glob("prism-kernels-*.ok"))
+    assert any(cache.rglob("prism-kernels-*.ok"))
 
     status_bar.clear()
     render_linear_rgb(lit_plane, samples=2)
@@ -112,6 +112,6 @@ def test_batch_progress_says_it_compiles_on_the_first_render_only(fresh_scene, t
 
     first = batch_render()
     assert f"Prism: {MESSAGE}" in first.splitlines(), first
-    assert any(cache.glob("prism-kernels-*.ok")), sorted(p.name for p in cache.rglob("*"))
+    assert any(cache.rglob("prism-kernels-*.ok")), sorted(p.name for p in cache.rglob("*"))
     second = batch_render()
     assert "1/1 spp" in second and MESSAGE not in second, second
