@@ -47,9 +47,15 @@ def visible_pdf(wavelength_nm):
 
 
 @kernel
-def visible_inverse_cdf(u):
-    x = math.atanh(_TANH_LO + u * _VISIBLE_NORMALISATION)
-    return min(max(_VISIBLE_CENTRE_NM + x / _VISIBLE_A_PER_NM, VISIBLE_MIN_NM), VISIBLE_MAX_NM)
+def sample_visible(u):
+    """(wavelength_nm, pdf) from a uniform: t = tanh(a (λ - c)) is linear in u, and the density
+    a / (N cosh²) = a (1 - t²) / N needs no second transcendental."""
+    t = _TANH_LO + u * _VISIBLE_NORMALISATION
+    lam = _VISIBLE_CENTRE_NM + 0.5 * math.log((1.0 + t) / (1.0 - t)) / _VISIBLE_A_PER_NM
+    if lam < VISIBLE_MIN_NM or lam > VISIBLE_MAX_NM:
+        lam = min(max(lam, VISIBLE_MIN_NM), VISIBLE_MAX_NM)
+        return lam, visible_pdf(lam)
+    return lam, _VISIBLE_A_PER_NM * (1.0 - t * t) / _VISIBLE_NORMALISATION
 
 
 @kernel
@@ -135,9 +141,7 @@ def sample_wavelengths(ws, u0, u1, u2, wavelength_nm, pdf):
         if ws.guided_cdf.shape[0] > 0:
             wavelength_nm[j], pdf[j] = _guided_sample(ws, u)
         else:
-            lam = visible_inverse_cdf(u)
-            wavelength_nm[j] = lam
-            pdf[j] = visible_pdf(lam)
+            wavelength_nm[j], pdf[j] = sample_visible(u)
 
 
 @inlined

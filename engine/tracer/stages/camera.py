@@ -19,7 +19,7 @@ import numpy as np
 
 from ..jit import inlined, kernel
 from ..sampler import SLOT_HERO, SLOT_LENS, SLOT_PIXEL, SLOT_WAVELENGTH, pixel_seed, sample_1d, sample_2d
-from ..spectra.wavelength_sampling import inverse_normal_cdf, sample_wavelengths
+from ..spectra.wavelength_sampling import MODE_GAUSSIAN_RGB, inverse_normal_cdf, sample_wavelengths
 from ..state import PREV_DELTA
 from ..warps import concentric_disk
 from .queue import push_ray
@@ -91,8 +91,10 @@ def start_path(state, i, pixel, sample, seed):
 @inlined
 def draw_wavelengths(state, i, ws, sampler, ps, sample):
     u0 = sample_1d(sampler, ps, sample, SLOT_WAVELENGTH)
-    u1 = sample_1d(sampler, ps, sample, SLOT_WAVELENGTH + 1)
-    u2 = sample_1d(sampler, ps, sample, SLOT_WAVELENGTH + 2)
+    u1 = u2 = 0.0
+    if ws.mode == MODE_GAUSSIAN_RGB:
+        u1 = sample_1d(sampler, ps, sample, SLOT_WAVELENGTH + 1)
+        u2 = sample_1d(sampler, ps, sample, SLOT_WAVELENGTH + 2)
     sample_wavelengths(ws, u0, u1, u2, state.wavelength[i], state.wavelength_pdf[i])
     k = state.wavelength.shape[1]
     state.hero[i] = min(int(sample_1d(sampler, ps, sample, SLOT_HERO) * k), k - 1)
