@@ -47,15 +47,16 @@ def intersect_surface(z_vertex_mm, curvature_per_mm, origin, direction):
 
 @kernel
 def refract_at_surface(z_vertex_mm, curvature_per_mm, point, direction, eta):
-    """(refracted unit direction, total internal reflection?) at ``point`` on the surface.
+    """(refracted direction, total internal reflection?) of unit ``direction`` at ``point`` on the surface.
 
-    ``eta`` = n_incident / n_transmitted. The normal is oriented against the ray, so the
-    same formula serves both tracing directions. Under TIR the direction is returned unchanged.
+    ``eta`` = n_incident / n_transmitted. The normal c (p - centre) is a unit vector for a
+    point on the sphere (and (0, 0, -1) on a flat surface), so it needs no normalising; it is
+    oriented against the ray, so the same formula serves both tracing directions. The
+    result is unit up to rounding (``trace_ray`` normalises once at the end). Under TIR
+    the direction is returned unchanged.
     """
     c = curvature_per_mm
     nx, ny, nz = c * point[0], c * point[1], c * (point[2] - z_vertex_mm) - 1.0
-    inv = 1.0 / math.sqrt(nx * nx + ny * ny + nz * nz)
-    nx, ny, nz = nx * inv, ny * inv, nz * inv
     dx, dy, dz = direction
     cos_i = -(nx * dx + ny * dy + nz * dz)
     sign = 1.0
@@ -65,9 +66,7 @@ def refract_at_surface(z_vertex_mm, curvature_per_mm, point, direction, eta):
     if k < 0.0:
         return direction, True
     g = (eta * cos_i - math.sqrt(k)) * sign
-    rx, ry, rz = eta * dx + g * nx, eta * dy + g * ny, eta * dz + g * nz
-    inv = 1.0 / math.sqrt(rx * rx + ry * ry + rz * rz)
-    return (rx * inv, ry * inv, rz * inv), False
+    return (eta * dx + g * nx, eta * dy + g * ny, eta * dz + g * nz), False
 
 
 @kernel
@@ -111,7 +110,8 @@ def trace_ray(lens, origin, direction, wavelength_nm, toward_film, path_mm):
             if tir:
                 return FATE_TIR, i, origin, start_direction
         n_here = n_next
-    return FATE_ALIVE, -1, p, d
+    inv = 1.0 / math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
+    return FATE_ALIVE, -1, p, (d[0] * inv, d[1] * inv, d[2] * inv)
 
 
 @kernel
