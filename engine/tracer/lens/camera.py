@@ -21,7 +21,11 @@ from .lens_file import load_lens
 from .media import D_LINE_NM
 
 WASTE_SAMPLES = 20000
-NORMALISATION_GRID = 96
+# The centre irradiance is integrated over a Fibonacci lattice (F_24 points; F_23 is its
+# generator): the passing region of the pupil is close to a square in the concentric map's
+# (u, v), so an axis-aligned grid would count its edge rows all in or all out (up to 2 %
+# off); the lattice's rows are slanted and it stays within ~0.1 %.
+NORMALISATION_POINTS, NORMALISATION_GENERATOR = 46368, 28657
 
 
 @lru_cache(maxsize=8)
@@ -158,11 +162,11 @@ class RealLensCamera:
     # ---- set-up measurements ------------------------------------------------------------
     def _centre_irradiance(self):
         """Integral of cos^4 / z^2 over the passing part of the pupil seen from the film centre
-        (a stratified grid of ``camera_ray`` weights at the d line, before normalisation)."""
-        g = NORMALISATION_GRID
-        u = (np.arange(g) + 0.5) / g
-        uv = np.column_stack([np.repeat(u, g), np.tile(u, g)])
-        weight, _, _ = self.camera_space_rays(np.zeros((g * g, 2)), uv, D_LINE_NM)
+        (the mean ``camera_ray`` weight at the d line, before normalisation, over a lattice)."""
+        n = NORMALISATION_POINTS
+        i = np.arange(n)
+        uv = np.column_stack([(i + 0.5) / n, ((i * NORMALISATION_GENERATOR) % n + 0.5) / n])
+        weight, _, _ = self.camera_space_rays(np.zeros((n, 2)), uv, D_LINE_NM)
         return float(weight.mean())
 
     def _measure_waste(self, settings):
