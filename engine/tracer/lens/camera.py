@@ -19,6 +19,7 @@ from ..errors import PrismInputError
 from .exit_pupil import RADIAL_BINS, ExitPupilBounds
 from .lens_file import load_lens
 from .media import D_LINE_NM
+from .system import KERNEL_ARRAY
 
 WASTE_SAMPLES = 20000
 # The centre irradiance is integrated over a Fibonacci lattice (F_24 points; F_23 is its
@@ -122,7 +123,7 @@ class RealLensCamera:
         """Film positions [N, 2] (lens x, y in mm) of raster positions [N, 2], rotated 180 degrees."""
         from .camera_kernel import film_points_mm
 
-        pixel_xy = np.ascontiguousarray(pixel_xy, dtype=np.float64).reshape(-1, 2)
+        pixel_xy = np.require(np.reshape(pixel_xy, (-1, 2)), np.float64, KERNEL_ARRAY)
         film_xy = np.empty_like(pixel_xy)
         film_points_mm(self._tables, pixel_xy, film_xy)
         return film_xy
@@ -132,10 +133,10 @@ class RealLensCamera:
         wavelength [N]: (weight [N], origins [N, 3] in metres, unit directions [N, 3]) in camera space."""
         from .camera_kernel import camera_rays
 
-        film_xy_mm = np.ascontiguousarray(film_xy_mm, dtype=np.float64).reshape(-1, 2)
+        film_xy_mm = np.require(np.reshape(film_xy_mm, (-1, 2)), np.float64, KERNEL_ARRAY)
         n = len(film_xy_mm)
-        lens_uv = np.ascontiguousarray(lens_uv, dtype=np.float64).reshape(n, 2)
-        wavelength_nm = np.ascontiguousarray(np.broadcast_to(np.asarray(wavelength_nm, dtype=np.float64), (n,)))
+        lens_uv = np.require(np.reshape(lens_uv, (n, 2)), np.float64, KERNEL_ARRAY)
+        wavelength_nm = np.require(np.broadcast_to(wavelength_nm, (n,)), np.float64, KERNEL_ARRAY)
         weight, origins, directions = np.empty(n), np.empty((n, 3)), np.empty((n, 3))
         camera_rays(self._tables, film_xy_mm, lens_uv, wavelength_nm, weight, origins, directions)
         return weight, origins, directions

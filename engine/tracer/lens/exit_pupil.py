@@ -19,7 +19,7 @@ from functools import cached_property
 import numpy as np
 
 from .media import D_LINE_NM
-from .system import TOWARD_SCENE
+from .system import KERNEL_ARRAY, TOWARD_SCENE
 
 RADIAL_BINS = 64
 COARSE_GRID = 40
@@ -204,8 +204,8 @@ class ExitPupilBounds:
         """
         from .pupil_sampling import sample_exit_pupil_rows
 
-        film_xy_mm = np.ascontiguousarray(film_xy_mm, dtype=np.float64).reshape(-1, 2)
-        uv = np.ascontiguousarray(uv, dtype=np.float64).reshape(-1, 2)
+        film_xy_mm = np.require(np.reshape(film_xy_mm, (-1, 2)), np.float64, KERNEL_ARRAY)
+        uv = np.require(np.reshape(uv, (-1, 2)), np.float64, KERNEL_ARRAY)
         points, area = np.empty((len(film_xy_mm), 3)), np.empty(len(film_xy_mm))
         sample_exit_pupil_rows(self.tables, film_xy_mm, uv, points, area)
         return points, area

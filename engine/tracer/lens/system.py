@@ -27,6 +27,10 @@ FATE_BLOCKED = 2  # outside the clear aperture or the aperture stop
 FATE_TIR = 3  # total internal reflection
 FATE_NAMES = {FATE_ALIVE: "alive", FATE_MISSED: "missed", FATE_BLOCKED: "blocked", FATE_TIR: "TIR"}
 
+# Arrays handed to the lens kernels are C-contiguous and writable (np.require copies
+# otherwise): a read-only or strided input would compile and cache another specialisation.
+KERNEL_ARRAY = ("C", "W")
+
 TOWARD_FILM = "film"
 TOWARD_SCENE = "scene"
 
@@ -184,10 +188,10 @@ class LensSystem:
             raise ValueError(f"toward must be 'film' or 'scene', not {toward!r}")
         from .trace_kernel import trace_rays  # numba loads when a lens is first traced, not when one is read
 
-        o = np.ascontiguousarray(np.asarray(origins, dtype=np.float64).reshape(-1, 3))
-        d = np.ascontiguousarray(np.asarray(directions, dtype=np.float64).reshape(-1, 3))
+        o = np.require(np.reshape(origins, (-1, 3)), np.float64, KERNEL_ARRAY)
+        d = np.require(np.reshape(directions, (-1, 3)), np.float64, KERNEL_ARRAY)
         n_rays = len(o)
-        wl = np.ascontiguousarray(np.broadcast_to(np.asarray(wavelength_nm, dtype=np.float64), (n_rays,)))
+        wl = np.require(np.broadcast_to(wavelength_nm, (n_rays,)), np.float64, KERNEL_ARRAY)
         count = len(self.surfaces)
         out_origins, out_directions = np.empty((n_rays, 3)), np.empty((n_rays, 3))
         fate = np.empty(n_rays, dtype=np.int8)
