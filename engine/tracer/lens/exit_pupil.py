@@ -73,8 +73,10 @@ class ExitPupilBounds:
         film[:, 2] = self.film_z_mm
         target = np.column_stack([px.ravel(), py.ravel(), np.full(n, self.rear_z_mm)])
         passed = np.zeros(n, dtype=bool)
-        for wavelength_nm in wavelengths_nm:
-            passed |= self.system.trace(film, target - film, wavelength_nm, toward=TOWARD_SCENE).alive
+        for wavelength_nm in wavelengths_nm:  # a ray that passed at one wavelength needs no other
+            todo = np.flatnonzero(~passed)
+            passed[todo] = self.system.trace(film[todo], target[todo] - film[todo], wavelength_nm,
+                                             toward=TOWARD_SCENE).alive
         passed = passed.reshape(m, -1)
         out = np.column_stack([
             np.where(passed, px, np.inf).min(axis=1), np.where(passed, px, -np.inf).max(axis=1),
