@@ -43,10 +43,17 @@ def sample_exit_pupil(pupil, film_x_mm, film_y_mm, u0, u1):
     uniformly from its bin's shape rotated to the film point's azimuth, from (u0, u1) in [0, 1)^2.
 
     Returns ``(x_mm, y_mm, area_mm2)``: the point (at z = ``pupil.rear_z_mm``) and the area of
-    the shape it was drawn from (0 where no ray from that film radius passes the lens).
+    the shape it was drawn from (0 where no ray from that film radius passes the lens, and
+    for a non-finite film point, which has no bin).
     """
     radius_mm = math.sqrt(film_x_mm * film_x_mm + film_y_mm * film_y_mm)
-    k = min(int(radius_mm / pupil.bin_width_mm), pupil.boxes.shape[0] - 1)
+    if not math.isfinite(radius_mm):
+        return 0.0, 0.0, 0.0
+    # Clamp before converting: a float-to-int conversion of NaN or of a value beyond the int
+    # range is undefined, and the optimiser may then read a bin out of bounds.
+    last = pupil.boxes.shape[0] - 1
+    position = radius_mm / pupil.bin_width_mm
+    k = int(position) if position < last else last
     if pupil.use_ellipse[k]:
         e = pupil.ellipses[k]
         disk_x, disk_y = concentric_disk_point(u0, u1)

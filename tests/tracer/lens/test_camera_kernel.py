@@ -98,5 +98,8 @@ def test_film_outside_the_image_circle_gets_dead_rays():
     assert "outside the image circle" in camera.strategy
     tables = camera.kernel_tables()
     corner_x, corner_y = film_point_mm(tables, 0.5, 0.5)
-    assert camera_ray(tables, corner_x, corner_y, 0.3, 0.7, 550.0) == (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0)
+    dead = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0)
+    assert camera_ray(tables, corner_x, corner_y, 0.3, 0.7, 550.0) == dead
+    assert camera_ray(tables, math.nan, 0.0, 0.3, 0.7, 550.0) == dead  # never a NaN ray
+    assert camera_ray(tables, 0.0, 0.0, math.nan, 0.7, 550.0) == dead
     assert camera_ray(tables, 0.0, 0.0, 0.5, 0.5, 550.0)[0] > 0
