@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: render test extension bench venv clean
+.PHONY: render test extension bench venv clean inventory
 
 # Creates .venv with the pinned requirements, once; re-running is a no-op.
 $(STAMP): requirements.txt
@@ -23,6 +23,10 @@ render: $(STAMP)
 # Runs the test suite.
 test: $(STAMP)
 	$(PY) -m pytest
+
+# Regenerates docs/bad_input.md from the tests that feed Prism bad input.
+inventory: $(STAMP)
+	$(PY) tools/bad_input_inventory.py
 
 # Builds the installable extension zip(s) into dist/ and validates them.
 extension: $(STAMP)

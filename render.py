@@ -12,32 +12,33 @@ camera's real lens, with or without a render.
 
 Chunked renders: ``--chunk-seed K --samples N --output chunk_K.exr`` renders
 samples ``K*N .. (K+1)*N-1`` of the seed's sequence and writes an EXR carrying
-its sample count; ``--merge a.exr b.exr ... --output merged.exr`` combines
-chunks weighted by their samples. Chunks ``0..K-1`` merge to the same image,
-bit for bit, as one render of ``K*N`` samples written with ``--chunk-seed 0``
-(see ``engine/chunks.py`` for when that holds).
+its sample range, seed and a fingerprint of the scene and settings;
+``--merge a.exr b.exr ... --output merged.exr`` checks the chunks belong to one
+render and combines them weighted by their samples. Chunks ``0..K-1`` merge to
+the same image, bit for bit, as one render of ``K*N`` samples written with
+``--chunk-seed 0`` (see ``engine/chunks.py`` for when that holds).
 
-Progress goes to stderr. Exits non-zero with a one-line message when the file
-is missing, the scene cannot render, or an argument is wrong.
+Every output is written whole or not at all (a temporary file, then one rename).
+Ctrl-C (or SIGTERM) stops the render after the current chunk: the file being
+rendered is not written (``--keep-partial`` keeps it as ``NAME.partial.exr``),
+files already finished stay, and the exit status is 130 (143 for SIGTERM).
+
+Progress goes to stderr. Exit status: 0 done, 1 the scene or a file cannot be
+used (one line naming the object and the fix), 2 a wrong argument, 130/143
+interrupted.
 """
 
 from __future__ import annotations
 
-import argparse
 import importlib
 import importlib.util
 import os
-import re
 import sys
 from pathlib import Path
 
 ADDON_PACKAGE = "prism_spectral"
 ADDON_ROOT = Path(__file__).resolve().parent
 OUTPUT_FORMATS = {".png": "PNG", ".exr": "OPEN_EXR"}
-
-
-class BatchError(Exception):
-    """A failure the batch script reports as one line and a non-zero exit status."""
 
 
 def load_addon_package():
@@ -65,117 +66,57 @@ def prism_package_name() -> str:
     return ADDON_PACKAGE
 
 
-def _frame_range(text: str) -> tuple[int, int]:
-    match = re.fullmatch(r"\s*(-?\d+)\s*(?:\.\.\s*(-?\d+)\s*)?", text)
-    if not match:
-        raise argparse.ArgumentTypeError(f"--frames must look like 1..24 or 7 (got '{text}')")
-    first = int(match.group(1))
-    last = int(match.group(2)) if match.group(2) is not None else first
-    if last < first:
-        raise argparse.ArgumentTypeError(f"--frames {text}: the last frame comes before the first")
-    return first, last
+class Prism:
+    """The modules of the registered Prism add-on the batch script drives."""
+
+    def __init__(self, package: str):
+        self.package = package
+        self.arguments = self.module("engine.batch.arguments")
+        self.output_files = self.module("engine.batch.output_files")
+        self.stop_signals = self.module("engine.batch.stop_signals")
+        self.requests = self.module("engine.render_request")
+        self.export = self.module("engine.export")
+        self.errors = self.module("engine.tracer.errors")
+
+    def module(self, name: str):
+        """``engine.chunks`` etc. of the add-on (imported on first use: some pull in OpenImageIO or the GPU)."""
+        return importlib.import_module(f"{self.package}.{name}")
+
+    def chunks(self):
+        return self.module("engine.chunks")
 
 
-def parse_arguments(argv: list[str], in_blender: bool) -> argparse.Namespace:
-    parser = argparse.ArgumentParser(
-        prog="render.py",
-        description="Render a .blend file with Prism.",
-        epilog="Inside Blender: blender -b file.blend -P render.py -- [options]",
-    )
-    if not in_blender:
-        parser.add_argument("blend_file", nargs="?", help="the .blend file to render (not with --merge)")
-    parser.add_argument("--samples", type=int, help="samples per pixel (default: the scene's setting)")
-    parser.add_argument("--seed", type=int, help="random seed (default: the scene's setting)")
-    parser.add_argument("--threads", type=int, help="CPU threads (0 = all cores; default: the scene's setting)")
-    parser.add_argument("--frames", type=_frame_range, help="render frames A..B (inclusive) instead of the current one")
-    parser.add_argument("--chunk-seed", type=int, help="render sample chunk K (samples K*N..(K+1)*N-1) to an EXR")
-    parser.add_argument("--merge", nargs="+", metavar="CHUNK", help="merge chunk EXRs weighted by their samples")
-    parser.add_argument("--output", help="output image, .png or .exr")
-    parser.add_argument(
-        "--lens-diagram",
-        metavar="PNG",
-        help="also write the lens overlay drawing (cross-section, ray fans, spot diagram) of the camera's real lens",
-    )
-    arguments = parser.parse_args(argv)
-    if arguments.lens_diagram is not None and Path(arguments.lens_diagram).suffix.lower() != ".png":
-        parser.error(f"--lens-diagram must end in .png (got '{arguments.lens_diagram}')")
-    if arguments.output is None:
-        if arguments.lens_diagram is None or arguments.merge:
-            parser.error("give --output (an image to render), --lens-diagram, or both")
-        if not in_blender and not arguments.blend_file:
-            parser.error("give the .blend file to draw")
-        return arguments
-    suffix = Path(arguments.output).suffix.lower()
-    if suffix not in OUTPUT_FORMATS:
-        parser.error(f"--output must end in .png or .exr (got '{arguments.output}')")
-    if arguments.samples is not None and arguments.samples < 1:
-        parser.error(f"--samples must be at least 1 (got {arguments.samples})")
-    if arguments.threads is not None and arguments.threads < 0:
-        parser.error(f"--threads cannot be negative (got {arguments.threads})")
-    if arguments.merge:
-        if suffix != ".exr":
-            parser.error("--merge writes an EXR: give --output a .exr name")
-        if not in_blender and arguments.blend_file:
-            parser.error("--merge takes chunk EXRs, not a .blend file")
-        return arguments
-    if not in_blender and not arguments.blend_file:
-        parser.error("give the .blend file to render")
-    if arguments.chunk_seed is not None:
-        if arguments.chunk_seed < 0:
-            parser.error(f"--chunk-seed must be 0 or more (got {arguments.chunk_seed})")
-        if arguments.samples is None:
-            parser.error("--chunk-seed needs --samples (the chunk's sample count)")
-        if suffix != ".exr":
-            parser.error("--chunk-seed writes an EXR: give --output a .exr name")
-        if arguments.frames is not None:
-            parser.error("--chunk-seed renders one frame: leave out --frames")
-    return arguments
-
-
-def open_blend_file(path: str) -> None:
+def open_blend_file(path: str, prism: Prism) -> None:
     import bpy
 
     if not Path(path).is_file():
-        raise BatchError(f"Blend file '{path}' does not exist: check the path.")
+        raise prism.errors.PrismInputError(f"Blend file '{path}' does not exist: check the path.")
     try:
         bpy.ops.wm.open_mainfile(filepath=str(Path(path).resolve()))
     except RuntimeError as error:
-        raise BatchError(f"Blend file '{path}' cannot be opened: {str(error).strip()}") from None
+        raise prism.errors.PrismInputError(
+            f"Blend file '{path}' cannot be opened ({_blender_message(error)}): check it is a .blend file "
+            "saved by this or an earlier Blender."
+        ) from None
 
 
-def frame_output(output: Path, frame: int) -> Path:
-    """``out_###.png`` → ``out_007.png``; without ``#``, ``out.png`` → ``out_0007.png``."""
-    name = output.name
-    runs = list(re.finditer(r"#+", name))
-    if runs:
-        run = runs[-1]
-        name = f"{name[: run.start()]}{frame:0{len(run.group())}d}{name[run.end():]}"
-    else:
-        name = f"{output.stem}_{frame:04d}{output.suffix}"
-    return output.with_name(name)
+def _blender_message(error: Exception) -> str:
+    """Blender's operator errors read ``Error: ...\n``: keep the text."""
+    text = str(error).strip()
+    return text[len("Error:"):].strip() if text.startswith("Error:") else text
 
 
-def _modules():
-    package = prism_package_name()
-    session = importlib.import_module(f"{package}.engine.session")
-    export = importlib.import_module(f"{package}.engine.export")
-    chunks = importlib.import_module(f"{package}.engine.chunks")
-    return session, export, chunks
+def check_scene(scene, prism: Prism) -> None:
+    """Failures Blender would report before Prism runs, or without naming the fix."""
+    prism.export.export_camera(scene)  # Blender's own "no camera" error names nothing; ours does
+    width, height = prism.export.render_resolution(scene)
+    prism.export.render_border(scene, width, height)  # Blender says only "Image too small"
 
 
-def render_frame(arguments: argparse.Namespace, output: Path) -> Path:
-    """Render the current frame to ``output``; raise BatchError on failure."""
-    import bpy
-
-    session, export, chunks = _modules()
-    scene = bpy.context.scene
-    try:
-        export.export_camera(scene)  # Blender's own "no camera" error names nothing; ours does
-    except export.PrismInputError as error:
-        raise BatchError(str(error)) from None
-    scene.render.engine = "PRISM"
+def batch_request(arguments, prism: Prism, signals):
+    """The RenderRequest of one batch frame: the command line's overrides, no quick first pass."""
     chunked = arguments.chunk_seed is not None
-    session.request = session.RenderRequest(
+    return prism.requests.RenderRequest(
         samples=arguments.samples,
         seed=arguments.seed,
         threads=arguments.threads,
@@ -183,102 +124,135 @@ def render_frame(arguments: argparse.Namespace, output: Path) -> Path:
         quick_first_pass=False,
         keep_film=chunked,
         progress_stream=sys.stderr,
+        stop_requested=signals.stop_requested,
     )
-    output.parent.mkdir(parents=True, exist_ok=True)
+
+
+def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
+    """Render the current frame to ``output`` (whole, or not at all)."""
+    import bpy
+
+    scene = bpy.context.scene
+    check_scene(scene, prism)
+    scene.render.engine = "PRISM"
+    chunked = arguments.chunk_seed is not None
     image_settings = scene.render.image_settings
     image_settings.file_format = OUTPUT_FORMATS[output.suffix.lower()]
     if image_settings.file_format == "OPEN_EXR":
         image_settings.color_depth = "32"
-    scene.render.filepath = str(output)
     scene.render.use_file_extension = False
-    try:
-        bpy.ops.render.render(write_still=not chunked)
-    except RuntimeError as error:
-        raise BatchError(session.last_error or str(error).strip()) from None
-    finally:
-        session.request = None
-    if session.last_error:
-        raise BatchError(session.last_error)
-    if chunked:
-        film = session.last_film
-        if film is None:
-            raise BatchError("The chunk render was cancelled: nothing was written.")
-        try:
-            chunks.write_exr(output, film.mean, film.samples, film.sample_offset, film.seed)
-        except export.PrismInputError as error:
-            raise BatchError(str(error)) from None
-    if not output.is_file():
-        raise BatchError(f"Prism rendered but no image was written to '{output}'.")
+    with prism.output_files.atomic_output(output, signals) as temporary:
+        scene.render.filepath = str(temporary)
+        blender_error = None
+        with prism.requests.render_request(batch_request(arguments, prism, signals)) as report:
+            try:
+                bpy.ops.render.render(write_still=not chunked)
+            except RuntimeError as error:
+                blender_error = _blender_message(error)
+        if report.error or not report.started:
+            raise prism.errors.PrismInputError(report.error or blender_error or "Blender did not start the render.")
+        if report.cancelled or signals.stop_requested():
+            raise _interrupted(arguments, output, temporary, prism, signals)
+        if chunked:
+            chunks = prism.chunks()
+            chunks.write_chunk(temporary, chunks.chunk_of_film(report.film))
     return output
 
 
-def write_lens_diagram(arguments: argparse.Namespace) -> Path:
+def _interrupted(arguments, output: Path, temporary: Path, prism: Prism, signals):
+    """The exception that ends an interrupted frame; the partial image is kept first if asked."""
+    cause = signals.signal_name() if signals.stop_requested() else "Esc"
+    message = f"interrupted by {cause}: '{output}' was not written"
+    if arguments.keep_partial and temporary.is_file():
+        partial = prism.output_files.partial_output(output)
+        try:
+            os.replace(temporary, partial)
+            message += f"; the unfinished image is in '{partial}'"
+        except OSError as error:
+            message += f"; the unfinished image could not be kept as '{partial}' ({error.strerror or error})"
+    return prism.stop_signals.Interrupted(message + ".", signals.exit_status)
+
+
+def write_lens_diagram(arguments, prism: Prism, signals) -> Path:
     """The lens overlay drawing of the active camera, as a PNG (offscreen GPU)."""
     import bpy
 
-    package = prism_package_name()
-    export = importlib.import_module(f"{package}.engine.export")
-    drawing = importlib.import_module(f"{package}.ui.lens_overlay_export")
+    drawing = prism.module("ui.lens_overlay_export")
     path = Path(arguments.lens_diagram).resolve()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    try:
-        drawing.write_lens_diagram_png(bpy.context.scene, str(path))
-    except export.PrismInputError as error:
-        raise BatchError(str(error)) from None
+    with prism.output_files.atomic_output(path, signals) as temporary:
+        drawing.write_lens_diagram_png(bpy.context.scene, str(temporary))
     return path
 
 
-def render_all(arguments: argparse.Namespace) -> list[Path]:
+def _wrote(path: Path) -> None:
+    print(f"Prism: wrote {path}", file=sys.stderr, flush=True)
+
+
+def render_all(arguments, prism: Prism, signals) -> None:
     import bpy
 
-    written = [write_lens_diagram(arguments)] if arguments.lens_diagram else []
+    if arguments.lens_diagram:
+        _wrote(write_lens_diagram(arguments, prism, signals))
     if arguments.output is None:
-        return written
+        return
     output = Path(arguments.output).resolve()
     if arguments.frames is None:
-        return written + [render_frame(arguments, output)]
+        _wrote(render_frame(arguments, output, prism, signals))
+        return
     scene = bpy.context.scene
     first, last = arguments.frames
     for frame in range(first, last + 1):
+        signals.raise_if_stopped(f"frame {frame} and the frames after it")
         print(f"Prism: frame {frame} ({frame - first + 1}/{last - first + 1})", file=sys.stderr, flush=True)
         scene.frame_set(frame)
-        written.append(render_frame(arguments, frame_output(output, frame)))
-    return written
+        _wrote(render_frame(arguments, prism.output_files.frame_output(output, frame), prism, signals))
 
 
-def merge(arguments: argparse.Namespace) -> list[Path]:
-    _, export, chunks = _modules()
+def merge(arguments, prism: Prism, signals) -> None:
+    chunks = prism.chunks()
     output = Path(arguments.output).resolve()
-    try:
+    with prism.output_files.atomic_output(output, signals) as temporary:
         merged = chunks.merge_chunks([chunks.read_chunk(path) for path in arguments.merge])
-        output.parent.mkdir(parents=True, exist_ok=True)
-        chunks.write_exr(output, merged.mean, merged.samples, merged.sample_offset, merged.seed)
-    except export.PrismInputError as error:
-        raise BatchError(str(error)) from None
+        chunks.write_chunk(temporary, merged)
+        signals.raise_if_stopped(f"'{output}'")
     print(f"Prism: merged {len(arguments.merge)} chunks, {merged.samples} samples per pixel", file=sys.stderr)
-    return [output]
+    _wrote(output)
+
+
+def run(arguments, in_blender: bool, prism: Prism, signals) -> None:
+    if arguments.merge:
+        merge(arguments, prism, signals)
+        return
+    if not in_blender:
+        open_blend_file(arguments.blend_file, prism)
+    signals.raise_if_stopped("nothing")
+    render_all(arguments, prism, signals)
 
 
 def main(argv: list[str], in_blender: bool) -> int:
+    # Registered before any .blend file opens: a file saved with Prism as its engine
+    # would otherwise print "Engine 'PRISM' not available" while loading.
+    prism = Prism(prism_package_name())
     try:
-        arguments = parse_arguments(argv, in_blender)
+        arguments = prism.arguments.parse_arguments(argv, in_blender)
     except SystemExit as exit_request:
         return int(exit_request.code or 0)
-    try:
-        if arguments.merge:
-            written = merge(arguments)
-        else:
-            if not in_blender:
-                open_blend_file(arguments.blend_file)
-            written = render_all(arguments)
-    except BatchError as error:
-        print(f"Prism: error: {error}", file=sys.stderr)
-        return 1
-    except Exception as error:  # noqa: BLE001 - one line, never only a traceback
-        print(f"Prism: error: unexpected {type(error).__name__}: {error}", file=sys.stderr)
-        return 1
-    for path in written:
-        print(f"Prism: wrote {path}", file=sys.stderr)
+    with prism.stop_signals.StopSignals() as signals:
+        try:
+            run(arguments, in_blender, prism, signals)
+        except prism.stop_signals.Interrupted as stop:
+            print(f"Prism: {stop}", file=sys.stderr)
+            return stop.status
+        except prism.errors.PrismInputError as error:
+            print(f"Prism: error: {error}", file=sys.stderr)
+            return 1
+        except Exception as error:  # noqa: BLE001 - a bug: the traceback, then one line saying so
+            import traceback
+
+            traceback.print_exc()
+            print(f"Prism: error: unexpected {type(error).__name__} (a bug in Prism; please report it with the "
+                  f"traceback above): {error}", file=sys.stderr)
+            return 1
     return 0
 
 

@@ -27,9 +27,10 @@ class PrismRenderEngine(bpy.types.RenderEngine):
     bl_use_eevee_viewport = True
 
     def render(self, depsgraph):
+        from .render_request import handed_over
         from .session import RenderSession
 
-        RenderSession(self, depsgraph).run()
+        RenderSession(self, depsgraph, *handed_over()).run()
 
     def update_render_passes(self, scene=None, renderlayer=None):
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")

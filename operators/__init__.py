@@ -11,5 +11,6 @@ register, unregister = bpy.utils.register_submodule_factory(
     (
         "lens_overlay",
         "autofocus",
+        "farm_submit",
     ),
 )

@@ -8,6 +8,7 @@ repository root on sys.path); Blender tests use the add-on as the package
 
 from __future__ import annotations
 
+import json
 import os
 import sys
 from pathlib import Path
@@ -19,6 +20,23 @@ from render import load_addon_package
 REPO_ROOT = Path(__file__).resolve().parents[1]
 
 _exit_status = {"code": None}
+#: Bad inputs the tests met (``bad_input`` fixture), for ``tools/bad_input_inventory.py``.
+_bad_inputs: list[dict] = []
+INVENTORY_ENVIRONMENT = "PRISM_BAD_INPUT_INVENTORY"
+
+
+@pytest.fixture
+def bad_input(request):
+    """``bad_input(input, status, message)``: note a bad input a test just fed to Prism, with the
+    exit status and the message it observed, for the inventory in ``docs/bad_input.md``."""
+
+    def record(description: str, status: int, message: str) -> None:
+        assert message.strip(), "a bad input must produce a message"
+        _bad_inputs.append(
+            {"test": request.node.nodeid, "input": description, "status": int(status), "message": message.strip()}
+        )
+
+    return record
 
 
 @pytest.fixture(scope="session")
@@ -82,6 +100,9 @@ def gpu_ready(prism_addon):
 
 def pytest_sessionfinish(session, exitstatus):
     _exit_status["code"] = int(exitstatus)
+    target = os.environ.get(INVENTORY_ENVIRONMENT)
+    if target:
+        Path(target).write_text(json.dumps(_bad_inputs, indent=1, ensure_ascii=False))
 
 
 @pytest.hookimpl(trylast=True)

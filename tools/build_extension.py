@@ -2,7 +2,8 @@
 
     python tools/build_extension.py [--platform linux-x64 ...] [--no-download]
 
-Steps: resolve the pinned runtime wheels (``extension_wheels``), fetch the missing ones into the
+Steps: resolve the pinned runtime wheels per platform (``extension_wheels``: numba and llvmlite,
+embreex, colour-science and their dependencies, never numpy), fetching the missing ones into the
 wheel cache (``wheels/``), stage a copy of the add-on into ``build/extension/`` with those wheels
 listed in its manifest (the committed manifest stays clean), build with Blender's own extension
 tool (``blender_ext.py build --split-platforms``), then validate every zip and check it holds
@@ -141,8 +142,7 @@ def build(platforms: list[str] | None, output_dir: Path, stage_dir: Path, wheels
     requirement_pins = ew.read_requirement_pins(source_dir / "requirements.txt")
     chosen: dict[str, dict[ew.Pin, Path]] = {}
     for platform in platforms:
-        pins = ew.resolve_pins(platform, requirement_pins)
-        chosen[platform] = ew.ensure_wheels(pins, platform, wheels_dir, download=download)
+        chosen[platform] = ew.resolve_wheels(platform, requirement_pins, wheels_dir, download=download)
     all_wheels = sorted({p for per in chosen.values() for p in per.values()}, key=lambda p: p.name)
     for platform, per in chosen.items():
         print(f"{platform}: " + ", ".join(path.name for path in per.values()), flush=True)

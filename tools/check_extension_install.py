@@ -1,4 +1,4 @@
-"""Install a built Prism extension zip into a throw-away Blender user dir and render one frame.
+"""Install a built Prism extension zip into a throw-away Blender user dir and render with it.
 
     python tools/check_extension_install.py dist/prism_spectral-0.1.0-linux_x64.zip \
         --user-dir /tmp/prism-user --report report.json
@@ -6,14 +6,18 @@
 Runs with the ``bpy`` module. The user resources, config and scripts dirs all point into
 ``--user-dir`` (set before ``bpy`` starts), so a developer's real Blender setup is untouched.
 The zip goes through ``bpy.ops.extensions.package_install_files`` exactly as "Install from Disk"
-does; then a 16x16 cube lit by a point light is rendered with the installed engine, importing the
-bundled wheels (not this environment's copies). Writes a JSON report and ends with ``os._exit``
+does; then a 16x16 cube lit by a point light is rendered twice with the installed engine,
+importing the bundled wheels (not this environment's copies). The report says where numba and
+the other heavy modules were imported from, where the kernel cache is and which files the first
+render compiled into it, and each render's status bar lines (the first one says it compiles,
+the second one finds the cache warm). Writes a JSON report and ends with ``os._exit``
 because the bpy module can hang at interpreter exit after a render.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import json
 import os
 import sys
@@ -22,7 +26,8 @@ from pathlib import Path
 
 ADDON_ID = "prism_spectral"
 MODULE = f"bl_ext.user_default.{ADDON_ID}"
-HEAVY_MODULES = ("colour", "scipy", "embreex")
+HEAVY_MODULES = ("numba", "llvmlite", "colour", "scipy", "embreex")
+KERNEL_CACHE_FILES = ("*.nbi", "*.nbc")  # numba's cache index and compiled code
 
 
 def _isolate_user_dirs(user_dir: Path) -> None:
@@ -79,14 +84,78 @@ def _build_scene(bpy, samples: int):
     return scene
 
 
+def _render_once(bpy) -> list[str]:
+    """Render the scene through the installed engine; returns its status bar lines."""
+    lines: list[str] = []
+
+    def record(stats, *_):
+        lines.append(stats)
+
+    bpy.app.handlers.render_stats.append(record)
+    try:
+        bpy.ops.render.render(write_still=True)
+    finally:
+        bpy.app.handlers.render_stats.remove(record)
+    return lines
+
+
+def _kernels_run() -> list[str]:
+    """``module:function`` of every tracer kernel that has been compiled in this process."""
+    from numba.core.dispatcher import Dispatcher
+
+    prefix = f"{MODULE}.engine.tracer."
+    found = set()
+    for name, module in list(sys.modules.items()):
+        if not name.startswith(prefix):
+            continue
+        for value in vars(module).values():
+            if isinstance(value, Dispatcher) and value.signatures:
+                found.add(f"{value.py_func.__module__.removeprefix(prefix)}:{value.py_func.__qualname__}")
+    return sorted(found)
+
+
+def _compile_a_tracer_kernel() -> str | None:
+    """Compile one installed tracer kernel (N-BK7's index at the d line); its ``module:function``.
+
+    Shows where a kernel of the installed sources caches even if the render ran none; None if
+    the tracer has no such kernel module.
+    """
+    import numpy as np
+
+    try:
+        dispersion = importlib.import_module(f"{MODULE}.engine.tracer.spectra.dispersion")
+    except ImportError:
+        return None
+    row = np.array([1.0, 300.0, 2500.0, 1.03961212, 0.231792344, 1.01046945,
+                    0.00600069867, 0.0200179144, 103.560653])
+    index, _ = dispersion.refractive_index(row, 587.56)
+    if abs(index - 1.5168) > 1e-4:
+        raise RuntimeError(f"the compiled N-BK7 index is {index}, not 1.5168")
+    return "spectra.dispersion:refractive_index"
+
+
+def _kernel_cache_facts(bpy) -> dict:
+    jit = importlib.import_module(f"{MODULE}.engine.tracer.jit")
+    expected = Path(bpy.utils.extension_path_user(MODULE, path="kernel_cache"))
+    files = sorted(p.relative_to(expected).as_posix() for pattern in KERNEL_CACHE_FILES
+                   for p in expected.rglob(pattern))
+    return {"directory": str(expected), "jit_directory": str(jit.cache_directory()),
+            "numba_cache_dir": sys.modules["numba"].config.CACHE_DIR,
+            "warm": jit.cache_is_warm(), "kernels_run": _kernels_run(), "files": files}
+
+
 def _render(bpy, image_path: Path, report: dict) -> None:
     import numpy as np
 
     scene = _build_scene(bpy, samples=2)
     scene.render.filepath = str(image_path)
-    bpy.ops.render.render(write_still=True)
+    report["status_bar"] = [_render_once(bpy)]
     report["rendered"] = image_path.exists()
     report["modules_from"] = {m: getattr(sys.modules.get(m), "__file__", None) for m in HEAVY_MODULES}
+    report["kernel_cache"] = _kernel_cache_facts(bpy)
+    report["status_bar"].append(_render_once(bpy))  # the cache is warm now: no compile notice
+    report["probe_kernel"] = _compile_a_tracer_kernel()
+    report["kernel_cache_after_probe"] = _kernel_cache_facts(bpy)
     if not image_path.exists():
         return
     image = bpy.data.images.load(str(image_path))

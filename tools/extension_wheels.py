@@ -1,19 +1,24 @@
-"""Runtime wheels bundled in the Prism extension: which ones, and fetching them.
+"""Runtime wheels bundled in the Prism extension: which ones, at which versions, and fetching them.
 
-The wheel set is the runtime dependency closure of ``RUNTIME_ROOTS``, read from the installed
-metadata of this environment (``importlib.metadata``), minus what Blender ships itself
-(``PROVIDED_BY_BLENDER``). Each package is pinned to the version in ``requirements.txt`` when
-pinned there, otherwise to the installed version. Wheels are fetched per Blender platform with
-``pip download --only-binary=:all: --no-deps`` for CPython 3.11 (Blender 4.2 to 4.5) into a
-cache directory, and picked from that cache with the same tag priority pip uses.
+The wheel set of a platform is the runtime dependency closure of ``RUNTIME_ROOTS``, read from the
+``Requires-Dist`` of the wheels themselves (markers evaluated for that platform), minus what
+Blender ships itself (``PROVIDED_BY_BLENDER``). Versions: ``ZIP_PINS`` for the few packages a zip
+must bundle at another version than the development set, else the ``==`` pin of
+``requirements.txt``, else the version installed here. Every wheel's numpy requirement is checked
+against the numpy of the oldest and newest Blender the extension supports (``BLENDER_NUMPY``).
+Wheels are fetched per Blender platform with ``pip download --only-binary=:all: --no-deps`` for
+CPython 3.11 (Blender 4.2 to 5.0) into a cache directory, and picked from that cache with the same
+tag priority pip uses. Why each pin is what it is: docs/extension.md, "Pinned versions".
 """
 
 from __future__ import annotations
 
 import dataclasses
+import email.parser
 import importlib.metadata
 import subprocess
 import sys
+import zipfile
 from pathlib import Path
 
 try:
@@ -21,9 +26,25 @@ try:
 except ImportError:  # pip always vendors packaging
     from pip._vendor.packaging import markers, requirements, tags, utils, version
 
-RUNTIME_ROOTS = ("embreex", "colour-science")
+RUNTIME_ROOTS = ("embreex", "colour-science", "numba")  # numba brings llvmlite
 # numpy is bundled with Blender: an extension must never ship its own.
 PROVIDED_BY_BLENDER = frozenset({"numpy"})
+
+#: The numpy inside the oldest and the newest Blender the extension supports (Blender 4.2 builds
+#: with numpy 1.24.3, 4.5 and 5.0 with 1.26.4). Every bundled wheel must accept both.
+BLENDER_NUMPY = {"4.2": "1.24.3", "5.0": "1.26.4"}
+
+#: Versions a zip bundles where they differ from requirements.txt (the development set the tests
+#: run with), per Blender platform:
+#: - scipy 1.16 and later need numpy >= 1.25.2, newer than Blender 4.2's: 1.15.3 is the last
+#:   release that accepts numpy 1.24.
+#: - numba 0.63 and later, llvmlite 0.46 and later publish no macOS x86-64 wheel: 0.62.1 / 0.45.1.
+ZIP_PINS = {
+    "linux-x64": {"scipy": "1.15.3"},
+    "windows-x64": {"scipy": "1.15.3"},
+    "macos-arm64": {"scipy": "1.15.3"},
+    "macos-x64": {"scipy": "1.15.3", "numba": "0.62.1", "llvmlite": "0.45.1"},
+}
 
 PYTHON_VERSION = (3, 11)
 ABI = "cp311"
@@ -112,50 +133,79 @@ def _installed_version(name: str) -> str | None:
         return None
 
 
-def _runtime_requires(name: str, platform: str) -> list[requirements.Requirement]:
-    env = {**_MARKER_ENV[platform], "python_version": "3.11", "python_full_version": "3.11.9",
-           "implementation_name": "cpython", "platform_python_implementation": "CPython",
-           "extra": ""}
+def pinned_version(name: str, platform: str, requirement_pins: dict[str, str]) -> str:
+    """The version of ``name`` the ``platform`` zip bundles (see the module docstring)."""
+    name = utils.canonicalize_name(name)
+    version_ = ZIP_PINS.get(platform, {}).get(name) or requirement_pins.get(name) or _installed_version(name)
+    if version_ is None:
+        raise WheelError(f"{name} is needed at runtime on {platform} but has no version: pin it "
+                         "in requirements.txt (or in ZIP_PINS of tools/extension_wheels.py)")
+    return version_
+
+
+def _marker_environment(platform: str) -> dict[str, str]:
+    return {**_MARKER_ENV[platform], "python_version": "3.11", "python_full_version": "3.11.9",
+            "implementation_name": "cpython", "platform_python_implementation": "CPython",
+            "extra": ""}
+
+
+def wheel_requires(wheel: Path, platform: str) -> list[requirements.Requirement]:
+    """The ``Requires-Dist`` of a wheel that apply on ``platform`` (no extras)."""
+    with zipfile.ZipFile(wheel) as archive:
+        metadata = [n for n in archive.namelist()
+                    if n.count("/") == 1 and n.endswith(".dist-info/METADATA")]
+        if len(metadata) != 1:
+            raise WheelError(f"{wheel.name} has no single .dist-info/METADATA")
+        message = email.parser.Parser().parsestr(archive.read(metadata[0]).decode("utf-8"))
+    env = _marker_environment(platform)
     out = []
-    for text in importlib.metadata.requires(name) or ():
+    for text in message.get_all("Requires-Dist") or ():
         req = requirements.Requirement(text)
         if req.marker is None or req.marker.evaluate(env):
             out.append(req)
     return out
 
 
-def resolve_pins(platform: str, requirement_pins: dict[str, str]) -> list[Pin]:
-    """The runtime closure of ``RUNTIME_ROOTS`` on ``platform``, pinned, sorted by name.
-
-    Raises ``WheelError`` if a needed package is not installed here (its dependencies could not
-    be read) or if a pin does not satisfy what a dependent package requires.
-    """
-    pins: dict[str, str] = {}
-    constraints: list[tuple[str, requirements.Requirement]] = []
-    todo = list(RUNTIME_ROOTS)
-    while todo:
-        name = utils.canonicalize_name(todo.pop())
-        if name in pins or name in PROVIDED_BY_BLENDER:
-            continue
-        installed = _installed_version(name)
-        if installed is None:
-            raise WheelError(
-                f"{name} is needed at runtime on {platform} but is not installed in "
-                f"{sys.prefix}, so its dependencies cannot be read: add it to requirements.txt "
-                "and run `make venv`")
-        pins[name] = requirement_pins.get(name, installed)
-        if pins[name] != installed:
-            print(f"warning: {name} {installed} is installed but requirements.txt pins "
-                  f"{pins[name]}; bundling {pins[name]} (run `make venv`)", file=sys.stderr)
-        for req in _runtime_requires(name, platform):
-            constraints.append((name, req))
-            todo.append(req.name)
+def check_constraints(platform: str, pins: dict[str, str],
+                       constraints: list[tuple[Pin, requirements.Requirement]]) -> None:
     for parent, req in constraints:
         child = utils.canonicalize_name(req.name)
-        if child in pins and not req.specifier.contains(pins[child], prereleases=True):
-            raise WheelError(f"{parent} requires {req} but {child}=={pins[child]} is pinned; "
-                             "fix the pin in requirements.txt")
-    return [Pin(n, v) for n, v in sorted(pins.items())]
+        if child in PROVIDED_BY_BLENDER:
+            for blender, numpy_version in BLENDER_NUMPY.items():
+                if not req.specifier.contains(numpy_version, prereleases=True):
+                    raise WheelError(
+                        f"{parent} requires {req} but Blender {blender} bundles {child} "
+                        f"{numpy_version}: bundle a {parent.name} release that accepts it "
+                        f"(ZIP_PINS in tools/extension_wheels.py)")
+        elif child in pins and not req.specifier.contains(pins[child], prereleases=True):
+            raise WheelError(f"{parent} requires {req} but {child}=={pins[child]} is pinned for "
+                             f"{platform}; fix the pin (requirements.txt or ZIP_PINS)")
+
+
+def resolve_wheels(platform: str, requirement_pins: dict[str, str], wheels_dir: Path,
+                   download: bool = True) -> dict[Pin, Path]:
+    """Every runtime wheel of ``platform``, pinned and cached: ``{pin: wheel path}``, by name.
+
+    Walks the dependency closure level by level from the wheels' own metadata, downloading the
+    wheels of each level that are not cached yet. Raises ``WheelError`` when a wheel cannot be
+    had, or when a pin does not satisfy a dependent wheel or Blender's numpy.
+    """
+    pins: dict[str, str] = {}
+    chosen: dict[Pin, Path] = {}
+    constraints: list[tuple[Pin, requirements.Requirement]] = []
+    level = [utils.canonicalize_name(name) for name in RUNTIME_ROOTS]
+    while level:
+        names = [n for n in dict.fromkeys(level) if n not in pins and n not in PROVIDED_BY_BLENDER]
+        wanted = [Pin(n, pinned_version(n, platform, requirement_pins)) for n in names]
+        level = []
+        for pin, path in ensure_wheels(wanted, platform, wheels_dir, download=download).items():
+            pins[pin.name] = pin.version
+            chosen[pin] = path
+            for req in wheel_requires(path, platform):
+                constraints.append((pin, req))
+                level.append(utils.canonicalize_name(req.name))
+    check_constraints(platform, pins, constraints)
+    return dict(sorted(chosen.items(), key=lambda item: item[0].name))
 
 
 def _cached_wheels(wheels_dir: Path) -> list[tuple[Path, str, version.Version, frozenset]]:

@@ -12,6 +12,7 @@ register, unregister = bpy.utils.register_submodule_factory(
         "compat_panels",
         "spectral_plot",
         "panels_render",
+        "panel_farm",
         "panels_camera",
         "panels_light",
         "panels_material",

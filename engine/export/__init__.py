@@ -6,14 +6,17 @@ Reads the evaluated depsgraph (modifiers and instances applied) with
 
 from __future__ import annotations
 
+import numpy as np
+
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Scene
-from .camera import export_camera
+from .border import render_border
+from .camera import export_camera, render_resolution
 from .lights import export_lights
 from .meshes import export_meshes
 from .world import export_world
 
-__all__ = ["PrismInputError", "export_camera", "export_scene"]
+__all__ = ["PrismInputError", "export_camera", "export_scene", "render_border", "render_resolution"]
 
 
 def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:
@@ -24,7 +27,7 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:
         )
     world = tracer_scene.world
     world_lit = world.strength > 0 and max(world.color) > 0
-    used = {int(i) for i in set(tracer_scene.triangle_material.tolist())}
+    used = {int(i) for i in np.unique(tracer_scene.triangle_material)}
     emissive = any(
         tracer_scene.materials[i].emission is not None and tracer_scene.materials[i].emission_strength > 0 for i in used
     )
@@ -44,7 +47,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     """
     scene = depsgraph.scene
     camera = export_camera(scene)
-    geometry = export_meshes(depsgraph, warnings)
+    geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
     tracer_scene = Scene(
         vertices=geometry.vertices,
         triangles=geometry.triangles,

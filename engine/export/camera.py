@@ -7,6 +7,7 @@ Focus distance, focus object and f-stop are Blender's own depth-of-field setting
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 
@@ -38,6 +39,42 @@ def film_size_mm(camera_data, width_px: int, height_px: int) -> tuple[float, flo
     if horizontal:
         return sensor, sensor * height_px / width_px
     return sensor * width_px / height_px, sensor
+
+
+def check_camera_scale(camera_object) -> None:
+    """A camera scaled to zero along an axis has lost the direction it looks in: refuse it."""
+    axes = np.array(camera_object.matrix_world, dtype=np.float64)[:3, :3]
+    if not np.isfinite(axes).all():
+        return  # reported with the scene's transforms (Scene.validate)
+    lengths = np.linalg.norm(axes, axis=0)
+    singular = np.linalg.svd(axes, compute_uv=False)
+    if lengths.min() <= 0.0 or singular[-1] <= 1e-9 * singular[0]:
+        scale = ", ".join(f"{v:g}" for v in camera_object.matrix_world.to_scale())
+        raise PrismInputError(
+            f"Camera '{camera_object.name}' is scaled to zero (world scale {scale}), so the direction it looks in "
+            "is lost: set its Scale (and its parents') to non-zero values, e.g. 1 (Object ▸ Transform ▸ Scale)."
+        )
+
+
+#: Bytes a pixel costs while rendering: the film's float64 sums, squares and count, the per-pixel
+#: sample rotations, the pixel list, and the float32 images handed to Blender.
+BYTES_PER_PIXEL = 192
+
+
+def check_film_memory(scene_name: str, width: int, height: int, physical_bytes: int | None = None) -> None:
+    """Refuse a resolution whose film cannot fit in this computer's memory (before allocating it)."""
+    if physical_bytes is None:
+        try:
+            physical_bytes = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        except (AttributeError, ValueError, OSError):  # not POSIX: no cheap way to ask, so no check
+            return
+    needed = width * height * BYTES_PER_PIXEL
+    if needed > physical_bytes:
+        raise PrismInputError(
+            f"Scene '{scene_name}': rendering {width} x {height} pixels needs about {needed / 2**30:.0f} GB of memory, "
+            f"more than this computer has ({physical_bytes / 2**30:.0f} GB): lower the resolution or its % "
+            "(Output ▸ Format)."
+        )
 
 
 def rigid_matrix(matrix_world) -> np.ndarray:
@@ -108,7 +145,9 @@ def export_camera(scene) -> Camera:
             f"Camera '{camera_object.name}' is {kind}; Prism renders perspective cameras only: "
             "set Camera ▸ Lens ▸ Type to Perspective."
         )
+    check_camera_scale(camera_object)
     width, height = render_resolution(scene)
+    check_film_memory(scene.name, width, height)
     film_w, film_h = film_size_mm(data, width, height)
     if not (np.isfinite(data.lens) and data.lens > 0):
         raise PrismInputError(f"Camera '{camera_object.name}' has focal length {data.lens} mm: use a positive value.")

@@ -65,8 +65,8 @@ def export_material(material, warnings: list[str] | None = None) -> Material:
     for label, value in (("Roughness", reading.roughness), ("IOR", reading.ior), ("Emission Strength", reading.emission_strength)):
         if not math.isfinite(value):
             raise PrismInputError(f"Material '{name}': {label} is {value}; enter a finite number.")
-    if not all(math.isfinite(c) for c in reading.base_color + reading.emission_color):
-        raise PrismInputError(f"Material '{name}': a colour is NaN or infinite; pick a colour again.")
+    if not all(math.isfinite(c) and c >= 0 for c in reading.base_color + reading.emission_color):
+        raise PrismInputError(f"Material '{name}': a colour is negative, NaN or infinite; pick a colour again.")
     if kind == "dielectric" and reading.ior < 1.0 and (settings is None or settings.glass_source == "PRINCIPLED_IOR"):
         raise PrismInputError(
             f"Material '{name}': IOR {reading.ior:g} is below 1; Prism's glass needs an IOR of 1 or more."
@@ -87,13 +87,31 @@ def export_material(material, warnings: list[str] | None = None) -> Material:
     elif kind == "thin_film":
         exported.film_thickness_nm = float(settings.film_thickness_nm)
         exported.film_ior = float(settings.film_ior)
+    if kind == "thin_film":
+        _check_film(name, "Material ▸ Prism ▸ Film Thickness", exported.film_thickness_nm,
+                    "Material ▸ Prism ▸ Film IOR", exported.film_ior)
     if settings.coating_thickness_nm > 0:
         exported.coating_thickness_nm = float(settings.coating_thickness_nm)
         exported.coating_ior = float(settings.coating_ior)
+        where = "Material ▸ Prism ▸ Coating"
     elif reading.thin_film_thickness_nm > 0:
         # Blender 4.2+'s Principled thin film is a coating on the surface.
         exported.coating_thickness_nm = reading.thin_film_thickness_nm
         exported.coating_ior = reading.thin_film_ior
+        where = "Principled BSDF ▸ Thin Film"
     if exported.coating_thickness_nm > 0 and kind in {"diffuse", "thin_film"} and warnings is not None:
         warnings.append(f"Material '{name}': a coating only acts on glass or metal; it is ignored on a {kind.replace('_', ' ')} surface.")
+    elif exported.coating_thickness_nm > 0:
+        _check_film(name, f"{where} Thickness", exported.coating_thickness_nm, f"{where} IOR", exported.coating_ior)
     return exported
+
+
+def _check_film(name: str, thickness_setting: str, thickness_nm: float, index_setting: str, index: float) -> None:
+    """A thin film or coating needs a finite thickness and an index of 1 or more (1.33 soapy water, 1.38 MgF2)."""
+    if not (math.isfinite(thickness_nm) and thickness_nm >= 0):
+        raise PrismInputError(f"Material '{name}': {thickness_setting} is {thickness_nm:g} nm; use 0 nm or more.")
+    if not (math.isfinite(index) and index >= 1.0):
+        raise PrismInputError(
+            f"Material '{name}': {index_setting} is {index:g}; a film's refractive index must be 1 or more "
+            "(1.33 for soapy water, 1.38 for a magnesium fluoride coating)."
+        )

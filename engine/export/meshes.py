@@ -1,15 +1,33 @@
-"""Evaluated mesh instances → one world-space triangle soup, read with ``foreach_get``."""
+"""Evaluated geometry → one world-space triangle soup, each piece of geometry exported once.
+
+Blender evaluates Text, Curve, Surface and Metaball objects to meshes and lists
+each such mesh as an instance of its own in ``depsgraph.object_instances``; the
+objects themselves are skipped here (as Cycles does), so their surfaces are not
+exported twice. Hair Curves become ribbons (``hair``); point clouds, volumes and
+particle hair are reported (``unrendered``).
+
+The instances of one mesh are gathered while iterating (the only Python work per
+instance is reading its key and matrix) and placed in one numpy step per mesh
+(``instancing``, which also states the memory an instance costs). Vertices stay
+float64 world positions: the tracer subtracts the camera position before its
+float32 geometry, so small objects far from the origin keep their shape.
+"""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..tracer.scene import Material
+from .hair import LocalHair, hair_ribbons, read_hair
+from .instancing import WorldTriangles, instance_triangles
 from .materials import DEFAULT_MATERIAL, export_material
+from .mesh_data import LocalMesh, read_mesh
+from .unrendered import particle_hair_warnings, unrendered_type_warning
 
-_GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT", "CURVES"}
+#: Types whose evaluated mesh arrives as a separate MESH instance.
+_EVALUATED_AS_MESH_INSTANCE = {"CURVE", "FONT", "SURFACE", "META"}
 
 
 @dataclass
@@ -24,90 +42,99 @@ class ExportedGeometry:
 
 
 @dataclass
-class _LocalMesh:
-    """One evaluated mesh in object space."""
+class _Instances:
+    """One piece of evaluated geometry and where it is placed."""
 
-    vertices: np.ndarray  # float64 [V, 3]
-    triangles: np.ndarray  # int32 [T, 3]
-    slot_index: np.ndarray  # int32 [T]
-    corner_normals: np.ndarray  # float64 [T, 3, 3]
-    slot_materials: list
+    name: str
+    geometry: LocalMesh | LocalHair
+    matrices: list = field(default_factory=list)  # 16 floats each, row-major
 
 
-def _read_mesh(obj) -> _LocalMesh | None:
-    mesh = obj.to_mesh()
-    if mesh is None:
-        return None
-    try:
-        mesh.calc_loop_triangles()
-        vertex_count, triangle_count = len(mesh.vertices), len(mesh.loop_triangles)
-        if triangle_count == 0:
-            return None
-        vertices = np.empty(vertex_count * 3, np.float32)
-        mesh.vertices.foreach_get("co", vertices)
-        triangles = np.empty(triangle_count * 3, np.int32)
-        mesh.loop_triangles.foreach_get("vertices", triangles)
-        slot_index = np.empty(triangle_count, np.int32)
-        mesh.loop_triangles.foreach_get("material_index", slot_index)
-        loops = np.empty(triangle_count * 3, np.int32)
-        mesh.loop_triangles.foreach_get("loops", loops)
-        normals = np.empty(len(mesh.loops) * 3, np.float32)
-        mesh.corner_normals.foreach_get("vector", normals)
-        return _LocalMesh(
-            vertices=vertices.reshape(-1, 3).astype(np.float64),
-            triangles=triangles.reshape(-1, 3),
-            slot_index=slot_index,
-            corner_normals=normals.reshape(-1, 3)[loops].reshape(-1, 3, 3).astype(np.float64),
-            slot_materials=[slot.material for slot in obj.material_slots],
-        )
-    finally:
-        obj.to_mesh_clear()
+class _Materials:
+    """Blender materials → indices into one list of tracer materials, each exported once."""
 
+    def __init__(self, warnings):
+        self.warnings = warnings
+        self.index: dict[str | None, int] = {}
+        self.materials: list[Material] = []
 
-def _normalise(vectors: np.ndarray) -> np.ndarray:
-    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
-    return vectors / np.where(length > 0, length, 1.0)
+    def slot_lookup(self, slot_materials: list) -> np.ndarray:
+        return np.asarray([self._of(m) for m in slot_materials] or [self._of(None)], dtype=np.int32)
 
-
-def export_meshes(depsgraph, warnings: list[str] | None = None) -> ExportedGeometry:
-    """Every visible geometry instance, transformed to world space (metres); material warnings
-    (inputs Prism does not model) are appended to ``warnings``."""
-    local_meshes: dict[tuple, _LocalMesh | None] = {}
-    material_index: dict[str, int] = {}
-    materials: list[Material] = []
-    parts = []
-    object_names: list[str] = []
-
-    def global_material(material) -> int:
+    def _of(self, material) -> int:
         key = material.name if material is not None else None
-        if key not in material_index:
-            material_index[key] = len(materials)
-            materials.append(export_material(material, warnings) if material is not None else DEFAULT_MATERIAL)
-        return material_index[key]
+        if key not in self.index:
+            self.index[key] = len(self.materials)
+            self.materials.append(export_material(material, self.warnings) if material is not None else DEFAULT_MATERIAL)
+        return self.index[key]
+
+
+def _gather(depsgraph, warnings) -> list[_Instances]:
+    """Every rendered piece of geometry with the matrices of its instances."""
+    pieces: dict[tuple, _Instances | None] = {}
+    warned: set[str] = set()
+
+    def warn_once(obj, messages):
+        name = obj.original.name
+        if name not in warned:
+            warned.add(name)
+            if warnings is not None:
+                warnings.extend(messages)
 
     for instance in depsgraph.object_instances:
         obj = instance.object
-        if obj.type not in _GEOMETRY_TYPES:
+        kind = obj.type
+        if kind == "MESH" and instance.show_particles and len(obj.particle_systems):
+            warn_once(obj, particle_hair_warnings(obj))
+        if not instance.show_self or kind in _EVALUATED_AS_MESH_INSTANCE:
             continue
-        key = (obj.original.name, obj.data.as_pointer() if obj.data is not None else 0)
-        if key not in local_meshes:
-            local_meshes[key] = _read_mesh(obj)
-        local = local_meshes[key]
-        if local is None:
+        if kind not in ("MESH", "CURVES"):
+            message = unrendered_type_warning(obj)
+            if message:
+                warn_once(obj, [message])
             continue
-        matrix = np.array(instance.matrix_world, dtype=np.float64)
-        world_vertices = local.vertices @ matrix[:3, :3].T + matrix[:3, 3]
-        normal_matrix = np.linalg.inv(matrix[:3, :3]).T if abs(np.linalg.det(matrix[:3, :3])) > 0 else matrix[:3, :3]
-        world_normals = _normalise(local.corner_normals @ normal_matrix.T)
-        slots = [global_material(m) for m in local.slot_materials] or [global_material(None)]
-        slot_lookup = np.asarray(slots, dtype=np.int32)
-        triangle_material = slot_lookup[np.clip(local.slot_index, 0, len(slots) - 1)]
-        parts.append((world_vertices, local.triangles, triangle_material, world_normals, len(object_names)))
-        object_names.append(obj.name)
+        key = (kind, obj.original.name, obj.data.as_pointer())
+        if key not in pieces:
+            geometry = read_mesh(obj) if kind == "MESH" else read_hair(obj)  # now: the object may be temporary
+            pieces[key] = _Instances(obj.name, geometry) if geometry is not None else None
+        piece = pieces[key]
+        if piece is not None:
+            matrix = instance.matrix_world
+            piece.matrices.append((*matrix[0], *matrix[1], *matrix[2], *matrix[3]))
+    return [piece for piece in pieces.values() if piece is not None]
 
+
+def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=None) -> ExportedGeometry:
+    """Every visible mesh and hair instance, in world space (metres, float64 vertices).
+
+    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera.
+    Material warnings and geometry Prism skips are appended to ``warnings``.
+    """
+    materials = _Materials(warnings)
+    parts: list[tuple[WorldTriangles, np.ndarray]] = []
+    names: list[str] = []
+    camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
+    for piece in _gather(depsgraph, warnings):
+        matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
+        lookup = materials.slot_lookup(piece.geometry.slot_materials)
+        if isinstance(piece.geometry, LocalHair):
+            for matrix in matrices:  # ribbons face the camera from where each instance stands
+                placed, slots = hair_ribbons(piece.geometry, matrix, camera)
+                parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
+                names.append(piece.name)
+            continue
+        local = piece.geometry
+        placed = instance_triangles(local.vertices, local.triangles, local.corner_normals, matrices)
+        slots = lookup[np.clip(local.slot_index, 0, len(lookup) - 1)]
+        parts.append((placed, np.tile(slots, len(matrices))))
+        names.append(piece.name)
+    return _assemble(parts, names, materials.materials)
+
+
+def _assemble(parts, names, materials) -> ExportedGeometry:
     if not parts:
         return ExportedGeometry(
-            vertices=np.zeros((0, 3), np.float32),
+            vertices=np.zeros((0, 3), np.float64),
             triangles=np.zeros((0, 3), np.int32),
             triangle_material=np.zeros(0, np.int32),
             triangle_object=np.zeros(0, np.int32),
@@ -115,13 +142,22 @@ def export_meshes(depsgraph, warnings: list[str] | None = None) -> ExportedGeome
             object_names=[],
             materials=materials or [DEFAULT_MATERIAL],
         )
-    offsets = np.cumsum([0] + [len(p[0]) for p in parts[:-1]])
+    offsets = np.cumsum([0] + [len(placed.vertices) for placed, _ in parts[:-1]])
+    if offsets[-1] + len(parts[-1][0].vertices) > np.iinfo(np.int32).max:
+        from ..tracer.errors import PrismInputError
+
+        raise PrismInputError(
+            "The scene has more than 2^31 vertices after instancing, more than Prism can index: "
+            "lower the instance count or the subdivision levels."
+        )
     return ExportedGeometry(
-        vertices=np.concatenate([p[0] for p in parts]).astype(np.float32),
-        triangles=np.concatenate([p[1] + offset for p, offset in zip(parts, offsets)]).astype(np.int32),
-        triangle_material=np.concatenate([p[2] for p in parts]),
-        triangle_object=np.concatenate([np.full(len(p[1]), p[4], np.int32) for p in parts]),
-        corner_normals=np.concatenate([p[3] for p in parts]).astype(np.float32),
-        object_names=object_names,
+        vertices=np.concatenate([placed.vertices for placed, _ in parts]),
+        triangles=np.concatenate([placed.triangles + offset for (placed, _), offset in zip(parts, offsets)]).astype(np.int32),
+        triangle_material=np.concatenate([material for _, material in parts]).astype(np.int32),
+        triangle_object=np.concatenate(
+            [np.full(len(placed.triangles), index, np.int32) for index, (placed, _) in enumerate(parts)]
+        ),
+        corner_normals=np.concatenate([placed.corner_normals for placed, _ in parts]),
+        object_names=list(names),
         materials=materials,
     )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..tracer.errors import PrismInputError
 from ..tracer.settings import RenderSettings
 
 _MODES = {"CIE": "cie", "GAUSSIAN_RGB": "gaussian_rgb"}
@@ -40,5 +41,8 @@ def export_settings(
         pixel_filter=prism.pixel_filter.lower(),
         filter_width_px=float(prism.filter_width_px),
     )
-    settings.validate()
+    try:
+        settings.validate()
+    except PrismInputError as error:  # stored past the UI's limits (a script, an old file): say where
+        raise PrismInputError(f"Scene '{scene.name}', Render Properties ▸ Prism: {error}") from None
     return settings

@@ -10,6 +10,7 @@ register, unregister = bpy.utils.register_submodule_factory(
     __name__,
     (
         "lens_overlay",
+        "farm",
         "scene",
         "camera",
         "light",

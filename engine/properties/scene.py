@@ -4,6 +4,7 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
 from ._common import WAVELENGTH_SUBTYPE, register_group, unregister_group
+from .farm import PrismFarmSettings
 from .lens_overlay import PrismLensOverlaySettings
 
 WAVELENGTH_MODE_ITEMS = [
@@ -164,6 +165,11 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         type=PrismLensOverlaySettings,
         name="Lens Overlay",
         description="Settings of the viewport overlay that draws ray fans through the camera's real lens",
+    )
+    farm: PointerProperty(
+        type=PrismFarmSettings,
+        name="Farm",
+        description="Where and how the Farm panel submits this scene to a Flamenco render farm",
     )
 
     def channel_means_nm(self) -> tuple[float, float, float]:

@@ -173,19 +173,73 @@ class Scene:
         return self.object_names[int(self.triangle_object[index])]
 
     def validate(self) -> None:
-        """Raise ``PrismInputError`` naming the object if the scene cannot render."""
+        """Raise ``PrismInputError`` naming the object if the scene cannot render (or would
+        render wrong without a word): malformed arrays, non-finite or absurdly distant
+        positions, indices that point nowhere."""
         if self.vertices.ndim != 2 or self.vertices.shape[1:] != (3,):
             raise PrismInputError("Scene vertices must be an array of shape [V, 3].")
+        self._validate_camera()
         if len(self.triangles):
-            corners = self.vertices[self.triangles]
-            bad = ~np.isfinite(corners).all(axis=(1, 2))
-            if bad.any():
-                name = self.object_name_of_triangle(int(np.flatnonzero(bad)[0]))
-                raise PrismInputError(
-                    f"Object '{name}' has vertices that are NaN or infinite: "
-                    "fix or delete them (Mesh > Clean Up) before rendering."
-                )
-        if not np.all(np.isfinite(self.camera.camera_to_world)):
+            self._validate_triangles()
+        for light in self.lights:
+            _check_position(f"Light '{light.name}'", light.position)
+
+    def _validate_camera(self) -> None:
+        camera = self.camera
+        if not np.all(np.isfinite(camera.camera_to_world)):
             raise PrismInputError(
-                f"Camera '{self.camera.name}' has a non-finite transform: reset its location and rotation."
+                f"Camera '{camera.name}' has a non-finite transform: reset its location and rotation."
             )
+        _check_position(f"Camera '{camera.name}'", camera.camera_to_world[:3, 3])
+        width, height = camera.resolution
+        if not (int(width) >= 1 and int(height) >= 1):
+            raise PrismInputError(f"Camera '{camera.name}': the resolution {width}x{height} has no pixels.")
+
+    def _validate_triangles(self) -> None:
+        triangles = np.asarray(self.triangles)
+        if triangles.min() < 0 or triangles.max() >= len(self.vertices):
+            raise PrismInputError(
+                f"Scene triangles refer to vertex {int(triangles.max())} but there are only {len(self.vertices)} "
+                "vertices: the exported geometry is inconsistent."
+            )
+        materials = np.asarray(self.triangle_material)
+        if len(materials) != len(triangles) or materials.min() < 0 or materials.max() >= len(self.materials):
+            raise PrismInputError(
+                f"Scene triangles refer to material {int(materials.max())} but there are only "
+                f"{len(self.materials)} materials: the exported materials are inconsistent."
+            )
+        # Per vertex, then gathered per triangle: a loose vertex no triangle uses cannot spoil the image.
+        with np.errstate(invalid="ignore"):
+            reach = np.abs(self.vertices).max(axis=1)
+        bad = ~np.isfinite(reach)[triangles].all(axis=1)
+        if bad.any():
+            name = self.object_name_of_triangle(int(np.flatnonzero(bad)[0]))
+            raise PrismInputError(
+                f"Object '{name}' has vertices that are NaN or infinite: "
+                "fix or delete them (Mesh > Clean Up) before rendering."
+            )
+        far = (reach > MAX_DISTANCE_M)[triangles].any(axis=1)
+        if far.any():
+            first = int(np.flatnonzero(far)[0])
+            raise PrismInputError(
+                f"Object '{self.object_name_of_triangle(first)}' has vertices {reach[triangles[first]].max():.3g} m "
+                f"from the world origin; Prism renders scenes within {MAX_DISTANCE_M:.0e} m of it: check the "
+                "object's scale and location (Object ▸ Transform), or delete stray vertices."
+            )
+
+
+#: Positions beyond this (m, about 6700 astronomical units) leave too little float32 range for the
+#: products of distances the tracer forms (areas, squared lengths): such a scene cannot render reliably.
+MAX_DISTANCE_M = 1.0e15
+
+
+def _check_position(what: str, position) -> None:
+    position = np.asarray(position, dtype=np.float64)
+    if not np.all(np.isfinite(position)):
+        raise PrismInputError(f"{what} has a non-finite location: reset it (Object ▸ Transform ▸ Location).")
+    distance = float(np.abs(position).max())
+    if distance > MAX_DISTANCE_M:
+        raise PrismInputError(
+            f"{what} is {distance:.3g} m from the world origin; Prism renders scenes within {MAX_DISTANCE_M:.0e} m "
+            "of it: move it closer (Object ▸ Transform ▸ Location)."
+        )

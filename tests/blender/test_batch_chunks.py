@@ -1,14 +1,17 @@
 """Batch renders in process (the ``blender -b -P render.py --`` argument path): chunks that merge
-to the single render bit for bit, frame ranges, and merge errors."""
+to the single render bit for bit, chunks that carry what they were rendered from, and merges that
+refuse chunks which do not belong together."""
 
 from __future__ import annotations
 
 import importlib
+import json
 
 import bpy
 import numpy as np
 import pytest
 
+from helpers.batch import run_batch
 from helpers.bpy_scenes import build_lit_card_scene
 
 
@@ -32,6 +35,8 @@ def test_chunks_merge_bit_identical_to_one_render(batch, tmp_path, capsys):
 
     merged, single = chunks.read_chunk(tmp_path / "merged.exr"), chunks.read_chunk(tmp_path / "single.exr")
     assert merged.samples == single.samples == 6
+    assert merged.sample_ranges == single.sample_ranges == ((0, 6),)
+    assert merged.fingerprint == single.fingerprint and merged.seed == single.seed == 7
     assert np.array_equal(merged.mean.astype(np.float32), single.mean.astype(np.float32))
     assert np.abs(merged.mean - single.mean).max() <= 1e-12 * max(1.0, single.mean.max())
     # Each chunk alone is a noisier estimate of the same image.
@@ -48,20 +53,137 @@ def test_chunks_merge_bit_identical_to_one_render(batch, tmp_path, capsys):
     assert np.array_equal(plain, single.mean.astype(np.float32))
 
 
-def test_merge_rejects_overlaps_foreign_files_and_size_mismatches(batch, tmp_path, capsys):
+def test_merge_rejects_overlaps_foreign_files_and_size_mismatches(batch, tmp_path, capsys, bad_input):
     render, chunks = batch
+    merged = tmp_path / "m.exr"
     assert _run(render, "--chunk-seed", 0, "--samples", 1, "--output", tmp_path / "a.exr") == 0
-    assert _run(render, "--merge", tmp_path / "a.exr", tmp_path / "a.exr", "--output", tmp_path / "m.exr") == 1
-    assert "contain the same samples" in capsys.readouterr().err
     assert _run(render, "--samples", 1, "--output", tmp_path / "plain.exr") == 0
-    assert _run(render, "--merge", tmp_path / "a.exr", tmp_path / "plain.exr", "--output", tmp_path / "m.exr") == 1
-    assert "has no Prism sample count: merge only chunks written with --chunk-seed" in capsys.readouterr().err
-    chunks.write_exr(tmp_path / "small.exr", np.zeros((4, 4, 3)), samples=1, sample_offset=1)
-    assert _run(render, "--merge", tmp_path / "a.exr", tmp_path / "small.exr", "--output", tmp_path / "m.exr") == 1
-    assert "merge chunks of the same render only" in capsys.readouterr().err
-    assert _run(render, "--merge", tmp_path / "missing.exr", "--output", tmp_path / "m.exr") == 1
-    assert "missing.exr' does not exist" in capsys.readouterr().err
+    small = chunks.read_chunk(tmp_path / "a.exr")
+    small.mean, small.sample_ranges = np.zeros((4, 4, 3)), ((1, 2),)
+    chunks.write_chunk(tmp_path / "small.exr", small)
+    (tmp_path / "folder.exr").mkdir()
+    cases = [
+        ("the same chunk twice", [tmp_path / "a.exr", tmp_path / "a.exr"], "contain the same samples (from sample 0)"),
+        ("a plain render as a chunk", [tmp_path / "a.exr", tmp_path / "plain.exr"],
+         "has no Prism sample count: it is not a chunk. Merge only chunks written with --chunk-seed"),
+        ("chunks of different sizes", [tmp_path / "a.exr", tmp_path / "small.exr"], "merge chunks of the same render only"),
+        ("a chunk that does not exist", [tmp_path / "missing.exr"], "missing.exr' does not exist: check the path"),
+        ("a folder as a chunk", [tmp_path / "folder.exr"], "folder.exr' is a folder: give the chunk EXR files"),
+    ]
+    for description, inputs, message in cases:
+        status, line = run_batch(capsys, "--merge", *inputs, "--output", merged)
+        assert (status, message in line) == (1, True), line
+        bad_input(f"--merge: {description}", status, line)
+    assert not merged.exists()
+
+
+def _edit_chunk(path, edit):
+    """Rewrite the EXR at ``path`` after ``edit(pixels [H, W, C], spec)``, keeping its attributes."""
+    chunks = importlib.import_module("prism_spectral.engine.chunks")
+    oiio = chunks._oiio()
+    image = oiio.ImageInput.open(str(path))
+    spec = image.spec()
+    pixels = np.asarray(image.read_image(0, 0, 0, spec.nchannels, "float"), np.float32).reshape(spec.height, spec.width, -1)
+    image.close()
+    edit(pixels, spec)
+    output = oiio.ImageOutput.create(str(path))
+    output.open(str(path), spec)
+    output.write_image(np.ascontiguousarray(pixels))
+    output.close()
+
+
+def test_merge_of_chunks_from_two_scenes_is_refused(batch, tmp_path, capsys, bad_input):
+    render, _ = batch
+    assert _run(render, "--chunk-seed", 0, "--samples", 1, "--output", tmp_path / "a.exr") == 0
+    bpy.data.objects["Card"].location.x += 0.25  # same size, same settings, another scene
+    assert _run(render, "--chunk-seed", 1, "--samples", 1, "--output", tmp_path / "b.exr") == 0
+    (tmp_path / "m.exr").write_bytes(b"an earlier merge")
+    status, line = run_batch(capsys, "--merge", tmp_path / "a.exr", tmp_path / "b.exr", "--output", tmp_path / "m.exr")
+    assert status == 1
+    assert "a.exr' and '" in line and "b.exr' come from different renders (their geometry differ)" in line
+    assert (tmp_path / "m.exr").read_bytes() == b"an earlier merge"
+    bad_input("--merge: chunks rendered from two different scenes of the same size", status, line)
+
+    bpy.data.objects["Card"].location.x -= 0.25  # back to the first scene, another seed
+    assert _run(render, "--chunk-seed", 1, "--samples", 1, "--seed", 5, "--output", tmp_path / "c.exr") == 0
+    status, line = run_batch(capsys, "--merge", tmp_path / "a.exr", tmp_path / "c.exr", "--output", tmp_path / "m.exr")
+    assert status == 1 and "(seed 0) and '" in line and "(seed 5) have different seeds" in line
+    bad_input("--merge: chunks rendered with different --seed", status, line)
+
+    bpy.context.scene.prism.max_bounces = 2  # the same scene, other settings
+    assert _run(render, "--chunk-seed", 1, "--samples", 1, "--output", tmp_path / "d.exr") == 0
+    status, line = run_batch(capsys, "--merge", tmp_path / "a.exr", tmp_path / "d.exr", "--output", tmp_path / "m.exr")
+    assert status == 1 and "come from different renders (their settings differ)" in line
+
+
+def test_merge_refuses_damaged_edited_and_non_finite_chunks(batch, tmp_path, capsys, bad_input):
+    render, chunks = batch
+    good = tmp_path / "good.exr"
+    assert _run(render, "--chunk-seed", 1, "--samples", 1, "--output", good) == 0
+
+    def damaged(name, edit):
+        path = tmp_path / name
+        path.write_bytes(good.read_bytes())
+        edit(path)
+        return path
+
+    def poke(value):
+        def edit(pixels, spec):
+            pixels[3, 5, 1] = value
+        return lambda path: _edit_chunk(path, edit)
+
+    def attribute(name, value):
+        return lambda path: _edit_chunk(path, lambda pixels, spec: spec.attribute(name, value))
+
+    cases = [
+        ("a chunk cut short (truncated file)", damaged("cut.exr", lambda p: p.write_bytes(good.read_bytes()[:-300])),
+         "cut.exr' is damaged"),
+        ("a chunk with a NaN pixel", damaged("nan.exr", poke(np.nan)),
+         "nan.exr' holds 1 pixel(s) that are NaN or infinite (the first at x=5, y=3 from the top)"),
+        ("a chunk with an infinite pixel", damaged("inf.exr", poke(np.inf)), "inf.exr' holds 1 pixel(s) that are NaN"),
+        ("a chunk whose pixels were edited", damaged("edited.exr", poke(0.5)),
+         "edited.exr' does not match its checksum: it was damaged or edited after Prism wrote it"),
+        ("a chunk whose seed attribute was edited", damaged("seed.exr", attribute("prism:seed", "3")),
+         "seed.exr' does not match its checksum"),
+        ("a chunk with an unreadable sample range", damaged("ranges.exr", attribute("prism:sample_ranges", "[[2, 1]]")),
+         "ranges.exr' has damaged Prism attributes"),
+        ("a chunk of an earlier Prism (no fingerprint)",
+         damaged("old.exr", lambda p: _edit_chunk(p, lambda px, spec: (spec.erase_attribute("prism:chunk"),
+                                                                       spec.attribute("prism:samples", 4)))),
+         "old.exr' was written by an earlier Prism and carries no fingerprint"),
+        ("a text file named .exr", damaged("text.exr", lambda p: p.write_text("not an image")),
+         "text.exr' is not a readable EXR image"),
+    ]
+    for description, path, message in cases:
+        status, line = run_batch(capsys, "--merge", good, path, "--output", tmp_path / "m.exr")
+        assert (status, message in line) == (1, True), (description, line)
+        assert "unexpected" not in line
+        bad_input(f"--merge: {description}", status, line)
     assert not (tmp_path / "m.exr").exists()
+
+
+def test_large_seeds_and_offsets_survive_the_exr_round_trip(batch, tmp_path, capsys):
+    render, chunks = batch
+    seed, first = 2**32 - 1, 3_000_000_000  # beyond int32: EXR int attributes would wrap
+    for k in (first, first + 1):
+        assert _run(render, "--chunk-seed", k, "--samples", 1, "--seed", seed, "--output", tmp_path / f"{k}.exr") == 0
+    chunk = chunks.read_chunk(tmp_path / f"{first}.exr")
+    assert (chunk.seed, chunk.sample_ranges) == (seed, ((first, first + 1),))
+    assert _run(render, "--merge", *(tmp_path / f"{k}.exr" for k in (first, first + 1)), "--output", tmp_path / "m.exr") == 0
+    merged = chunks.read_chunk(tmp_path / "m.exr")
+    assert (merged.seed, merged.sample_ranges, merged.samples) == (seed, ((first, first + 2),), 2)
+    assert np.isfinite(merged.mean).all() and merged.mean.mean() > 0.01
+
+
+def test_merged_chunks_merge_again_without_double_counting(batch, tmp_path):
+    render, chunks = batch
+    for k in (0, 2, 3):
+        assert _run(render, "--chunk-seed", k, "--samples", 1, "--output", tmp_path / f"c{k}.exr") == 0
+    assert _run(render, "--merge", tmp_path / "c0.exr", tmp_path / "c2.exr", "--output", tmp_path / "m02.exr") == 0
+    assert chunks.read_chunk(tmp_path / "m02.exr").sample_ranges == ((0, 1), (2, 3))
+    assert _run(render, "--merge", tmp_path / "m02.exr", tmp_path / "c2.exr", "--output", tmp_path / "x.exr") == 1
+    assert _run(render, "--merge", tmp_path / "m02.exr", tmp_path / "c3.exr", "--output", tmp_path / "x.exr") == 0
+    assert json.loads(json.dumps(chunks.read_chunk(tmp_path / "x.exr").sample_ranges)) == [[0, 1], [2, 4]]
 
 
 def test_frame_ranges_number_the_outputs(batch, tmp_path, capsys):
@@ -84,3 +206,17 @@ def test_frame_ranges_number_the_outputs(batch, tmp_path, capsys):
     assert _run(render, "--frames", "3", "--samples", 1, "--output", tmp_path / "still.png") == 0
     assert (tmp_path / "still_0003.png").is_file()
     assert scene.frame_current == 3
+    assert _run(render, "--frames", "-2..-1", "--samples", 1, "--output", tmp_path / "neg_###.png") == 0
+    assert (tmp_path / "neg_-02.png").is_file() and (tmp_path / "neg_-01.png").is_file()
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []  # no temporary files left
+
+
+def test_chunk_samples_must_be_whole_passes(batch, tmp_path, capsys, bad_input):
+    bpy.context.scene.prism.samples_per_pass = 2
+    status, line = run_batch(capsys, "--chunk-seed", 1, "--samples", 3, "--output", tmp_path / "c.exr")
+    assert status == 1 and line == (
+        "Prism: error: Chunk offset 3 is not a multiple of Samples per Pass (2): use --samples that is a multiple "
+        "of the scene's Samples per Pass."
+    )
+    assert not (tmp_path / "c.exr").exists()
+    bad_input("--chunk-seed 1 --samples 3 with Samples per Pass 2", status, line)

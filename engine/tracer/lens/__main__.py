@@ -3,7 +3,7 @@
 Prints a lens's first-order data as JSON: paraxial properties, the film distance for
 infinity (and for the focus distance, measured from the film), the field of view on a
 36 mm sensor, the axial colour between 486 and 656 nm, and the loader's notes (assumed
-glasses). A bad file prints one message on stderr and exits with status 2.
+glasses). A bad file or argument prints one message on stderr and exits with status 2.
 """
 
 from __future__ import annotations
@@ -12,10 +12,34 @@ import argparse
 import json
 import math
 import sys
+import traceback
 
 from ..errors import PrismInputError
+from ..spectra.wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 from .catalogue import DEFAULT_SENSOR_WIDTH_MM, lens_report
 from .media import D_LINE_NM
+
+#: No lens in air is faster than f/0.5 (the numerical aperture cannot exceed 1).
+FASTEST_FSTOP = 0.5
+SLOWEST_FSTOP = 1024.0
+#: Wider than any film or sensor format (8x10 inch sheet film is 254 mm wide).
+MAX_SENSOR_WIDTH_MM = 500.0
+
+
+def _number_within(name: str, low: float, high: float, unit: str, hint: str = ""):
+    """An argparse type: a finite number in [low, high], refused with the range and a hint."""
+
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} must be a number (got '{text}')") from None
+        if not (math.isfinite(value) and low <= value <= high):
+            within = f"{low:g} and {high:g}" + (f" {unit}" if unit else "")
+            raise argparse.ArgumentTypeError(f"{name} must be between {within} (got {text}){hint}")
+        return value
+
+    return parse
 
 
 def _clean(value):
@@ -32,12 +56,20 @@ def _clean(value):
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m engine.tracer.lens", description=__doc__.splitlines()[2])
     parser.add_argument("file", help="lens prescription: Prism .lens or pbrt/CS184 .dat")
-    parser.add_argument("--wavelength", type=float, default=D_LINE_NM, metavar="NM",
+    parser.add_argument("--wavelength", default=D_LINE_NM, metavar="NM",
+                        type=_number_within("the wavelength", VISIBLE_MIN_NM, VISIBLE_MAX_NM, "nm",
+                                            ", the range Prism renders"),
                         help="wavelength for the paraxial data and focus (default: d line, 587.56 nm)")
-    parser.add_argument("--focus-distance", type=float, default=None, metavar="MM",
+    parser.add_argument("--focus-distance", default=None, metavar="MM",
+                        type=_number_within("the focus distance", 1e-3, 1e12, "mm",
+                                            "; leave it out to focus at infinity"),
                         help="object distance from the film, mm (default: infinity only)")
-    parser.add_argument("--fstop", type=float, default=None, metavar="N", help="stop the lens to f/N")
-    parser.add_argument("--sensor-width", type=float, default=DEFAULT_SENSOR_WIDTH_MM, metavar="MM",
+    parser.add_argument("--fstop", default=None, metavar="N",
+                        type=_number_within("the f-stop", FASTEST_FSTOP, SLOWEST_FSTOP, "",
+                                            "; no lens in air is faster than f/0.5"),
+                        help="stop the lens to f/N")
+    parser.add_argument("--sensor-width", default=DEFAULT_SENSOR_WIDTH_MM, metavar="MM",
+                        type=_number_within("the sensor width", 1e-3, MAX_SENSOR_WIDTH_MM, "mm"),
                         help="sensor width for the field of view (default: 36 mm, Blender's)")
     args = parser.parse_args(argv)
     try:
@@ -45,6 +77,11 @@ def main(argv=None) -> int:
     except PrismInputError as error:
         print(f"prism lens: error: {error}", file=sys.stderr)
         return 2
+    except Exception as error:  # noqa: BLE001 - a bug: the traceback, then one line saying so
+        traceback.print_exc()
+        print(f"prism lens: error: unexpected {type(error).__name__} (a bug in Prism; please report it with the "
+              f"traceback above): {error}", file=sys.stderr)
+        return 1
     json.dump(_clean(report), sys.stdout, indent=2)
     sys.stdout.write("\n")
     return 0

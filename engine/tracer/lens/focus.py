@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import PrismInputError
 from .media import C_LINE_NM, D_LINE_NM, F_LINE_NM
 from .paraxial import paraxial_data, sensor_distance_for_focus
 from .system import TOWARD_FILM
@@ -94,6 +95,11 @@ def best_focus(system, object_z_mm, wavelength_nm=D_LINE_NM, paraxial_guess_mm=N
     efl = abs(paraxial_data(system, wavelength_nm).efl_mm)
     width = max(0.2 * efl, 1.0)
     lo, hi = max(guess - width, 1e-3), guess + width
+    if not hi > lo:
+        raise PrismInputError(
+            f"Lens '{system.name}' images {wavelength_nm:g} nm light {-guess:.4g} mm inside its last surface, "
+            "where no film can go: check its thicknesses and radii."
+        )
     res = minimize_scalar(
         lambda s: rms_spot_radius_mm(origins, directions, rear + s),
         bounds=(lo, hi), method="bounded", options={"xatol": 1e-7},

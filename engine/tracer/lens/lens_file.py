@@ -25,6 +25,8 @@ from .system import LensSystem, Surface
 from .validate import validate_surfaces, where
 
 DAT_FIELDS = ("radius", "thickness", "index", "aperture diameter")
+#: A prescription is a few kilobytes; anything far larger is not a lens file, and parsing it would take long.
+MAX_FILE_BYTES = 256 * 1024
 SURFACE_KEYS = {"radius_mm", "thickness_mm", "aperture_mm", "glass", "nd", "vd", "stop", "note"}
 TOP_KEYS = {"format", "name", "source", "focal_length_mm", "f_number", "notes", "surface"}
 
@@ -45,6 +47,8 @@ class CatalogueResolver:
 def load_lens(path, resolver=None) -> LensSystem:
     """Load a ``.lens`` (Prism) or any other suffix (``.dat`` table) prescription."""
     path = os.fspath(path)
+    if os.path.isdir(path):
+        raise LensFileError(f"Lens file '{path}' is a folder: choose a .lens or .dat file in it.")
     if not os.path.isfile(path):
         raise LensFileError(f"Lens file '{path}' does not exist: choose an existing .lens or .dat file.")
     if resolver is None:
@@ -60,10 +64,20 @@ def _load_cached(path, _mtime_ns, _size) -> LensSystem:
 
 def _load(path, resolver) -> LensSystem:
     try:
-        with open(path, encoding="utf-8") as handle:
-            text = handle.read()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise LensFileError(f"Lens file '{path}' cannot be read: {exc}.") from exc
+        with open(path, "rb") as handle:
+            data = handle.read(MAX_FILE_BYTES + 1)
+        text = data.decode("utf-8")
+    except OSError as exc:
+        raise LensFileError(f"Lens file '{path}' cannot be read: {exc.strerror or exc}.") from exc
+    except UnicodeDecodeError as exc:
+        raise LensFileError(
+            f"Lens file '{path}' is not UTF-8 text (byte {exc.start}): give a .lens or .dat text file."
+        ) from exc
+    if len(data) > MAX_FILE_BYTES:
+        raise LensFileError(
+            f"Lens file '{path}' is larger than {MAX_FILE_BYTES // 1024} KiB: a prescription is a few kilobytes, "
+            "so this is not a lens file (or not one Prism reads)."
+        )
     if path.lower().endswith(".lens"):
         return parse_prism_lens(text, path, resolver)
     return parse_dat(text, path, resolver)
@@ -126,6 +140,7 @@ def _with_paraxial_nominals(system: LensSystem) -> LensSystem:
     from .paraxial import paraxial_data
 
     data = paraxial_data(system)
+    _check_forms_an_image(system, data)
     note = f"nominal f/{data.f_number:.3g} and focal length {data.efl_mm:.4g} mm computed paraxially (d line)"
     return replace(
         system,
@@ -133,6 +148,21 @@ def _with_paraxial_nominals(system: LensSystem) -> LensSystem:
         nominal_f_number=system.nominal_f_number or data.f_number,
         notes=system.notes + (note,) if system.nominal_f_number is None else system.notes,
     )
+
+
+def _check_forms_an_image(system: LensSystem, data) -> None:
+    """A camera lens must converge and bring distant light to a focus behind its last surface."""
+    if data.efl_mm <= 0:
+        raise LensFileError(
+            f"{system.path}: the lens diverges (focal length {data.efl_mm:.4g} mm at the d line), so it forms no "
+            "image on a film. Check the signs of the radii: positive means the centre of curvature lies toward "
+            "the film."
+        )
+    if data.bfl_mm <= 0:
+        raise LensFileError(
+            f"{system.path}: distant objects come to focus {-data.bfl_mm:.4g} mm inside the lens (back focal "
+            f"length {data.bfl_mm:.4g} mm), where no film can go. Check the thicknesses and radii."
+        )
 
 
 # ---- Prism .lens (TOML) -----------------------------------------------------------------

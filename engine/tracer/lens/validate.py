@@ -9,6 +9,13 @@ import numpy as np
 
 from ..errors import LensFileError
 
+#: Real photographic lenses have up to about 50 surfaces; every surface costs every traced ray.
+MAX_SURFACES = 100
+#: 100 m: any length beyond this is a typo or a unit error (lens files are in millimetres).
+MAX_LENGTH_MM = 1.0e5
+#: Radii beyond this are flat for any aperture Prism allows: write ``inf`` (``0`` marks the stop in .dat).
+MAX_RADIUS_MM = 1.0e9
+
 
 def where(path, line) -> str:
     """``"lens.dat, line 7"`` style prefix for messages."""
@@ -24,6 +31,13 @@ def validate_surfaces(surfaces, path) -> None:
     """
     if len(surfaces) < 2:
         raise LensFileError(f"{path}: a lens needs at least two surfaces (found {len(surfaces)}).")
+    if len(surfaces) > MAX_SURFACES:
+        raise LensFileError(
+            f"{path}: {len(surfaces)} surfaces; Prism traces lenses of up to {MAX_SURFACES} (real lenses have "
+            "about 50 at most), as each surface slows every ray."
+        )
+    for s in surfaces:
+        _check_size(s, path)
     stops = [s for s in surfaces if s.is_stop]
     if not stops:
         raise LensFileError(
@@ -51,6 +65,17 @@ def validate_surfaces(surfaces, path) -> None:
         if not n_d >= 1.0:
             raise LensFileError(f"{at}: refractive index {n_d:g} is below 1.")
     _check_no_overlap(surfaces, path)
+
+
+def _check_size(surface, path) -> None:
+    at = where(path, surface.line)
+    for name, value in (("thickness", surface.thickness_mm), ("clear aperture", surface.aperture_mm)):
+        if abs(value) > MAX_LENGTH_MM:
+            raise LensFileError(
+                f"{at}: {name} {value:g} mm is more than {MAX_LENGTH_MM:g} mm (100 m): lens files are in millimetres."
+            )
+    if np.isfinite(surface.radius_mm) and abs(surface.radius_mm) > MAX_RADIUS_MM:
+        raise LensFileError(f"{at}: radius {surface.radius_mm:g} mm is flat for any aperture: write inf instead.")
 
 
 def _check_no_overlap(surfaces, path) -> None:

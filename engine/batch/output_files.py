@@ -1,0 +1,90 @@
+"""Output files of a batch run: written whole or not at all, named per frame.
+
+Every image goes to a temporary file in the output's own folder and is then
+moved onto the output's name with one ``os.replace`` (atomic on POSIX and
+Windows within a file system): a reader, a crash or Ctrl-C sees either the old
+file or the complete new one.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from ..tracer.errors import PrismInputError
+
+
+def frame_output(output: Path, frame: int) -> Path:
+    """``out_###.png`` → ``out_007.png``; without ``#``, ``out.png`` → ``out_0007.png``."""
+    name = output.name
+    runs = list(re.finditer(r"#+", name))
+    if runs:
+        run = runs[-1]
+        name = f"{name[: run.start()]}{frame:0{len(run.group())}d}{name[run.end():]}"
+    else:
+        name = f"{output.stem}_{frame:04d}{output.suffix}"
+    return output.with_name(name)
+
+
+def partial_output(output: Path) -> Path:
+    """Where an interrupted render's image goes when asked to keep it: ``out.exr`` → ``out.partial.exr``."""
+    return output.with_name(f"{output.stem}.partial{output.suffix}")
+
+
+def temporary_sibling(output: Path) -> Path:
+    """A hidden name in ``output``'s folder, unique to this process, with the same suffix (the
+    writers choose the format by it) and no ``#`` (Blender would put a frame number there)."""
+    stem = output.stem.replace("#", "_")
+    return output.with_name(f".{stem}.prism-{os.getpid()}.tmp{output.suffix}")
+
+
+def _cannot_write(path: Path, error: OSError) -> PrismInputError:
+    return PrismInputError(
+        f"Cannot write '{path}': {error.strerror or error}. Choose a folder that exists and that you can write to."
+    )
+
+
+def _check_folders(output: Path) -> None:
+    for folder in reversed(output.parents):
+        if folder.exists() and not folder.is_dir():
+            raise PrismInputError(
+                f"Cannot write '{output}': '{folder}' is a file, not a folder. Choose another output folder."
+            )
+
+
+@contextmanager
+def atomic_output(output: Path, signals=None) -> Iterator[Path]:
+    """Yield a temporary path for ``output``; when the block ends normally, move it onto ``output``.
+
+    When the block raises, the temporary file is deleted and ``output`` is left as
+    it was. ``signals`` (a ``StopSignals``) deletes it too if the process is
+    killed by a second Ctrl-C. The folder is created, and checked writable,
+    before the block runs, so a render never starts only to fail at the end.
+    """
+    output = Path(output)
+    temporary = temporary_sibling(output)
+    _check_folders(output)
+    try:
+        output.parent.mkdir(parents=True, exist_ok=True)
+        temporary.touch()
+    except OSError as error:
+        raise _cannot_write(output, error) from None
+    if signals is not None:
+        signals.temporary_files.add(temporary)
+    try:
+        temporary.unlink()
+        yield temporary
+        if not temporary.is_file():
+            raise PrismInputError(f"Prism rendered but Blender wrote no image for '{output}': see Blender's message above.")
+        try:
+            os.replace(temporary, output)
+        except OSError as error:
+            raise _cannot_write(output, error) from None
+    finally:
+        if temporary.exists():
+            temporary.unlink()
+        if signals is not None:
+            signals.temporary_files.discard(temporary)

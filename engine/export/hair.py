@@ -1,0 +1,110 @@
+"""Hair Curves objects → camera-facing ribbons of triangles (Cycles' "Rounded Ribbons" shape, flat).
+
+Each strand becomes a strip two triangles per segment wide as the strand's
+diameter, turned to face the camera; shading normals face the camera too. The
+radius is the ``radius`` attribute, or 5 mm where the curves have none (as
+Cycles), scaled by the instance's mean scale. Strands are read with
+``foreach_get``; ribbons are built for all strands at once.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .instancing import WorldTriangles
+
+DEFAULT_RADIUS_M = 0.005
+
+
+@dataclass
+class LocalHair:
+    """Strands in object space: ``points`` float64 [P, 3], ``radii`` float64 [P], ``offsets``
+    int64 [C + 1] (curve c holds points offsets[c]..offsets[c+1]-1), ``curve_slot`` int32 [C]
+    (material slot of each curve), ``slot_materials`` as ``LocalMesh``."""
+
+    points: np.ndarray
+    radii: np.ndarray
+    offsets: np.ndarray
+    curve_slot: np.ndarray
+    slot_materials: list
+
+
+def read_hair(obj) -> LocalHair | None:
+    """The evaluated strands of a Curves object; None when it has no segment."""
+    curves = obj.data
+    point_count, curve_count = len(curves.points), len(curves.curves)
+    if point_count < 2 or curve_count == 0:
+        return None
+    points = np.empty(point_count * 3, np.float32)
+    curves.points.foreach_get("position", points)
+    offsets = np.empty(curve_count + 1, np.int32)
+    curves.curve_offset_data.foreach_get("value", offsets)
+    radii = np.full(point_count, DEFAULT_RADIUS_M, np.float32)
+    if "radius" in curves.attributes:
+        curves.points.foreach_get("radius", radii)
+    curve_slot = np.zeros(curve_count, np.int32)
+    material_index = curves.attributes.get("material_index")
+    if material_index is not None and material_index.domain == "CURVE":
+        material_index.data.foreach_get("value", curve_slot)
+    return LocalHair(
+        points=points.reshape(-1, 3).astype(np.float64),
+        radii=radii.astype(np.float64),
+        offsets=offsets.astype(np.int64),
+        curve_slot=curve_slot,
+        slot_materials=[slot.material for slot in obj.material_slots],
+    )
+
+
+def segment_starts(offsets: np.ndarray) -> np.ndarray:
+    """Index of the first point of every segment (each point but the last of its curve)."""
+    is_last = np.zeros(offsets[-1], dtype=bool)
+    ends = offsets[1:] - 1
+    is_last[ends[ends >= offsets[:-1]]] = True
+    return np.flatnonzero(~is_last)
+
+
+def _tangents(points: np.ndarray, offsets: np.ndarray) -> np.ndarray:
+    """Central differences inside a curve, one-sided at its ends."""
+    count = len(points)
+    following = np.minimum(np.arange(count) + 1, count - 1)
+    previous = np.maximum(np.arange(count) - 1, 0)
+    starts, ends = offsets[:-1], offsets[1:] - 1
+    valid = ends > starts
+    previous[starts[valid]] = starts[valid]
+    following[ends[valid]] = ends[valid]
+    return _unit(points[following] - points[previous])
+
+
+def _unit(vectors: np.ndarray) -> np.ndarray:
+    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
+    return vectors / np.where(length > 0, length, 1.0)
+
+
+def hair_ribbons(hair: LocalHair, matrix: np.ndarray, camera_position: np.ndarray) -> tuple[WorldTriangles, np.ndarray]:
+    """World-space ribbons of one hair instance (``matrix`` float64 [4, 4]) facing
+    ``camera_position`` [3]; also the material slot of each triangle [2 * segments]."""
+    linear = matrix[:3, :3]
+    points = hair.points @ linear.T + matrix[:3, 3]
+    scale = float(np.mean(np.linalg.norm(linear, axis=0)))
+    tangents = _tangents(points, hair.offsets)
+    towards_camera = _unit(camera_position - points)
+    sides = np.cross(tangents, towards_camera)
+    edge_on = np.linalg.norm(sides, axis=1) < 1e-9  # a strand pointing at the camera: any side will do
+    if edge_on.any():
+        helper = np.where(np.abs(tangents[edge_on, :1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]])
+        sides[edge_on] = np.cross(tangents[edge_on], helper)
+    sides = _unit(sides) * (hair.radii * scale)[:, None]
+    vertices = np.empty((2 * len(points), 3))
+    vertices[0::2], vertices[1::2] = points - sides, points + sides
+    facing = _unit(np.cross(sides, tangents))
+    starts = segment_starts(hair.offsets)
+    left, right = 2 * starts, 2 * starts + 1
+    triangles = np.stack(
+        [np.column_stack([left, right, left + 2]), np.column_stack([right, right + 2, left + 2])], axis=1
+    ).reshape(-1, 3)
+    normals = facing[triangles // 2].astype(np.float32)
+    curve_of_segment = np.searchsorted(hair.offsets, starts, side="right") - 1
+    slots = np.repeat(hair.curve_slot[curve_of_segment], 2)
+    return WorldTriangles(vertices=vertices, triangles=triangles, corner_normals=normals), slots

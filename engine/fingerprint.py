@@ -1,0 +1,84 @@
+"""A fingerprint of what decides a render's image, so chunks of different renders never merge.
+
+Each part (geometry, materials, lights, camera, world, settings) gets a short
+hash, so a mismatch can be named. Names of objects and materials are left out
+(they only label messages), and a lens file counts by its content, not its path
+(farm machines mount the same file at different places). The settings' sample
+count, thread count and seed are left out: samples and seed travel with the chunk
+itself, threads never change the image.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import os
+
+import numpy as np
+
+#: Scene fields that only label messages.
+_LABELS = {"name", "object_names", "triangle_object"}
+#: Settings fields a chunk carries itself or that do not change the image.
+_PER_CHUNK_SETTINGS = {"samples", "threads", "seed"}
+PARTS = ("geometry", "materials", "lights", "camera", "world", "settings")
+
+
+def render_fingerprint(scene, settings) -> dict[str, str]:
+    """Part name → 16 hex digits, for a ``tracer.Scene`` and ``tracer.RenderSettings``."""
+    geometry = (scene.vertices, scene.triangles, scene.triangle_material, scene.corner_normals)
+    settings_fields = {
+        f.name: getattr(settings, f.name) for f in dataclasses.fields(settings) if f.name not in _PER_CHUNK_SETTINGS
+    }
+    values = (geometry, scene.materials, scene.lights, scene.camera, scene.world, settings_fields)
+    return {part: _digest(value) for part, value in zip(PARTS, values)}
+
+
+def differing_parts(first: dict[str, str], second: dict[str, str]) -> list[str]:
+    """The parts whose hashes differ (all parts when one side lacks them)."""
+    return [part for part in PARTS if first.get(part) is None or first.get(part) != second.get(part)]
+
+
+def _digest(value) -> str:
+    hasher = hashlib.blake2b(digest_size=8)
+    _feed(hasher, value)
+    return hasher.hexdigest()
+
+
+def _feed(hasher, value) -> None:
+    if isinstance(value, np.generic):  # numpy 1 and 2 print scalars differently
+        value = value.item()
+    if isinstance(value, np.ndarray):
+        array = np.ascontiguousarray(value)
+        hasher.update(f"array {array.dtype.str} {array.shape}".encode())
+        hasher.update(array.tobytes())
+    elif dataclasses.is_dataclass(value):
+        hasher.update(f"{type(value).__name__}(".encode())
+        for item in dataclasses.fields(value):
+            if item.name in _LABELS:
+                continue
+            hasher.update(f"{item.name}=".encode())
+            if item.name == "lens_file" and value.lens_file:
+                _feed_file(hasher, value.lens_file)
+            else:
+                _feed(hasher, getattr(value, item.name))
+        hasher.update(b")")
+    elif isinstance(value, dict):
+        for key in sorted(value):
+            hasher.update(f"{key}:".encode())
+            _feed(hasher, value[key])
+    elif isinstance(value, (list, tuple)):
+        hasher.update(f"[{len(value)}".encode())
+        for item in value:
+            _feed(hasher, item)
+    elif isinstance(value, float):
+        hasher.update(float(value).hex().encode())
+    else:
+        hasher.update(f"{type(value).__name__}:{value!r};".encode())
+
+
+def _feed_file(hasher, path) -> None:
+    if os.path.isfile(path):
+        with open(path, "rb") as handle:
+            hasher.update(hashlib.sha256(handle.read()).digest())
+    else:
+        hasher.update(f"missing:{os.path.basename(path)}".encode())

@@ -1,0 +1,64 @@
+"""The fingerprint a chunk carries: it changes with what changes the image, part by part, and with
+nothing else (names, thread counts, where a lens file is mounted)."""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+
+import numpy as np
+
+from engine.fingerprint import differing_parts, render_fingerprint
+from engine.tracer.lens.catalogue import LENS_DIRECTORY
+from engine.tracer.scene import Camera, Light, Material, Scene
+from engine.tracer.settings import RenderSettings
+
+
+def _scene(lens_file=None) -> Scene:
+    return Scene(
+        vertices=np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]),
+        triangles=np.array([[0, 1, 2]], np.int32),
+        triangle_material=np.zeros(1, np.int32),
+        materials=[Material(name="Grey")],
+        camera=Camera(name="Camera", camera_to_world=np.eye(4), resolution=(8, 8), lens_file=lens_file,
+                      model="real_lens" if lens_file else "pinhole"),
+        lights=[Light(name="Bulb", kind="point", position=np.array([0.0, 0.0, 2.0]), power_w=10.0)],
+        object_names=["Card"],
+        triangle_object=np.zeros(1, np.int32),
+    )
+
+
+def test_names_threads_samples_and_seed_leave_it_unchanged():
+    scene, settings = _scene(), RenderSettings(samples=4, seed=1, threads=1)
+    renamed = copy.deepcopy(scene)
+    renamed.materials[0].name, renamed.lights[0].name, renamed.object_names = "Other", "Lamp", ["Renamed"]
+    other_run = dataclasses.replace(settings, samples=64, seed=9, threads=8)
+    assert render_fingerprint(renamed, other_run) == render_fingerprint(scene, settings)
+
+
+def test_each_part_changes_with_what_it_holds():
+    scene, settings = _scene(), RenderSettings()
+    base = render_fingerprint(scene, settings)
+    changes = {
+        "geometry": lambda s, r: s.vertices.__setitem__((1, 0), 1.0 + 1e-12),
+        "materials": lambda s, r: setattr(s.materials[0], "roughness", 0.5),
+        "lights": lambda s, r: setattr(s.lights[0], "power_w", 11.0),
+        "camera": lambda s, r: setattr(s.camera, "focal_length_mm", 35.0),
+        "world": lambda s, r: setattr(s.world, "strength", 0.5),
+        "settings": lambda s, r: setattr(r, "max_bounces", 2),
+    }
+    for part, change in changes.items():
+        changed_scene, changed_settings = copy.deepcopy(scene), copy.deepcopy(settings)
+        change(changed_scene, changed_settings)
+        assert differing_parts(base, render_fingerprint(changed_scene, changed_settings)) == [part]
+
+
+def test_a_lens_file_counts_by_its_content_not_its_path(tmp_path):
+    original = LENS_DIRECTORY / "double_gauss_50mm.lens"
+    mounted = tmp_path / "elsewhere.lens"
+    mounted.write_bytes(original.read_bytes())
+    settings = RenderSettings()
+    assert render_fingerprint(_scene(str(original)), settings) == render_fingerprint(_scene(str(mounted)), settings)
+    mounted.write_bytes(original.read_bytes().replace(b"thickness_mm = 3.76", b"thickness_mm = 3.80"))
+    assert differing_parts(render_fingerprint(_scene(str(original)), settings),
+                           render_fingerprint(_scene(str(mounted)), settings)) == ["camera"]
