@@ -1,18 +1,11 @@
 """``RealLensCamera``: camera rays traced from the film out through every lens element.
 
-Placement: the film is at the camera's origin and the lens extends along its local -Z
-(the camera looks down -Z, +Y up). Lens coordinates (mm, +z toward the film) map to
-camera space by x, y unchanged and Z = (z - film_z) / 1000 m. A real lens forms an
-inverted image; the film is read rotated by 180 degrees, so an object on the left of the
-scene appears on the left of the rendered image.
-
-Weights: a sample on the rear-element plane at distance z from the film carries
-cos^4(theta) * A_box / z^2 (irradiance from a uniform-radiance scene, where A_box is the
-area of the exit-pupil box it was drawn from), divided by the same quantity integrated at
-the film centre. So a uniform white scene renders 1.0 at the image centre at every f-stop
-(as Blender's cameras expose), while vignetting and the cos^4 fall-off are physical.
-Only the hero wavelength (column 0) is traced: its weight is multiplied by K and the
-other columns are 0.
+Set-up only: this class loads and stops down the lens, focuses it, finds the exit-pupil
+bounds, measures the centre irradiance and the wasted samples, and hands the render
+kernels ``kernel_tables()``; the ray itself is ``camera_kernel.camera_ray`` (placement,
+180-degree film rotation and weights are documented there). ``generate_rays`` is the
+batch form for numpy callers. Only the hero wavelength (column 0) is traced: its weight
+is multiplied by K and the other columns are 0.
 """
 
 from __future__ import annotations
@@ -26,10 +19,14 @@ from ..errors import PrismInputError
 from .exit_pupil import RADIAL_BINS, ExitPupilBounds
 from .lens_file import load_lens
 from .media import D_LINE_NM
-from .system import TOWARD_SCENE
+from .system import KERNEL_ARRAY
 
 WASTE_SAMPLES = 20000
-NORMALISATION_GRID = 96
+# The centre irradiance is integrated over a Fibonacci lattice (F_24 points; F_23 is its
+# generator): the passing region of the pupil is close to a square in the concentric map's
+# (u, v), so an axis-aligned grid would count its edge rows all in or all out (up to 2 %
+# off); the lattice's rows are slanted and it stays within ~0.1 %.
+NORMALISATION_POINTS, NORMALISATION_GENERATOR = 46368, 28657
 
 
 @lru_cache(maxsize=8)
@@ -87,13 +84,14 @@ class RealLensCamera:
                                  0.5 * self.film_height_mm + abs(self._shift_mm[1]))
         self.use_pupil_bounds = bool(getattr(settings, "use_pupil_bounds", True))
         self.pupil = _pupil_bounds(self.system, self.film_z_mm, film_radius, not self.use_pupil_bounds)
-        self._axial_mm = self.film_z_mm - self.system.rear_z_mm
-        self._normalisation = self._centre_irradiance()
-        if not self._normalisation > 0:
+        self._tables = self._build_tables(centre_irradiance=1.0)
+        centre_irradiance = self._centre_irradiance()
+        if not centre_irradiance > 0:
             raise PrismInputError(
                 f"Camera '{name}': no light reaches the film centre through lens '{self.system.name}'; "
                 "check the lens file and the focus settings."
             )
+        self._tables = self._tables._replace(centre_irradiance=centre_irradiance)
         m = np.asarray(camera.camera_to_world, dtype=np.float64)
         self._rotation, self._origin = m[:3, :3], m[:3, 3].copy()
         self.wasted_fraction, self.outside_image_circle_fraction = self._measure_waste(settings)
@@ -105,47 +103,56 @@ class RealLensCamera:
         if self.outside_image_circle_fraction > 0.001:
             self.strategy += f", {100 * self.outside_image_circle_fraction:.0f}% of the frame outside the image circle"
 
-    # ---- geometry -----------------------------------------------------------------------
+    # ---- rays ---------------------------------------------------------------------------
+    def kernel_tables(self):
+        """The ``camera_kernel.RealLensTables`` that ``camera_ray`` and ``film_point_mm`` read
+        (built once at set-up)."""
+        return self._tables
+
+    def _build_tables(self, centre_irradiance):
+        from .camera_kernel import RealLensTables
+
+        return RealLensTables(
+            lens=self.system.tables, pupil=self.pupil.tables, film_z_mm=float(self.film_z_mm),
+            centre_irradiance=float(centre_irradiance), width_px=float(self.width), height_px=float(self.height),
+            film_width_mm=self.film_width_mm, film_height_mm=self.film_height_mm,
+            shift_x_mm=float(self._shift_mm[0]), shift_y_mm=float(self._shift_mm[1]),
+        )
+
     def film_points_mm(self, pixel_xy):
-        """Film positions [N, 2] (lens x, y in mm) of raster positions, rotated 180 degrees."""
-        sx = (pixel_xy[:, 0] / self.width - 0.5) * self.film_width_mm + self._shift_mm[0]
-        sy = (0.5 - pixel_xy[:, 1] / self.height) * self.film_height_mm + self._shift_mm[1]
-        return np.column_stack([-sx, -sy])
+        """Film positions [N, 2] (lens x, y in mm) of raster positions [N, 2], rotated 180 degrees."""
+        from .camera_kernel import film_points_mm
 
-    def trace_from_film(self, film_xy_mm, lens_uv, wavelength_nm):
-        """Trace one ray per film point through a sample of its exit-pupil box.
+        pixel_xy = np.require(np.reshape(pixel_xy, (-1, 2)), np.float64, KERNEL_ARRAY)
+        film_xy = np.empty_like(pixel_xy)
+        film_points_mm(self._tables, pixel_xy, film_xy)
+        return film_xy
 
-        Returns (TraceResult in lens coordinates, weight [N]) where the weight already
-        includes the normalisation and is 0 for blocked rays.
-        """
-        points, area = self.pupil.sample(film_xy_mm, lens_uv)
-        film = np.column_stack([film_xy_mm, np.full(len(film_xy_mm), self.film_z_mm)])
-        direction = points - film
-        result = self.system.trace(film, direction, wavelength_nm, toward=TOWARD_SCENE)
-        cos_theta = self._axial_mm / np.linalg.norm(direction, axis=1)
-        weight = cos_theta**4 * area / self._axial_mm**2 / self._normalisation
-        return result, np.where(result.alive, weight, 0.0)
+    def camera_space_rays(self, film_xy_mm, lens_uv, wavelength_nm):
+        """``camera_ray`` for each film point [N, 2] (lens x, y, mm), lens sample [N, 2] and
+        wavelength [N]: (weight [N], origins [N, 3] in metres, unit directions [N, 3]) in camera space."""
+        from .camera_kernel import camera_rays
+
+        film_xy_mm = np.require(np.reshape(film_xy_mm, (-1, 2)), np.float64, KERNEL_ARRAY)
+        n = len(film_xy_mm)
+        lens_uv = np.require(np.reshape(lens_uv, (n, 2)), np.float64, KERNEL_ARRAY)
+        wavelength_nm = np.require(np.broadcast_to(wavelength_nm, (n,)), np.float64, KERNEL_ARRAY)
+        weight, origins, directions = np.empty(n), np.empty((n, 3)), np.empty((n, 3))
+        camera_rays(self._tables, film_xy_mm, lens_uv, wavelength_nm, weight, origins, directions)
+        return weight, origins, directions
 
     def generate_rays(self, pixel_xy, lens_uv, wavelength_nm):
-        """World-space rays for raster positions (see the camera contract in TEAM.md).
+        """World-space rays for raster positions.
 
         ``pixel_xy`` [N, 2], ``lens_uv`` [N, 2] in [0, 1), ``wavelength_nm`` [N, K]: column 0
         (the hero wavelength) is traced; weight [N, K] has K x the lens weight in column 0.
         """
-        pixel_xy = np.asarray(pixel_xy, dtype=np.float64)
-        lens_uv = np.asarray(lens_uv, dtype=np.float64)
         wavelength_nm = np.asarray(wavelength_nm, dtype=np.float64)
         if wavelength_nm.ndim == 1:
             wavelength_nm = wavelength_nm[:, None]
         n, k = wavelength_nm.shape
-        result, lens_weight = self.trace_from_film(self.film_points_mm(pixel_xy), lens_uv, wavelength_nm[:, 0])
-        origins_cam = result.origins.copy()
-        origins_cam[:, 2] -= self.film_z_mm
-        origins_cam *= 1e-3
-        directions_cam = result.directions.copy()
-        dead = ~result.alive
-        origins_cam[dead] = 0.0
-        directions_cam[dead] = (0.0, 0.0, -1.0)
+        lens_weight, origins_cam, directions_cam = self.camera_space_rays(
+            self.film_points_mm(pixel_xy), lens_uv, wavelength_nm[:, 0])
         origins = origins_cam @ self._rotation.T + self._origin
         directions = directions_cam @ self._rotation.T
         directions /= np.linalg.norm(directions, axis=1, keepdims=True)
@@ -155,17 +162,13 @@ class RealLensCamera:
 
     # ---- set-up measurements ------------------------------------------------------------
     def _centre_irradiance(self):
-        """Integral of cos^4 / z^2 over the passing part of the pupil seen from the film centre."""
-        g = NORMALISATION_GRID
-        u = (np.arange(g) + 0.5) / g
-        uv = np.column_stack([np.repeat(u, g), np.tile(u, g)])
-        centre = np.zeros((g * g, 2))
-        points, area = self.pupil.sample(centre, uv)
-        film = np.column_stack([centre, np.full(g * g, self.film_z_mm)])
-        direction = points - film
-        alive = self.system.trace(film, direction, D_LINE_NM, toward=TOWARD_SCENE).alive
-        cos_theta = self._axial_mm / np.linalg.norm(direction, axis=1)
-        return float(np.mean(np.where(alive, cos_theta**4, 0.0)) * area[0] / self._axial_mm**2)
+        """Integral of cos^4 / z^2 over the passing part of the pupil seen from the film centre
+        (the mean ``camera_ray`` weight at the d line, before normalisation, over a lattice)."""
+        n = NORMALISATION_POINTS
+        i = np.arange(n)
+        uv = np.column_stack([(i + 0.5) / n, ((i * NORMALISATION_GENERATOR) % n + 0.5) / n])
+        weight, _, _ = self.camera_space_rays(np.zeros((n, 2)), uv, D_LINE_NM)
+        return float(weight.mean())
 
     def _measure_waste(self, settings):
         """(blocked share of samples drawn inside non-empty pupil boxes, share of the frame with empty boxes)."""
@@ -176,5 +179,5 @@ class RealLensCamera:
         has_box = self.pupil.sample(film, np.zeros((WASTE_SAMPLES, 2)))[1] > 0
         if not has_box.any():
             return 1.0, 1.0
-        result, _ = self.trace_from_film(film[has_box], rng.random((int(has_box.sum()), 2)), wavelength[has_box])
-        return float(1.0 - result.alive.mean()), float(1.0 - has_box.mean())
+        weight, _, _ = self.camera_space_rays(film[has_box], rng.random((int(has_box.sum()), 2)), wavelength[has_box])
+        return float(1.0 - (weight > 0).mean()), float(1.0 - has_box.mean())

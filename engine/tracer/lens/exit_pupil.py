@@ -6,19 +6,20 @@ square, then finer inside what passed, at the ends of the visible range); the su
 rays' crossing points give, per radial bin, an axis-aligned box and an ellipse that hold
 them (grown by one grid cell), and the smaller of the two is sampled uniformly. Because
 the lens is rotationally symmetric, a film point at azimuth phi uses its bin's shape
-rotated by phi. Sampling that shape instead of the whole rear element wastes few rays;
-the radiometric weight (area / distance^2 x cos^4) keeps vignetting physical (the method
-of pbrt-v3's RealisticCamera, extended with the ellipse; this is our own code)."""
+rotated by phi (``pupil_sampling.py`` draws the samples). Sampling that shape instead of
+the whole rear element wastes few rays; the radiometric weight (area / distance^2 x cos^4)
+keeps vignetting physical (the method of pbrt-v3's RealisticCamera, extended with the
+ellipse; this is our own code)."""
 
 from __future__ import annotations
 
 import warnings
+from functools import cached_property
 
 import numpy as np
 
-from ..sampling import concentric_disk
 from .media import D_LINE_NM
-from .system import TOWARD_SCENE
+from .system import KERNEL_ARRAY, TOWARD_SCENE
 
 RADIAL_BINS = 64
 COARSE_GRID = 40
@@ -72,8 +73,10 @@ class ExitPupilBounds:
         film[:, 2] = self.film_z_mm
         target = np.column_stack([px.ravel(), py.ravel(), np.full(n, self.rear_z_mm)])
         passed = np.zeros(n, dtype=bool)
-        for wavelength_nm in wavelengths_nm:
-            passed |= self.system.trace(film, target - film, wavelength_nm, toward=TOWARD_SCENE).alive
+        for wavelength_nm in wavelengths_nm:  # a ray that passed at one wavelength needs no other
+            todo = np.flatnonzero(~passed)
+            passed[todo] = self.system.trace(film[todo], target[todo] - film[todo], wavelength_nm,
+                                             toward=TOWARD_SCENE).alive
         passed = passed.reshape(m, -1)
         out = np.column_stack([
             np.where(passed, px, np.inf).min(axis=1), np.where(passed, px, -np.inf).max(axis=1),
@@ -178,10 +181,6 @@ class ExitPupilBounds:
         r = np.hypot(film_xy_mm[:, 0], film_xy_mm[:, 1])
         return np.minimum((r / self.bin_width_mm).astype(np.int64), len(self.boxes) - 1)
 
-    def box_for(self, film_xy_mm):
-        """Box [N, 4] of the radial bin of each film point (before rotation)."""
-        return self.boxes[self.bin_of(film_xy_mm)]
-
     @staticmethod
     def _azimuth(film_xy_mm):
         r = np.hypot(film_xy_mm[:, 0], film_xy_mm[:, 1])
@@ -190,26 +189,27 @@ class ExitPupilBounds:
         sin_phi = np.where(safe, film_xy_mm[:, 1] / np.where(safe, r, 1.0), 0.0)
         return cos_phi, sin_phi
 
+    @cached_property
+    def tables(self):
+        """The bins as ``pupil_sampling.PupilTables`` for the compiled camera."""
+        from .pupil_sampling import PupilTables
+
+        return PupilTables(float(self.rear_z_mm), float(self.bin_width_mm), np.ascontiguousarray(self.boxes),
+                           np.ascontiguousarray(self.ellipses), np.ascontiguousarray(self.use_ellipse))
+
     def sample(self, film_xy_mm, uv):
         """Points [N, 3] on the rear vertex plane and the area [N] (mm^2) they were drawn from.
 
         ``film_xy_mm`` [N, 2] film positions, ``uv`` [N, 2] uniform in [0, 1)^2. Each film
         point samples its radial bin's shape (box or ellipse, whichever is smaller)
-        uniformly, rotated to the film point's azimuth.
+        uniformly, rotated to the film point's azimuth (``pupil_sampling.sample_exit_pupil``).
         """
-        k = self.bin_of(film_xy_mm)
-        box, ellipse, round_ = self.boxes[k], self.ellipses[k], self.use_ellipse[k]
-        bx = box[:, 0] + uv[:, 0] * (box[:, 1] - box[:, 0])
-        by = box[:, 2] + uv[:, 1] * (box[:, 3] - box[:, 2])
-        area = (box[:, 1] - box[:, 0]) * (box[:, 3] - box[:, 2])
-        if round_.any():
-            disk = concentric_disk(uv[round_])
-            e = ellipse[round_]
-            bx[round_] = e[:, 0] + e[:, 2] * disk[:, 0]
-            by[round_] = e[:, 1] + e[:, 3] * disk[:, 1]
-            area[round_] = np.pi * e[:, 2] * e[:, 3]
-        c, s = self._azimuth(film_xy_mm)
-        points = np.column_stack([c * bx - s * by, s * bx + c * by, np.full(len(bx), self.rear_z_mm)])
+        from .pupil_sampling import sample_exit_pupil_rows
+
+        film_xy_mm = np.require(np.reshape(film_xy_mm, (-1, 2)), np.float64, KERNEL_ARRAY)
+        uv = np.require(np.reshape(uv, (-1, 2)), np.float64, KERNEL_ARRAY)
+        points, area = np.empty((len(film_xy_mm), 3)), np.empty(len(film_xy_mm))
+        sample_exit_pupil_rows(self.tables, film_xy_mm, uv, points, area)
         return points, area
 
     def contains(self, film_xy_mm, rear_xy_mm):

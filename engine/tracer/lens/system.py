@@ -7,9 +7,9 @@ on the film side of the vertex (a front surface that bulges toward the scene); `
 flat surface. ``medium`` of a surface fills the space after it (toward the film); the
 scene side of the first surface and the film side of the last are air.
 
-Tracing is vectorised over rays; the only Python loop is over surfaces. A ray that misses
-a surface, falls outside its clear aperture (or the stop), or is totally internally
-reflected dies with weight 0 and its fate is recorded.
+``LensSystem.trace`` runs the one compiled lens tracer (``trace_kernel.py``) over a batch: a
+ray that misses a surface, falls outside its clear aperture (or the stop), or is totally
+internally reflected dies and its fate is recorded.
 """
 
 from __future__ import annotations
@@ -27,7 +27,9 @@ FATE_BLOCKED = 2  # outside the clear aperture or the aperture stop
 FATE_TIR = 3  # total internal reflection
 FATE_NAMES = {FATE_ALIVE: "alive", FATE_MISSED: "missed", FATE_BLOCKED: "blocked", FATE_TIR: "TIR"}
 
-TRACE_CHUNK = 16384
+# Arrays handed to the lens kernels are C-contiguous and writable (np.require copies
+# otherwise): a read-only or strided input would compile and cache another specialisation.
+KERNEL_ARRAY = ("C", "W")
 
 TOWARD_FILM = "film"
 TOWARD_SCENE = "scene"
@@ -166,8 +168,15 @@ class LensSystem:
         return self.with_stop_diameter(self.stop_diameter_mm * nominal / float(fstop))
 
     # ---- tracing --------------------------------------------------------------------
+    @cached_property
+    def tables(self):
+        """This system as the flat arrays (``tables.LensTables``) the compiled lens kernels read."""
+        from .tables import lens_tables
+
+        return lens_tables(self)
+
     def trace(self, origins, directions, wavelength_nm, toward=TOWARD_SCENE, record_path=False) -> TraceResult:
-        """Trace rays through every surface.
+        """Trace rays through every surface (one compiled loop over ``trace_kernel.trace_ray``).
 
         ``origins``/``directions`` [N, 3] in lens coordinates (mm; directions need not be
         unit), ``wavelength_nm`` [N] or scalar: each ray refracts with every medium's index
@@ -177,110 +186,18 @@ class LensSystem:
         """
         if toward not in (TOWARD_FILM, TOWARD_SCENE):
             raise ValueError(f"toward must be 'film' or 'scene', not {toward!r}")
-        o = np.asarray(origins, dtype=np.float64).reshape(-1, 3)
-        d = np.asarray(directions, dtype=np.float64).reshape(-1, 3)
+        from .trace_kernel import trace_rays  # numba loads when a lens is first traced, not when one is read
+
+        o = np.require(np.reshape(origins, (-1, 3)), np.float64, KERNEL_ARRAY)
+        d = np.require(np.reshape(directions, (-1, 3)), np.float64, KERNEL_ARRAY)
         n_rays = len(o)
-        wl = np.broadcast_to(np.asarray(wavelength_nm, dtype=np.float64), (n_rays,))
-        order = range(len(self.surfaces)) if toward == TOWARD_FILM else range(len(self.surfaces) - 1, -1, -1)
-        out = np.empty((6, n_rays))
-        out[:3] = o.T
-        out[3:] = (d / np.linalg.norm(d, axis=1, keepdims=True)).T
-        fate = np.zeros(n_rays, dtype=np.int8)
-        where = np.full(n_rays, -1, dtype=np.int32)
-        path = None
-        if record_path:
-            path = np.full((len(self.surfaces) + 1, n_rays, 3), np.nan)
-            path[0] = o
-        # Chunks small enough to stay in cache are several times faster than one big batch.
-        for start in range(0, n_rays, TRACE_CHUNK):
-            block = slice(start, min(start + TRACE_CHUNK, n_rays))
-            self._trace_block(out[:, block], wl[block], order, toward, fate[block], where[block],
-                              None if path is None else path[:, block])
-        alive = fate == FATE_ALIVE
-        return TraceResult(out[:3].T.copy(), out[3:].T.copy(), alive, fate, where, path, tuple(order))
-
-    def _trace_block(self, out, wl, order, toward, fate, where, path):
-        """Trace one block in place: ``out`` rows x, y, z, dx, dy, dz (one contiguous row per component)."""
-        state = out.copy()
-        ids = np.arange(state.shape[1])
-        for step, i in enumerate(order, start=1):
-            if not len(ids):
-                break
-            surface = self.surfaces[i]
-            z0 = self.vertex_z_mm[i]
-            t, hit_ok = _intersect(state, z0, surface.curvature_per_mm)
-            state[:3] += t * state[3:]
-            if path is not None:
-                path[step, ids[hit_ok]] = state[:3, hit_ok].T
-            inside = state[0] ** 2 + state[1] ** 2 <= surface.semi_aperture_mm**2
-            self._kill(fate, where, ids[~hit_ok], FATE_MISSED, i)
-            self._kill(fate, where, ids[hit_ok & ~inside], FATE_BLOCKED, i)
-            keep = hit_ok & inside
-            if not keep.all():
-                ids, state = ids[keep], state[:, keep]
-            if surface.is_stop:
-                continue
-            n1, n2 = (self.medium_before(i), surface.medium) if toward == TOWARD_FILM else (
-                surface.medium, self.medium_before(i))
-            if n1 is n2:
-                continue
-            wl_k = wl[ids]
-            eta = n1.index(wl_k) / n2.index(wl_k)
-            tir = _refract(state, z0, surface.curvature_per_mm, eta)
-            if tir.any():
-                self._kill(fate, where, ids[tir], FATE_TIR, i)
-                ids, state = ids[~tir], state[:, ~tir]
-        out[:, ids] = state
-
-    @staticmethod
-    def _kill(fate, where, ids, code, surface_index):
-        fate[ids] = code
-        where[ids] = surface_index
-
-
-def _intersect(state, z_vertex, c):
-    """Distance along the unit direction to the sphere cap (curvature ``c``) through the vertex.
-
-    ``state`` rows: x, y, z, dx, dy, dz. The sphere is c|p|^2 - 2 p_z = 0 (p relative to the
-    vertex), so a flat surface is the limit c = 0 without special cases. Of the two roots
-    (stable quadratic formula) the nearest one in front of the ray that lies on the
-    vertex's hemisphere (1 - c p_z > 0) is taken. Returns (t, ok).
-    """
-    x, y, z = state[0], state[1], state[2] - z_vertex
-    dx, dy, dz = state[3], state[4], state[5]
-    b = c * (x * dx + y * dy + z * dz) - dz
-    cc = c * (x * x + y * y + z * z) - 2.0 * z
-    disc = b * b - c * cc
-    real = disc >= 0.0
-    q = -(b + np.copysign(np.sqrt(np.where(real, disc, 0.0)), b))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        near = np.where(q != 0.0, cc / q, np.inf)
-        far = q / c if c != 0.0 else np.full_like(q, np.inf)
-        t = np.full_like(q, np.inf)
-        for root in (near, far):
-            valid = real & (root > 0.0) & np.isfinite(root) & (1.0 - c * (z + root * dz) > 0.0)
-            t = np.where(valid & (root < t), root, t)
-    ok = np.isfinite(t)
-    return np.where(ok, t, 0.0), ok
-
-
-def _refract(state, z_vertex, c, eta):
-    """Refract the directions in ``state`` (in place) at its points on the sphere of curvature ``c``.
-
-    ``eta`` = n_incident / n_transmitted per ray. Returns the mask of rays that are
-    totally internally reflected (their direction is left unchanged).
-    """
-    nx, ny, nz = c * state[0], c * state[1], c * (state[2] - z_vertex) - 1.0
-    inv = 1.0 / np.sqrt(nx * nx + ny * ny + nz * nz)
-    nx, ny, nz = nx * inv, ny * inv, nz * inv
-    dx, dy, dz = state[3], state[4], state[5]
-    cos_i = -(nx * dx + ny * dy + nz * dz)
-    sign = np.where(cos_i < 0.0, -1.0, 1.0)  # orient the normal against the ray
-    cos_i = cos_i * sign
-    k = 1.0 - eta * eta * (1.0 - cos_i * cos_i)
-    tir = k < 0.0
-    g = (eta * cos_i - np.sqrt(np.where(tir, 0.0, k))) * sign
-    new = np.stack([eta * dx + g * nx, eta * dy + g * ny, eta * dz + g * nz])
-    new *= 1.0 / np.sqrt((new * new).sum(axis=0))
-    state[3:] = np.where(tir, state[3:], new)
-    return tir
+        wl = np.require(np.broadcast_to(wavelength_nm, (n_rays,)), np.float64, KERNEL_ARRAY)
+        count = len(self.surfaces)
+        out_origins, out_directions = np.empty((n_rays, 3)), np.empty((n_rays, 3))
+        fate = np.empty(n_rays, dtype=np.int8)
+        where = np.empty(n_rays, dtype=np.int32)
+        paths = np.full((n_rays, count + 1, 3), np.nan) if record_path else None
+        trace_rays(self.tables, o, d, wl, toward == TOWARD_FILM, out_origins, out_directions, fate, where, paths)
+        order = range(count) if toward == TOWARD_FILM else range(count - 1, -1, -1)
+        path = None if paths is None else paths.transpose(1, 0, 2)
+        return TraceResult(out_origins, out_directions, fate == FATE_ALIVE, fate, where, path, tuple(order))
