@@ -1,7 +1,8 @@
 """The camera of a render, validated and turned into what the camera stage needs.
 
-``make_camera(camera, settings)`` returns a ``CameraSetup``: ``data`` (``stages.camera.CameraData`` for
-pinhole and thin-lens cameras), ``lens`` (the ``lens.camera.RealLensCamera`` of a real lens, else None),
+``make_camera(camera, settings)`` returns a ``CameraSetup``: ``data`` (``stages.camera.CameraData``: the
+pinhole or thin lens, and for every camera the pixel filter and orientation), ``lens`` and
+``lens_tables`` (the ``lens.camera.RealLensCamera`` of a real lens and its kernel tables, else None),
 ``disperses`` (a real lens refracts per wavelength: paths keep only their hero), ``strategy`` (for the
 render stats) and ``position`` (world metres: the origin of the render's camera-relative space).
 """
@@ -21,6 +22,7 @@ from .stages.camera import PINHOLE, THIN_LENS, CameraData, camera_data
 class CameraSetup:
     data: CameraData
     lens: object = None
+    lens_tables: object = None
     disperses: bool = False
     strategy: str = ""
     position: np.ndarray = None
@@ -52,8 +54,8 @@ def make_camera(camera, settings) -> CameraSetup:
         from .lens.camera import RealLensCamera
 
         lens = RealLensCamera(camera, settings)
-        return CameraSetup(camera_data(camera, settings, PINHOLE), lens=lens, disperses=True,
-                           strategy=lens.strategy, position=position)
+        return CameraSetup(camera_data(camera, settings, PINHOLE), lens=lens, lens_tables=lens.kernel_tables(),
+                           disperses=True, strategy=lens.strategy, position=position)
     raise PrismInputError(
         f"Camera '{camera.name}': unknown camera model '{camera.model}'; use pinhole, thin_lens or real_lens."
     )

@@ -7,7 +7,8 @@ disk so only the first render on a machine pays for compilation:
 - ``configure_cache(directory)`` chooses the cache directory; it must be called before the first kernel
   module is imported (Blender passes a folder under the extension's user directory, which is writable
   even when the extension itself is installed read-only). Kernels go to a subfolder named after the
-  package this copy of the tracer was imported as (``kernel_directory()``). Without it the directory is
+  package this copy of the tracer was imported as and the fingerprint of its sources
+  (``kernel_directory()``). Without it the directory is
   ``$PRISM_KERNEL_CACHE``, else ``$NUMBA_CACHE_DIR``, else a per-user cache folder
   (``~/.cache/prism-spectral/kernels`` on Linux, ``~/Library/Caches/...`` on macOS,
   ``%LOCALAPPDATA%\\prism-spectral\\kernels`` on Windows).
@@ -70,7 +71,14 @@ _PACKAGE = __name__[: -len("engine.tracer.jit")].rstrip(".") if __name__.endswit
 
 
 def kernel_directory() -> Path:
-    """The folder this copy of the tracer caches its kernels in (``cache_directory()`` / package name)."""
+    """The folder this copy of the tracer caches its kernels in: ``cache_directory()`` / package name /
+    source fingerprint. numba checks a cached function against its own file only, while kernels inline
+    functions from other files: one folder per version of the whole tracer keeps a change anywhere from
+    reusing stale machine code (older versions' folders are removed by ``mark_cache_warm``)."""
+    return _package_directory() / source_fingerprint()
+
+
+def _package_directory() -> Path:
     return cache_directory() / (_PACKAGE or "engine")
 
 
@@ -104,14 +112,21 @@ def inlined(function):
     return _njit_inline(function)
 
 
+_FINGERPRINT: list[str] = []
+
+
 def source_fingerprint() -> str:
     """Hash of the tracer's sources and the numba/llvmlite versions: changes whenever kernels recompile."""
-    digest = hashlib.sha256()
-    digest.update(numba.__version__.encode())
-    for path in sorted(_TRACER_ROOT.rglob("*.py")):
-        digest.update(str(path.relative_to(_TRACER_ROOT)).encode())
-        digest.update(path.read_bytes())
-    return digest.hexdigest()[:16]
+    if not _FINGERPRINT:
+        import llvmlite
+
+        digest = hashlib.sha256()
+        digest.update(f"{numba.__version__} {llvmlite.__version__}".encode())
+        for path in sorted(_TRACER_ROOT.rglob("*.py")):
+            digest.update(str(path.relative_to(_TRACER_ROOT)).encode())
+            digest.update(path.read_bytes())
+        _FINGERPRINT.append(digest.hexdigest()[:16])
+    return _FINGERPRINT[0]
 
 
 def _stamp() -> Path:
@@ -124,11 +139,14 @@ def cache_is_warm() -> bool:
 
 
 def mark_cache_warm() -> None:
-    """Record that every kernel of this tracer source is in the cache (stale stamps are removed)."""
-    directory = kernel_directory()
+    """Record that every kernel of this tracer source is in the cache; remove older versions' kernels."""
+    import shutil
+
+    current = kernel_directory()
     try:
-        for old in directory.glob(f"{_STAMP_PREFIX}*.ok"):
-            old.unlink(missing_ok=True)
+        for folder in _package_directory().iterdir():
+            if folder.is_dir() and folder != current and len(folder.name) == len(current.name):
+                shutil.rmtree(folder, ignore_errors=True)
         _stamp().write_text("compiled\n", encoding="utf-8")
     except OSError:
         pass  # a read-only cache only costs the message on the next start

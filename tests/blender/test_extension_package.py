@@ -190,7 +190,8 @@ def test_installed_zip_enables_and_renders(linux_zip, tmp_path):
     assert cache["directory"].startswith(str(user_dir)) and cache["directory"].endswith("kernel_cache")
     assert cache["jit_directory"] == cache["directory"]
     assert cache["numba_cache_dir"] == cache["kernel_directory"]
-    assert Path(cache["kernel_directory"]).parent == Path(cache["directory"])  # one folder per package name
+    # one folder per package name and version of the tracer sources
+    assert Path(cache["kernel_directory"]).parent.parent == Path(cache["directory"])
     if report["probe_kernel"]:  # one installed kernel compiled by hand: seen as run, and cached
         assert report["probe_kernel"] in report["kernel_cache_after_probe"]["kernels_run"]
         _assert_cached(report["kernel_cache_after_probe"], [report["probe_kernel"]])

@@ -19,22 +19,9 @@ import math
 from collections import namedtuple
 
 from ..jit import kernel
+from ..warps import concentric_disk
 
 PupilTables = namedtuple("PupilTables", "rear_z_mm bin_width_mm boxes ellipses use_ellipse")
-
-
-@kernel
-def concentric_disk_point(u0, u1):
-    """Shirley-Chiu map of (u0, u1) in [0, 1)^2 to the unit disk, area-uniform: (x, y)."""
-    a = 2.0 * u0 - 1.0
-    b = 2.0 * u1 - 1.0
-    if a == 0.0 and b == 0.0:
-        return 0.0, 0.0
-    if abs(a) > abs(b):
-        r, phi = a, (math.pi / 4.0) * (b / a)
-    else:
-        r, phi = b, math.pi / 2.0 - (math.pi / 4.0) * (a / b)
-    return r * math.cos(phi), r * math.sin(phi)
 
 
 @kernel
@@ -56,7 +43,7 @@ def sample_exit_pupil(pupil, film_x_mm, film_y_mm, u0, u1):
     k = int(position) if position < last else last
     if pupil.use_ellipse[k]:
         e = pupil.ellipses[k]
-        disk_x, disk_y = concentric_disk_point(u0, u1)
+        disk_x, disk_y = concentric_disk(u0, u1)
         x, y = e[0] + e[2] * disk_x, e[1] + e[3] * disk_y
         area = math.pi * e[2] * e[3]
     else:

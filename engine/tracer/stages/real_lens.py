@@ -1,14 +1,15 @@
-"""Camera rays through a real lens (bridge: the lens is traced by ``lens.camera.RealLensCamera``).
+"""Stage 1 for a real lens: new paths whose camera rays are traced through the lens elements.
 
-Paths are started as in ``camera`` (pixel, sample, wavelengths); the lens is traced at each path's
-hero wavelength, so the path starts collapsed: the hero column carries K × the lens weight.
+As ``camera`` (pixel, sample, wavelengths, filter), then each path's ray is traced from its film point
+through the lens at the path's hero wavelength (``lens.camera_kernel``): the lens disperses, so the
+path starts collapsed, its hero column carrying K × the lens weight (vignetting, cos⁴ fall-off; 0 when
+the lens blocks the ray, and then the path adds nothing).
 """
 
 from __future__ import annotations
 
-import numpy as np
-
 from ..jit import kernel
+from ..lens.camera_kernel import camera_ray, film_point_mm
 from ..sampler import SLOT_LENS, SLOT_PIXEL, sample_2d
 from ..state import COLLAPSED
 from .camera import draw_wavelengths, filter_offset, start_path
@@ -16,7 +17,12 @@ from .queue import push_ray
 
 
 @kernel
-def begin_lens_paths(state, camera, ws, settings, pixels, first, count, samples_per_pixel, first_sample, xy, uv, hero_nm):
+def real_lens_kernel(state, rays, camera, lens, ws, settings, pixels, first, count, samples_per_pixel, first_sample):
+    """Start paths ``first .. first + count`` of the pass through the lens ``lens`` (``RealLensTables``);
+    ``camera`` (``CameraData``) gives the filter and the camera's rotation. Returns the rays queued."""
+    queued = 0
+    k = state.throughput.shape[1]
+    r = camera.rotation
     for i in range(count):
         p = first + i
         pixel = pixels[p // samples_per_pixel]
@@ -24,36 +30,21 @@ def begin_lens_paths(state, camera, ws, settings, pixels, first, count, samples_
         ps = start_path(state, i, pixel, sample, settings.seed)
         draw_wavelengths(state, i, ws, settings.sampler, ps, sample)
         ux, uy = sample_2d(settings.sampler, ps, sample, SLOT_PIXEL)
-        uv[i, 0], uv[i, 1] = sample_2d(settings.sampler, ps, sample, SLOT_LENS)
-        xy[i, 0] = pixel % camera.width + filter_offset(camera, ux)
-        xy[i, 1] = pixel // camera.width + filter_offset(camera, uy)
-        hero_nm[i] = state.wavelength[i, state.hero[i]]
-
-
-@kernel
-def finish_lens_paths(state, rays, count, origin, direction, weight, offset):
-    queued = 0
-    k = state.throughput.shape[1]
-    for i in range(count):
+        lu, lv = sample_2d(settings.sampler, ps, sample, SLOT_LENS)
+        fx, fy = film_point_mm(lens, pixel % camera.width + filter_offset(camera, ux),
+                               pixel // camera.width + filter_offset(camera, uy))
         hero = state.hero[i]
+        weight, ox, oy, oz, dx, dy, dz = camera_ray(lens, fx, fy, lu, lv, state.wavelength[i, hero])
         for c in range(k):
-            state.throughput[i, c] = k * weight[i] if c == hero else 0.0
+            state.throughput[i, c] = k * weight if c == hero else 0.0
         state.flags[i] |= COLLAPSED
-        if not weight[i] > 0.0:
+        if not weight > 0.0:
             continue
-        o = (origin[i, 0] - offset[0], origin[i, 1] - offset[1], origin[i, 2] - offset[2])
+        origin = (r[0, 0] * ox + r[0, 1] * oy + r[0, 2] * oz, r[1, 0] * ox + r[1, 1] * oy + r[1, 2] * oz,
+                  r[2, 0] * ox + r[2, 1] * oy + r[2, 2] * oz)
+        direction = (r[0, 0] * dx + r[0, 1] * dy + r[0, 2] * dz, r[1, 0] * dx + r[1, 1] * dy + r[1, 2] * dz,
+                     r[2, 0] * dx + r[2, 1] * dy + r[2, 2] * dz)
         for c in range(3):
-            state.mis_origin[i, c] = o[c]
-        queued += push_ray(state, rays, queued, i, o, (direction[i, 0], direction[i, 1], direction[i, 2]))
+            state.mis_origin[i, c] = origin[c]
+        queued += push_ray(state, rays, queued, i, origin, direction)
     return queued
-
-
-def real_lens_camera(renderer, state, rays, first, count, samples_per_pixel, first_sample):
-    xy = np.empty((count, 2))
-    uv = np.empty((count, 2))
-    hero_nm = np.empty(count)
-    begin_lens_paths(state, renderer.camera.data, renderer.wavelengths, renderer.kernel_settings, renderer._pixels,
-                     first, count, samples_per_pixel, first_sample, xy, uv, hero_nm)
-    o, d, w = renderer.camera.lens.generate_rays(xy, uv, hero_nm[:, None])
-    return finish_lens_paths(state, rays, count, np.ascontiguousarray(o), np.ascontiguousarray(d),
-                             np.ascontiguousarray(w[:, 0]), renderer.camera.position)

@@ -9,6 +9,7 @@ from __future__ import annotations
 from .camera import camera_kernel
 from .emission import emission_kernel
 from .film import film_kernel
+from .real_lens import real_lens_kernel
 from .shade import shade_kernel
 from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
 
@@ -47,9 +48,9 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
         queued = camera_kernel(state, current, renderer.camera.data, renderer.wavelengths, settings,
                                renderer._pixels, first, count, samples_per_pixel, first_sample)
     else:
-        from .real_lens import real_lens_camera
-
-        queued = real_lens_camera(renderer, state, current, first, count, samples_per_pixel, first_sample)
+        queued = real_lens_kernel(state, current, renderer.camera.data, renderer.camera.lens_tables,
+                                  renderer.wavelengths, settings, renderer._pixels, first, count, samples_per_pixel,
+                                  first_sample)
     rejected[0] += count - queued
     rays_cast = 0
     for depth in range(settings.max_bounces + 2):
