@@ -144,6 +144,7 @@ def mark_cache_warm() -> None:
 
     current = kernel_directory()
     try:
+        current.mkdir(parents=True, exist_ok=True)
         for folder in _package_directory().iterdir():
             if folder.is_dir() and folder != current and len(folder.name) == len(current.name):
                 shutil.rmtree(folder, ignore_errors=True)
