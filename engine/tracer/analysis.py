@@ -3,7 +3,8 @@
 - Hero-wavelength termination only if a used glass disperses or the camera does (a real lens);
   otherwise every path carries all its wavelengths to the end.
 - Emissive meshes are light-sampled only if some used material emits.
-- Shadow rays cross free-standing films only if the scene has one (else one occlusion query each).
+- Shadow rays cross free-standing films and cut-outs only if the scene has one (else one occlusion query
+  each).
 - Wavelength sampling is guided toward emission lines only if an emitter has one.
 """
 
@@ -27,6 +28,7 @@ class SceneAnalysis:
     guided_lines: int = 0
     camera_strategy: str = ""
     see_through_films: bool = False
+    see_through_cutouts: bool = False
     sampler: str = "sobol"
 
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
@@ -46,6 +48,8 @@ class SceneAnalysis:
         parts.append("NEE+BSDF MIS" if use_mis else "NEE only (no MIS)")
         if self.see_through_films:
             parts.append("see-through film shadows")
+        if self.see_through_cutouts:
+            parts.append("see-through cut-out shadows")
         if self.features:
             parts.append("materials: " + ", ".join(self.features))
         parts.append(f"{pixel_filter} filter")

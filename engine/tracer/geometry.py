@@ -7,7 +7,8 @@ from the origin renders as it does at the origin. Zero-area and non-finite trian
 
 ``Geometry``: ``vertices`` float32 [V, 3] (camera-relative metres), ``triangles`` int32 [T, 3],
 ``material`` int32 [T], ``normals`` float32 [T, 3, 3] (unit shading normals at the corners) or
-[0, 3, 3] for flat shading.
+[0, 3, 3] for flat shading, ``attributes`` (``SurfaceArrays``: what node materials read, empty arrays
+when nothing does).
 """
 
 from __future__ import annotations
@@ -19,7 +20,11 @@ import numpy as np
 
 from .jit import inlined, kernel
 
-Geometry = namedtuple("Geometry", "vertices triangles material normals")
+Geometry = namedtuple("Geometry", "vertices triangles material normals attributes")
+
+#: UV maps, colour attributes and UV tangents per corner, instance of each triangle, instance rows, and
+#: the camera position (world = camera-relative + ``offset``); see ``scene.SurfaceAttributes``.
+SurfaceArrays = namedtuple("SurfaceArrays", "uvs colors tangents instance objects offset")
 
 # Secondary rays start this far (relative to the largest coordinate of the hit point) off the surface:
 # ~30 float32 ulps, above Embree's float32 error.
@@ -45,8 +50,34 @@ def prepare_geometry(scene, offset):
     if scene.corner_normals is not None and len(scene.corner_normals) == len(triangles):
         normals = np.ascontiguousarray(np.asarray(scene.corner_normals, dtype=np.float32)[original])
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
-                        np.ascontiguousarray(material), normals)
+                        np.ascontiguousarray(material), normals, surface_arrays(scene.surface, original, offset))
     return geometry, original, int(len(triangles) - len(original))
+
+
+def surface_arrays(surface, original, offset) -> SurfaceArrays:
+    """The kernels' view of ``scene.SurfaceAttributes`` for the kept triangles ``original``, with the camera
+    position ``offset`` folded into the world→object transforms."""
+    offset = np.asarray(offset, dtype=np.float64)
+    if surface is None:
+        return SurfaceArrays(np.zeros((0, 0, 3, 2), np.float32), np.zeros((0, 0, 3, 4), np.float32),
+                             np.zeros((0, 0, 3, 4), np.float32), np.zeros(0, np.int32), np.zeros((0, 27)), offset)
+
+    def kept(array, corner_width):
+        array = np.asarray(array, dtype=np.float32)
+        if array.shape[0] == 0:
+            return np.zeros((0, len(original), 3, corner_width), np.float32)
+        return np.ascontiguousarray(array[:, original])
+
+    objects = np.array(surface.instances, dtype=np.float64).reshape(-1, 27)
+    if len(objects):
+        linear = objects[:, :12].reshape(-1, 3, 4)
+        linear[:, :, 3] += linear[:, :, :3] @ offset
+        objects[:, :12] = linear.reshape(-1, 12)
+    instance = np.zeros(0, np.int32)
+    if surface.triangle_instance is not None:
+        instance = np.ascontiguousarray(np.asarray(surface.triangle_instance, dtype=np.int32)[original])
+    return SurfaceArrays(kept(surface.uvs, 2), kept(surface.colors, 4), kept(surface.tangents, 4), instance,
+                         np.ascontiguousarray(objects), offset)
 
 
 @inlined

@@ -33,7 +33,7 @@ from .errors import PrismInputError
 from .film import Film
 from .geometry import prepare_geometry
 from .lights.table import build_lights
-from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials, is_emissive
+from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, MAT_TRANSPARENT, build_materials, is_emissive
 from .sampler import SAMPLERS
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
@@ -138,6 +138,7 @@ class Renderer:
                 a.dispersive.append(material.glass or material.name)
         a.mesh_lights = any(flags[m] & MAT_EMISSIVE for m in used)
         a.see_through_films = any(flags[m] & MAT_NULL for m in used)
+        a.see_through_cutouts = any(flags[m] & MAT_TRANSPARENT for m in used)
         a.camera_disperses = self.camera.disperses
         a.camera_strategy = self.camera.strategy
         a.dispersion = bool(a.dispersive) or a.camera_disperses
@@ -160,7 +161,8 @@ class Renderer:
     def _buffers(self, paths: int) -> ChunkBuffers:
         buffers = getattr(self._local, "buffers", None)
         if buffers is None or buffers.capacity < paths:
-            buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count)
+            buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count,
+                                                         self.material_table.register_count)
         return buffers
 
     def _chunk(self, start, stop, spp):

@@ -48,6 +48,9 @@ class Material:
     thin-film interference over a dielectric or conductor.
     ``emission_strength`` > 0 makes the surface an emitter (radiance =
     strength x spectrum, as Cycles' Emission strength).
+    ``shader`` (a ``materials.shader.ShaderProgram``), when set, is the material as its Blender node
+    tree defines it and replaces the kind-based closure; the other fields then only describe it for
+    messages.
     """
 
     name: str
@@ -65,6 +68,7 @@ class Material:
     film_ior: float = 1.33
     emission: SpectrumSpec | None = None
     emission_strength: float = 0.0
+    shader: object = None
 
 
 @dataclass
@@ -140,6 +144,24 @@ class World:
 
 
 @dataclass
+class SurfaceAttributes:
+    """What node materials read at a hit besides positions and normals (``materials.hit_inputs``).
+
+    ``uvs`` float32 [S, T, 3, 2] (UV slot, triangle, corner), ``colors`` float32 [A, T, 3, 4] (colour
+    attributes, RGBA scene-linear), ``tangents`` float32 [S2, T, 3, 4] (unit UV tangent in world space and
+    the bitangent sign, per tangent slot), ``triangle_instance`` int32 [T] (row of ``instances``) and
+    ``instances`` float64 [I, OBJECT_ROW] (world→object transform, texture space, object info; see
+    ``materials.hit_inputs``). Slots are numbered by the material programs that read them.
+    """
+
+    uvs: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 3, 2), np.float32))
+    colors: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 3, 4), np.float32))
+    tangents: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 3, 4), np.float32))
+    triangle_instance: np.ndarray | None = None
+    instances: np.ndarray = field(default_factory=lambda: np.zeros((0, 27)))
+
+
+@dataclass
 class Scene:
     """Triangle soup plus materials, lights, camera and world.
 
@@ -149,7 +171,8 @@ class Scene:
     ``triangle_material`` int32 [T] indexes ``materials``, ``triangle_object``
     int32 [T] indexes ``object_names`` (for messages), ``corner_normals`` float32
     [T, 3, 3] (unit shading normals at each triangle corner) or None for flat
-    shading.
+    shading. ``surface`` holds UV maps, colour attributes, tangents and object data for node materials
+    (None when no material reads them).
     """
 
     vertices: np.ndarray
@@ -162,6 +185,7 @@ class Scene:
     triangle_object: np.ndarray | None = None
     object_names: list[str] = field(default_factory=list)
     corner_normals: np.ndarray | None = None
+    surface: SurfaceAttributes | None = None
 
     @property
     def triangle_count(self) -> int:

@@ -53,9 +53,11 @@ ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction dist
 PathList = namedtuple("PathList", "path")
 
 #: Per-thread working memory of the shading kernel (kernels allocate nothing): the resolved closures of
-#: one material (``rows`` [MAX_CLOSURES, CLOSURE_ROW], ``spectral`` [MAX_CLOSURES, 2, K], ``eta``
-#: [MAX_CLOSURES]) and spectral values [K] (``weight``, ``li``, ``f``, ``mix`` [2, K]).
-ShadingScratch = namedtuple("ShadingScratch", "rows spectral eta weight li f mix")
+#: one material (``rows`` [MAX_CLOSURES, CLOSURE_ROW], ``spectral`` [MAX_CLOSURES, 3, K], ``eta``
+#: [MAX_CLOSURES]), spectral values [K] (``weight``, ``li``, ``f``, ``mix`` [2, K]) and the register
+#: file of material programs (``registers``, as long as the render's largest program needs) with the
+#: closure rows an emitter's program may write while the vertex's are in use (``emitter_rows``).
+ShadingScratch = namedtuple("ShadingScratch", "rows spectral eta weight li f mix registers emitter_rows")
 
 
 def _shape(shape, n, k):
@@ -76,23 +78,24 @@ def new_shadow_queue(n: int, k: int) -> ShadowQueue:
     return ShadowQueue(new_ray_queue(n), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n))
 
 
-def new_shading_scratch(k: int) -> ShadingScratch:
+def new_shading_scratch(k: int, registers: int = 1) -> ShadingScratch:
     from .bsdf.closure import CLOSURE_ROW, MAX_CLOSURES
 
-    return ShadingScratch(np.empty((MAX_CLOSURES, CLOSURE_ROW)), np.empty((MAX_CLOSURES, 2, k)),
-                          np.empty(MAX_CLOSURES), np.empty(k), np.empty(k), np.empty(k), np.empty((2, k)))
+    return ShadingScratch(np.empty((MAX_CLOSURES, CLOSURE_ROW)), np.empty((MAX_CLOSURES, 3, k)),
+                          np.empty(MAX_CLOSURES), np.empty(k), np.empty(k), np.empty(k), np.empty((2, k)),
+                          np.zeros(max(int(registers), 1)), np.empty((MAX_CLOSURES, CLOSURE_ROW)))
 
 
 class ChunkBuffers:
     """Everything one worker thread needs to trace a chunk of up to ``n`` paths (reused chunk after chunk)."""
 
-    def __init__(self, n: int, k: int):
+    def __init__(self, n: int, k: int, registers: int = 1):
         self.capacity = n
         self.k = k
         self.state = new_path_state(n, k)
         self.rays = (new_ray_queue(n), new_ray_queue(n))  # this bounce's and the next
         self.surface = PathList(np.empty(n, np.int32))
         self.shadows = new_shadow_queue(n, k)
-        self.scratch = new_shading_scratch(k)
+        self.scratch = new_shading_scratch(k, registers)
         self.rgb = np.empty((n, 3))
         self.counters = np.zeros(1, np.int64)  # rays dropped as non-finite

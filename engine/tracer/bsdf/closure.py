@@ -1,17 +1,28 @@
 """A closure: one scattering model with its parameters, as a row of numbers (see ``materials``).
 
-Row layout (float64 [CLOSURE_ROW]); spectral parameters are spectrum-table ids, resolved per path into
-``spectral[2, K]`` (values at the path's wavelengths) before a BSDF function runs:
+Row layout (float64 [CLOSURE_ROW]). Spectral parameters are *sources*, resolved per path into
+``spectral[3, K]`` (values at the path's wavelengths) before a BSDF function runs: a source ≥ 0 is a
+spectrum-table id, -1 means 1 at every wavelength, and ``≤ -2`` is a colour computed at the hit by the
+material's program (``register_source``).
 
-- ``C_KIND``: ``DIFFUSE``, ``CONDUCTOR``, ``DIELECTRIC`` or ``THIN_FILM``.
-- ``C_WEIGHT``: the closure's weight in its material (f = Σ weight · f_closure).
-- ``C_SPECTRUM``: diffuse albedo, or a conductor's normal-incidence reflectance (Schlick) when it has
-  no measured n, k; -1 if unused. Resolved into ``spectral[0]``.
+- ``C_KIND``: ``DIFFUSE``, ``CONDUCTOR`` (any microfacet reflection), ``DIELECTRIC``, ``THIN_FILM``,
+  ``TRANSLUCENT`` or ``TRANSPARENT``.
+- ``C_WEIGHT``: how often the closure is sampled relative to the others of its material (≥ 0; the
+  estimated albedo times the mean tint); f = Σ tint · f_closure does not depend on it.
+- ``C_SPECTRUM`` (→ ``spectral[0]``): diffuse/translucent albedo; a conductor's F0 (Schlick, F82) or n;
+  the tint of a dielectric Fresnel's F0 (Principled Specular Tint).
+- ``C_S1`` (→ ``spectral[1]``): a conductor's k or F82 tint; a dielectric's transmission tint.
+- ``C_TINT`` (→ ``spectral[2]``): the closure's weight per wavelength (Mix/Add shader factors, colours of
+  Glossy, Glass, Transparent, Principled layering); -1 for 1. ``C_TINT_SCALE`` multiplies it (a
+  constant weight above 1 is a reflectance spectrum times its largest component).
+- ``C_MIRROR``: set per hit when a reflection closure shares a material with glass and the ray arrived
+  from inside: the glass needs the outward normal, the reflection sees its frame mirrored (``dispatch``).
 - ``C_ALPHA``: GGX alpha (Blender roughness²); below ``SMOOTH_ALPHA`` the lobe is a perfect mirror/glass.
+- ``C_FRESNEL``: a conductor's reflectance model (``FRESNEL_*``) or a dielectric's mode (``GLASS`` reflects
+  and refracts, ``REFRACTION_ONLY`` as Blender's Refraction BSDF).
+- ``C_ETA``: index of refraction of a ``FRESNEL_DIELECTRIC`` reflection (Principled specular, coat).
 - ``C_GLASS``: row of the material table's glass array (dielectrics); resolved into ``eta``.
 - ``C_COAT_NM``, ``C_COAT_IOR``: a thin-film coating over a conductor or dielectric (0 nm: none).
-- ``C_N``, ``C_K``: spectrum ids of a conductor's measured n and k (-1: Schlick). Resolved into
-  ``spectral[0]`` and ``spectral[1]``.
 - ``C_FILM_NM``, ``C_FILM_IOR``: a free-standing film (soap bubble).
 """
 
@@ -21,7 +32,10 @@ DIFFUSE = 0
 CONDUCTOR = 1
 DIELECTRIC = 2
 THIN_FILM = 3
-KIND_NAMES = {DIFFUSE: "diffuse", CONDUCTOR: "conductor", DIELECTRIC: "dielectric", THIN_FILM: "thin_film"}
+TRANSLUCENT = 4
+TRANSPARENT = 5
+KIND_NAMES = {DIFFUSE: "diffuse", CONDUCTOR: "conductor", DIELECTRIC: "dielectric", THIN_FILM: "thin_film",
+              TRANSLUCENT: "translucent", TRANSPARENT: "transparent"}
 
 C_KIND = 0
 C_WEIGHT = 1
@@ -30,15 +44,39 @@ C_ALPHA = 3
 C_GLASS = 4
 C_COAT_NM = 5
 C_COAT_IOR = 6
-C_N = 7
-C_K = 8
+C_S1 = 7
+C_TINT = 8
 C_FILM_NM = 9
 C_FILM_IOR = 10
-CLOSURE_ROW = 11
+C_FRESNEL = 11
+C_ETA = 12
+C_TINT_SCALE = 13
+C_MIRROR = 14
+CLOSURE_ROW = 15
+
+#: Spectral sources and the ``spectral`` slot each fills.
+SPECTRAL_SOURCES = (C_SPECTRUM, C_S1, C_TINT)
+
+# Conductor (microfacet reflection) reflectance models.
+FRESNEL_SCHLICK = 0  # F0 = spectral[0]
+FRESNEL_CONDUCTOR = 1  # measured n = spectral[0], k = spectral[1]
+FRESNEL_NONE = 2  # F = 1 (Blender's Glossy BSDF: the colour is the closure's tint)
+FRESNEL_F82 = 3  # F82-tint: F0 = spectral[0], tint at 82° = spectral[1] (Principled metallic)
+FRESNEL_DIELECTRIC = 4  # a dielectric's reflection at C_ETA, F0 tinted by spectral[0] (specular, coat)
+
+# Dielectric modes.
+GLASS = 0
+REFRACTION_ONLY = 1
 
 SMOOTH_ALPHA = 1e-3  # below this GGX alpha a lobe is treated as a perfect specular (delta) one
-MAX_CLOSURES = 8  # closures one material may combine
+MAX_CLOSURES = 16  # closures one material may combine
 
 # What a sampled direction was (returned by every ``sample``).
 SAMPLED_DELTA = 1
 SAMPLED_TRANSMISSION = 2
+SAMPLED_NULL = 4  # straight through without scattering (Transparent BSDF): a null event for MIS
+
+
+def register_source(register: int) -> float:
+    """The source value of a colour computed into registers ``register .. register + 2``."""
+    return float(-2 - int(register))

@@ -1,8 +1,10 @@
 """Conductors (metals): perfect mirror below ``SMOOTH_ALPHA``, else GGX with visible-normal sampling.
 
-Reflectance per wavelength: measured n + ik (``spectral[0]``, ``spectral[1]``), or Schlick's form of a
-normal-incidence reflectance ``spectral[0]`` (a base colour); either under an optional thin-film coating
-(then the base colour becomes the real index with that normal reflectance). Rough:
+Reflectance per wavelength (``C_FRESNEL``): measured n + ik (``spectral[0]``, ``spectral[1]``); Schlick's
+form of a normal-incidence reflectance ``spectral[0]`` (a base colour); F82-tint (Principled metallic);
+a dielectric's Fresnel at ``C_ETA`` (Principled specular and coat); or none (Glossy BSDF: F = 1). The
+measured, Schlick and dielectric forms can sit under a thin-film coating (the base colour then becomes
+the real index with that normal reflectance). Rough:
 f = D G2 F / (4 cos_o cos_i), sampled by D_wo with weight F G2 / G1(wo).
 """
 
@@ -11,28 +13,50 @@ from __future__ import annotations
 import math
 
 from ..jit import kernel
-from .closure import C_ALPHA, C_COAT_IOR, C_COAT_NM, C_N, SAMPLED_DELTA, SMOOTH_ALPHA
+from .closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FRESNEL, FRESNEL_CONDUCTOR, FRESNEL_DIELECTRIC,
+                      FRESNEL_F82, FRESNEL_NONE, SAMPLED_DELTA, SMOOTH_ALPHA)
 from .microfacet import ggx_d, ggx_g1, ggx_g2, reflect, sample_visible_normal, visible_normal_pdf
-from .optics import fresnel_conductor, thin_film_reflectance
+from .optics import dielectric_f0, fresnel_conductor, fresnel_dielectric, thin_film_reflectance, tinted_fresnel
+
+# F82-tint (Kutz et al., "Novel aspects of the Adobe Standard Material"): the Schlick curve less
+# b cos (1 - cos)^6, b fixed so that F(cos = 1/7, about 82°) is Schlick times the tint.
+_C82_5 = (6.0 / 7.0) ** 5
+_C82_WEIGHT = (1.0 / 7.0) * (6.0 / 7.0) ** 6
 
 
 @kernel
 def reflectance(row, spectral, cos_i, wavelength_nm, k):
     """Reflectance of the interface at wavelength column ``k`` for incidence cosine ``cos_i``."""
     cos_i = min(abs(cos_i), 1.0)
+    mode = int(row[C_FRESNEL])
+    if mode == FRESNEL_NONE:
+        return 1.0
     coated = row[C_COAT_NM] > 0.0
-    if row[C_N] >= 0.0:
+    if mode == FRESNEL_CONDUCTOR:
         if coated:
             return thin_film_reflectance(cos_i, wavelength_nm[k], row[C_COAT_NM], 1.0, row[C_COAT_IOR],
                                          complex(spectral[0, k], spectral[1, k]))
         return fresnel_conductor(cos_i, spectral[0, k], spectral[1, k])
+    if mode == FRESNEL_DIELECTRIC:
+        eta = row[C_ETA]
+        if coated:
+            f = thin_film_reflectance(cos_i, wavelength_nm[k], row[C_COAT_NM], 1.0, row[C_COAT_IOR],
+                                      complex(eta, 0.0))
+        else:
+            f = fresnel_dielectric(cos_i, eta)
+        return tinted_fresnel(f, dielectric_f0(eta), spectral[0, k], coated)
     f0 = spectral[0, k]
+    c = 1.0 - cos_i
+    c5 = c * c * c * c * c
+    if mode == FRESNEL_F82:
+        schlick = f0 + (1.0 - f0) * c5
+        b = (f0 + (1.0 - f0) * _C82_5) * (1.0 - spectral[1, k]) / _C82_WEIGHT
+        return min(max(schlick - b * cos_i * c5 * c, 0.0), 1.0)
     if coated:
         r = math.sqrt(min(max(f0, 0.0), 0.999))
         return thin_film_reflectance(cos_i, wavelength_nm[k], row[C_COAT_NM], 1.0, row[C_COAT_IOR],
                                      complex((1.0 + r) / (1.0 - r), 0.0))
-    c = 1.0 - cos_i
-    return f0 + (1.0 - f0) * c * c * c * c * c
+    return f0 + (1.0 - f0) * c5
 
 
 @kernel

@@ -1,9 +1,10 @@
 """One entry point per BSDF operation: a closure's kind picks its model; a material's closures combine.
 
-A material is a weighted sum of closures, f = Σ w_i f_i. Sampling picks closure i with probability
-w_i / Σ w and samples it; for a non-delta pick the weight and pdf are those of the whole sum (the
-other non-delta closures are evaluated: one-sample MIS over closures), for a delta pick the closure's
-own weight times Σ w. With one closure (every material Prism exports today) this is that closure.
+A material is a sum of closures, f = Σ t_i f_i with t_i(λ) the closure's tint (``spectral[i, 2]``).
+Sampling picks closure i with probability w_i / Σ w (``C_WEIGHT``: an estimate of the closure's share of
+the reflected light) and samples it; for a non-delta pick the weight and pdf are those of the whole
+sum (the other non-delta closures are evaluated: one-sample MIS over closures), for a delta pick the
+closure's own weight × t_i × Σ w / w_i. With one closure this is that closure times its tint.
 """
 
 from __future__ import annotations
@@ -11,15 +12,15 @@ from __future__ import annotations
 import math
 
 from ..jit import kernel
-from . import conductor, dielectric, diffuse, thin_film
-from .closure import (C_ALPHA, C_KIND, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA, SMOOTH_ALPHA,
-                      THIN_FILM)
+from . import conductor, dielectric, diffuse, thin_film, translucent, transparent
+from .closure import (C_ALPHA, C_KIND, C_MIRROR, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA, SMOOTH_ALPHA,
+                      THIN_FILM, TRANSLUCENT, TRANSPARENT)
 
 
 @kernel
 def closure_is_delta(row):
     kind = int(row[C_KIND])
-    if kind == THIN_FILM:
+    if kind == THIN_FILM or kind == TRANSPARENT:
         return True
     if kind == CONDUCTOR or kind == DIELECTRIC:
         return row[C_ALPHA] < SMOOTH_ALPHA
@@ -27,7 +28,7 @@ def closure_is_delta(row):
 
 
 @kernel
-def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+def _closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
     kind = int(row[C_KIND])
     if kind == DIFFUSE:
         return diffuse.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
@@ -35,11 +36,24 @@ def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u
         return conductor.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
     if kind == DIELECTRIC:
         return dielectric.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
+    if kind == TRANSLUCENT:
+        return translucent.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
+    if kind == TRANSPARENT:
+        return transparent.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
     return thin_film.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
 
 
 @kernel
-def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
+def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+    if row[C_MIRROR] > 0.0:
+        wi, pdf, flags, eta_scale = _closure_sample(row, spectral, eta, (wo[0], wo[1], -wo[2]), wavelength_nm, hero,
+                                                    collapsed, u0, u1, u2, weight)
+        return (wi[0], wi[1], -wi[2]), pdf, flags, eta_scale
+    return _closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
+
+
+@kernel
+def _closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
     kind = int(row[C_KIND])
     if kind == DIFFUSE:
         return diffuse.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
@@ -47,7 +61,26 @@ def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed,
         return conductor.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     if kind == DIELECTRIC:
         return dielectric.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
+    if kind == TRANSLUCENT:
+        return translucent.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
+    if kind == TRANSPARENT:
+        return transparent.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     return thin_film.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
+
+
+@kernel
+def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
+    if row[C_MIRROR] > 0.0:
+        return _closure_evaluate(row, spectral, eta, (wo[0], wo[1], -wo[2]), (wi[0], wi[1], -wi[2]), wavelength_nm,
+                                 hero, collapsed, f)
+    return _closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
+
+
+@kernel
+def _tinted(spectral, c, values):
+    tint = spectral[c, 2]
+    for k in range(values.shape[0]):
+        values[k] *= tint[k]
 
 
 @kernel
@@ -55,38 +88,54 @@ def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, 
     """Sample the material of ``count`` resolved closures: (wi, pdf, sampled flags, eta scale) and
     ``weight[k]`` = f |cos wi| / pdf. ``scratch`` is float64 [2, K]."""
     if count == 1:
-        return closure_sample(rows[0], spectral[0], eta[0], wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
+        result = closure_sample(rows[0], spectral[0], eta[0], wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
+        _tinted(spectral, 0, weight)
+        return result
     total = 0.0
     for c in range(count):
         total += rows[c, C_WEIGHT]
+    if not total > 0.0:
+        weight[:] = 0.0
+        return (0.0, 0.0, 1.0), 0.0, 0, 1.0
     target = u0 * total
-    chosen = count - 1
+    chosen = -1
     before = 0.0
+    start = 0.0
     for c in range(count):
-        if target < before + rows[c, C_WEIGHT] or c == count - 1:
+        w = rows[c, C_WEIGHT]
+        if w > 0.0:
             chosen = c
-            break
-        before += rows[c, C_WEIGHT]
+            start = before
+            if target < before + w:
+                break
+            before += w
+    if chosen < 0:
+        weight[:] = 0.0
+        return (0.0, 0.0, 1.0), 0.0, 0, 1.0
+    before = start
     w_chosen = rows[chosen, C_WEIGHT]
-    u_lobe = min(max((target - before) / w_chosen, 0.0), 0.9999999999999999) if w_chosen > 0.0 else 0.0
+    u_lobe = min(max((target - before) / w_chosen, 0.0), 0.9999999999999999)
     wi, pdf, flags, eta_scale = closure_sample(rows[chosen], spectral[chosen], eta[chosen], wo, wavelength_nm, hero,
                                                collapsed, u_lobe, u1, u2, weight)
     if flags & SAMPLED_DELTA or pdf <= 0.0:
+        _tinted(spectral, chosen, weight)
         for k in range(weight.shape[0]):
-            weight[k] *= total
+            weight[k] *= total / w_chosen
         return wi, pdf, flags, eta_scale
     cos = abs(wi[2])
     total_f = scratch[1]
+    tint = spectral[chosen, 2]
     for k in range(weight.shape[0]):
-        total_f[k] = w_chosen * weight[k] * pdf / cos if cos > 0.0 else 0.0
+        total_f[k] = tint[k] * weight[k] * pdf / cos if cos > 0.0 else 0.0
     mixture_pdf = w_chosen / total * pdf
     for c in range(count):
         if c == chosen or closure_is_delta(rows[c]):
             continue
         pdf_c = closure_evaluate(rows[c], spectral[c], eta[c], wo, wi, wavelength_nm, hero, collapsed, scratch[0])
         mixture_pdf += rows[c, C_WEIGHT] / total * pdf_c
+        tint = spectral[c, 2]
         for k in range(weight.shape[0]):
-            total_f[k] += rows[c, C_WEIGHT] * scratch[0, k]
+            total_f[k] += tint[k] * scratch[0, k]
     for k in range(weight.shape[0]):
         weight[k] = total_f[k] * cos / mixture_pdf if mixture_pdf > 0.0 else 0.0
     return wi, mixture_pdf, flags, eta_scale
@@ -96,7 +145,9 @@ def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, 
 def bsdf_evaluate(rows, spectral, eta, count, wo, wi, wavelength_nm, hero, collapsed, f, scratch):
     """``f[k]`` of the material (without the cosine); returns the pdf of ``bsdf_sample`` for ``wi``."""
     if count == 1:
-        return closure_evaluate(rows[0], spectral[0], eta[0], wo, wi, wavelength_nm, hero, collapsed, f)
+        pdf = closure_evaluate(rows[0], spectral[0], eta[0], wo, wi, wavelength_nm, hero, collapsed, f)
+        _tinted(spectral, 0, f)
+        return pdf
     total = 0.0
     for c in range(count):
         total += rows[c, C_WEIGHT]
@@ -104,7 +155,9 @@ def bsdf_evaluate(rows, spectral, eta, count, wo, wi, wavelength_nm, hero, colla
     pdf = 0.0
     for c in range(count):
         pdf_c = closure_evaluate(rows[c], spectral[c], eta[c], wo, wi, wavelength_nm, hero, collapsed, scratch[0])
-        pdf += rows[c, C_WEIGHT] / total * pdf_c
+        if total > 0.0:
+            pdf += rows[c, C_WEIGHT] / total * pdf_c
+        tint = spectral[c, 2]
         for k in range(f.shape[0]):
-            f[k] += rows[c, C_WEIGHT] * scratch[0, k]
+            f[k] += tint[k] * scratch[0, k]
     return pdf if math.isfinite(pdf) else 0.0

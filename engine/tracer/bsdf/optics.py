@@ -102,3 +102,30 @@ def thin_film_reflectance(cos_i, wavelength_nm, thickness_nm, n_incident, n_film
     rp = (r01p + r12p * phase2) / (1.0 + r01p * r12p * phase2)
     r = 0.5 * (rs.real * rs.real + rs.imag * rs.imag + rp.real * rp.real + rp.imag * rp.imag)
     return min(max(r, 0.0), 1.0)
+
+
+@kernel
+def dielectric_f0(eta):
+    """Normal-incidence reflectance of an interface of relative index ``eta``."""
+    r = (eta - 1.0) / (eta + 1.0)
+    return r * r
+
+
+@kernel
+def tinted_fresnel(f, f0_real, tint, iridescent):
+    """Blender's Specular Tint: a dielectric's reflectance ``f`` (normal-incidence value ``f0_real``) with
+    F0 scaled by ``tint`` and grazing reflection kept at 1. ``f`` is remapped from [f0_real, 1] to
+    [f0_real · tint, 1]; for a thin-film (``iridescent``) reflectance, which may fall below f0_real, ``f`` is
+    scaled by tint as far as it is near f0_real instead. ``tint`` 1 returns ``f``."""
+    if tint == 1.0:
+        return f
+    f0 = min(max(f0_real * tint, 0.0), 1.0)
+    if iridescent:
+        if f0_real <= 1e-5 or f == 1.0:
+            return f
+        s = min(max((f - 1.0) / (f0_real - 1.0), 0.0), 1.0)
+        return f * (1.0 + (f0 / f0_real - 1.0) * s)
+    if f0_real >= 1.0:
+        return f
+    s = min(max((f - f0_real) / (1.0 - f0_real), 0.0), 1.0)
+    return f0 + (1.0 - f0) * s

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 from ..jit import inlined
+from ..materials.emitters import emission_at
+from ..materials.table import MAT_EMISSION_VARIES
 from ..spectra.table import spectrum_value
 from . import area, mesh, point, sun
 from .row import DISK, L_KIND, L_SPECTRUM, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
@@ -25,18 +27,23 @@ def pick_light(lights, u):
 
 
 @inlined
-def sample_light(lights, materials, spectra, p, u_select, u1, u2, wavelength_nm, li):
+def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wavelength_nm, li, rows, regs):
     """Sample one light for the point ``p``: (wi, distance (inf: distant), pdf including the light's
-    selection probability, delta); ``li[k]`` = incident radiance (irradiance for delta lights)."""
+    selection probability, delta); ``li[k]`` = incident radiance (irradiance for delta lights). ``rows``
+    and ``regs`` are scratch memory for emissive materials whose emission varies over the surface."""
     index, u_rest = pick_light(lights, u_select)
     row = lights.rows[index]
     kind = int(row[L_KIND])
     if kind == MESH:
-        wi, dist, pdf, material = mesh.sample_li(lights.mesh, p, u_rest, u1, u2)
-        strength = materials.emission_strength[material]
-        sid = materials.emission_spectrum[material]
-        for k in range(li.shape[0]):
-            li[k] = strength * spectrum_value(spectra, sid, wavelength_nm[k])
+        wi, dist, pdf, material, triangle, b1, b2 = mesh.sample_point(lights.mesh, p, u_rest, u1, u2)
+        if materials.flags[material] & MAT_EMISSION_VARIES:
+            emission_at(materials, spectra, geometry, material, triangle, b1, b2, (-wi[0], -wi[1], -wi[2]),
+                        wavelength_nm, rows, regs, li)
+        else:
+            strength = materials.emission_strength[material]
+            sid = materials.emission_spectrum[material]
+            for k in range(li.shape[0]):
+                li[k] = strength * spectrum_value(spectra, sid, wavelength_nm[k])
         return wi, dist, pdf * lights.select_prob[index], False
     if kind == POINT or kind == SPHERE:
         wi, dist, pdf, factor = point.sample_li(row, p, u1, u2)

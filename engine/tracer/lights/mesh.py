@@ -69,6 +69,13 @@ def pick(emitters, u):
 @inlined
 def sample_li(emitters, p, u0, u1, u2):
     """(wi, distance, solid-angle pdf, material) of a point on an emissive triangle."""
+    wi, dist, pdf, material, _, _, _ = sample_point(emitters, p, u0, u1, u2)
+    return wi, dist, pdf, material
+
+
+@inlined
+def sample_point(emitters, p, u0, u1, u2):
+    """``sample_li`` and where the point is: (..., geometry triangle, barycentrics b1, b2)."""
     e = pick(emitters, u0)
     g = emitters.geometry[e]
     b1, b2 = uniform_triangle(u1, u2)
@@ -77,13 +84,14 @@ def sample_li(emitters, p, u0, u1, u2):
     wz = g[2] + b1 * g[5] + b2 * g[8] - p[2]
     dist = math.sqrt(wx * wx + wy * wy + wz * wz)
     material = emitters.material[e]
+    triangle = emitters.triangle[e]
     if dist <= 0.0:
-        return (0.0, 0.0, 1.0), 0.0, 0.0, material
+        return (0.0, 0.0, 1.0), 0.0, 0.0, material, triangle, b1, b2
     wi = (wx / dist, wy / dist, wz / dist)
     cos_l = abs(wi[0] * g[9] + wi[1] * g[10] + wi[2] * g[11])
     if cos_l <= 0.0:
-        return wi, dist, 0.0, material
-    return wi, dist, emitters.probability[e] / g[12] * dist * dist / cos_l, material
+        return wi, dist, 0.0, material, triangle, b1, b2
+    return wi, dist, emitters.probability[e] / g[12] * dist * dist / cos_l, material, triangle, b1, b2
 
 
 @inlined

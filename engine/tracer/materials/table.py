@@ -1,18 +1,23 @@
-"""``scene.Material`` list → ``MaterialArrays``: closure rows, glass rows, emission, capability flags.
+"""``scene.Material`` list → ``MaterialArrays``: closure rows, glass rows, emission, programs, textures, flags.
 
-Each material is ``closure_count`` consecutive rows of ``closures`` (see ``bsdf.closure``) starting at
-``closure_start``, plus an emission (spectrum id and strength; strength 0 = not emissive) and flags
-that let the kernels decide without looking at kinds:
+Every material is a ``ShaderProgram`` (``materials.shader``): its node tree compiled by the export layer,
+or one closure for a kind-described material (``legacy``). Each material is ``closure_count``
+consecutive rows of ``closures`` (see ``bsdf.closure``) starting at ``closure_start``; an emission
+(spectrum id and strength; strength 0 = not emissive); and, when something varies over the surface,
+a program (``programs``, run per hit by ``materials.surface``) with the textures it reads. Flags let
+the kernels decide without looking at kinds:
 
 - ``MAT_DELTA``: every closure is a delta lobe, so no light sampling at its vertices;
 - ``MAT_DISPERSIVE``: a closure refracts at a wavelength-dependent index (paths keep only their hero);
 - ``MAT_NULL``: a free-standing film, which shadow rays pass through (attenuated) and which paths cross
   as a null event for MIS;
 - ``MAT_ONE_SIDED``: the shading frame is not flipped to face the ray (glass: inside and outside differ);
-- ``MAT_EMISSIVE``: the surface emits (and is light-sampled as part of the emissive meshes).
-
-Texture lookups and node-built layered materials (issue 12) extend this table: closure parameters that
-vary over a surface get resolved per hit in ``materials.resolve`` into the same row layout.
+- ``MAT_EMISSIVE``: the surface emits (and is light-sampled as part of the emissive meshes);
+- ``MAT_PROGRAM``: a program runs at each hit (textures, layering, anything that varies);
+- ``MAT_TRANSPARENT``: a Transparent closure lets light straight through (cut-outs): shadow rays pass,
+  attenuated by it;
+- ``MAT_EMISSION_VARIES``: the emission is computed per hit (its strength here is an estimate for light
+  selection).
 """
 
 from __future__ import annotations
@@ -22,50 +27,33 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..bsdf.closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_FILM_IOR, C_FILM_NM, C_GLASS, C_K, C_KIND, C_N,
-                            C_SPECTRUM, C_WEIGHT, CLOSURE_ROW, CONDUCTOR, DIELECTRIC, DIFFUSE, SMOOTH_ALPHA,
-                            THIN_FILM)
+from ..bsdf.closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C_FILM_NM, C_FRESNEL, C_GLASS,
+                            C_KIND, C_MIRROR, C_S1, C_SPECTRUM, C_TINT, C_TINT_SCALE, C_WEIGHT, CLOSURE_ROW,
+                            CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT,
+                            TRANSPARENT, register_source)
 from ..errors import PrismInputError
 from ..scene import SpectrumSpec
 from ..spectra.dispersion import GLASS_ROW, glass_row
+from . import opcodes as op
+from .legacy import glass_of, is_emissive, legacy_shader  # noqa: F401  (re-exported)
+from .program import ProgramArrays
 
 MAT_DELTA = 1
 MAT_DISPERSIVE = 2
 MAT_NULL = 4
 MAT_ONE_SIDED = 8
 MAT_EMISSIVE = 16
+MAT_PROGRAM = 32
+MAT_TRANSPARENT = 64
+MAT_EMISSION_VARIES = 128
 
 MaterialArrays = namedtuple(
-    "MaterialArrays", "flags closure_start closure_count emission_spectrum emission_strength closures glasses"
+    "MaterialArrays",
+    "flags closure_start closure_count emission_spectrum emission_strength closures glasses programs textures lut "
+    "white_emission",
 )
 
-
-def is_emissive(material) -> bool:
-    """True if the material emits light (strength > 0 and a non-black spectrum)."""
-    if not material.emission_strength > 0:
-        return False
-    spec = material.emission
-    return spec is None or spec.kind != "rgb" or max(spec.rgb) > 0
-
-
-def glass_of(material):
-    """The material's ``Glass``: catalogue name, n_d/V_d, n_d alone, or the constant ``ior``."""
-    from ..spectra import glass
-
-    if material.glass:
-        return glass.glass_by_name(material.glass)
-    if material.glass_nd is not None and material.glass_vd is not None:
-        return glass.glass_from_abbe(material.glass_nd, material.glass_vd)
-    if material.glass_nd is not None:
-        return glass.constant_ior(material.glass_nd)
-    return glass.constant_ior(material.ior)
-
-
-def _alpha(material) -> float:
-    r = float(material.roughness)
-    if not 0.0 <= r <= 1.0:
-        raise PrismInputError(f"Material '{material.name}': roughness must be within 0-1 (got {r}).")
-    return r * r
+_FEATURES = {DIFFUSE: "diffuse", TRANSLUCENT: "translucent", TRANSPARENT: "transparent", THIN_FILM: "thin_film"}
 
 
 @dataclass
@@ -75,91 +63,169 @@ class MaterialTable:
     arrays: MaterialArrays
     glasses: list = field(default_factory=list)  # the Glass object of each glass row (names, warnings)
     features: list = field(default_factory=list)  # e.g. "smooth dielectric", for the render stats
+    register_count: int = 1  # registers a program needs at most (the scratch size)
 
 
-def _closure(material, spectra, glasses, glass_index):
-    row = np.full(CLOSURE_ROW, -1.0)
-    row[[C_WEIGHT, C_ALPHA, C_COAT_NM, C_COAT_IOR, C_FILM_NM, C_FILM_IOR]] = (1.0, 0.0, 0.0, 1.0, 0.0, 1.0)
-    kind = material.kind
-    if kind == "diffuse":
-        row[C_KIND] = DIFFUSE
-        row[C_SPECTRUM] = spectra.reflectance(material.base_color)
-        return row, "diffuse"
-    if kind in ("conductor", "dielectric"):
-        row[C_ALPHA] = _alpha(material)
-        if material.coating_thickness_nm > 0:
-            row[C_COAT_NM] = float(material.coating_thickness_nm)
-            row[C_COAT_IOR] = float(material.coating_ior)
-            if not row[C_COAT_IOR] > 0:
-                raise PrismInputError(
-                    f"Material '{material.name}': the coating's IOR must be positive (got {material.coating_ior})."
-                )
-        smooth = row[C_ALPHA] < SMOOTH_ALPHA
-    if kind == "conductor":
-        row[C_KIND] = CONDUCTOR
-        if material.conductor:
-            from ..spectra.conductors import _lookup
+def _source(colour, spectra, name, bounded=True):
+    """A spectral source value for ``colour`` (``shader.Colour`` or None) and its scale."""
+    if colour is None:
+        return -1.0, 1.0
+    if colour.register is not None:
+        return register_source(colour.register), 1.0
+    if colour.spectrum is not None:
+        what, metal = colour.spectrum
+        from ..spectra.conductors import _lookup
 
-            table_nm, n, k = _lookup(material.conductor)
-            row[C_N] = spectra.resampled(("n", material.conductor), table_nm, n)
-            row[C_K] = spectra.resampled(("k", material.conductor), table_nm, k)
+        table_nm, n, k = _lookup(metal)
+        return float(spectra.resampled((what, metal), table_nm, n if what == "n" else k)), 1.0
+    rgb = np.asarray(colour.rgb, dtype=np.float64)
+    if not np.all(np.isfinite(rgb)) or np.any(rgb < 0):
+        raise PrismInputError(f"Material '{name}': a colour is negative, NaN or infinite; pick a colour again.")
+    scale = 1.0
+    largest = float(rgb.max())
+    if largest > 1.0:
+        if bounded:
+            rgb = np.minimum(rgb, 1.0)
         else:
-            row[C_SPECTRUM] = spectra.reflectance(material.base_color)
-        return row, ("mirror conductor" if smooth else "rough conductor")
-    if kind == "dielectric":
-        row[C_KIND] = DIELECTRIC
-        glass = glass_of(material)
+            scale, rgb = largest, rgb / largest
+    if largest >= 1.0 and not bounded and np.all(rgb == rgb[0]):
+        return -1.0, scale
+    return float(spectra.reflectance(tuple(rgb))), scale
+
+
+def _row(spec, spectra, glasses, glass_index, name):
+    row = np.full(CLOSURE_ROW, -1.0)
+    row[C_KIND] = spec.kind
+    row[C_WEIGHT] = max(float(spec.selection), 0.0)
+    row[C_ALPHA] = float(spec.alpha)
+    row[C_COAT_NM], row[C_COAT_IOR] = float(spec.coat_nm), float(spec.coat_ior)
+    row[C_FILM_NM], row[C_FILM_IOR] = float(spec.film_nm), float(spec.film_ior)
+    row[C_FRESNEL] = float(spec.fresnel)
+    row[C_ETA] = float(spec.eta)
+    row[C_MIRROR] = 0.0
+    row[C_SPECTRUM], _ = _source(spec.s0, spectra, name)
+    row[C_S1], _ = _source(spec.s1, spectra, name)
+    row[C_TINT], row[C_TINT_SCALE] = _source(spec.tint, spectra, name, bounded=False)
+    if spec.kind == DIELECTRIC:
+        glass = spec.glass
+        if glass is None:
+            from ..spectra import glass as glass_module
+
+            glass = glass_module.constant_ior(spec.eta)
         key = id(glass)
         if key not in glass_index:
             glass_index[key] = len(glasses)
             glasses.append(glass)
         row[C_GLASS] = glass_index[key]
-        return row, ("smooth dielectric" if smooth else "rough dielectric")
-    if kind == "thin_film":
-        if not (material.film_thickness_nm >= 0 and material.film_ior > 0):
-            raise PrismInputError(f"Material '{material.name}': film thickness and IOR must be positive.")
-        row[C_KIND] = THIN_FILM
-        row[C_FILM_NM] = float(material.film_thickness_nm)
-        row[C_FILM_IOR] = float(material.film_ior)
-        return row, "thin_film"
-    raise PrismInputError(
-        f"Material '{material.name}': unknown kind '{kind}'; use diffuse, conductor, dielectric or thin_film."
-    )
+    return row
+
+
+def _feature(spec):
+    if spec.kind in _FEATURES:
+        return _FEATURES[spec.kind]
+    smooth = spec.alpha < SMOOTH_ALPHA
+    if spec.kind == CONDUCTOR:
+        return "mirror conductor" if smooth else "rough conductor"
+    return "smooth dielectric" if smooth else "rough dielectric"
+
+
+def _is_delta(spec):
+    if spec.kind in (THIN_FILM, TRANSPARENT):
+        return True
+    return spec.kind in (CONDUCTOR, DIELECTRIC) and spec.alpha < SMOOTH_ALPHA
 
 
 def build_materials(materials, used, spectra) -> MaterialTable:
     """Tables for ``materials`` (``scene.Material``); only indices in ``used`` get closures.
     ``spectra`` is the render's ``SpectrumTable``."""
+    from ..spectra.rgb_lut import empty_lut, load_lut
+    from ..textures.image import build_textures
+    from .layering import load_tables
+
     count = len(materials)
     flags = np.zeros(count, np.int32)
     start = np.zeros(count, np.int32)
     closure_count = np.zeros(count, np.int32)
     emission_spectrum = np.zeros(count, np.int32)
     emission_strength = np.zeros(count)
+    p_start, p_count = np.zeros(count, np.int32), np.zeros(count, np.int32)
+    c_start, c_count = np.zeros(count, np.int32), np.zeros(count, np.int32)
+    normal, emission_register = np.full(count, -1, np.int32), np.full(count, -1, np.int32)
     rows, glasses, glass_index, features = [], [], {}, set()
+    instructions, constants, images, image_index = [], [], [], {}
+    needs_lut = False
+    register_count = 1
     for m, material in enumerate(materials):
         if m not in used:
             continue
-        row, feature = _closure(material, spectra, glasses, glass_index)
-        features.add(feature)
-        start[m], closure_count[m] = len(rows), 1
-        rows.append(row)
-        if material.kind in ("conductor", "dielectric") and material.coating_thickness_nm > 0:
-            features.add("thin-film coating")
-        if row[C_KIND] == THIN_FILM or (row[C_KIND] != DIFFUSE and row[C_ALPHA] < SMOOTH_ALPHA):
+        shader = material.shader if material.shader is not None else legacy_shader(material)
+        closures = shader.closures
+        if len(closures) > MAX_CLOSURES:
+            raise PrismInputError(
+                f"Material '{material.name}' combines {len(closures)} shaders; Prism renders at most {MAX_CLOSURES} "
+                "per material: simplify its Mix/Add shaders."
+            )
+        start[m], closure_count[m] = len(rows), len(closures)
+        for spec in closures:
+            rows.append(_row(spec, spectra, glasses, glass_index, material.name))
+            features.add(_feature(spec))
+            if spec.coat_nm > 0 and spec.kind in (CONDUCTOR, DIELECTRIC):
+                features.add("thin-film coating")
+            if spec.kind == DIELECTRIC:
+                flags[m] |= MAT_ONE_SIDED
+                if glasses[int(rows[-1][C_GLASS])].is_dispersive:
+                    flags[m] |= MAT_DISPERSIVE
+            if spec.kind == THIN_FILM:
+                flags[m] |= MAT_NULL
+            if spec.kind == TRANSPARENT:
+                flags[m] |= MAT_TRANSPARENT
+            needs_lut = needs_lut or any(c is not None and c.varies for c in (spec.tint, spec.s0, spec.s1))
+        if closures and all(_is_delta(spec) for spec in closures):
             flags[m] |= MAT_DELTA
-        if material.kind == "thin_film":
-            flags[m] |= MAT_NULL
-        if material.kind == "dielectric":
-            flags[m] |= MAT_ONE_SIDED
-            if glasses[int(row[C_GLASS])].is_dispersive:
-                flags[m] |= MAT_DISPERSIVE
-        if is_emissive(material):
-            flags[m] |= MAT_EMISSIVE
-            emission_spectrum[m] = spectra.emission(material.emission or SpectrumSpec())
-            emission_strength[m] = float(material.emission_strength)
-    closures = np.array(rows, dtype=np.float64).reshape(-1, CLOSURE_ROW)
+        if shader.has_program:
+            flags[m] |= MAT_PROGRAM
+            features.add("node program")
+            program = np.array(shader.instructions, dtype=np.int32).reshape(-1, op.INSTRUCTION).copy()
+            local = []
+            for image in shader.images:
+                key = id(image.texels)
+                if key not in image_index:
+                    image_index[key] = len(images)
+                    images.append(image)
+                local.append(image_index[key])
+            for ins in program:
+                if ins[op.OP] == op.IMAGE:
+                    ins[op.B] = local[ins[op.B]]
+            if shader.images:
+                features.add("image textures")
+            p_start[m], p_count[m] = len(instructions), len(program)
+            instructions.extend(program.tolist())
+            c_start[m], c_count[m] = len(constants), len(shader.constants)
+            constants.extend(np.asarray(shader.constants, dtype=np.float64).tolist())
+            register_count = max(register_count, len(shader.constants), shader.register_count)
+            normal[m] = shader.normal
+        emission = shader.emission
+        if emission is not None and shader.emission_strength > 0:
+            if emission.register is not None:
+                if not shader.has_program:
+                    raise PrismInputError(f"Material '{material.name}': a varying emission needs a program.")
+                flags[m] |= MAT_EMISSIVE | MAT_EMISSION_VARIES
+                emission_register[m] = emission.register
+                emission_strength[m] = float(shader.emission_strength)
+                needs_lut = True
+            else:
+                spec = emission.spectrum if emission.spectrum is not None else SpectrumSpec("rgb", tuple(emission.rgb))
+                if spec.kind != "rgb" or max(spec.rgb) > 0:
+                    flags[m] |= MAT_EMISSIVE
+                    emission_spectrum[m] = spectra.emission(spec)
+                    emission_strength[m] = float(shader.emission_strength)
+    closure_rows = np.array(rows, dtype=np.float64).reshape(-1, CLOSURE_ROW)
     glass_rows = np.array([glass_row(g) for g in glasses] or [glass_row(None)]).reshape(-1, GLASS_ROW)
+    programs = ProgramArrays(p_start, p_count, c_start, c_count, normal, emission_register,
+                             np.array(instructions or [[0] * op.INSTRUCTION], dtype=np.int32).reshape(-1, op.INSTRUCTION),
+                             np.array(constants or [0.0], dtype=np.float64), load_tables())
+    white = spectra.emission(SpectrumSpec()) if needs_lut else 0
     arrays = MaterialArrays(flags, start, closure_count, emission_spectrum, emission_strength,
-                            closures if len(closures) else np.zeros((1, CLOSURE_ROW)), glass_rows)
-    return MaterialTable(arrays, glasses, sorted(features))
+                            closure_rows if len(closure_rows) else np.zeros((1, CLOSURE_ROW)), glass_rows, programs,
+                            build_textures(images), load_lut() if needs_lut else empty_lut(), white)
+    return MaterialTable(arrays, glasses, sorted(features), register_count)

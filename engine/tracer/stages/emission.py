@@ -13,7 +13,8 @@ import math
 
 from ..jit import inlined, kernel
 from ..lights.dispatch import distant_hit, emitter_pdf, intersect_light, is_distant, light_hit, light_spectrum
-from ..materials.table import MAT_EMISSIVE
+from ..materials.emitters import emission_at
+from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE
 from ..spectra.table import spectrum_value
 from .mis import emitter_weight
 
@@ -29,9 +30,10 @@ def _add(state, i, factor, sid, spectra, weight):
 
 @kernel
 def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, lights, spectra,
-                    settings, depth, surface):
+                    settings, depth, surface, scratch):
     """Add emission for the first ``count`` rays of ``rays``; list the paths that hit a surface in
-    ``surface.path`` and return how many."""
+    ``surface.path`` and return how many. ``scratch`` (``state.ShadingScratch``) serves materials whose
+    emission varies over the surface."""
     shade_next = depth <= settings.max_bounces
     listed = 0
     for j in range(count):
@@ -67,8 +69,15 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
         if materials.flags[material] & MAT_EMISSIVE:
             weight = 1.0 if depth == 0 else emitter_weight(state, i, emitter_pdf(lights, triangle, d, t_mis),
                                                           settings.use_mis)
-            _add(state, i, materials.emission_strength[material], materials.emission_spectrum[material], spectra,
-                 weight)
+            if materials.flags[material] & MAT_EMISSION_VARIES:
+                radiance = scratch.li
+                emission_at(materials, spectra, geometry, material, triangle, float(hit_u[j]), float(hit_v[j]),
+                            (-d[0], -d[1], -d[2]), state.wavelength[i], scratch.rows, scratch.registers, radiance)
+                for k in range(state.radiance.shape[1]):
+                    state.radiance[i, k] += state.throughput[i, k] * weight * radiance[k]
+            else:
+                _add(state, i, materials.emission_strength[material], materials.emission_spectrum[material],
+                     spectra, weight)
         if shade_next:
             state.hit_triangle[i] = triangle
             state.hit_u[i] = hit_u[j]

@@ -30,15 +30,17 @@ def consistent(cos_og, cos_ig, wo_z, wi_z):
 
 @inlined
 def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, count, lights, materials, spectra,
-                  settings, depth, collapsed, shadows, slot, li, f, scratch):
+                  settings, depth, collapsed, shadows, slot, li, f, scratch, geometry, shading):
     """Queue the light-sampled contribution of vertex ``p`` of path ``i`` at ``slot`` of ``shadows``;
-    returns 1 if queued, else 0."""
+    returns 1 if queued, else 0. ``shading`` (``state.ShadingScratch``) lends an emissive program its
+    registers and rows."""
     ps = state.seed[i]
     sample = state.sample[i]
     u_select = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT))
     u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT_POINT))
     lam = state.wavelength[i]
-    wi, dist, pdf_light, delta = sample_light(lights, materials, spectra, p, u_select, u1, u2, lam, li)
+    wi, dist, pdf_light, delta = sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, lam, li,
+                                              shading.emitter_rows, shading.registers)
     if not pdf_light > 0.0:
         return 0
     wi_l = to_local(wi, frame[0], frame[1], frame[2])

@@ -3,18 +3,19 @@
 The hit point and its frame (the shading normal flipped to face the ray unless the material is
 one-sided glass); dispersion (a path meeting a dispersive material keeps only its hero wavelength, ×K
 — each column stays unbiased because the hero is uniform over columns); the material resolved at the
-hit; light sampling (``nee``) unless every lobe is a delta; BSDF sampling; roulette; and the path's
-next ray, queued. A free-standing film crossed straight through is a null event for MIS: the path
-keeps the pdf and ``mis_origin`` of the vertex before it.
+hit (``materials.surface``: its program, when it has one, may also bend the shading normal); light
+sampling (``nee``) unless every lobe is a delta; BSDF sampling; roulette; and the path's next ray,
+queued. A free-standing film crossed straight through, or a cut-out (Transparent BSDF, alpha), is a
+null event for MIS: the path keeps the pdf and ``mis_origin`` of the vertex before it.
 """
 
 from __future__ import annotations
 
-from ..bsdf.closure import SAMPLED_DELTA
+from ..bsdf.closure import SAMPLED_DELTA, SAMPLED_NULL
 from ..bsdf.dispatch import bsdf_sample
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
-from ..materials.resolve import resolve_material
+from ..materials.surface import shade_surface
 from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
 from ..state import COLLAPSED, PREV_DELTA
@@ -41,7 +42,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
     rays queued in ``shadows``). ``scratch`` is a ``state.ShadingScratch``; ``glass_clamps`` and
     ``rejected`` (int64 counters) are incremented."""
     k = state.wavelength.shape[1]
-    rows, spectral, eta, weight, li, f, mix = scratch
+    rows, spectral, eta, weight, li, f, mix, registers, _ = scratch
     has_lights = lights.select_prob.shape[0] > 0
     queued = 0
     shadowed = 0
@@ -56,19 +57,23 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         collapsed = state.flags[i] & COLLAPSED != 0
         wo = (-state.direction[i, 0], -state.direction[i, 1], -state.direction[i, 2])
         cos_og = wo[0] * ng[0] + wo[1] * ng[1] + wo[2] * ng[2]
-        n = ns
-        if cos_og < 0.0 and not mflags & MAT_ONE_SIDED:
-            n = (-ns[0], -ns[1], -ns[2])
+        backfacing = cos_og < 0.0
+        facing_ng = (-ng[0], -ng[1], -ng[2]) if backfacing else ng
+        facing_ns = (-ns[0], -ns[1], -ns[2]) if backfacing else ns
+        lam = state.wavelength[i]
+        hero = state.hero[i]
+        closures, n = shade_surface(materials, spectra, geometry, material, triangle, state.hit_u[i], state.hit_v[i],
+                                    p, facing_ng, facing_ns, wo, backfacing, lam, hero, rows, spectral, eta,
+                                    registers, glass_clamps)
+        if backfacing and mflags & MAT_ONE_SIDED:
+            n = (-n[0], -n[1], -n[2])
         tangent, bitangent = tangents(n)
         frame = (tangent, bitangent, n)
         wo_l = to_local(wo, tangent, bitangent, n)
-        lam = state.wavelength[i]
-        hero = state.hero[i]
-        closures = resolve_material(materials, spectra, material, lam, hero, rows, spectral, eta, glass_clamps)
         if has_lights and not mflags & MAT_DELTA:
             shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                       materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
-                                      mix)
+                                      mix, geometry, scratch)
         ps = state.seed[i]
         sample = state.sample[i]
         u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
@@ -87,7 +92,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         state.eta_scale[i] *= eta_scale
         if not survives(state, i, depth, settings, collapsed):
             continue
-        if not (mflags & MAT_NULL and wo_l[2] * wi_l[2] < 0.0):
+        if not ((mflags & MAT_NULL and wo_l[2] * wi_l[2] < 0.0) or sampled & SAMPLED_NULL):
             state.prev_pdf[i] = pdf
             if sampled & SAMPLED_DELTA:
                 state.flags[i] |= PREV_DELTA

@@ -1,10 +1,11 @@
 """Stage 4: light that reached its vertex. A shadow ray that Embree finds free adds its contribution.
 
 Free-standing films (``MAT_NULL``) transmit undeviated, so light behind them reaches a point along the
-straight shadow ray, attenuated by T = 1 - R(λ, θ) per wavelength. In scenes with films, shadow rays
-are traced as closest-hit queries layer by layer (``film_layer_kernel`` keeps the rays that crossed a
-film, attenuated and moved past it; anything else blocks), up to ``MAX_FILM_LAYERS``; one occlusion
-query settles the rest.
+straight shadow ray, attenuated by T = 1 - R(λ, θ) per wavelength; cut-outs (``MAT_TRANSPARENT``: alpha,
+Transparent BSDF) let it through by their transparency at the point crossed. In scenes with either,
+shadow rays are traced as closest-hit queries layer by layer (``film_layer_kernel`` keeps the rays that
+crossed such a surface, attenuated and moved past it; anything else blocks), up to ``MAX_FILM_LAYERS``;
+one occlusion query settles the rest.
 """
 
 from __future__ import annotations
@@ -13,10 +14,23 @@ import math
 
 from ..bsdf.thin_film import film_reflectance
 from ..geometry import offset_origin, surface_at
-from ..jit import kernel
-from ..materials.table import MAT_NULL
+from ..jit import inlined, kernel
+from ..materials.surface import surface_transparency
+from ..materials.table import MAT_NULL, MAT_TRANSPARENT
 
 MAX_FILM_LAYERS = 8
+
+
+@inlined
+def _cut_out(materials, spectra, geometry, material, triangle, u, v, p, ng, ns, d, wavelength_nm, scratch, out):
+    """Transparency of a cut-out crossed by a shadow ray along ``d``."""
+    wo = (-d[0], -d[1], -d[2])
+    backfacing = wo[0] * ng[0] + wo[1] * ng[1] + wo[2] * ng[2] < 0.0
+    if backfacing:
+        ng = (-ng[0], -ng[1], -ng[2])
+        ns = (-ns[0], -ns[1], -ns[2])
+    surface_transparency(materials, spectra, geometry, material, triangle, u, v, p, ng, ns, wo, backfacing,
+                         wavelength_nm, scratch.rows, scratch.registers, out, scratch.f)
 
 
 @kernel
@@ -30,10 +44,11 @@ def shadow_kernel(state, shadows, count, occluded):
 
 
 @kernel
-def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials):
+def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, spectra,
+                      scratch):
     """One layer of closest hits (before each ray's ``tmax``): rays that hit nothing deliver their
-    contribution; rays that hit a film are attenuated, moved past it and kept (compacted to the front);
-    others are blocked. Returns the number kept."""
+    contribution; rays that hit a film or a cut-out are attenuated, moved past it and kept (compacted to
+    the front); others are blocked. Returns the number kept. ``scratch`` is a ``state.ShadingScratch``."""
     kept = 0
     for j in range(count):
         i = shadows.rays.path[j]
@@ -43,15 +58,29 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
                 state.radiance[i, k] += shadows.contribution[j, k]
             continue
         material = geometry.material[triangle]
-        if not materials.flags[material] & MAT_NULL:
+        mflags = materials.flags[material]
+        if not mflags & (MAT_NULL | MAT_TRANSPARENT):
             continue
-        row = materials.closures[materials.closure_start[material]]
         d = (shadows.direction[j, 0], shadows.direction[j, 1], shadows.direction[j, 2])
-        p, ng, _ = surface_at(geometry, triangle, float(hit_u[j]), float(hit_v[j]))
-        cos = min(abs(d[0] * ng[0] + d[1] * ng[1] + d[2] * ng[2]), 1.0)
-        for k in range(state.radiance.shape[1]):
-            shadows.contribution[kept, k] = shadows.contribution[j, k] * (
-                1.0 - min(max(film_reflectance(row, cos, state.wavelength[i, k]), 0.0), 1.0))
+        u, v = float(hit_u[j]), float(hit_v[j])
+        p, ng, ns = surface_at(geometry, triangle, u, v)
+        if mflags & MAT_NULL:
+            row = materials.closures[materials.closure_start[material]]
+            cos = min(abs(d[0] * ng[0] + d[1] * ng[1] + d[2] * ng[2]), 1.0)
+            for k in range(state.radiance.shape[1]):
+                shadows.contribution[kept, k] = shadows.contribution[j, k] * (
+                    1.0 - min(max(film_reflectance(row, cos, state.wavelength[i, k]), 0.0), 1.0))
+        else:
+            transparency = scratch.weight
+            _cut_out(materials, spectra, geometry, material, triangle, u, v, p, ng, ns, d, state.wavelength[i],
+                     scratch, transparency)
+            largest = 0.0
+            for k in range(state.radiance.shape[1]):
+                largest = max(largest, transparency[k])
+            if not largest > 0.0:
+                continue
+            for k in range(state.radiance.shape[1]):
+                shadows.contribution[kept, k] = shadows.contribution[j, k] * transparency[k]
         origin = offset_origin(p, ng, d)
         travelled = math.sqrt((origin[0] - shadows.origin[j, 0]) ** 2 + (origin[1] - shadows.origin[j, 1]) ** 2
                               + (origin[2] - shadows.origin[j, 2]) ** 2)

@@ -14,17 +14,18 @@ from .shade import shade_kernel
 from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
 
 
-def _trace_shadows(renderer, state, shadows, count):
+def _trace_shadows(renderer, state, shadows, count, scratch):
     """Deliver the light of the first ``count`` shadow rays that reach their lights; returns rays cast."""
     accel = renderer.accel
     rays = 0
-    if renderer.analysis.see_through_films:
+    if renderer.analysis.see_through_films or renderer.analysis.see_through_cutouts:
         for _ in range(MAX_FILM_LAYERS):
             if count == 0:
                 return rays
             hit = accel.intersect_before(shadows.rays, count)
             rays += count
-            count = film_layer_kernel(state, shadows, count, *hit, renderer.geometry, renderer.material_table.arrays)
+            count = film_layer_kernel(state, shadows, count, *hit, renderer.geometry, renderer.material_table.arrays,
+                                      renderer.spectra, scratch)
     if count:
         occluded = accel.occluded(shadows.rays, count)
         rays += count
@@ -59,7 +60,7 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
         hit = renderer.accel.intersect(current, queued)
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, *hit, geometry, materials, lights, spectra, settings,
-                                   depth, buffers.surface)
+                                   depth, buffers.surface, buffers.scratch)
         if surfaces == 0:
             break
         following = buffers.rays[1] if current is buffers.rays[0] else buffers.rays[0]
@@ -67,7 +68,7 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
                                         settings, depth, following, buffers.shadows, buffers.scratch, glass_clamps,
                                         rejected)
         if shadowed:
-            rays_cast += _trace_shadows(renderer, state, buffers.shadows, shadowed)
+            rays_cast += _trace_shadows(renderer, state, buffers.shadows, shadowed, buffers.scratch)
         current = following
     film_kernel(state, count, renderer.wavelengths, buffers.rgb)
     return rays_cast, int(rejected[0])

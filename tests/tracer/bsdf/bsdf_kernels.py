@@ -8,7 +8,7 @@ from engine.tracer.materials.resolve import resolve_material
 @kernel
 def sample_many(materials, spectra, wo, lam, u, hero, collapsed, wi, weight, pdf, flags, eta_scale, eta_out, work,
                 clamps):
-    rows, spectral, eta, _, _, _, scratch = work
+    rows, spectral, eta, _, _, _, scratch, _, _ = work
     for i in range(wo.shape[0]):
         count = resolve_material(materials, spectra, 0, lam[i], hero[i], rows, spectral, eta, clamps)
         eta_out[i] = eta[0]
@@ -22,7 +22,7 @@ def sample_many(materials, spectra, wo, lam, u, hero, collapsed, wi, weight, pdf
 
 @kernel
 def evaluate_many(materials, spectra, wo, wi, lam, hero, collapsed, f, pdf, work, clamps):
-    rows, spectral, eta, _, _, _, scratch = work
+    rows, spectral, eta, _, _, _, scratch, _, _ = work
     for i in range(wo.shape[0]):
         count = resolve_material(materials, spectra, 0, lam[i], hero[i], rows, spectral, eta, clamps)
         pdf[i] = bsdf_evaluate(rows, spectral, eta, count, (wo[i, 0], wo[i, 1], wo[i, 2]),

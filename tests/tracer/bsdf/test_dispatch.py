@@ -1,10 +1,10 @@
-"""A material of several closures (f = Σ w_i f_i): sampling matches the mixture's pdf (chi-square),
+"""A material of several closures (f = Σ t_i f_i, sampled ∝ w_i): sampling matches the mixture's pdf (chi-square),
 weights match f |cos| / pdf, and delta closures keep their share."""
 
 import numpy as np
 import pytest
 
-from engine.tracer.bsdf.closure import C_WEIGHT
+from engine.tracer.bsdf.closure import C_TINT, C_WEIGHT
 from engine.tracer.materials.table import MaterialTable, build_materials
 from engine.tracer.scene import Material
 from engine.tracer.spectra.table import SpectrumTable
@@ -19,6 +19,7 @@ def _mixture(materials, weights):
     a = table.arrays
     closures = a.closures.copy()
     closures[:, C_WEIGHT] = weights
+    closures[:, C_TINT] = [spectra.constant(w) for w in weights]
     arrays = a._replace(flags=a.flags[:1] * 0, closure_start=np.zeros(1, np.int32),
                         closure_count=np.array([len(materials)], np.int32), closures=closures)
     bsdf = MaterialBSDF(None, MaterialTable(arrays, table.glasses, table.features))

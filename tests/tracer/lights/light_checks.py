@@ -4,18 +4,20 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from engine.tracer.geometry import prepare_geometry
 from engine.tracer.jit import kernel
 from engine.tracer.lights.dispatch import emitter_pdf, intersect_light, light_hit, sample_light
 from engine.tracer.lights.table import build_lights
 from engine.tracer.materials.table import build_materials
 from engine.tracer.spectra.table import SpectrumTable, spectrum_value
+from engine.tracer.state import new_shading_scratch
 
 
 @kernel
-def _sample_many(lights, materials, spectra, p, u, lam, wi, dist, li, pdf, delta):
+def _sample_many(lights, materials, spectra, geometry, p, u, lam, wi, dist, li, pdf, delta, rows, registers):
     for i in range(p.shape[0]):
-        w, d, q, is_delta = sample_light(lights, materials, spectra, (p[i, 0], p[i, 1], p[i, 2]), u[i, 2], u[i, 0],
-                                         u[i, 1], lam[i], li[i])
+        w, d, q, is_delta = sample_light(lights, materials, spectra, geometry, (p[i, 0], p[i, 1], p[i, 2]), u[i, 2],
+                                         u[i, 0], u[i, 1], lam[i], li[i], rows, registers)
         wi[i, 0], wi[i, 1], wi[i, 2] = w
         dist[i] = d
         pdf[i] = q
@@ -44,7 +46,10 @@ class SceneLights:
     def __init__(self, scene, offset=(0.0, 0.0, 0.0)):
         spectra = SpectrumTable()
         used = set(np.unique(scene.triangle_material).tolist())
-        self.materials = build_materials(scene.materials, used, spectra).arrays
+        table = build_materials(scene.materials, used, spectra)
+        self.materials = table.arrays
+        self.geometry = prepare_geometry(scene, offset)[0]
+        self.scratch = new_shading_scratch(1, table.register_count)
         self.table = build_lights(scene, spectra, np.asarray(scene.vertices, np.float64) - offset,
                                   np.asarray(scene.triangles, np.int32), np.asarray(scene.triangle_material, np.int32),
                                   self.materials.emission_strength, np.asarray(offset, np.float64))
@@ -60,8 +65,9 @@ class SceneLights:
         lam = np.full((n, 1), wavelength_nm)
         out = SimpleNamespace(wi=np.empty((n, 3)), dist=np.empty(n), li=np.empty((n, 1)), pdf=np.empty(n),
                               delta=np.empty(n, bool))
-        _sample_many(self.arrays, self.materials, self.spectra, np.ascontiguousarray(p, dtype=np.float64),
-                     np.ascontiguousarray(u, dtype=np.float64), lam, out.wi, out.dist, out.li, out.pdf, out.delta)
+        _sample_many(self.arrays, self.materials, self.spectra, self.geometry, np.ascontiguousarray(p, dtype=np.float64),
+                     np.ascontiguousarray(u, dtype=np.float64), lam, out.wi, out.dist, out.li, out.pdf, out.delta,
+                     self.scratch.emitter_rows, self.scratch.registers)
         out.li = out.li[:, 0]
         return out
 

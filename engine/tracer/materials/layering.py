@@ -1,0 +1,58 @@
+"""Albedo of a layer, for weighting what lies under it (Blender's Principled BSDF layering).
+
+Blender lets the sheen, coat and specular layers take their share first: the closures below are
+weighted by 1 - albedo(view) of the layer above. For a GGX reflection whose dielectric Fresnel (index
+η) is remapped to start at a tinted f0, albedo = mix(f0, 1, s(roughness, μ, η)), with s tabulated by
+``tools/generate_layer_albedo.py`` (``data/ggx_layer_albedo.npz``) and read here trilinearly.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import namedtuple
+from pathlib import Path
+
+import numpy as np
+
+from ..jit import kernel
+
+TABLE_PATH = Path(__file__).resolve().parent / "data" / "ggx_layer_albedo.npz"
+
+#: ``dielectric_s`` float64 [R, M, Z] (roughness, view cosine, √|(η-1)/(η+1)|, each uniform over 0-1).
+LayerTables = namedtuple("LayerTables", "dielectric_s")
+
+_CACHE = {}
+
+
+def load_tables() -> LayerTables:
+    if "tables" not in _CACHE:
+        with np.load(TABLE_PATH) as data:
+            _CACHE["tables"] = LayerTables(np.ascontiguousarray(data["dielectric_s"], dtype=np.float64))
+    return _CACHE["tables"]
+
+
+@kernel
+def _axis(x, n):
+    x = min(max(x, 0.0), 1.0) * (n - 1)
+    i = min(int(x), n - 2)
+    return i, x - i
+
+
+@kernel
+def dielectric_s(tables, roughness, cos_view, eta):
+    """s of a GGX dielectric reflection of Blender ``roughness`` seen at ``cos_view``."""
+    table = tables.dielectric_s
+    if not (math.isfinite(roughness) and math.isfinite(cos_view) and eta > 0.0):
+        return 0.0
+    z = math.sqrt(abs((eta - 1.0) / (eta + 1.0)))
+    i, fi = _axis(roughness, table.shape[0])
+    j, fj = _axis(abs(cos_view), table.shape[1])
+    k, fk = _axis(z, table.shape[2])
+    s = 0.0
+    for di in range(2):
+        wi = fi if di else 1.0 - fi
+        for dj in range(2):
+            wj = wi * (fj if dj else 1.0 - fj)
+            for dk in range(2):
+                s += wj * (fk if dk else 1.0 - fk) * table[i + di, j + dj, k + dk]
+    return s

@@ -1,0 +1,78 @@
+"""A material as its node tree defines it: closures, and the program that computes what varies.
+
+The export layer compiles a Blender node tree into a ``ShaderProgram`` (plain data: no bpy, no Python
+callables); ``materials.table`` turns its closures into rows of the material table and its program
+into instructions the kernels run per hit (``materials.program``). Tests build programs directly with
+``materials.program_builder``.
+
+- ``Colour``: a spectral parameter — a constant linear Rec.709 colour (upsampled once), a colour the
+  program computes per hit (register of r; g and b follow), or a spectrum the table builds itself
+  (``spectrum``: a ``scene.SpectrumSpec`` for emission, ``("n", metal)`` / ``("k", metal)`` for measured
+  conductors).
+- ``ClosureSpec``: one closure row. ``kind`` is a ``bsdf.closure`` kind; ``tint`` its weight per
+  wavelength; ``s0``/``s1`` its spectral parameters (see ``bsdf.closure``); scalars that vary are bound
+  by the program (``opcodes.BIND``). ``selection`` estimates the closure's share of the reflected light
+  when nothing varies (one-sample MIS over closures); programs recompute it per hit.
+- ``TextureImage``: an image's texels, scene-linear RGBA float32 [H, W, 4] (row 0 at the bottom, as
+  Blender stores them), with Blender's interpolation and extension.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Colour:
+    rgb: tuple | None = None
+    register: int | None = None
+    spectrum: object = None
+
+    @property
+    def varies(self) -> bool:
+        return self.register is not None
+
+
+@dataclass
+class ClosureSpec:
+    kind: int
+    tint: Colour | None = None
+    s0: Colour | None = None
+    s1: Colour | None = None
+    alpha: float = 0.0
+    fresnel: int = 0
+    eta: float = 1.5
+    glass: object = None  # a ``spectra.glass`` Glass (dielectrics)
+    coat_nm: float = 0.0
+    coat_ior: float = 1.0
+    film_nm: float = 0.0
+    film_ior: float = 1.0
+    selection: float = 1.0
+
+
+@dataclass
+class TextureImage:
+    name: str
+    texels: np.ndarray  # float32 [H, W, 4], scene-linear RGB + alpha, row 0 at the bottom
+    interpolation: str = "Linear"  # "Closest", "Linear" ("Cubic" and "Smart" render as Linear)
+    extension: str = "REPEAT"  # "REPEAT", "EXTEND", "CLIP", "MIRROR"
+
+
+@dataclass
+class ShaderProgram:
+    """Everything the tracer needs of one node-built material."""
+
+    closures: list[ClosureSpec]
+    instructions: np.ndarray = field(default_factory=lambda: np.zeros((0, 10), np.int32))
+    constants: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    register_count: int = 0
+    emission: Colour | None = None  # radiance colour (strength included) or a ``spectrum``
+    emission_strength: float = 0.0  # for a constant ``emission``; an estimate for light selection when it varies
+    normal: int = -1  # register of the shading normal (normal maps, bump), or -1
+    images: list[TextureImage] = field(default_factory=list)
+
+    @property
+    def has_program(self) -> bool:
+        return len(self.instructions) > 0

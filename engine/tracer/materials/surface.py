@@ -1,0 +1,87 @@
+"""A material evaluated at a surface point: closures for shading, emitted radiance, and transparency
+for shadow rays.
+
+Materials with a program (``MAT_PROGRAM``) start each hit from their constant register file, run their
+instructions (``program.run_program``) and then resolve their closures; the others are resolved from
+their constant rows (``resolve.resolve_material``) as before. Nothing here allocates: the register file
+and closure rows are the caller's scratch memory.
+"""
+
+from __future__ import annotations
+
+from ..bsdf.closure import C_KIND, C_MIRROR, C_TINT, C_TINT_SCALE, DIELECTRIC, TRANSPARENT
+from ..jit import inlined
+from ..spectra.table import spectrum_value
+from .program import run_program
+from .resolve import _fill, copy_rows, resolve_material, resolve_spectral, selection_weights
+from .table import MAT_ONE_SIDED, MAT_PROGRAM
+
+
+@inlined
+def _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs):
+    programs = materials.programs
+    first = programs.const_start[material]
+    for r in range(programs.const_count[material]):
+        regs[r] = programs.constants[first + r]
+    run_program(programs.instructions, programs.start[material], programs.count[material], regs, rows,
+                programs.tables, materials.textures, geometry, triangle, u, v, p, ng, n, wo, backfacing)
+
+
+@inlined
+def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, wavelength_nm,
+                  hero, rows, spectral, eta, regs, glass_clamps):
+    """Resolve ``material`` at a hit into ``rows`` / ``spectral`` / ``eta``: (closure count, shading normal).
+    ``ng`` and ``n`` face ``wo``; the returned normal is the program's (Normal Map, Bump) or ``n``."""
+    flags = materials.flags[material]
+    if not flags & MAT_PROGRAM:
+        count = resolve_material(materials, spectra, material, wavelength_nm, hero, rows, spectral, eta,
+                                 glass_clamps)
+        shading = n
+    else:
+        count = copy_rows(materials, material, rows)
+        _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs)
+        resolve_spectral(materials, spectra, count, wavelength_nm, hero, rows, spectral, eta, glass_clamps, regs)
+        r = materials.programs.normal[material]
+        shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
+        cos_o = wo[0] * shading[0] + wo[1] * shading[1] + wo[2] * shading[2]
+        if count > 1:
+            selection_weights(rows, spectral, count, wavelength_nm, cos_o)
+    if flags & MAT_ONE_SIDED and backfacing and count > 1:
+        for c in range(count):
+            kind = int(rows[c, C_KIND])
+            if kind != DIELECTRIC and kind != TRANSPARENT:
+                rows[c, C_MIRROR] = 1.0
+    return count, shading
+
+
+@inlined
+def surface_emission(materials, spectra, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, wavelength_nm,
+                     rows, regs, out):
+    """``out[k]`` = radiance emitted towards ``wo`` at wavelength ``k`` by a material whose emission varies
+    (``MAT_EMISSION_VARIES``): the program's emission colour as an RGB illuminant spectrum."""
+    _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs)
+    r = materials.programs.emission[material]
+    _fill(materials, spectra, -2.0 - r, wavelength_nm, regs, False, out)
+    white = materials.white_emission
+    for k in range(out.shape[0]):
+        out[k] *= spectrum_value(spectra, white, wavelength_nm[k])
+
+
+@inlined
+def surface_transparency(materials, spectra, geometry, material, triangle, u, v, p, ng, n, wo, backfacing,
+                         wavelength_nm, rows, regs, out, tmp):
+    """``out[k]`` = fraction of light passing straight through (the Transparent closures' tints)."""
+    count = copy_rows(materials, material, rows)
+    if materials.flags[material] & MAT_PROGRAM:
+        _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs)
+    for k in range(out.shape[0]):
+        out[k] = 0.0
+    for c in range(count):
+        if int(rows[c, C_KIND]) != TRANSPARENT:
+            continue
+        _fill(materials, spectra, rows[c, C_TINT], wavelength_nm, regs, False, tmp)
+        scale = rows[c, C_TINT_SCALE]
+        for k in range(out.shape[0]):
+            out[k] += scale * tmp[k]
+    for k in range(out.shape[0]):
+        out[k] = min(max(out[k], 0.0), 1.0)
