@@ -1,22 +1,54 @@
-"""Material properties: what Prism reads from the Principled BSDF, and Prism's overrides."""
+"""Material properties: what Prism renders of this material's nodes, what it leaves out, and Prism's
+additions (dispersive glass, measured metals, coatings, thin films)."""
 
 from __future__ import annotations
 
 import bpy
 
-from ..engine.properties.principled import READ_SOCKETS, find_principled, material_kind, read_principled
 from ._panel_base import PrismPanel, error_label
-
-_KIND_LABELS = {
-    "diffuse": "Diffuse",
-    "conductor": "Metal",
-    "dielectric": "Glass (refractive)",
-    "thin_film": "Thin film",
-}
 
 
 def _material_poll(context):
     return context.engine == "PRISM" and context.material is not None
+
+
+def _preview(material):
+    """The material compiled as a render would (no folding, no image read): (lobe names, emits, warnings)."""
+    from ..engine.export.nodes import compile_material
+    from ..engine.tracer.bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_DIELECTRIC, FRESNEL_NONE,
+                                              GLASS, TRANSLUCENT, TRANSPARENT)
+
+    try:
+        compiled = compile_material(material, load_pixels=False)
+    except Exception as error:  # noqa: BLE001 - a panel must draw; the render reports the error itself
+        return [], False, [str(error)]
+    shader = compiled.shader
+    names = []
+    for spec in shader.closures if shader is not None else []:
+        if spec.kind == DIFFUSE:
+            name = "Diffuse"
+        elif spec.kind == TRANSLUCENT:
+            name = "Translucent"
+        elif spec.kind == TRANSPARENT:
+            name = "Transparent"
+        elif spec.kind == DIELECTRIC:
+            name = "Glass (refractive)" if spec.fresnel == GLASS else "Refraction"
+        elif spec.kind == CONDUCTOR:
+            name = {FRESNEL_DIELECTRIC: "Specular", FRESNEL_NONE: "Glossy"}.get(spec.fresnel, "Metal")
+        else:
+            name = "Thin film"
+        if name not in names:
+            names.append(name)
+    emits = shader is not None and shader.emission is not None and shader.emission_strength > 0
+    return names, emits, compiled.warnings
+
+
+def _kinds(material):
+    if material.prism.is_thin_film:
+        return ["Thin film"], False, []
+    if not material.use_nodes or material.node_tree is None:
+        return ["Metal" if material.metallic >= 0.5 else "Diffuse"], False, []
+    return _preview(material)
 
 
 class PRISM_PT_material(PrismPanel, bpy.types.Panel):
@@ -32,32 +64,18 @@ class PRISM_PT_material(PrismPanel, bpy.types.Panel):
     def draw(self, context):
         layout = self.layout
         material = context.material
-        reading = read_principled(material)
-        kind = material_kind(reading, material.prism)
-        emits = reading.emission_strength > 0.0 and max(reading.emission_color) > 0.0
-        layout.label(
-            text=f"Renders as: {_KIND_LABELS[kind]}{' + emission' if emits else ''}",
-            icon="SHADING_RENDERED",
-        )
+        names, emits, warnings = _kinds(material)
+        text = " + ".join(names) if names else "Black (nothing connected)"
+        layout.label(text=f"Renders as: {text}{' + emission' if emits else ''}", icon="SHADING_RENDERED")
         layout.use_property_split = True
         layout.use_property_decorate = False
-        node = find_principled(material)
-        column = layout.column(align=True)
-        if node is None:
-            column.label(text="No Principled BSDF: using the viewport display values.", icon="INFO")
+        if not material.use_nodes or material.node_tree is None:
+            column = layout.column(align=True)
+            column.label(text="No nodes: using the viewport display values.", icon="INFO")
             column.prop(material, "diffuse_color", text="Base Color")
             column.prop(material, "metallic")
             column.prop(material, "roughness")
-        else:
-            for name in READ_SOCKETS:
-                socket = node.inputs.get(name)
-                if socket is None:
-                    continue
-                if socket.is_linked:
-                    column.label(text=f"{name}: linked (ignored)", icon="ERROR")
-                else:
-                    column.prop(socket, "default_value", text=name)
-        for message in reading.ignored:
+        for message in warnings:
             error_label(layout, message)
 
 
@@ -76,10 +94,10 @@ class PRISM_PT_material_glass(PrismPanel, bpy.types.Panel):
         layout = self.layout
         material = context.material
         settings = material.prism
-        reading = read_principled(material)
+        names = _kinds(material)[0]
         layout.use_property_split = True
         layout.use_property_decorate = False
-        layout.active = material_kind(reading, settings) == "dielectric"
+        layout.active = "Glass (refractive)" in names or "Refraction" in names
         layout.prop(settings, "glass_source")
         if settings.glass_source == "CATALOGUE":
             layout.prop(settings, "glass_name")
@@ -88,7 +106,7 @@ class PRISM_PT_material_glass(PrismPanel, bpy.types.Panel):
             column.prop(settings, "glass_nd")
             column.prop(settings, "glass_vd")
         else:
-            layout.label(text=f"Constant IOR {reading.ior:.4g} from the Principled BSDF: no dispersion.")
+            layout.label(text="The shader's constant IOR at every wavelength: no dispersion.")
 
 
 class PRISM_PT_material_metal(PrismPanel, bpy.types.Panel):
@@ -107,7 +125,7 @@ class PRISM_PT_material_metal(PrismPanel, bpy.types.Panel):
         material = context.material
         layout.use_property_split = True
         layout.use_property_decorate = False
-        layout.active = material_kind(read_principled(material), material.prism) == "conductor"
+        layout.active = "Metal" in _kinds(material)[0]
         layout.prop(material.prism, "conductor")
 
 

@@ -19,6 +19,13 @@ from .world import export_world
 __all__ = ["PrismInputError", "export_camera", "export_scene", "render_border", "render_resolution"]
 
 
+def _emits(material) -> bool:
+    shader = material.shader
+    if shader is not None:
+        return shader.emission is not None and shader.emission_strength > 0
+    return material.emission is not None and material.emission_strength > 0
+
+
 def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:
     if tracer_scene.triangle_count == 0:
         raise PrismInputError(
@@ -28,9 +35,7 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:
     world = tracer_scene.world
     world_lit = world.strength > 0 and max(world.color) > 0
     used = {int(i) for i in np.unique(tracer_scene.triangle_material)}
-    emissive = any(
-        tracer_scene.materials[i].emission is not None and tracer_scene.materials[i].emission_strength > 0 for i in used
-    )
+    emissive = any(_emits(tracer_scene.materials[i]) for i in used)
     if not (tracer_scene.lights or world_lit or emissive):
         raise PrismInputError(
             f"Scene '{scene_name}' has no light (no light with power, no emissive material, a black world): "
@@ -55,6 +60,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         triangle_object=geometry.triangle_object,
         object_names=geometry.object_names,
         corner_normals=geometry.corner_normals,
+        surface=geometry.surface,
         materials=geometry.materials,
         camera=camera,
         lights=export_lights(depsgraph, warnings),

@@ -1,117 +1,114 @@
-"""Blender materials → ``tracer.scene.Material``: the Principled BSDF plus ``Material.prism``.
+"""Blender materials → ``tracer.scene.Material``: the node tree compiled as Cycles reads it (``nodes``),
+with ``Material.prism`` adding glass dispersion, measured metals, coatings and free-standing films.
 
-What is read lives in ``engine.properties.principled`` (shared with the material
-panel, so the panel shows what renders); this module turns it into a tracer
-material and validates the glass. Inputs Prism does not model become warnings,
-one per material and socket.
+A material without nodes renders its viewport colour (as Cycles does); a free-standing thin film
+(Material ▸ Prism ▸ Thin Film) replaces the node tree. What Prism leaves out or approximates becomes one
+warning per material, node and message. One ``MaterialExporter`` serves a whole export: it numbers the
+UV maps and attributes the programs read and shares the images they decode.
 """
 
 from __future__ import annotations
 
 import math
 
-from ..properties.material import CONDUCTOR_NAMES
-from ..properties.principled import material_kind, read_principled
+from ..tracer.bsdf.closure import CONDUCTOR, DIELECTRIC, FRESNEL_CONDUCTOR, FRESNEL_F82
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Material, SpectrumSpec
+from .nodes import AttributeSlots, compile_material
+from .nodes.overrides import check_film
 
 DEFAULT_MATERIAL = Material(name="Default", kind="diffuse", base_color=(0.8, 0.8, 0.8))
 
 
-def _glass(material, settings, exported: Material) -> None:
-    from ..tracer.spectra import glass as glass_catalogue
-
-    name = material.name
-    if settings.glass_source == "CATALOGUE":
-        glass_name = settings.glass_name
-        if not glass_name or glass_name == "NONE":
-            raise PrismInputError(
-                f"Material '{name}' uses a catalogue glass that is not in Prism's catalogue "
-                f"(stored value {settings.get('glass_name', '?')}): choose a glass in Material ▸ Prism ▸ Glass."
-            )
-        try:
-            glass_catalogue.glass_by_name(glass_name)
-        except PrismInputError as error:
-            raise PrismInputError(f"Material '{name}': {error}") from None
-        exported.glass = glass_name
-    elif settings.glass_source == "ABBE":
-        try:
-            glass_catalogue.glass_from_abbe(settings.glass_nd, settings.glass_vd)
-        except PrismInputError as error:
-            raise PrismInputError(f"Material '{name}': {error}") from None
-        exported.glass_nd = float(settings.glass_nd)
-        exported.glass_vd = float(settings.glass_vd)
+def _viewport_material(material) -> Material:
+    """A material without nodes: its viewport display colour, metallic and roughness (as Cycles)."""
+    colour = tuple(float(c) for c in material.diffuse_color[:3])
+    if not all(math.isfinite(c) and c >= 0 for c in colour):
+        raise PrismInputError(f"Material '{material.name}': a colour is negative, NaN or infinite; pick a colour again.")
+    kind = "conductor" if material.metallic >= 0.5 else "diffuse"
+    return Material(name=material.name, kind=kind, base_color=tuple(min(c, 1.0) for c in colour),
+                    roughness=min(max(float(material.roughness), 0.0), 1.0))
 
 
-def export_material(material, warnings: list[str] | None = None) -> Material:
-    """The tracer material for a Blender material (None → the default grey diffuse)."""
-    if material is None:
-        return DEFAULT_MATERIAL
-    # The original data-block: what the user (or a script) set last, even when the depsgraph
-    # has not re-copied it (Python edits to settings do not tag the material for evaluation).
-    material = material.original
-    reading = read_principled(material)
-    if warnings is not None:
-        warnings.extend(reading.ignored)
-    settings = getattr(material, "prism", None)
-    kind = material_kind(reading, settings)
-    name = material.name
-    values = {
-        "base_color": reading.base_color,
-        "roughness": reading.roughness,
-        "ior": reading.ior,
-        "emission_strength": reading.emission_strength,
-    }
-    for label, value in (("Roughness", reading.roughness), ("IOR", reading.ior), ("Emission Strength", reading.emission_strength)):
-        if not math.isfinite(value):
-            raise PrismInputError(f"Material '{name}': {label} is {value}; enter a finite number.")
-    if not all(math.isfinite(c) and c >= 0 for c in reading.base_color + reading.emission_color):
-        raise PrismInputError(f"Material '{name}': a colour is negative, NaN or infinite; pick a colour again.")
-    if kind == "dielectric" and reading.ior < 1.0 and (settings is None or settings.glass_source == "PRINCIPLED_IOR"):
-        raise PrismInputError(
-            f"Material '{name}': IOR {reading.ior:g} is below 1; Prism's glass needs an IOR of 1 or more."
-        )
-    exported = Material(name=name, kind=kind, **values)
-    if reading.emission_strength < 0:
-        raise PrismInputError(f"Material '{name}': Emission Strength {reading.emission_strength:g} is negative.")
-    if reading.emission_strength > 0 and max(reading.emission_color) > 0:
-        exported.emission = SpectrumSpec(kind="rgb", rgb=reading.emission_color)
-    else:
-        exported.emission_strength = 0.0
-    if settings is None:
-        return exported
-    if kind == "dielectric":
-        _glass(material, settings, exported)
-    elif kind == "conductor":
-        exported.conductor = CONDUCTOR_NAMES[settings.conductor]
-    elif kind == "thin_film":
-        exported.film_thickness_nm = float(settings.film_thickness_nm)
-        exported.film_ior = float(settings.film_ior)
-    if kind == "thin_film":
-        _check_film(name, "Material ▸ Prism ▸ Film Thickness", exported.film_thickness_nm,
-                    "Material ▸ Prism ▸ Film IOR", exported.film_ior)
-    if settings.coating_thickness_nm > 0:
-        exported.coating_thickness_nm = float(settings.coating_thickness_nm)
-        exported.coating_ior = float(settings.coating_ior)
-        where = "Material ▸ Prism ▸ Coating"
-    elif reading.thin_film_thickness_nm > 0:
-        # Blender 4.2+'s Principled thin film is a coating on the surface.
-        exported.coating_thickness_nm = reading.thin_film_thickness_nm
-        exported.coating_ior = reading.thin_film_ior
-        where = "Principled BSDF ▸ Thin Film"
-    if exported.coating_thickness_nm > 0 and kind in {"diffuse", "thin_film"} and warnings is not None:
-        warnings.append(f"Material '{name}': a coating only acts on glass or metal; it is ignored on a {kind.replace('_', ' ')} surface.")
-    elif exported.coating_thickness_nm > 0:
-        _check_film(name, f"{where} Thickness", exported.coating_thickness_nm, f"{where} IOR", exported.coating_ior)
+def _thin_film(material, settings) -> Material:
+    exported = Material(name=material.name, kind="thin_film", film_thickness_nm=float(settings.film_thickness_nm),
+                        film_ior=float(settings.film_ior))
+    check_film(material.name, "Material ▸ Prism ▸ Film Thickness", exported.film_thickness_nm,
+               "Material ▸ Prism ▸ Film IOR", exported.film_ior)
     return exported
 
 
-def _check_film(name: str, thickness_setting: str, thickness_nm: float, index_setting: str, index: float) -> None:
-    """A thin film or coating needs a finite thickness and an index of 1 or more (1.33 soapy water, 1.38 MgF2)."""
-    if not (math.isfinite(thickness_nm) and thickness_nm >= 0):
-        raise PrismInputError(f"Material '{name}': {thickness_setting} is {thickness_nm:g} nm; use 0 nm or more.")
-    if not (math.isfinite(index) and index >= 1.0):
-        raise PrismInputError(
-            f"Material '{name}': {index_setting} is {index:g}; a film's refractive index must be 1 or more "
-            "(1.33 for soapy water, 1.38 for a magnesium fluoride coating)."
-        )
+def _summary(material, compiled) -> Material:
+    """The tracer material carrying ``compiled.shader``, its other fields describing it for messages."""
+    shader = compiled.shader
+    closures = shader.closures if shader is not None else []
+    kinds = [spec.kind for spec in closures]
+    metal = any(spec.kind == CONDUCTOR and spec.fresnel in (FRESNEL_F82, FRESNEL_CONDUCTOR) for spec in closures)
+    kind = "dielectric" if DIELECTRIC in kinds else ("conductor" if metal else "diffuse")
+    exported = Material(name=material.name, kind=kind, shader=shader)
+    for spec in closures:
+        if spec.kind in (DIELECTRIC, CONDUCTOR) and (kind != "diffuse"):
+            exported.roughness = math.sqrt(max(spec.alpha, 0.0))
+            exported.ior = spec.eta
+            if spec.s0 is not None and spec.s0.rgb is not None and spec.kind == CONDUCTOR:
+                exported.base_color = tuple(spec.s0.rgb)
+            exported.coating_thickness_nm, exported.coating_ior = spec.coat_nm, spec.coat_ior
+            if (spec.kind == DIELECTRIC) == (kind == "dielectric"):
+                break
+    if compiled.glass is not None:
+        source, value = compiled.glass
+        if source == "catalogue":
+            exported.glass = value
+        else:
+            exported.glass_nd, exported.glass_vd = value
+    exported.conductor = compiled.conductor
+    if shader is not None and shader.emission is not None and shader.emission_strength > 0:
+        emission = shader.emission
+        exported.emission_strength = float(shader.emission_strength)
+        if emission.rgb is not None:
+            exported.emission = SpectrumSpec(kind="rgb", rgb=tuple(emission.rgb))
+        elif isinstance(emission.spectrum, SpectrumSpec):
+            exported.emission = emission.spectrum
+    return exported
+
+
+class MaterialExporter:
+    """Exports the materials of one render; ``slots`` says which mesh data their programs read."""
+
+    def __init__(self, warnings: list[str] | None = None, fold: bool = True):
+        self.warnings = warnings
+        self.slots = AttributeSlots()
+        self.image_cache: dict = {}
+        self.needs: dict[str, set] = {}  # material name → what its program reads
+        self._fold = fold
+        self._evaluate = None
+
+    def _evaluator(self):
+        if self._fold and self._evaluate is None:
+            from ..tracer.materials.folding import fold_evaluator
+
+            self._evaluate = fold_evaluator()
+        return self._evaluate
+
+    def export(self, material) -> Material:
+        """The tracer material for a Blender material (None → the default grey diffuse)."""
+        if material is None:
+            return DEFAULT_MATERIAL
+        # The original data-block: what the user (or a script) set last, even when the depsgraph has not
+        # re-copied it (Python edits to settings do not tag the material for evaluation).
+        material = material.original
+        settings = getattr(material, "prism", None)
+        if settings is not None and settings.is_thin_film:
+            return _thin_film(material, settings)
+        if not material.use_nodes or material.node_tree is None:
+            return _viewport_material(material)
+        compiled = compile_material(material, self.slots, self.image_cache, self._evaluator())
+        if self.warnings is not None:
+            self.warnings.extend(compiled.warnings)
+        self.needs[material.name] = compiled.needs
+        return _summary(material, compiled)
+
+
+def export_material(material, warnings: list[str] | None = None) -> Material:
+    """One material on its own (its UV and attribute slots numbered from 0)."""
+    return MaterialExporter(warnings).export(material)

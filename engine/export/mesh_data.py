@@ -1,10 +1,13 @@
-"""One evaluated mesh in object space, read with ``foreach_get`` (no Python loop over its elements)."""
+"""One evaluated mesh in object space, read with ``foreach_get`` (no Python loop over its elements), with
+the per-corner data its materials read (``mesh_attributes``) when asked for."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+
+from .mesh_attributes import corner_attribute, corner_tangents, corner_uvs
 
 
 @dataclass
@@ -22,10 +25,24 @@ class LocalMesh:
     slot_index: np.ndarray
     corner_normals: np.ndarray
     slot_materials: list
+    uvs: dict = field(default_factory=dict)  # UV slot → float32 [T, 3, 2]
+    attributes: dict = field(default_factory=dict)  # attribute slot → float32 [T, 3, 4]
+    tangents: dict = field(default_factory=dict)  # tangent slot → float32 [T, 3, 4] (object space + sign)
+    texture_space: tuple = ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))  # (location, size) for generated coordinates
 
 
-def read_mesh(obj) -> LocalMesh | None:
-    """The evaluated mesh of ``obj`` (modifiers applied); None when it has no triangles."""
+@dataclass
+class AttributeRequest:
+    """Per-corner data to read: slot → name, for UV maps, attributes and tangents."""
+
+    uvs: dict = field(default_factory=dict)
+    attributes: dict = field(default_factory=dict)
+    tangents: dict = field(default_factory=dict)
+
+
+def read_mesh(obj, request: AttributeRequest | None = None, warn=None) -> LocalMesh | None:
+    """The evaluated mesh of ``obj`` (modifiers applied) and the data ``request`` names; None when it has no
+    triangles. ``warn(message)`` reports what could not be read as Blender does."""
     mesh = obj.to_mesh()
     if mesh is None:
         return None
@@ -44,12 +61,42 @@ def read_mesh(obj) -> LocalMesh | None:
         mesh.loop_triangles.foreach_get("loops", loops)
         normals = np.empty(len(mesh.loops) * 3, np.float32)
         mesh.corner_normals.foreach_get("vector", normals)
-        return LocalMesh(
+        local = LocalMesh(
             vertices=vertices.reshape(-1, 3).astype(np.float64),
             triangles=triangles.reshape(-1, 3),
             slot_index=slot_index,
             corner_normals=normals.reshape(-1, 3)[loops].reshape(-1, 3, 3),
             slot_materials=[slot.material for slot in obj.material_slots],
         )
+        if request is not None:
+            _read_attributes(obj, mesh, local, loops, request, warn)
+        return local
     finally:
         obj.to_mesh_clear()
+
+
+def _read_attributes(obj, mesh, local, loops, request, warn):
+    for slot, name in request.uvs.items():
+        uv = corner_uvs(mesh, name, loops)
+        if uv is not None:
+            local.uvs[slot] = uv
+    for slot, name in request.attributes.items():
+        values = corner_attribute(mesh, name, loops, local.triangles)
+        if values is not None:
+            local.attributes[slot] = values
+    for slot, name in request.tangents.items():
+        uv = corner_uvs(mesh, name, loops)
+        if uv is None:
+            continue
+
+        def report(name=name):
+            if warn is not None:
+                warn(f"Object '{obj.original.name}': Blender computes UV tangents for triangles and quads only; "
+                     f"Prism uses flat tangents per triangle for UV map '{name or 'active'}' (triangulate the "
+                     "mesh for exact normal maps).")
+
+        local.tangents[slot] = corner_tangents(mesh, name, loops, local.vertices, local.triangles, uv,
+                                               local.corner_normals, report)
+    data = obj.data
+    if hasattr(data, "texspace_location"):
+        local.texture_space = (tuple(data.texspace_location), tuple(data.texspace_size))

@@ -22,8 +22,9 @@ import numpy as np
 from ..tracer.scene import Material
 from .hair import LocalHair, hair_ribbons, read_hair
 from .instancing import WorldTriangles, instance_triangles
-from .materials import DEFAULT_MATERIAL, export_material
-from .mesh_data import LocalMesh, read_mesh
+from .materials import DEFAULT_MATERIAL, MaterialExporter
+from .mesh_data import AttributeRequest, LocalMesh, read_mesh
+from .surface_attributes import SurfaceCollector
 from .unrendered import particle_hair_warnings, unrendered_type_warning
 
 #: Types whose evaluated mesh arrives as a separate MESH instance.
@@ -39,6 +40,7 @@ class ExportedGeometry:
     corner_normals: np.ndarray
     object_names: list[str]
     materials: list[Material]
+    surface: object = None  # scene.SurfaceAttributes read by node materials, or None
 
 
 @dataclass
@@ -48,6 +50,7 @@ class _Instances:
     name: str
     geometry: LocalMesh | LocalHair
     matrices: list = field(default_factory=list)  # 16 floats each, row-major
+    infos: list = field(default_factory=list)  # (colour RGBA, pass index, random id) per instance
 
 
 class _Materials:
@@ -55,6 +58,7 @@ class _Materials:
 
     def __init__(self, warnings):
         self.warnings = warnings
+        self.exporter = MaterialExporter(warnings)
         self.index: dict[str | None, int] = {}
         self.materials: list[Material] = []
 
@@ -65,11 +69,28 @@ class _Materials:
         key = material.name if material is not None else None
         if key not in self.index:
             self.index[key] = len(self.materials)
-            self.materials.append(export_material(material, self.warnings) if material is not None else DEFAULT_MATERIAL)
+            self.materials.append(self.exporter.export(material) if material is not None else DEFAULT_MATERIAL)
         return self.index[key]
 
+    def request(self, slot_materials: list) -> AttributeRequest:
+        """The per-corner data the materials of one object's slots read (their global slot numbers)."""
+        self.slot_lookup(slot_materials)
+        slots = self.exporter.slots
+        request = AttributeRequest()
+        for material in slot_materials:
+            if material is None:
+                continue
+            for kind, name in self.exporter.needs.get(material.original.name, ()):
+                if kind == "uv":
+                    request.uvs[slots.uv(name)] = name
+                elif kind == "attribute":
+                    request.attributes[slots.attribute(name)] = name
+                elif kind == "tangent":
+                    request.tangents[slots.tangent(name)] = name
+        return request
 
-def _gather(depsgraph, warnings) -> list[_Instances]:
+
+def _gather(depsgraph, warnings, materials) -> list[_Instances]:
     """Every rendered piece of geometry with the matrices of its instances."""
     pieces: dict[tuple, _Instances | None] = {}
     warned: set[str] = set()
@@ -95,12 +116,17 @@ def _gather(depsgraph, warnings) -> list[_Instances]:
             continue
         key = (kind, obj.original.name, obj.data.as_pointer())
         if key not in pieces:
-            geometry = read_mesh(obj) if kind == "MESH" else read_hair(obj)  # now: the object may be temporary
+            if kind == "MESH":  # read now: the object may be temporary
+                request = materials.request([slot.material for slot in obj.material_slots])
+                geometry = read_mesh(obj, request, lambda message: warn_once(obj, [message]))
+            else:
+                geometry = read_hair(obj)
             pieces[key] = _Instances(obj.name, geometry) if geometry is not None else None
         piece = pieces[key]
         if piece is not None:
             matrix = instance.matrix_world
             piece.matrices.append((*matrix[0], *matrix[1], *matrix[2], *matrix[3]))
+            piece.infos.append((tuple(obj.color), obj.pass_index, instance.random_id))
     return [piece for piece in pieces.values() if piece is not None]
 
 
@@ -114,7 +140,9 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
     camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
-    for piece in _gather(depsgraph, warnings):
+    pieces = _gather(depsgraph, warnings, materials)
+    surface = SurfaceCollector(materials.exporter.slots)
+    for piece in pieces:
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
         lookup = materials.slot_lookup(piece.geometry.slot_materials)
         if isinstance(piece.geometry, LocalHair):
@@ -122,13 +150,17 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                 placed, slots = hair_ribbons(piece.geometry, matrix, camera)
                 parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
                 names.append(piece.name)
+                surface.add_other(len(placed.triangles))
             continue
         local = piece.geometry
         placed = instance_triangles(local.vertices, local.triangles, local.corner_normals, matrices)
         slots = lookup[np.clip(local.slot_index, 0, len(lookup) - 1)]
         parts.append((placed, np.tile(slots, len(matrices))))
         names.append(piece.name)
-    return _assemble(parts, names, materials.materials)
+        surface.add_mesh(local, matrices, piece.infos, np.linalg.det(matrices[:, :3, :3]) < 0)
+    exported = _assemble(parts, names, materials.materials)
+    exported.surface = surface.surface()
+    return exported
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

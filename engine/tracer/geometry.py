@@ -22,9 +22,10 @@ from .jit import inlined, kernel
 
 Geometry = namedtuple("Geometry", "vertices triangles material normals attributes")
 
-#: UV maps, colour attributes and UV tangents per corner, instance of each triangle, instance rows, and
-#: the camera position (world = camera-relative + ``offset``); see ``scene.SurfaceAttributes``.
-SurfaceArrays = namedtuple("SurfaceArrays", "uvs colors tangents instance objects offset")
+#: UV maps, colour attributes and UV tangents per corner, instance of each triangle, instance rows, the
+#: camera position (world = camera-relative + ``offset``) and object-space corner positions; see
+#: ``scene.SurfaceAttributes``.
+SurfaceArrays = namedtuple("SurfaceArrays", "uvs colors tangents instance objects offset positions")
 
 # Secondary rays start this far (relative to the largest coordinate of the hit point) off the surface:
 # ~30 float32 ulps, above Embree's float32 error.
@@ -60,7 +61,8 @@ def surface_arrays(surface, original, offset) -> SurfaceArrays:
     offset = np.asarray(offset, dtype=np.float64)
     if surface is None:
         return SurfaceArrays(np.zeros((0, 0, 3, 2), np.float32), np.zeros((0, 0, 3, 4), np.float32),
-                             np.zeros((0, 0, 3, 4), np.float32), np.zeros(0, np.int32), np.zeros((0, 27)), offset)
+                             np.zeros((0, 0, 3, 4), np.float32), np.zeros(0, np.int32), np.zeros((0, 27)), offset,
+                             np.zeros((0, 3, 3), np.float32))
 
     def kept(array, corner_width):
         array = np.asarray(array, dtype=np.float32)
@@ -76,8 +78,10 @@ def surface_arrays(surface, original, offset) -> SurfaceArrays:
     instance = np.zeros(0, np.int32)
     if surface.triangle_instance is not None:
         instance = np.ascontiguousarray(np.asarray(surface.triangle_instance, dtype=np.int32)[original])
+    positions = np.asarray(surface.positions, dtype=np.float32)
+    positions = np.ascontiguousarray(positions[original]) if len(positions) else np.zeros((0, 3, 3), np.float32)
     return SurfaceArrays(kept(surface.uvs, 2), kept(surface.colors, 4), kept(surface.tangents, 4), instance,
-                         np.ascontiguousarray(objects), offset)
+                         np.ascontiguousarray(objects), offset, positions)
 
 
 @inlined

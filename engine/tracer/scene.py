@@ -151,7 +151,9 @@ class SurfaceAttributes:
     attributes, RGBA scene-linear), ``tangents`` float32 [S2, T, 3, 4] (unit UV tangent in world space and
     the bitangent sign, per tangent slot), ``triangle_instance`` int32 [T] (row of ``instances``) and
     ``instances`` float64 [I, OBJECT_ROW] (world→object transform, texture space, object info; see
-    ``materials.hit_inputs``). Slots are numbered by the material programs that read them.
+    ``materials.hit_inputs``), ``positions`` float32 [T, 3, 3] (object-space corner positions, exact where
+    a world→object round trip would not be: a flat plane's generated z is exactly 0.5). Slots are
+    numbered by the material programs that read them.
     """
 
     uvs: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 3, 2), np.float32))
@@ -159,6 +161,7 @@ class SurfaceAttributes:
     tangents: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 3, 4), np.float32))
     triangle_instance: np.ndarray | None = None
     instances: np.ndarray = field(default_factory=lambda: np.zeros((0, 27)))
+    positions: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3), np.float32))
 
 
 @dataclass

@@ -4,9 +4,10 @@ The local +Z is the outward normal: wo.z > 0 arrives from outside (index 1), wo.
 ``eta`` is the glass index: at the path's hero wavelength when the glass disperses (the path then
 carries only its hero), else the constant index. Refracted radiance is scaled by 1/eta'² (radiance is
 not symmetric under refraction, Veach 1997 §5.2). Reflection or refraction is chosen with probability
-p = mean reflectance over the carried wavelengths (the hero's once collapsed), each column weighted
-R_k / p or (1 - R_k) / (1 - p). Rough transmission follows Walter et al. 2007 with visible-normal
-sampling (Heitz 2018).
+p = reflected / (reflected + transmitted) over the carried wavelengths (the hero's once collapsed; the
+mean reflectance for untinted glass), each column weighted R_k / p or T_k / (1 - p). Tints (Blender's
+Specular Tint scales F0, a transmission tint scales T) come in ``spectral[0]`` and ``spectral[1]``.
+Rough transmission follows Walter et al. 2007 with visible-normal sampling (Heitz 2018).
 """
 
 from __future__ import annotations
@@ -14,10 +15,16 @@ from __future__ import annotations
 import math
 
 from ..jit import kernel
-from .closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_FRESNEL, REFRACTION_ONLY, SAMPLED_DELTA, SAMPLED_TRANSMISSION,
-                      SMOOTH_ALPHA)
+from .closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_FRESNEL, C_S1, C_SPECTRUM, GLASS, REFRACTION_ONLY, SAMPLED_DELTA,
+                      SAMPLED_TRANSMISSION, SMOOTH_ALPHA)
 from .microfacet import ggx_d, ggx_g1, ggx_g2, reflect, sample_visible_normal, visible_normal_pdf
 from .optics import dielectric_f0, fresnel_dielectric, refract, thin_film_reflectance, tinted_fresnel
+
+
+@kernel
+def untinted(row):
+    """Plain glass: no F0 tint, no transmission tint (the common case, kept fast)."""
+    return row[C_SPECTRUM] == -1.0 and row[C_S1] == -1.0 and int(row[C_FRESNEL]) == GLASS
 
 
 @kernel
@@ -28,16 +35,17 @@ def interface_reflectance(row, spectral, eta, cos_i, wavelength_nm, out):
         for k in range(out.shape[0]):
             out[k] = 0.0
         return
+    plain = row[C_SPECTRUM] == -1.0
     f0_real = dielectric_f0(eta)
     if row[C_COAT_NM] <= 0.0:
         r = fresnel_dielectric(cos_i, eta)
         for k in range(out.shape[0]):
-            out[k] = tinted_fresnel(r, f0_real, spectral[0, k], False)
+            out[k] = r if plain else tinted_fresnel(r, f0_real, spectral[0, k], False)
         return
     n_in, n_out = (1.0, eta) if cos_i >= 0.0 else (eta, 1.0)
     for k in range(out.shape[0]):
         r = thin_film_reflectance(cos_i, wavelength_nm[k], row[C_COAT_NM], n_in, row[C_COAT_IOR], complex(n_out, 0.0))
-        out[k] = tinted_fresnel(r, f0_real, spectral[0, k], True)
+        out[k] = r if plain else tinted_fresnel(r, f0_real, spectral[0, k], True)
 
 
 @kernel
@@ -67,6 +75,8 @@ def choice_probability(reflectance, hero, collapsed):
 def reflect_probability(row, spectral, reflectance, hero, collapsed, tir):
     """Probability of reflecting: reflected / (reflected + transmitted) over the carried wavelengths (the
     hero's once collapsed). Equals the mean reflectance for untinted glass."""
+    if untinted(row) and not tir:
+        return choice_probability(reflectance, hero, collapsed)
     r = 0.0
     t = 0.0
     for k in range(reflectance.shape[0]):

@@ -114,11 +114,20 @@ def object_row(attributes, triangle):
 
 
 @kernel
-def object_point(objects, row, p):
-    """World point ``p`` (camera-relative) in the instance's object space (identity without objects)."""
+def object_point(attributes, triangle, u, v, row, p):
+    """The hit in its instance's object space: the interpolated object-space corners when exported, else
+    camera-relative ``p`` through the world→object transform (world space without objects)."""
+    positions = attributes.positions
+    if positions.shape[0] > 0:
+        c = positions[triangle]
+        w = 1.0 - u - v
+        return (w * float(c[0, 0]) + u * float(c[1, 0]) + v * float(c[2, 0]),
+                w * float(c[0, 1]) + u * float(c[1, 1]) + v * float(c[2, 1]),
+                w * float(c[0, 2]) + u * float(c[1, 2]) + v * float(c[2, 2]))
+    offset = attributes.offset
     if row < 0:
-        return p
-    m = objects[row]
+        return (p[0] + offset[0], p[1] + offset[1], p[2] + offset[2])
+    m = attributes.objects[row]
     return (m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3], m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7],
             m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11])
 

@@ -46,14 +46,12 @@ BRIGHT_CONTRAST = 33  # dst = colour a with bright b, contrast c
 GAMMA = 34  # dst = colour a ^ gamma b
 COLOR_RAMP = 35  # mode: RAMP_INTERPOLATIONS; dst (rgba) = ramp(fac a); b = first constant register, c = stops
 CURVES = 36  # mode 0 RGB curves, 1 vector curves, 2 float curve; dst = curves(fac a, colour b); c = table, d = size
-BLACKBODY = 37  # dst = Blender's Rec.709 blackbody colour of temperature a (K)
 MAPPING = 38  # mode: MAPPING_TYPES; dst = map(vector a, location b, rotation c, scale d)
 VECTOR_ROTATE = 39  # mode: ROTATE_TYPES; dst = rotate(vector a, center b, axis c, angle d, rotation e); f = 1 inverts
 SEPARATE_XYZ = 40  # dst (3 scalars) = a
 COMBINE_XYZ = 41  # dst = (a, b, c)
 FLOAT_TO_COLOR = 42  # dst = (a, a, a)
 VECTOR_TO_FLOAT = 43  # dst = (x + y + z) / 3 of a
-WAVELENGTH = 44  # dst = Blender's colour of wavelength a (nm)
 
 # Shading inputs that need the view direction or the normal.
 FRESNEL = 50  # dst = dielectric Fresnel of IOR a for normal b
@@ -78,7 +76,7 @@ EXTRA = 69  # operands of the previous instruction that did not fit in one row
 
 # Closure support: layered weights (Principled) and binding results to the closure rows.
 LAYER_ALBEDO = 80  # mode: LAYER_ALBEDO_KINDS; dst = albedo factor s(roughness a, cos b, ior c)
-BIND = 81  # rows[a, b] = register c (a scalar parameter of closure a, column b)
+BIND = 81  # rows[a, b] = register c (a scalar parameter of closure a, column b); mode 1 multiplies
 BIND_RGB = 82  # rows[a, b] = colour at register c (a spectral parameter: resolved per hit)
 
 MATH_OPERATIONS = [

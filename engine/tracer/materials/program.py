@@ -28,10 +28,11 @@ from . import opcodes as op
 from .layering import dielectric_s
 
 #: Per material: instruction range ``start`` / ``count``, register-file range ``const_start`` /
-#: ``const_count`` in ``constants``; ``normal`` / ``emission`` registers (-1: none); ``instructions``
-#: int32 [N, INSTRUCTION]; ``constants`` float64 [C]; ``tables`` (``layering.LayerTables``).
-ProgramArrays = namedtuple("ProgramArrays",
-                           "start count const_start const_count normal emission instructions constants tables")
+#: ``const_count`` in ``constants``; ``normal``, ``emission`` (colour) and ``emission_scale`` registers (-1:
+#: none); ``instructions`` int32 [N, INSTRUCTION]; ``constants`` float64 [C]; ``tables``
+#: (``layering.LayerTables``).
+ProgramArrays = namedtuple("ProgramArrays", "start count const_start const_count normal emission emission_scale "
+                                            "instructions constants tables")
 
 
 @kernel
@@ -114,7 +115,7 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
                     else:
                         regs[dst] = attrs.objects[row, hit.O_RANDOM]
                 else:
-                    po = hit.object_point(attrs.objects, row, hp)
+                    po = hit.object_point(attrs, triangle, hu, hv, row, hp)
                     if code == op.GENERATED:
                         po = hit.generated(attrs.objects, row, po)
                     _put3(regs, dst, po)
@@ -296,7 +297,10 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
         elif code == op.LAYER_ALBEDO:
             regs[dst] = dielectric_s(tables, regs[a], regs[b], regs[c])
         elif code == op.BIND:
-            rows[a, b] = regs[c]
+            if mode == 1:
+                rows[a, b] *= regs[c]
+            else:
+                rows[a, b] = regs[c]
         elif code == op.BIND_RGB:
             rows[a, b] = -2.0 - c
 

@@ -11,10 +11,11 @@ into instructions the kernels run per hit (``materials.program``). Tests build p
   conductors).
 - ``ClosureSpec``: one closure row. ``kind`` is a ``bsdf.closure`` kind; ``tint`` its weight per
   wavelength; ``s0``/``s1`` its spectral parameters (see ``bsdf.closure``); scalars that vary are bound
-  by the program (``opcodes.BIND``). ``selection`` estimates the closure's share of the reflected light
+  by the program (``bindings``: the table appends ``opcodes.BIND`` instructions). ``selection`` estimates the closure's share of the reflected light
   when nothing varies (one-sample MIS over closures); programs recompute it per hit.
-- ``TextureImage``: an image's texels, scene-linear RGBA float32 [H, W, 4] (row 0 at the bottom, as
-  Blender stores them), with Blender's interpolation and extension.
+- ``TextureImage``: an image's texels (row 0 at the bottom, as Blender stores them): scene-linear RGBA
+  float32, or 8-bit levels with the table that decodes them (the image's colour space), with Blender's
+  interpolation and extension.
 """
 
 from __future__ import annotations
@@ -50,12 +51,14 @@ class ClosureSpec:
     film_nm: float = 0.0
     film_ior: float = 1.0
     selection: float = 1.0
+    bindings: list = field(default_factory=list)  # (column, register, multiply): scalars the program sets
 
 
 @dataclass
 class TextureImage:
     name: str
-    texels: np.ndarray  # float32 [H, W, 4], scene-linear RGB + alpha, row 0 at the bottom
+    texels: np.ndarray  # [H, W, 4] row 0 at the bottom: float32 scene-linear RGBA, or uint8 levels with ``decode``
+    decode: np.ndarray | None = None  # float32 [256, 3]: scene-linear value of each 8-bit level per channel
     interpolation: str = "Linear"  # "Closest", "Linear" ("Cubic" and "Smart" render as Linear)
     extension: str = "REPEAT"  # "REPEAT", "EXTEND", "CLIP", "MIRROR"
 
@@ -68,8 +71,9 @@ class ShaderProgram:
     instructions: np.ndarray = field(default_factory=lambda: np.zeros((0, 10), np.int32))
     constants: np.ndarray = field(default_factory=lambda: np.zeros(0))
     register_count: int = 0
-    emission: Colour | None = None  # radiance colour (strength included) or a ``spectrum``
-    emission_strength: float = 0.0  # for a constant ``emission``; an estimate for light selection when it varies
+    emission: Colour | None = None  # radiance colour or a ``spectrum`` (a ``scene.SpectrumSpec``)
+    emission_strength: float = 0.0  # its strength; an estimate for light selection when the emission varies
+    emission_scale: int = -1  # register of a factor that varies (the emission is then colour × that factor)
     normal: int = -1  # register of the shading normal (normal maps, bump), or -1
     images: list[TextureImage] = field(default_factory=list)
 

@@ -58,13 +58,22 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
 def surface_emission(materials, spectra, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, wavelength_nm,
                      rows, regs, out):
     """``out[k]`` = radiance emitted towards ``wo`` at wavelength ``k`` by a material whose emission varies
-    (``MAT_EMISSION_VARIES``): the program's emission colour as an RGB illuminant spectrum."""
+    (``MAT_EMISSION_VARIES``): the program's emission colour as an RGB illuminant spectrum, or the constant
+    emission spectrum, times the program's factor."""
     _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs)
-    r = materials.programs.emission[material]
-    _fill(materials, spectra, -2.0 - r, wavelength_nm, regs, False, out)
-    white = materials.white_emission
-    for k in range(out.shape[0]):
-        out[k] *= spectrum_value(spectra, white, wavelength_nm[k])
+    programs = materials.programs
+    r = programs.emission[material]
+    s = programs.emission_scale[material]
+    scale = regs[s] if s >= 0 else 1.0
+    if r >= 0:
+        _fill(materials, spectra, -2.0 - r, wavelength_nm, regs, False, out)
+        white = materials.white_emission
+        for k in range(out.shape[0]):
+            out[k] *= scale * spectrum_value(spectra, white, wavelength_nm[k])
+    else:
+        sid = materials.emission_spectrum[material]
+        for k in range(out.shape[0]):
+            out[k] = scale * spectrum_value(spectra, sid, wavelength_nm[k])
 
 
 @inlined

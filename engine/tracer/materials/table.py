@@ -151,6 +151,7 @@ def build_materials(materials, used, spectra) -> MaterialTable:
     p_start, p_count = np.zeros(count, np.int32), np.zeros(count, np.int32)
     c_start, c_count = np.zeros(count, np.int32), np.zeros(count, np.int32)
     normal, emission_register = np.full(count, -1, np.int32), np.full(count, -1, np.int32)
+    emission_scale = np.full(count, -1, np.int32)
     rows, glasses, glass_index, features = [], [], {}, set()
     instructions, constants, images, image_index = [], [], [], {}
     needs_lut = False
@@ -182,10 +183,13 @@ def build_materials(materials, used, spectra) -> MaterialTable:
             needs_lut = needs_lut or any(c is not None and c.varies for c in (spec.tint, spec.s0, spec.s1))
         if closures and all(_is_delta(spec) for spec in closures):
             flags[m] |= MAT_DELTA
-        if shader.has_program:
+        binds = [[op.BIND, int(multiply), -1, c, column, register] + [-1] * (op.INSTRUCTION - 6)
+                 for c, spec in enumerate(closures) for column, register, multiply in spec.bindings]
+        if shader.has_program or binds:
             flags[m] |= MAT_PROGRAM
             features.add("node program")
-            program = np.array(shader.instructions, dtype=np.int32).reshape(-1, op.INSTRUCTION).copy()
+            program = np.concatenate([np.array(shader.instructions, dtype=np.int32).reshape(-1, op.INSTRUCTION),
+                                      np.array(binds, dtype=np.int32).reshape(-1, op.INSTRUCTION)])
             local = []
             for image in shader.images:
                 key = id(image.texels)
@@ -206,22 +210,25 @@ def build_materials(materials, used, spectra) -> MaterialTable:
             normal[m] = shader.normal
         emission = shader.emission
         if emission is not None and shader.emission_strength > 0:
+            varies = emission.register is not None or shader.emission_scale >= 0
             if emission.register is not None:
-                if not shader.has_program:
-                    raise PrismInputError(f"Material '{material.name}': a varying emission needs a program.")
-                flags[m] |= MAT_EMISSIVE | MAT_EMISSION_VARIES
                 emission_register[m] = emission.register
-                emission_strength[m] = float(shader.emission_strength)
                 needs_lut = True
             else:
                 spec = emission.spectrum if emission.spectrum is not None else SpectrumSpec("rgb", tuple(emission.rgb))
-                if spec.kind != "rgb" or max(spec.rgb) > 0:
-                    flags[m] |= MAT_EMISSIVE
-                    emission_spectrum[m] = spectra.emission(spec)
-                    emission_strength[m] = float(shader.emission_strength)
+                if spec.kind == "rgb" and not max(spec.rgb) > 0:
+                    continue
+                emission_spectrum[m] = spectra.emission(spec)
+            flags[m] |= MAT_EMISSIVE
+            emission_strength[m] = float(shader.emission_strength)
+            if varies:
+                if not flags[m] & MAT_PROGRAM:
+                    raise PrismInputError(f"Material '{material.name}': a varying emission needs a program.")
+                flags[m] |= MAT_EMISSION_VARIES
+                emission_scale[m] = shader.emission_scale
     closure_rows = np.array(rows, dtype=np.float64).reshape(-1, CLOSURE_ROW)
     glass_rows = np.array([glass_row(g) for g in glasses] or [glass_row(None)]).reshape(-1, GLASS_ROW)
-    programs = ProgramArrays(p_start, p_count, c_start, c_count, normal, emission_register,
+    programs = ProgramArrays(p_start, p_count, c_start, c_count, normal, emission_register, emission_scale,
                              np.array(instructions or [[0] * op.INSTRUCTION], dtype=np.int32).reshape(-1, op.INSTRUCTION),
                              np.array(constants or [0.0], dtype=np.float64), load_tables())
     white = spectra.emission(SpectrumSpec()) if needs_lut else 0

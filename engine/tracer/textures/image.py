@@ -1,10 +1,11 @@
 """Image textures at a hit: Blender's Closest, Linear and Cubic (B-spline) interpolation with Repeat,
 Extend, Clip and Mirror extension.
 
-Texels are stored once per render, decoded to scene-linear RGBA float32 (``TextureArrays.texels``, each
-image a run of width × height × 4 values, row 0 at the bottom as Blender stores images); an image's row
-of ``TextureArrays.images`` holds (first texel value, width, height, interpolation, extension). Texel
-centres sit at (i + 0.5) / width, as in Blender.
+Texels are stored once per render, row 0 at the bottom as Blender stores images, each image a run of
+width × height × 4 values: 8-bit images as they are (``bytes``) with a table decoding each channel's 256
+levels to scene-linear (``decode``, the image's colour space), others decoded to scene-linear float32
+(``floats``). An image's row of ``TextureArrays.images`` holds (first value, width, height,
+interpolation, extension, decode table or -1). Texel centres sit at (i + 0.5) / width, as in Blender.
 """
 
 from __future__ import annotations
@@ -14,30 +15,40 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit import inlined, kernel
 
-#: ``images`` float64 [I, IMAGE_ROW], ``texels`` float32 [N].
-TextureArrays = namedtuple("TextureArrays", "images texels")
+#: ``images`` float64 [I, IMAGE_ROW], ``floats`` float32 [N], ``bytes`` uint8 [M], ``decode`` float32 [D, 256, 3].
+TextureArrays = namedtuple("TextureArrays", "images floats bytes decode")
 
-I_OFFSET, I_WIDTH, I_HEIGHT, I_INTERPOLATION, I_EXTENSION = range(5)
-IMAGE_ROW = 5
+I_OFFSET, I_WIDTH, I_HEIGHT, I_INTERPOLATION, I_EXTENSION, I_DECODE = range(6)
+IMAGE_ROW = 6
 INTERPOLATIONS = {"Linear": 0, "Closest": 1, "Cubic": 2, "Smart": 2}
 EXTENSIONS = {"REPEAT": 0, "EXTEND": 1, "CLIP": 2, "MIRROR": 3}
 
 
 def build_textures(images) -> TextureArrays:
     """Arrays for ``images`` (``materials.shader.TextureImage``), in order."""
-    rows, chunks, offset = [], [], 0
+    rows, floats, byte_chunks, decode = [], [], [], []
+    float_offset = byte_offset = 0
     for image in images:
-        texels = np.ascontiguousarray(image.texels, dtype=np.float32)
-        height, width = texels.shape[:2]
-        rows.append([offset, width, height, INTERPOLATIONS.get(image.interpolation, 0),
-                     EXTENSIONS.get(image.extension, 0)])
-        chunks.append(texels.reshape(-1))
-        offset += texels.size
+        height, width = image.texels.shape[:2]
+        kind = [INTERPOLATIONS.get(image.interpolation, 0), EXTENSIONS.get(image.extension, 0)]
+        if image.decode is not None:
+            texels = np.ascontiguousarray(image.texels, dtype=np.uint8).reshape(-1)
+            rows.append([byte_offset, width, height, *kind, len(decode)])
+            decode.append(np.asarray(image.decode, dtype=np.float32).reshape(256, 3))
+            byte_chunks.append(texels)
+            byte_offset += texels.size
+        else:
+            texels = np.ascontiguousarray(image.texels, dtype=np.float32).reshape(-1)
+            rows.append([float_offset, width, height, *kind, -1])
+            floats.append(texels)
+            float_offset += texels.size
     table = np.array(rows, dtype=np.float64).reshape(-1, IMAGE_ROW)
-    data = np.concatenate(chunks) if chunks else np.zeros(4, np.float32)
-    return TextureArrays(table if len(table) else np.zeros((1, IMAGE_ROW)), data)
+    return TextureArrays(table if len(table) else np.zeros((1, IMAGE_ROW)),
+                         np.concatenate(floats) if floats else np.zeros(4, np.float32),
+                         np.concatenate(byte_chunks) if byte_chunks else np.zeros(4, np.uint8),
+                         np.stack(decode) if decode else np.zeros((1, 256, 3), np.float32))
 
 
 @kernel
@@ -57,12 +68,18 @@ def _index(i, size, extension):
     return i if i < size else period - 1 - i
 
 
-@kernel
-def _texel(texels, offset, width, x, y, out_weight, acc):
+@inlined
+def _texel(textures, decode, offset, width, x, y, out_weight, acc):
     """Add ``out_weight`` × texel (x, y) to ``acc`` (a 4-tuple); texels at -1 are transparent black."""
     if x < 0 or y < 0 or out_weight == 0.0:
         return acc
     base = offset + (y * width + x) * 4
+    if decode >= 0:
+        texels = textures.bytes
+        table = textures.decode[decode]
+        return (acc[0] + out_weight * table[texels[base], 0], acc[1] + out_weight * table[texels[base + 1], 1],
+                acc[2] + out_weight * table[texels[base + 2], 2], acc[3] + out_weight * texels[base + 3] / 255.0)
+    texels = textures.floats
     return (acc[0] + out_weight * texels[base], acc[1] + out_weight * texels[base + 1],
             acc[2] + out_weight * texels[base + 2], acc[3] + out_weight * texels[base + 3])
 
@@ -75,7 +92,7 @@ def _bspline(t):
     return w0, w1, w2, 1.0 / 6.0 * t * t * t
 
 
-@kernel
+@inlined
 def image_lookup(textures, image, s, t):
     """RGBA of image ``image`` at texture coordinates (s, t) (0-1 across the image, (0, 0) bottom left)."""
     row = textures.images[image]
@@ -84,7 +101,7 @@ def image_lookup(textures, image, s, t):
     height = int(row[I_HEIGHT])
     interpolation = int(row[I_INTERPOLATION])
     extension = int(row[I_EXTENSION])
-    texels = textures.texels
+    decode = int(row[I_DECODE])
     acc = (0.0, 0.0, 0.0, 0.0)
     if not (math.isfinite(s) and math.isfinite(t)):
         return acc
@@ -93,7 +110,7 @@ def image_lookup(textures, image, s, t):
     x = s * width
     y = t * height
     if interpolation == 1:
-        return _texel(texels, offset, width, _index(int(math.floor(x)), width, extension),
+        return _texel(textures, decode, offset, width, _index(int(math.floor(x)), width, extension),
                       _index(int(math.floor(y)), height, extension), 1.0, acc)
     x -= 0.5
     y -= 0.5
@@ -108,14 +125,14 @@ def image_lookup(textures, image, s, t):
         x1 = _index(ix + 1, width, extension)
         y0 = _index(iy, height, extension)
         y1 = _index(iy + 1, height, extension)
-        acc = _texel(texels, offset, width, x0, y0, (1.0 - tx) * (1.0 - ty), acc)
-        acc = _texel(texels, offset, width, x1, y0, tx * (1.0 - ty), acc)
-        acc = _texel(texels, offset, width, x0, y1, (1.0 - tx) * ty, acc)
-        return _texel(texels, offset, width, x1, y1, tx * ty, acc)
+        acc = _texel(textures, decode, offset, width, x0, y0, (1.0 - tx) * (1.0 - ty), acc)
+        acc = _texel(textures, decode, offset, width, x1, y0, tx * (1.0 - ty), acc)
+        acc = _texel(textures, decode, offset, width, x0, y1, (1.0 - tx) * ty, acc)
+        return _texel(textures, decode, offset, width, x1, y1, tx * ty, acc)
     wx = _bspline(tx)
     wy = _bspline(ty)
     for j in range(4):
         yj = _index(iy - 1 + j, height, extension)
         for i in range(4):
-            acc = _texel(texels, offset, width, _index(ix - 1 + i, width, extension), yj, wx[i] * wy[j], acc)
+            acc = _texel(textures, decode, offset, width, _index(ix - 1 + i, width, extension), yj, wx[i] * wy[j], acc)
     return acc

@@ -1,0 +1,42 @@
+"""Blender shader node trees → ``ShaderProgram`` (closures + a program of what varies per hit).
+
+    compiled = compile_material(material, slots=slots, image_cache={}, evaluate=fold_evaluator())
+    compiled.shader, compiled.warnings, compiled.needs
+
+``compiler`` walks the tree; ``shaders``, ``inputs``, ``converters``, ``textures`` and ``vectors`` hold one
+handler per Blender node; ``finish`` turns the walk into the tracer's data. Without ``evaluate`` nothing
+is folded and without ``load_pixels`` no image is read: enough for the material panel's warnings.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .compiler import MaterialCompiler
+from .finish import finish
+from .slots import AttributeSlots
+
+
+@dataclass
+class CompiledMaterial:
+    shader: object  # tracer.materials.shader.ShaderProgram, or None when nothing is connected
+    warnings: list = field(default_factory=list)
+    needs: set = field(default_factory=set)  # ("uv" | "attribute" | "tangent" | "objects", name)
+    glass: tuple | None = None  # ("catalogue", name) or ("abbe", (n_d, V_d)) when Material.prism sets one
+    conductor: str | None = None  # a measured metal Material.prism sets
+    kinds: set = field(default_factory=set)  # closure kinds, for the panel's summary
+
+
+def compile_material(material, slots=None, image_cache=None, evaluate=None, load_pixels=True) -> CompiledMaterial:
+    """Compile ``material``'s node tree (its Material Output for Cycles)."""
+    compiler = MaterialCompiler(material, getattr(material, "prism", None), slots, evaluate, load_pixels,
+                                image_cache=image_cache if image_cache is not None else {})
+    if not compiler.compile_surface():
+        compiler.warn(None, "has no Material Output for Cycles; Prism renders it black.")
+        return CompiledMaterial(None, compiler.warnings, compiler.needs)
+    shader = finish(compiler)
+    return CompiledMaterial(shader, compiler.warnings, compiler.needs, compiler.glass_description, compiler.conductor,
+                            {p.kind for p in compiler.closures})
+
+
+__all__ = ["AttributeSlots", "CompiledMaterial", "compile_material"]

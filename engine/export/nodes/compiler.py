@@ -1,0 +1,291 @@
+"""Compiling one Blender material's node tree into a ``ShaderProgram``: the walk, values and weights.
+
+The shader sockets are walked from the Material Output (``shaders``): Mix and Add Shader split and sum
+weights at any depth, BSDF nodes add closures with their weight, Emission adds to the emission. Every
+value a closure reads is compiled on demand (``value``) into program instructions by the node handlers
+(``converters``, ``inputs``, ``textures``), once per node, group context and bump variant; constant
+results fold as they are emitted, so an untextured material costs no program. Weights are kept as a
+scalar times a colour so the common case (a constant colour scaled by a varying factor) needs no
+per-hit colour upsampling.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ...tracer.materials import opcodes as op
+from ...tracer.materials.program_builder import ProgramBuilder, Value
+from .graph import Source, follow, output_node
+
+FLOAT, VECTOR, COLOR = "float", "vector", "color"
+_SOCKET_KINDS = {"VALUE": FLOAT, "INT": FLOAT, "BOOLEAN": FLOAT, "VECTOR": VECTOR, "RGBA": COLOR, "ROTATION": VECTOR}
+_VECTOR_MATH = {name: i for i, name in enumerate(op.VECTOR_MATH_OPERATIONS)}
+_MATH = {name: i for i, name in enumerate(op.MATH_OPERATIONS)}
+
+
+@dataclass
+class Weight:
+    """A closure weight: ``scale`` (scalar) × ``colour`` (RGB)."""
+
+    scale: Value
+    colour: Value
+
+
+@dataclass
+class PendingClosure:
+    kind: int
+    weight: Weight
+    node: object
+    s0: Value | None = None
+    s1: Value | None = None
+    alpha: Value | None = None
+    eta: Value | None = None
+    fresnel: int = 0
+    glass: object = None
+    coat_nm: float = 0.0
+    coat_ior: float = 1.0
+    normal: Value | None = None
+
+
+@dataclass
+class EmissionTerm:
+    scale: Value
+    colour: Value | None = None
+    spectrum: object = None  # a scene.SpectrumSpec (Blackbody feeding an emission)
+
+
+class Unsupported(Exception):
+    """Raised by a handler for a configuration it cannot compile; the message says what Prism did."""
+
+
+@dataclass
+class MaterialCompiler:
+    material: object
+    settings: object = None  # Material.prism
+    slots: object = None  # export.nodes.slots.AttributeSlots
+    evaluate: object = None
+    load_pixels: bool = True
+    builder: ProgramBuilder = None
+    warnings: list = field(default_factory=list)
+    closures: list = field(default_factory=list)
+    emission: list = field(default_factory=list)
+    images: list = field(default_factory=list)
+    image_keys: dict = field(default_factory=dict)
+    image_cache: dict = field(default_factory=dict)  # shared by the materials of one export
+    needs: set = field(default_factory=set)
+    glass_description: tuple | None = None
+    conductor: str | None = None
+    displacement: object = None
+    _outputs: dict = field(default_factory=dict)
+    _warned: set = field(default_factory=set)
+
+    def __post_init__(self):
+        if self.builder is None:
+            self.builder = ProgramBuilder(self.evaluate)
+
+    # -- messages ----------------------------------------------------------------------------------
+    def warn(self, node, what):
+        """One warning per node and message: ``Material 'M': the 'N' node (Label) <what>.``"""
+        key = (node.name if node is not None else None, what)
+        if key in self._warned:
+            return
+        self._warned.add(key)
+        where = f"the '{node.name}' node ({node.bl_label}) " if node is not None else ""
+        self.warnings.append(f"Material '{self.material.name}': {where}{what}")
+
+    # -- constants and arithmetic --------------------------------------------------------------------
+    def const(self, *values) -> Value:
+        return self.builder.constant(*values)
+
+    def known(self, value):
+        """The constant of ``value`` (float or tuple), or None if it varies."""
+        return self.builder.value(value)
+
+    def emit(self, opcode, args=(), mode=0, width=1, reads=(), extra=None) -> Value:
+        return self.builder.emit(opcode, args, mode=mode, width=width, reads=reads, extra=extra)
+
+    def math(self, operation, a, b=None, c=None) -> Value:
+        return self.emit(op.MATH, [a, b if b is not None else a, c], mode=_MATH[operation])
+
+    def vector_math(self, operation, a, b=None, c=None, s=None) -> Value:
+        width = 1 if operation in op.VECTOR_MATH_SCALAR else 3
+        return self.emit(op.VECTOR_MATH, [a, b, c, s], mode=_VECTOR_MATH[operation], width=width)
+
+    def multiply(self, a: Value, b: Value) -> Value:
+        """a × b for scalars or vectors (a vector times a scalar scales it); constant 1 factors vanish."""
+        if self.known(a) in (1.0, (1.0, 1.0, 1.0)) and a.width >= b.width:
+            return b if a.width == b.width else self.broadcast(b)
+        if self.known(b) in (1.0, (1.0, 1.0, 1.0)) and b.width >= a.width:
+            return a if a.width == b.width else self.broadcast(a)
+        if a.width == 1 and b.width == 1:
+            return self.math("MULTIPLY", a, b)
+        if a.width == 3 and b.width == 3:
+            return self.vector_math("MULTIPLY", a, b)
+        vector, scalar = (a, b) if a.width == 3 else (b, a)
+        return self.vector_math("SCALE", vector, s=scalar)
+
+    def broadcast(self, scalar: Value) -> Value:
+        return scalar if scalar.width == 3 else self.emit(op.FLOAT_TO_COLOR, [scalar], width=3)
+
+    def one_minus(self, a: Value) -> Value:
+        return self.math("SUBTRACT", self.const(1.0), a)
+
+    def clamp01(self, a: Value) -> Value:
+        known = self.known(a)
+        if known is not None and 0.0 <= known <= 1.0:
+            return a
+        return self.emit(op.CLAMP, [a, self.const(0.0), self.const(1.0)])
+
+    def convert(self, value: Value, source_kind: str, kind: str) -> Value:
+        """Blender's implicit conversion between socket types (colour → float is luminance, vector →
+        float the mean, float → vector/colour broadcasts)."""
+        if source_kind == kind or (source_kind != FLOAT and kind != FLOAT):
+            return value
+        if kind != FLOAT:
+            return self.broadcast(value)
+        if source_kind == COLOR:
+            return self.emit(op.RGB_TO_BW, [value])
+        return self.emit(op.VECTOR_TO_FLOAT, [value])
+
+    # -- values --------------------------------------------------------------------------------------
+    def socket(self, node, name):
+        socket = node.inputs.get(name) if not isinstance(name, int) else node.inputs[name]
+        if socket is None:
+            socket = next((s for s in node.inputs if s.identifier == name), None)
+        return socket
+
+    def linked(self, node, name, context) -> Source | None:
+        socket = self.socket(node, name)
+        return follow(socket, context)[0] if socket is not None else None
+
+    def value(self, node, name, context, kind, variant=0, default=None) -> Value:
+        """The value of input ``name`` of ``node`` as ``kind`` (compiling what feeds it); ``default`` (a
+        callable) gives the value of an unlinked vector input (texture coordinates, the normal)."""
+        socket = self.socket(node, name)
+        if socket is None:
+            raise KeyError(f"{node.bl_idname} has no input '{name}'")
+        source, value_socket = follow(socket, context)
+        if source is None:
+            if default is not None:
+                return default()
+            return self.default_value(value_socket, kind)
+        value, source_kind = self.output(source, variant)
+        return self.convert(value, source_kind, kind)
+
+    def value_of_socket(self, socket, context, kind, variant=0) -> Value:
+        """The value arriving at input ``socket`` (e.g. the Material Output's Displacement) as ``kind``."""
+        source, value_socket = follow(socket, context)
+        if source is None:
+            return self.default_value(value_socket, kind)
+        value, source_kind = self.output(source, variant)
+        return self.convert(value, source_kind, kind)
+
+    def constant_of(self, node, name, context, kind=FLOAT, variant=0):
+        """The input's value if it is constant (float or tuple), else None."""
+        return self.known(self.value(node, name, context, kind, variant))
+
+    def default_value(self, socket, kind) -> Value:
+        raw = getattr(socket, "default_value", 0.0)
+        try:
+            values = [float(x) for x in raw]
+        except TypeError:
+            values = [float(raw)]
+        socket_kind = _SOCKET_KINDS.get(socket.type, FLOAT)
+        if socket_kind == COLOR:
+            values = values[:3]
+        value = self.const(*values[:3]) if len(values) > 1 else self.const(values[0])
+        return self.convert(value, socket_kind if value.width == 3 else FLOAT, kind)
+
+    def output(self, source: Source, variant=0):
+        """(Value, kind) of an output socket, compiling its node once per context and variant."""
+        from .registry import NODE_HANDLERS
+
+        key = (source.key[0], source.key[2], variant)
+        outputs = self._outputs.get(key)
+        if outputs is None or source.identifier not in outputs:
+            node = source.node
+            handler = NODE_HANDLERS.get(node.bl_idname)
+            if handler is None:
+                self.warn(node, "is not supported by Prism; its outputs are taken as 0. Replace it or bake it to "
+                                "an image texture.")
+                computed = {}
+            else:
+                computed = handler(self, node, source.context, variant, source.identifier)
+            outputs = {**(outputs or {}), **computed}
+            self._outputs[key] = outputs
+        if source.identifier not in outputs:
+            socket = next(s for s in source.node.outputs if s.identifier == source.identifier)
+            kind = _SOCKET_KINDS.get(socket.type, FLOAT)
+            if socket.type == "SHADER":
+                self.warn(source.node, "is a shader used as a value; Prism takes 0 there.")
+            zero = self.const(0.0, 0.0, 0.0) if kind != FLOAT else self.const(0.0)
+            outputs[source.identifier] = (zero, kind)
+        return outputs[source.identifier]
+
+    # -- hit inputs ----------------------------------------------------------------------------------
+    def hit(self, opcode, variant=0, mode=0, slot=None, width=3) -> Value:
+        return self.emit(opcode, [slot, None, None, None, None, None, variant], mode=mode, width=width)
+
+    def normal(self, variant=0) -> Value:
+        return self.hit(op.NORMAL, variant)
+
+    def image_index(self, image) -> int:
+        """The program-local index of a ``TextureImage``."""
+        key = id(image)
+        if key not in self.image_keys:
+            self.image_keys[key] = len(self.images)
+            self.images.append(image)
+        return self.image_keys[key]
+
+    # -- shaders -------------------------------------------------------------------------------------
+    def shader(self, socket, context, weight: Weight) -> None:
+        """Add the closures and emission of whatever feeds shader input ``socket``, scaled by ``weight``."""
+        from .registry import SHADER_HANDLERS
+
+        source, _ = follow(socket, context)
+        if source is None:
+            return
+        handler = SHADER_HANDLERS.get(source.node.bl_idname)
+        if handler is None:
+            self.warn(source.node, "is not a shader Prism renders; it is left out (black). Use a Principled BSDF or "
+                                   "another supported BSDF.")
+            return
+        handler(self, source.node, source.context, weight)
+
+    def weighted(self, weight: Weight, scale: Value | None = None, colour: Value | None = None) -> Weight:
+        return Weight(self.multiply(weight.scale, scale) if scale is not None else weight.scale,
+                      self.multiply(weight.colour, colour) if colour is not None else weight.colour)
+
+    def add_closure(self, closure: PendingClosure) -> None:
+        if self.known(closure.weight.scale) == 0.0 or self.known(closure.weight.colour) == (0.0, 0.0, 0.0):
+            return
+        self.closures.append(closure)
+
+    def add_emission(self, weight: Weight, colour: Value | None, strength: Value, spectrum=None) -> None:
+        scale = self.multiply(weight.scale, strength)
+        if self.known(scale) == 0.0:
+            return
+        colour = self.multiply(weight.colour, colour) if colour is not None else weight.colour
+        if spectrum is not None and self.known(weight.colour) != (1.0, 1.0, 1.0):
+            spectrum = None
+        if self.known(colour) == (0.0, 0.0, 0.0) and spectrum is None:
+            return
+        self.emission.append(EmissionTerm(scale, colour, spectrum))
+
+    def compile_surface(self) -> bool:
+        """Walk the Material Output's Surface; False when there is nothing to walk."""
+        tree = self.material.node_tree
+        out = output_node(tree) if tree is not None else None
+        if out is None:
+            return False
+        for name in ("Volume",):
+            socket = out.inputs.get(name)
+            if socket is not None and follow(socket)[0] is not None:
+                self.warn(out, f"has a {name} shader; Prism renders surfaces only and leaves it out.")
+        socket = out.inputs.get("Displacement")
+        if socket is not None and follow(socket)[0] is not None:
+            self.displacement = socket
+        self.output_node = out
+        one = Weight(self.const(1.0), self.const(1.0, 1.0, 1.0))
+        self.shader(out.inputs["Surface"], (), one)
+        return True

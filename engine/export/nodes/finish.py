@@ -1,0 +1,118 @@
+"""The compiled walk → a ``ShaderProgram``: closures whose constant parameters became plain numbers or
+spectra, varying ones registers or bindings; the emission; the shading normal; the program itself."""
+
+from __future__ import annotations
+
+from ...tracer.bsdf.closure import C_ALPHA, C_ETA, C_TINT_SCALE, CONDUCTOR, DIELECTRIC, FRESNEL_DIELECTRIC
+from ...tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
+from .vectors import displacement_bump
+
+_LUMINANCE = (0.2126729, 0.7151522, 0.0721750)
+
+
+def _colour(c, value):
+    """A ``Colour`` for a Value (constant or register) or a measured-metal key."""
+    if value is None:
+        return None
+    if isinstance(value, tuple):
+        return Colour(spectrum=value)
+    known = c.known(value)
+    if known is not None:
+        return Colour(rgb=tuple(max(x, 0.0) for x in known))
+    return Colour(register=value.register)
+
+
+def _selection(kind, fresnel, rgb):
+    weight = sum(w * x for w, x in zip(_LUMINANCE, rgb))
+    if kind == CONDUCTOR and fresnel == FRESNEL_DIELECTRIC:
+        weight *= 0.1
+    return max(weight, 0.0)
+
+
+def _closure(c, pending, normal_register):
+    spec = ClosureSpec(pending.kind, fresnel=pending.fresnel, glass=pending.glass, coat_nm=pending.coat_nm,
+                       coat_ior=pending.coat_ior)
+    scale, colour = c.known(pending.weight.scale), c.known(pending.weight.colour)
+    if scale is not None and colour is not None:
+        rgb = tuple(max(x * scale, 0.0) for x in colour)
+        if max(rgb) <= 0.0:
+            return None
+        spec.tint = Colour(rgb=rgb)
+        spec.selection = _selection(pending.kind, pending.fresnel, rgb)
+    elif colour is not None:
+        spec.tint = Colour(rgb=tuple(max(x, 0.0) for x in colour))
+        spec.bindings.append((C_TINT_SCALE, pending.weight.scale.register, True))
+    else:
+        tinted = pending.weight.colour if scale == 1.0 else c.multiply(pending.weight.colour, pending.weight.scale)
+        spec.tint = Colour(register=tinted.register)
+    spec.s0 = _colour(c, pending.s0)
+    spec.s1 = _colour(c, pending.s1)
+    if pending.alpha is not None:
+        alpha = c.known(pending.alpha)
+        if alpha is None:
+            spec.alpha = 1.0
+            spec.bindings.append((C_ALPHA, pending.alpha.register, False))
+        else:
+            spec.alpha = float(alpha)
+    if pending.eta is not None:
+        eta = c.known(pending.eta)
+        if eta is not None:
+            spec.eta = float(eta)
+        elif pending.kind == DIELECTRIC:
+            c.warn(pending.node, "has a varying IOR; Prism's glass takes a constant index (1.5) there.")
+            spec.eta = 1.5
+        else:
+            spec.bindings.append((C_ETA, pending.eta.register, False))
+    return spec
+
+
+def _emission(c, program):
+    terms = c.emission
+    if not terms:
+        return
+    if len(terms) == 1 and terms[0].spectrum is not None:
+        term = terms[0]
+        program.emission = Colour(spectrum=term.spectrum)
+        strength = c.known(term.scale)
+        if strength is None:
+            program.emission_strength, program.emission_scale = 1.0, term.scale.register
+        else:
+            program.emission_strength = float(strength)
+        return
+    total = None
+    for term in terms:
+        colour = term.colour if term.colour is not None else c.const(1.0, 1.0, 1.0)
+        part = c.multiply(colour, term.scale)
+        total = part if total is None else c.vector_math("ADD", total, part)
+    known = c.known(total)
+    if known is not None:
+        if max(known) <= 0.0:
+            return
+        largest = max(known)
+        program.emission = Colour(rgb=tuple(x / largest for x in known))
+        program.emission_strength = float(largest)
+    else:
+        program.emission = Colour(register=total.register)
+        program.emission_strength = 1.0
+
+
+def finish(c) -> ShaderProgram:
+    """The ``ShaderProgram`` of compiler ``c`` after its walk."""
+    default_normal = displacement_bump(c, c.displacement) if getattr(c, "displacement", None) is not None else None
+    normals = [p.normal for p in c.closures if p.normal is not None]
+    normal = normals[0] if normals else default_normal
+    if len({n.register for n in normals}) > 1:
+        c.warn(None, "has shaders with different normal inputs; Prism shades them all with the first one.")
+    closures = [spec for spec in (_closure(c, p, normal) for p in c.closures) if spec is not None]
+    program = ShaderProgram(closures)
+    _emission(c, program)
+    program.normal = normal.register if normal is not None else -1
+    program.instructions = c.builder.instructions()
+    program.constants = c.builder.initial_registers()
+    program.register_count = c.builder.register_count
+    program.images = list(c.images)
+    if not program.has_program and not any(spec.bindings for spec in closures) and program.normal < 0:
+        program.constants = program.constants[:0]
+        program.register_count = 0
+    return program
+

@@ -1,0 +1,140 @@
+"""Blender images → ``TextureImage``: texels read with ``foreach_get``, decoded from the image's colour
+space to scene-linear Rec.709 once per render.
+
+Blender keeps float images (EXR, HDR, float generated images) in scene-linear already; 8-bit images hold
+the file's levels, decoded here with Blender's own OpenColorIO configuration (every input colour space
+Blender offers: sRGB, Non-Color, linear spaces, Filmic/AgX log, display spaces, ACES). A colour space
+that maps each channel on its own keeps the image as 8-bit levels plus a 256-entry table per channel (4
+bytes a texel, as Cycles stores them); one that mixes channels (AgX, ACES) is decoded to float32.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import numpy as np
+
+from ...tracer.materials.shader import TextureImage
+
+#: Colour spaces whose levels are the values themselves.
+_RAW = {"Non-Color", "Raw", "Linear Rec.709", "Linear", "Linear CIE-XYZ E"}
+MISSING_COLOUR = (1.0, 0.0, 1.0, 1.0)  # Blender's colour for an image it cannot read
+
+_OCIO: dict = {}
+
+
+def _ocio_config():
+    """Blender's OpenColorIO configuration (PyOpenColorIO ships with Blender), or None."""
+    if "config" in _OCIO:
+        return _OCIO["config"]
+    config = None
+    try:
+        import bpy
+
+        local = bpy.utils.resource_path("LOCAL")
+        try:
+            import PyOpenColorIO as ocio
+        except ImportError:
+            version = f"python{sys.version_info.major}.{sys.version_info.minor}"
+            for site in (os.path.join(local, "python", "lib", version, "site-packages"),
+                         os.path.join(local, "python", "lib", "site-packages")):
+                if os.path.isdir(site) and site not in sys.path:
+                    sys.path.append(site)
+            import PyOpenColorIO as ocio
+        path = os.environ.get("OCIO") or os.path.join(local, "datafiles", "colormanagement", "config.ocio")
+        config = (ocio, ocio.Config.CreateFromFile(path))
+    except Exception:  # noqa: BLE001 - decoding falls back to the sRGB formula
+        config = None
+    _OCIO["config"] = config
+    return config
+
+
+def _srgb_to_linear(v):
+    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
+
+
+def _to_linear(colour_space, rgb):
+    """Scene-linear values of ``rgb`` (float32 [N, 3]) in ``colour_space``; None if it cannot be decoded."""
+    if colour_space in _RAW:
+        return rgb
+    config = _ocio_config()
+    if config is None:
+        return _srgb_to_linear(rgb) if colour_space == "sRGB" else None
+    ocio, cfg = config
+    try:
+        processor = cfg.getProcessor(colour_space, "scene_linear").getDefaultCPUProcessor()
+    except Exception:  # noqa: BLE001 - an unknown colour space name
+        return None
+    out = np.ascontiguousarray(rgb, dtype=np.float32).copy()
+    processor.applyRGB(out)
+    return out
+
+
+def _level_table(colour_space):
+    """float32 [256, 3] decoding each channel's levels, or None when the space mixes channels."""
+    levels = np.arange(256, dtype=np.float32) / 255.0
+    grey = _to_linear(colour_space, np.repeat(levels[:, None], 3, axis=1))
+    if grey is None:
+        return None
+    for channel in range(3):
+        alone = np.zeros((256, 3), np.float32)
+        alone[:, channel] = levels
+        decoded = _to_linear(colour_space, alone)
+        others = np.delete(decoded, channel, axis=1)
+        if not (np.allclose(others, others[:1], atol=1e-6) and np.allclose(decoded[:, channel], grey[:, channel],
+                                                                           atol=1e-5)):
+            return None
+    return grey.astype(np.float32)
+
+
+def read_image(image, node, warn, cache):
+    """The ``TextureImage`` of ``image`` for Image Texture ``node`` (shared through ``cache``), or None when
+    it cannot be read (Blender renders such images magenta)."""
+    if image is None:
+        warn(node, "has no image; Prism renders it magenta, as Blender does.")
+        return None
+    key = (image.name, image.colorspace_settings.name, image.alpha_mode, node.interpolation, node.extension)
+    if key in cache:
+        return cache[key]
+    if image.source == "TILED":
+        warn(node, f"uses the UDIM image '{image.name}', which Prism does not support; it renders magenta.")
+        cache[key] = None
+        return None
+    if image.source in ("MOVIE", "SEQUENCE"):
+        warn(node, f"uses the {image.source.lower()} '{image.name}'; Prism reads its current frame only.")
+    width, height = image.size
+    if width == 0 or height == 0:
+        warn(node, f"cannot read image '{image.name}' (missing file?); Prism renders it magenta, as Blender does.")
+        cache[key] = None
+        return None
+    pixels = np.empty(width * height * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    pixels = pixels.reshape(height, width, 4)
+    if image.alpha_mode == "PREMUL":
+        alpha = pixels[..., 3:4]
+        pixels[..., :3] = np.where(alpha > 0, pixels[..., :3] / np.where(alpha > 0, alpha, 1.0), pixels[..., :3])
+    if image.alpha_mode == "NONE":
+        pixels[..., 3] = 1.0
+    colour_space = image.colorspace_settings.name
+    interpolation = node.interpolation if node.interpolation in ("Closest", "Linear", "Cubic") else "Linear"
+    if node.interpolation == "Smart":
+        interpolation = "Cubic"
+    if image.is_float:
+        result = TextureImage(image.name, np.ascontiguousarray(pixels), None, interpolation, node.extension)
+    else:
+        table = _level_table(colour_space)
+        levels = np.clip(np.rint(pixels * 255.0), 0, 255).astype(np.uint8)
+        if table is not None:
+            result = TextureImage(image.name, levels, table, interpolation, node.extension)
+        else:
+            decoded = _to_linear(colour_space, pixels[..., :3].reshape(-1, 3))
+            if decoded is None:
+                warn(node, f"image '{image.name}' is in colour space '{colour_space}', which Prism cannot decode; "
+                           "it is read as sRGB.")
+                decoded = _srgb_to_linear(pixels[..., :3].reshape(-1, 3))
+            rgba = np.concatenate([decoded.reshape(height, width, 3), pixels[..., 3:4]], axis=2)
+            result = TextureImage(image.name, np.ascontiguousarray(rgba, dtype=np.float32), None, interpolation,
+                                  node.extension)
+    cache[key] = result
+    return result

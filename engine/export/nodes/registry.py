@@ -1,0 +1,8 @@
+"""Which handler compiles which Blender node (by ``bl_idname``)."""
+
+from __future__ import annotations
+
+from . import converters, inputs, shaders, textures, vectors
+
+NODE_HANDLERS = {**inputs.HANDLERS, **converters.HANDLERS, **textures.HANDLERS, **vectors.HANDLERS}
+SHADER_HANDLERS = dict(shaders.SHADER_HANDLERS)

@@ -1,0 +1,322 @@
+"""Shader nodes → closures, as Cycles defines them: Principled BSDF (layered: alpha, coat, emission,
+metallic, transmission, specular, diffuse), Diffuse, Glossy, Metallic, Glass, Refraction, Translucent,
+Transparent, Emission, Holdout, Mix Shader and Add Shader.
+
+Each handler takes the weight its shader socket carries (``compiler.Weight``) and adds closures
+(``compiler.PendingClosure``) and emission. The Principled layering follows Blender's: a layer's closure
+takes the running weight, then the layers below keep weight × (1 - its albedo seen from the view
+direction) (coat and specular, ``LAYER_ALBEDO``) or × (1 - its weight) (metallic, transmission).
+"""
+
+from __future__ import annotations
+
+from ...tracer.bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_CONDUCTOR, FRESNEL_DIELECTRIC,
+                                    FRESNEL_F82, FRESNEL_NONE, GLASS, REFRACTION_ONLY, TRANSLUCENT, TRANSPARENT)
+from ...tracer.materials import opcodes as op
+from .compiler import COLOR, FLOAT, VECTOR, PendingClosure, Weight
+from .overrides import conductor_override, glass_override, prism_coating
+
+
+def _val(c, node, name, context, kind=FLOAT):
+    return c.value(node, name, context, kind)
+
+
+def _normal(c, node, context, name="Normal"):
+    if c.linked(node, name, context) is None:
+        return None
+    return c.value(node, name, context, VECTOR)
+
+
+def _alpha(c, roughness):
+    roughness = c.clamp01(roughness)
+    return c.math("MULTIPLY", roughness, roughness)
+
+
+def _distribution(c, node, what="GGX"):
+    distribution = getattr(node, "distribution", "GGX")
+    if distribution == "MULTI_GGX":
+        c.warn(node, "uses multiscatter GGX; Prism renders single-scatter GGX (slightly darker when rough).")
+    elif distribution not in ("GGX", "SHARP"):
+        c.warn(node, f"uses the {distribution.replace('_', ' ').title()} distribution; Prism renders GGX.")
+
+
+def _cos_view(c, normal):
+    incoming = c.hit(op.INCOMING)
+    return c.vector_math("DOT_PRODUCT", incoming, normal if normal is not None else c.normal())
+
+
+def _f0(c, eta):
+    r = c.math("DIVIDE", c.math("SUBTRACT", eta, c.const(1.0)), c.math("ADD", eta, c.const(1.0)))
+    return c.math("MULTIPLY", r, r)
+
+
+def _layer_albedo(c, roughness, cos, eta):
+    return c.emit(op.LAYER_ALBEDO, [c.clamp01(roughness), cos, eta])
+
+
+def _max_channel(c, colour):
+    return c.math("MAXIMUM", c.math("MAXIMUM", colour.component(0), colour.component(1)), colour.component(2))
+
+
+def _saturate(c, colour):
+    return c.vector_math("MINIMUM", c.vector_math("MAXIMUM", colour, c.const(0.0, 0.0, 0.0)), c.const(1.0, 1.0, 1.0))
+
+
+def principled(c, node, context, weight: Weight):
+    base = _val(c, node, "Base Color", context, COLOR)
+    roughness = c.clamp01(_val(c, node, "Roughness", context))
+    alpha = _alpha(c, roughness)
+    ior = c.math("MAXIMUM", _val(c, node, "IOR", context), c.const(1e-5))
+    normal = _normal(c, node, context)
+    specular_tint = c.vector_math("MAXIMUM", _val(c, node, "Specular Tint", context, COLOR), c.const(0.0, 0.0, 0.0))
+    if getattr(node, "distribution", "GGX") == "MULTI_GGX":
+        _distribution(c, node)
+    for name in ("Anisotropic",):
+        if c.known(_val(c, node, name, context)) != 0.0:
+            c.warn(node, "is anisotropic; Prism renders it isotropic.")
+    cos = _cos_view(c, normal)
+
+    opacity = c.clamp01(_val(c, node, "Alpha", context))
+    if c.known(opacity) != 1.0:
+        c.add_closure(PendingClosure(TRANSPARENT, c.weighted(weight, scale=c.one_minus(opacity)), node))
+        weight = c.weighted(weight, scale=opacity)
+
+    if c.known(_val(c, node, "Sheen Weight", context)) != 0.0:
+        c.warn(node, "has Sheen, which Prism does not model; the sheen is left out.")
+
+    coat = c.math("MAXIMUM", _val(c, node, "Coat Weight", context), c.const(0.0))
+    if c.known(coat) != 0.0:
+        coat_roughness = c.clamp01(_val(c, node, "Coat Roughness", context))
+        coat_ior = c.math("MAXIMUM", _val(c, node, "Coat IOR", context), c.const(1.0))
+        coat_normal = _normal(c, node, context, "Coat Normal")
+        if coat_normal is not None and coat_normal != normal:
+            c.warn(node, "has its own Coat Normal; Prism shades the coat with the base normal.")
+        c.add_closure(PendingClosure(CONDUCTOR, c.weighted(weight, scale=coat), node, alpha=_alpha(c, coat_roughness),
+                                     eta=coat_ior, fresnel=FRESNEL_DIELECTRIC, normal=normal))
+        f0 = _f0(c, coat_ior)
+        s = _layer_albedo(c, coat_roughness, cos, coat_ior)
+        albedo = c.math("ADD", f0, c.math("MULTIPLY", c.one_minus(f0), s))
+        weight = c.weighted(weight, scale=c.clamp01(c.one_minus(c.math("MULTIPLY", coat, albedo))))
+        tint = c.vector_math("MAXIMUM", _val(c, node, "Coat Tint", context, COLOR), c.const(0.0, 0.0, 0.0))
+        if c.known(tint) != (1.0, 1.0, 1.0):
+            inv = c.math("DIVIDE", c.const(1.0), coat_ior)
+            sin2 = c.math("MULTIPLY", c.math("MULTIPLY", inv, inv), c.one_minus(c.math("MULTIPLY", cos, cos)))
+            depth = c.math("DIVIDE", c.const(1.0), c.math("SQRT", c.one_minus(sin2)))
+            absorbed = c.vector_math("POWER", tint, c.broadcast(depth))
+            mixed = c.emit(op.MIX_VECTOR, [coat, c.const(1.0, 1.0, 1.0), absorbed, None, 0], width=3)
+            weight = c.weighted(weight, colour=mixed)
+
+    emission_colour = _val(c, node, "Emission Color", context, COLOR)
+    c.add_emission(weight, emission_colour, _val(c, node, "Emission Strength", context),
+                   spectrum=_blackbody_spectrum(c, node, "Emission Color", context))
+
+    film = _val(c, node, "Thin Film Thickness", context)
+    film_nm = c.known(film)
+    if film_nm is None:
+        c.warn(node, "has a textured Thin Film Thickness; Prism uses no film there.")
+        film_nm = 0.0
+    film_ior = c.known(_val(c, node, "Thin Film IOR", context)) or 1.33
+
+    metallic = c.clamp01(_val(c, node, "Metallic", context))
+    if c.known(metallic) != 0.0:
+        metal = PendingClosure(CONDUCTOR, c.weighted(weight, scale=metallic), node, alpha=alpha, fresnel=FRESNEL_F82,
+                               s0=_saturate(c, base), s1=c.vector_math("MINIMUM", specular_tint, c.const(1.0, 1.0, 1.0)),
+                               normal=normal)
+        conductor_override(c, metal)
+        prism_coating(c, metal)
+        c.add_closure(metal)
+        weight = c.weighted(weight, scale=c.one_minus(metallic))
+
+    transmission = c.clamp01(_val(c, node, "Transmission Weight", context))
+    if c.known(transmission) != 0.0:
+        glass = PendingClosure(DIELECTRIC, c.weighted(weight, scale=transmission), node, alpha=alpha, eta=ior,
+                               fresnel=GLASS, s0=specular_tint,
+                               s1=c.vector_math("POWER", _saturate(c, base), c.const(0.5, 0.5, 0.5)), normal=normal)
+        if film_nm > 0.1:
+            glass.coat_nm, glass.coat_ior = film_nm, film_ior
+        glass_override(c, glass)
+        prism_coating(c, glass)
+        c.add_closure(glass)
+        weight = c.weighted(weight, scale=c.one_minus(transmission))
+
+    level = c.math("MAXIMUM", _val(c, node, "Specular IOR Level", context), c.const(0.0))
+    eta = ior
+    if c.known(level) != 0.5:
+        f0 = c.math("MULTIPLY", _f0(c, ior), c.math("MULTIPLY", level, c.const(2.0)))
+        root = c.math("SQRT", c.emit(op.CLAMP, [f0, c.const(0.0), c.const(0.99)]))
+        eta = c.math("DIVIDE", c.math("ADD", c.const(1.0), root), c.math("SUBTRACT", c.const(1.0), root))
+        below = c.math("LESS_THAN", ior, c.const(1.0))
+        eta = c.emit(op.MIX_FLOAT, [below, eta, c.math("DIVIDE", c.const(1.0), eta)])
+    if c.known(eta) != 1.0 or film_nm > 0.1:
+        specular = PendingClosure(CONDUCTOR, weight, node, alpha=alpha, eta=eta, fresnel=FRESNEL_DIELECTRIC,
+                                  s0=specular_tint, normal=normal)
+        if film_nm > 0.1:
+            specular.coat_nm, specular.coat_ior = film_nm, film_ior
+        c.add_closure(specular)
+        f0 = c.vector_math("SCALE", specular_tint, s=_f0(c, eta))
+        f0 = _saturate(c, f0)
+        s = _layer_albedo(c, roughness, cos, eta)
+        one = c.const(1.0, 1.0, 1.0)
+        albedo = c.vector_math("ADD", f0, c.vector_math("SCALE", c.vector_math("SUBTRACT", one, f0), s=s))
+        weight = c.weighted(weight, scale=c.clamp01(c.one_minus(_max_channel(c, albedo))))
+
+    if c.known(_val(c, node, "Subsurface Weight", context)) != 0.0:
+        c.warn(node, "has Subsurface Weight; Prism renders subsurface scattering as diffuse reflection.")
+    if c.known(_val(c, node, "Diffuse Roughness", context)) != 0.0:
+        c.warn(node, "has Diffuse Roughness; Prism renders Lambertian (smooth) diffuse reflection.")
+    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=c.vector_math("MAXIMUM", base,
+                                                                                  c.const(0.0, 0.0, 0.0))),
+                                 node, normal=normal))
+
+
+def _blackbody_spectrum(c, node, name, context):
+    """A Planck spectrum when a Blackbody node of constant temperature feeds ``name`` directly."""
+    from ...tracer.scene import SpectrumSpec
+
+    source = c.linked(node, name, context)
+    if source is None or source.node.bl_idname != "ShaderNodeBlackbody":
+        return None
+    temperature = c.known(c.value(source.node, "Temperature", source.context, FLOAT))
+    if temperature is None:
+        return None
+    if not 1000.0 <= temperature <= 40000.0:
+        c.warn(source.node, f"has {temperature:g} K; Prism's blackbody spectra cover 1000-40000 K, so it uses "
+                            f"{min(max(temperature, 1000.0), 40000.0):g} K.")
+        temperature = min(max(temperature, 1000.0), 40000.0)
+    return SpectrumSpec(kind="blackbody", temperature_k=float(temperature))
+
+
+def diffuse(c, node, context, weight):
+    if c.known(_val(c, node, "Roughness", context)) != 0.0:
+        c.warn(node, "has Roughness (Oren-Nayar); Prism renders Lambertian diffuse reflection.")
+    colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
+    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=_normal(c, node, context)))
+
+
+def glossy(c, node, context, weight):
+    _distribution(c, node)
+    if c.known(_val(c, node, "Anisotropy", context)) != 0.0:
+        c.warn(node, "is anisotropic; Prism renders it isotropic.")
+    colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
+    c.add_closure(PendingClosure(CONDUCTOR, c.weighted(weight, colour=colour), node,
+                                 alpha=_alpha(c, _val(c, node, "Roughness", context)), fresnel=FRESNEL_NONE,
+                                 normal=_normal(c, node, context)))
+
+
+def metallic(c, node, context, weight):
+    _distribution(c, node)
+    if c.known(_val(c, node, "Anisotropy", context)) != 0.0:
+        c.warn(node, "is anisotropic; Prism renders it isotropic.")
+    alpha = _alpha(c, _val(c, node, "Roughness", context))
+    if node.fresnel_type == "F82":
+        s0 = _saturate(c, _val(c, node, "Base Color", context, COLOR))
+        s1 = _saturate(c, _val(c, node, "Edge Tint", context, COLOR))
+    else:
+        n = c.vector_math("MAXIMUM", _val(c, node, "IOR", context, VECTOR), c.const(0.0, 0.0, 0.0))
+        k = c.vector_math("MAXIMUM", _val(c, node, "Extinction", context, VECTOR), c.const(0.0, 0.0, 0.0))
+        one = c.const(1.0, 1.0, 1.0)
+        k2 = c.vector_math("MULTIPLY", k, k)
+        minus = c.vector_math("SUBTRACT", n, one)
+        plus = c.vector_math("ADD", n, one)
+        s0 = c.vector_math("DIVIDE", c.vector_math("ADD", c.vector_math("MULTIPLY", minus, minus), k2),
+                           c.vector_math("ADD", c.vector_math("MULTIPLY", plus, plus), k2))
+        s1 = one
+        c.warn(node, "is a physical conductor given by RGB n and k; Prism renders its normal-incidence "
+                     "reflectance with the F82 model (or a measured metal: Material ▸ Prism ▸ Metal).")
+    metal = PendingClosure(CONDUCTOR, weight, node, alpha=alpha, fresnel=FRESNEL_F82, s0=s0, s1=s1,
+                           normal=_normal(c, node, context))
+    conductor_override(c, metal)
+    prism_coating(c, metal)
+    c.add_closure(metal)
+
+
+def _dielectric(c, node, context, weight, mode):
+    _distribution(c, node)
+    colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
+    eta = c.math("MAXIMUM", _val(c, node, "IOR", context), c.const(1e-5))
+    closure = PendingClosure(DIELECTRIC, c.weighted(weight, colour=colour), node,
+                             alpha=_alpha(c, _val(c, node, "Roughness", context)), eta=eta, fresnel=mode,
+                             normal=_normal(c, node, context))
+    glass_override(c, closure)
+    prism_coating(c, closure)
+    c.add_closure(closure)
+
+
+def glass(c, node, context, weight):
+    _dielectric(c, node, context, weight, GLASS)
+
+
+def refraction(c, node, context, weight):
+    _dielectric(c, node, context, weight, REFRACTION_ONLY)
+
+
+def translucent(c, node, context, weight):
+    colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
+    c.add_closure(PendingClosure(TRANSLUCENT, c.weighted(weight, colour=colour), node,
+                                 normal=_normal(c, node, context)))
+
+
+def transparent(c, node, context, weight):
+    colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
+    c.add_closure(PendingClosure(TRANSPARENT, c.weighted(weight, colour=colour), node))
+
+
+def emission(c, node, context, weight):
+    spectrum = _blackbody_spectrum(c, node, "Color", context)
+    colour = None if spectrum is not None else _val(c, node, "Color", context, COLOR)
+    c.add_emission(weight, colour, _val(c, node, "Strength", context), spectrum=spectrum)
+
+
+def holdout(c, node, context, weight):
+    c.warn(node, "renders black: Prism's film has no alpha to hold out.")
+
+
+def subsurface(c, node, context, weight):
+    c.warn(node, "is rendered as diffuse reflection (Prism does not trace subsurface scattering).")
+    colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
+    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=_normal(c, node, context)))
+
+
+def mix_shader(c, node, context, weight):
+    fac = c.clamp01(c.value(node, "Fac", context, FLOAT))
+    first, second = node.inputs[1], node.inputs[2]
+    if c.known(fac) != 1.0:
+        c.shader(first, context, c.weighted(weight, scale=c.one_minus(fac)))
+    if c.known(fac) != 0.0:
+        c.shader(second, context, c.weighted(weight, scale=fac))
+
+
+def add_shader(c, node, context, weight):
+    c.shader(node.inputs[0], context, weight)
+    c.shader(node.inputs[1], context, weight)
+
+
+def left_out(c, node, context, weight):
+    c.warn(node, "is not modelled by Prism; it is left out (black).")
+
+
+SHADER_HANDLERS = {
+    "ShaderNodeBsdfPrincipled": principled,
+    "ShaderNodeBsdfDiffuse": diffuse,
+    "ShaderNodeBsdfAnisotropic": glossy,
+    "ShaderNodeBsdfMetallic": metallic,
+    "ShaderNodeBsdfGlass": glass,
+    "ShaderNodeBsdfRefraction": refraction,
+    "ShaderNodeBsdfTranslucent": translucent,
+    "ShaderNodeBsdfTransparent": transparent,
+    "ShaderNodeEmission": emission,
+    "ShaderNodeHoldout": holdout,
+    "ShaderNodeSubsurfaceScattering": subsurface,
+    "ShaderNodeMixShader": mix_shader,
+    "ShaderNodeAddShader": add_shader,
+    "ShaderNodeBsdfSheen": left_out,
+    "ShaderNodeBsdfToon": left_out,
+    "ShaderNodeBsdfHair": left_out,
+    "ShaderNodeBsdfHairPrincipled": left_out,
+    "ShaderNodeBsdfRayPortal": left_out,
+    "ShaderNodeEeveeSpecular": left_out,
+    "ShaderNodeVolumeAbsorption": left_out,
+    "ShaderNodeVolumeScatter": left_out,
+    "ShaderNodeVolumePrincipled": left_out,
+    "ShaderNodeBackground": left_out,
+}
