@@ -100,6 +100,7 @@ class Light:
     size_u_m: float = 1.0
     size_v_m: float = 1.0
     sun_angle_rad: float = 0.0
+    light_group: str = ""  # Blender's Object ▸ Shading ▸ Light Group ("" = none)
 
 
 @dataclass
@@ -137,6 +138,7 @@ class World:
 
     color: tuple[float, float, float] = (0.0, 0.0, 0.0)
     strength: float = 1.0
+    light_group: str = ""
 
 
 @dataclass
@@ -149,7 +151,8 @@ class Scene:
     ``triangle_material`` int32 [T] indexes ``materials``, ``triangle_object``
     int32 [T] indexes ``object_names`` (for messages), ``corner_normals`` float32
     [T, 3, 3] (unit shading normals at each triangle corner) or None for flat
-    shading.
+    shading. ``object_light_groups`` (parallel to ``object_names``, may be empty): each object's light
+    group, for the light its emissive triangles give.
     """
 
     vertices: np.ndarray
@@ -162,6 +165,7 @@ class Scene:
     triangle_object: np.ndarray | None = None
     object_names: list[str] = field(default_factory=list)
     corner_normals: np.ndarray | None = None
+    object_light_groups: list[str] = field(default_factory=list)
 
     @property
     def triangle_count(self) -> int:
