@@ -3,10 +3,12 @@
     blender -b scene.blend -P render.py -- --samples 64 --output out.png
     python render.py scene.blend --samples 64 --output out.exr      (bpy module)
 
-Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--frames A..B`` (``#``
+Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--noise-threshold T`` and
+``--min-samples N`` (adaptive sampling), ``--time-limit SECONDS``, ``--frames A..B`` (``#``
 in ``--output`` becomes the zero-padded frame number, else ``_NNNN`` is
 appended), ``--output`` ``.png`` (the scene's view transform) or ``.exr``
-(scene-linear, 32-bit float). ``--lens-diagram out.png`` writes the lens overlay
+(scene-linear, 32-bit float; a multilayer EXR with every pass when the view
+layer has passes besides Combined). ``--lens-diagram out.png`` writes the lens overlay
 drawing (cross-section, wavelength-coloured ray fans, spot diagram) of the
 camera's real lens, with or without a render.
 
@@ -120,6 +122,9 @@ def batch_request(arguments, prism: Prism, signals):
         samples=arguments.samples,
         seed=arguments.seed,
         threads=arguments.threads,
+        noise_threshold=arguments.noise_threshold,
+        min_samples=arguments.min_samples,
+        time_limit_s=arguments.time_limit,
         sample_offset=arguments.chunk_seed * arguments.samples if chunked else 0,
         quick_first_pass=False,
         keep_film=chunked,
@@ -140,6 +145,8 @@ def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
     image_settings.file_format = OUTPUT_FORMATS[output.suffix.lower()]
     if image_settings.file_format == "OPEN_EXR":
         image_settings.color_depth = "32"
+        if not chunked and prism.module("engine.passes").enabled_passes(scene):
+            image_settings.file_format = "OPEN_EXR_MULTILAYER"  # every pass, named as Blender names them
     scene.render.use_file_extension = False
     with prism.output_files.atomic_output(output, signals) as temporary:
         scene.render.filepath = str(temporary)

@@ -37,11 +37,16 @@ class RenderRequest:
     report. ``progress_stream``: where to print one line per pass and the
     warnings (e.g. ``sys.stderr``). ``stop_requested``: polled between chunks;
     returning True stops the render as Esc does (batch renders: Ctrl-C).
+    ``noise_threshold`` (0: adaptive sampling off), ``min_samples`` and
+    ``time_limit_s`` (0: none) override the scene's Sampling settings.
     """
 
     samples: int | None = None
     seed: int | None = None
     threads: int | None = None
+    noise_threshold: float | None = None
+    min_samples: int | None = None
+    time_limit_s: float | None = None
     sample_offset: int = 0
     quick_first_pass: bool = True
     keep_film: bool = False

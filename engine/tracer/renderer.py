@@ -73,6 +73,18 @@ def _monochromatic_lines(scene, used):
     return [emission_spectrum(spec) for spec in dict.fromkeys(specs)]
 
 
+def aov_table(materials, aovs: dict) -> np.ndarray:
+    """[materials, AOVs, 4]: what each material writes into each AOV pass (colour: r, g, b, 1; value:
+    value, 0, 0, 0); 0 where a material has no AOV Output of that name."""
+    table = np.zeros((max(1, len(materials)), len(aovs), 4))
+    for m, material in enumerate(materials):
+        for a, (name, kind) in enumerate(aovs.items()):
+            if name in material.aovs:
+                r, g, b, value = material.aovs[name]
+                table[m, a] = (value, 0.0, 0.0, 0.0) if kind == "VALUE" else (r, g, b, 1.0)
+    return table
+
+
 def _triangle_groups(scene, original_triangle, light_groups):
     """Light group index [T] of each render triangle's object (None when no group has a pass)."""
     if not light_groups or scene.triangle_object is None or not scene.object_light_groups:
@@ -120,6 +132,7 @@ class Renderer:
                                               int(settings.seed) & 0xFFFFFFFF)
         self.accel = Accel(self.geometry)
         self._view = np.asarray(scene.camera.camera_to_world, np.float64)[:3, :3]
+        self._aov_table = aov_table(scene.materials, settings.passes.aovs)
         self._workers = worker_threads(settings.threads)
         self._pool = ThreadPoolExecutor(self._workers)
         self._local = threading.local()
@@ -181,12 +194,9 @@ class Renderer:
         """Render the rectangle ``region`` (x0, y0, x1, y1; rows from the top) from the first sample with
         a film of its own (tiles of a large frame: one tile's film in memory at a time).
         ``time_limit_s`` overrides the settings' time limit for it."""
-        x0, y0, x1, y1 = (int(v) for v in region)
-        self.region = (x0, y0, x1, y1)
-        self.film = Film(self.width, self.height, self.pass_layout, self.region)
-        ys, xs = np.mgrid[y0:y1, x0:x1]
-        self._region_pixels = (ys * self.width + xs).ravel().astype(np.int64)
-        self._pixels = self._region_pixels
+        self.region = tuple(int(v) for v in region)
+        self._film = None  # allocated when first used: a frame that is tiled never holds a whole-frame film
+        self._region_pixels = self._pixels = None
         self.samples_done = self._first_sample
         self._passes = self._first_sample // self.settings.samples_per_pass
         limit = self.settings.time_limit_s if time_limit_s is None else time_limit_s
@@ -198,6 +208,21 @@ class Renderer:
         self.time_up = False
 
     @property
+    def film(self) -> Film:
+        """The region's film."""
+        if self._film is None:
+            self._film = Film(self.width, self.height, self.pass_layout, self.region)
+        return self._film
+
+    def _region_pixel_list(self) -> np.ndarray:
+        if self._region_pixels is None:
+            x0, y0, x1, y1 = self.region
+            rows = np.arange(y0, y1, dtype=np.int64)[:, None] * self.width
+            self._region_pixels = (rows + np.arange(x0, x1, dtype=np.int64)[None, :]).ravel()
+            self._pixels = self._region_pixels
+        return self._pixels
+
+    @property
     def finished(self) -> bool:
         """True when the region has its samples, every pixel has converged, or the time limit is up."""
         return (self.samples_done - self._first_sample >= self.settings.samples or self.converged
@@ -206,12 +231,13 @@ class Renderer:
     @property
     def active_pixels(self) -> int:
         """Pixels the next pass samples (fewer than the region's once adaptive sampling stops some)."""
-        return len(self._pixels)
+        return len(self._region_pixel_list())
 
     def _buffers(self, paths: int) -> ChunkBuffers:
         buffers = getattr(self._local, "buffers", None)
         if buffers is None or buffers.capacity < paths:
-            passes = new_pass_data(paths, self.wavelengths.count, self.pass_layout, self._view, self.camera.position)
+            passes = new_pass_data(paths, self.wavelengths.count, self.pass_layout, self._view, self.camera.position,
+                                   self._aov_table)
             buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count, passes)
         return buffers
 
@@ -266,6 +292,7 @@ class Renderer:
             self._sampling_started = started
         remaining = self.settings.samples - (self.samples_done - self._first_sample)
         spp = min(self.settings.samples_per_pass, remaining) if remaining > 0 else self.settings.samples_per_pass
+        self._region_pixel_list()
         spp = self._fit_time_limit(spp, started)
         if spp == 0 or len(self._pixels) == 0:
             return

@@ -65,6 +65,7 @@ class Material:
     film_ior: float = 1.33
     emission: SpectrumSpec | None = None
     emission_strength: float = 0.0
+    aovs: dict = field(default_factory=dict)  # shader AOV name -> (r, g, b, value) on this material
 
 
 @dataclass

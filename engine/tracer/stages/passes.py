@@ -4,8 +4,9 @@ Per path (``PassData``): ``values`` [n, columns] (data passes and AOVs, written 
 [n, slots, K] (light, albedo and colour buffers, per wavelength, turned into Rec.709 by
 ``convert_kernel``), and for the light split ``snapshot`` [n, K] and ``split`` [n, 2, 3, K]; ``feature``
 [n] (1 once the denoising features are written). Render constants: ``initial`` [columns] (a path's
-values before any stage writes them), ``camera_axes`` [3, 3] (camera to world: right, up, back columns) and
-``eye`` [3] (camera position, m).
+values before any stage writes them), ``camera_axes`` [3, 3] (camera to world: right, up, back columns),
+``eye`` [3] (camera position, m) and ``aov_table`` [materials, AOVs, 4] (what each material's AOV
+Outputs write).
 
 The light split (Cycles' meaning): light that reaches the camera straight from an emitter or the world
 is Emission or Environment; any other light is attributed to the lobes of the first surface it met,
@@ -29,7 +30,7 @@ from ..jit import inlined, kernel
 from ..spectra.table import spectrum_value
 from ..spectra.wavelength_sampling import radiance_to_rgb
 
-PassData = namedtuple("PassData", "values spectral snapshot split feature initial camera_axes eye")
+PassData = namedtuple("PassData", "values spectral snapshot split feature initial camera_axes eye aov_table")
 
 EMISSION = 0  # offsets from layout.light, in passes.LIGHT_SLOTS order
 ENVIRONMENT = 1
@@ -40,7 +41,7 @@ GLOSSY = 1
 TRANSMISSION = 2
 
 
-def new_pass_data(n: int, k: int, film_layout, view, eye) -> PassData:
+def new_pass_data(n: int, k: int, film_layout, view, eye, aov_table) -> PassData:
     """Per-path pass storage for ``n`` paths of ``k`` wavelengths (empty arrays for what is off)."""
     layout = film_layout.kernel
     light = n if layout.light >= 0 else 0
@@ -48,7 +49,8 @@ def new_pass_data(n: int, k: int, film_layout, view, eye) -> PassData:
     return PassData(np.empty((n, layout.columns)), np.zeros((n, layout.slots, k)), np.zeros((light, k)),
                     np.zeros((light, 2, 3, k)), np.zeros(features, np.int8),
                     np.ascontiguousarray(film_layout.initial, np.float64),
-                    np.ascontiguousarray(view, np.float64), np.ascontiguousarray(eye, np.float64))
+                    np.ascontiguousarray(view, np.float64), np.ascontiguousarray(eye, np.float64),
+                    np.ascontiguousarray(aov_table, np.float64))
 
 
 def pass_work(layout) -> bool:
@@ -102,9 +104,12 @@ def _camera_depth(passes, p):
 
 
 @inlined
-def first_hit(passes, layout, i, p, n):
-    """Depth, Position and Normal of the surface the camera ray hit at ``p`` (camera-relative) with
-    normal ``n`` (facing the camera)."""
+def first_hit(passes, layout, i, p, n, material):
+    """Depth, Position, Normal and AOVs of the surface the camera ray hit at ``p`` (camera-relative)
+    with normal ``n`` (facing the camera)."""
+    for a in range(layout.aovs):
+        for c in range(4):
+            passes.values[i, layout.aov + 4 * a + c] = passes.aov_table[material, a, c]
     if layout.depth >= 0:
         passes.values[i, layout.depth] = _camera_depth(passes, p)
     if layout.position >= 0:

@@ -65,7 +65,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         wo_l = to_local(wo, tangent, bitangent, n)
         if depth == 0 and layout.columns > 0:
             facing = ns if cos_og >= 0.0 else (-ns[0], -ns[1], -ns[2])
-            first_hit(passes, layout, i, p, facing)
+            first_hit(passes, layout, i, p, facing, material)
         lam = state.wavelength[i]
         hero = state.hero[i]
         closures = resolve_material(materials, spectra, material, lam, hero, rows, spectral, eta, glass_clamps)
