@@ -141,8 +141,11 @@ class RenderSession:
         prism = scene.prism
         channels = sum(channels for _, channels, _, _ in enabled_passes(scene, view_layer))
         tile_size = int(prism.tile_size) if prism.use_auto_tile and not self.request.keep_film else 0
-        return plan_frame(width, height, renderer.region, Film.bytes_per_pixel(renderer.pass_layout), channels,
-                          tile_size)
+        try:
+            return plan_frame(width, height, renderer.region, Film.bytes_per_pixel(renderer.pass_layout), channels,
+                              tile_size)
+        except PrismInputError as error:
+            raise PrismInputError(f"Scene '{scene.name}': {error}") from None
 
     def _tiles(self, renderer, plan, border, warnings) -> None:
         """Each tile to all its samples, written to Blender's result as it finishes."""

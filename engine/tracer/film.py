@@ -1,5 +1,5 @@
 """The film: per-pixel running sums of RGB samples and their squares (float64), sample counts, and the
-buffers of the requested passes (``passes.FilmLayout``: ``aux`` columns summed, or kept as minima).
+sums of the requested passes' values (``aux`` columns, laid out by ``passes.FilmLayout``).
 
 Samples arrive already converted to scene-linear Rec.709 (the spectral-to-RGB map is linear, so the
 mean of converted samples is the converted mean). ``add`` splats them one by one (``stages.film``):
@@ -14,10 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .frame_plan import COMBINED_BYTES
 from .stages.film import splat
-
-#: Bytes a film keeps per pixel: Combined's sum and sum of squares (2 x 3 float64) and the count (int64).
-COMBINED_BYTES = 56
 
 
 class Film:
@@ -36,9 +34,6 @@ class Film:
         self._count = np.zeros(count, dtype=np.int64)
         columns = layout.width if layout is not None else 0
         self._aux = np.zeros((count, columns))
-        self._reduce_min = layout.reduce_min if layout is not None else np.zeros(0, np.bool_)
-        if columns:
-            self._aux[:] = np.where(self._reduce_min, np.inf, 0.0)
         self.nan_samples = 0
 
     @staticmethod
@@ -54,8 +49,8 @@ class Film:
         if aux is None:
             aux = np.zeros((len(pixel_index), self._aux.shape[1]))
         x0, y0 = self.origin
-        self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, self._aux, self._reduce_min, pixel_index,
-                                      rgb, aux, len(pixel_index), self.frame_width, x0, y0, self.width))
+        self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, self._aux, pixel_index, rgb, aux,
+                                      len(pixel_index), self.frame_width, x0, y0, self.width))
 
     @property
     def counts(self) -> np.ndarray:
@@ -68,13 +63,9 @@ class Film:
         return (self._sum / n).reshape(self.height, self.width, 3)
 
     def aux_mean(self) -> np.ndarray:
-        """The pass buffers per pixel, float64 [H, W, layout width]: means of summed columns, the kept
-        value of minimum columns (the buffer's initial value where no sample has one)."""
+        """The pass columns per pixel, float64 [H, W, layout width]: the mean of each over the samples."""
         n = np.maximum(self._count, 1)[:, None]
-        out = np.where(self._reduce_min, self._aux, self._aux / n)
-        if self.layout is not None and self._reduce_min.any():
-            out = np.where(np.isinf(out), self.layout.initial, out)
-        return out.reshape(self.height, self.width, -1)
+        return (self._aux / n).reshape(self.height, self.width, -1)
 
     def variance_of_mean(self) -> np.ndarray:
         """Per-pixel variance of the mean estimate, float64 [H, W, 3]:

@@ -17,6 +17,8 @@ from dataclasses import dataclass
 from .errors import PrismInputError
 
 GB = 1024**3
+#: Bytes a film keeps per pixel for Combined: its sum and sum of squares (2 x 3 float64), the count (int64).
+COMBINED_BYTES = 56
 #: Prism's working memory per pixel of a tile besides its film: the pixel list, float32 images of the
 #: tile handed to Blender, and their flipped copies.
 TILE_WORK_BYTES = 8 + 2 * 16
@@ -24,6 +26,8 @@ TILE_WORK_BYTES = 8 + 2 * 16
 BASE_BYTES = 1 * GB
 #: Of the memory available, how much a render may plan to use (the rest for the system and other work).
 USABLE_FRACTION = 0.9
+#: Render ▸ Performance ▸ Tile Size's default (Cycles' too).
+DEFAULT_TILE_SIZE = 2048
 
 
 @dataclass
@@ -89,7 +93,7 @@ def plan_frame(width: int, height: int, region, film_bytes_per_pixel: int, blend
     pixels = (x1 - x0) * (y1 - y0)
     largest = max((b[2] - b[0]) * (b[3] - b[1]) for b in tiles)
     # Blender keeps every pass at full resolution and converts the Combined pass once more to save it.
-    blender = 4 * (blender_channels + 4) * pixels
+    blender = 4 * (blender_channels + 2 * 4) * pixels
     prism = (film_bytes_per_pixel + TILE_WORK_BYTES) * largest
     needed = BASE_BYTES + blender + prism
     available = available_memory_bytes() if available_bytes is None else available_bytes
@@ -98,8 +102,8 @@ def plan_frame(width: int, height: int, region, film_bytes_per_pixel: int, blend
         advice = ("lower Output ▸ Format ▸ Resolution %, turn off passes (View Layer ▸ Passes)"
                   + ("" if len(tiles) > 1 and largest < pixels else ", or turn on Render ▸ Performance ▸ Tiles"))
         raise PrismInputError(
-            f"A {width} x {height} frame needs about {needed / GB:.1f} GB ({blender / GB:.1f} GB for the image "
-            f"Blender keeps of {blender_channels} pass channels, {prism / GB:.1f} GB for Prism's "
+            f"a {width} x {height} frame needs about {needed / GB:.1f} GB ({blender / GB:.1f} GB for the image "
+            f"Blender keeps: Combined and {blender_channels} more pass channels; {prism / GB:.1f} GB for Prism's "
             f"{'tile' if len(tiles) > 1 else 'film'}) but only {available / GB:.1f} GB of memory is available: "
             f"{advice}."
         )

@@ -1,8 +1,10 @@
 """Render passes, declared once: what each film buffer holds and how each Blender pass is made from them.
 
-A **film buffer** is a per-pixel accumulator next to Combined: ``width`` float64 channels, summed over
-the pixel's samples (``reduce="sum"``, the pass is the mean) or kept as the smallest sample
-(``reduce="min"``: a depth is never an average of a near and a far surface). A ``spectral`` buffer is
+A **film buffer** is a per-pixel accumulator next to Combined: ``width`` float64 channels summed over
+the pixel's samples (the pass is their mean). A depth buffer holds the depth of the samples that hit a
+surface and their number, so a pixel's depth is the mean over its surface samples (its centre's depth
+inside a surface, as Cycles writes it), never a blend of a near surface and the background. A
+``spectral`` buffer is
 filled per wavelength by the stage kernels and turned into Rec.709 once per path by the film stage
 (``stages.passes``), like Combined. Reflectances (albedos, colours) are carried as reflectance × the
 spectrum of a white emitter, so a white surface reads (1, 1, 1).
@@ -29,8 +31,6 @@ class Buffer:
     key: str
     width: int = 3
     spectral: bool = False
-    reduce: str = "sum"
-    initial: float = 0.0  # a path's value before any stage writes it
 
 
 #: Light that reached the camera, split by what it did first (see ``stages.passes``).
@@ -40,11 +40,11 @@ LIGHT_SLOTS = ("emission", "environment", "diffuse_direct", "diffuse_indirect", 
 CATEGORIES = ("diffuse", "glossy", "transmission")
 
 BUFFERS = {b.key: b for b in (
-    Buffer("depth", 1, reduce="min", initial=BACKGROUND_DEPTH_M),
+    Buffer("depth", 2),  # depth of a sample on a surface (m), 1 for such a sample
     Buffer("position"),
     Buffer("normal"),
     Buffer("denoising_normal"),
-    Buffer("denoising_depth", 1, reduce="min", initial=BACKGROUND_DEPTH_M),
+    Buffer("denoising_depth", 2),
     Buffer("denoising_albedo", spectral=True),
     *(Buffer(key, spectral=True) for key in LIGHT_SLOTS),
 )}
@@ -66,8 +66,8 @@ class Pass:
 
 
 PASSES = {p.name: p for p in (
-    Pass("Depth", "Z", "VALUE", "depth", meaning="distance along the camera's view axis to the nearest surface "
-         "seen in the pixel (m); 1e10 where none"),
+    Pass("Depth", "Z", "VALUE", "depth", meaning="distance along the camera's view axis to the surfaces seen "
+         "in the pixel (m, their mean); 1e10 where none"),
     Pass("Position", "XYZ", "VECTOR", "position", meaning="world position of the surface first seen (m)"),
     Pass("Normal", "XYZ", "VECTOR", "normal", meaning="world-space shading normal of the surface first seen, "
          "facing the camera"),
@@ -76,7 +76,7 @@ PASSES = {p.name: p for p in (
     Pass("Denoising Albedo", "RGB", "COLOR", "denoising_albedo", meaning="albedo of that surface seen through "
          "the mirrors and glass in front of it; the radiance of the background or light where no surface"),
     Pass("Denoising Depth", "Z", "VALUE", "denoising_depth", meaning="distance along the view axis to that "
-         "surface (m)"),
+         "surface (m); 1e10 where none"),
     Pass("Emit", "RGB", "COLOR", "emission", meaning="emission of surfaces seen directly"),
     Pass("Env", "RGB", "COLOR", "environment", meaning="the world seen directly"),
     Pass("DiffDir", "RGB", "COLOR", "diffuse_direct", "diffuse_color", "light reaching the camera after one "
@@ -181,23 +181,18 @@ class FilmLayout:
             slot["group:" + request.light_groups[0]] if groups else -1, groups,
             aov_column if self.aov_names else -1, len(self.aov_names), column, len(self.slot_keys), rgb_column,
             int(white_spectrum))
-        reduce_min = np.zeros(column, np.bool_)
-        initial = np.zeros(column)
-        for key in values:
-            first, width = self.columns[key]
-            reduce_min[first:first + width] = BUFFERS[key].reduce == "min"
-            initial[first:first + width] = BUFFERS[key].initial
-        self.reduce_min = reduce_min
-        self.initial = initial
 
     def images(self, aux_mean: np.ndarray) -> dict[str, np.ndarray]:
-        """Every requested pass from the film's per-pixel ``aux_mean`` [..., width] (sums already divided
-        by the sample count; min-buffers as kept): name → float32 [..., channels]."""
+        """Every requested pass from the film's per-pixel ``aux_mean`` [..., width] (sums divided by the
+        sample count): name → float32 [..., channels]."""
         out = {}
         for name in self.request.passes:
             p = PASSES[name]
             image = self._buffer(aux_mean, p.buffer)
-            if p.divide_by:
+            if p.channels == "Z":  # depth sum and hit fraction
+                hits = image[..., 1:2]
+                image = np.divide(image[..., :1], hits, out=np.full_like(hits, BACKGROUND_DEPTH_M), where=hits > 0)
+            elif p.divide_by:
                 colour = self._buffer(aux_mean, p.divide_by)
                 image = np.divide(image, colour, out=np.zeros_like(image), where=colour > 1e-8)
             out[name] = image.astype(np.float32)

@@ -32,19 +32,19 @@ def test_non_finite_samples_are_dropped_and_counted():
     assert np.all(np.isfinite(film.variance_of_mean()))
 
 
-def test_pass_columns_are_summed_or_kept_as_minima_and_regions_index_the_frame():
+def test_pass_columns_are_averaged_and_regions_index_the_frame():
     from engine.tracer.passes import FilmLayout, PassRequest
 
     layout = FilmLayout(PassRequest(("Depth", "Normal")))
-    film = Film(10, 8, layout, region=(4, 2, 6, 3))  # two pixels of a 10 x 8 frame: (4, 2) and (5, 2)
+    film = Film(10, 8, layout, region=(4, 2, 7, 3))  # three pixels of a 10 x 8 frame: (4, 2) .. (6, 2)
     depth, normal = layout.columns["depth"][0], layout.columns["normal"][0]
-    aux = np.zeros((4, layout.width))
-    aux[:, depth] = [3.0, 2.0, 5.0, 7.0]
-    aux[:, normal] = [1.0, 0.0, 0.5, 0.5]
-    film.add(np.array([24, 24, 25, 25]), np.ones((4, 3)), aux)
-    mean = film.aux_mean()
-    assert mean.shape == (1, 2, layout.width) and film.counts.tolist() == [[2, 2]]
-    assert mean[0, :, depth].tolist() == [2.0, 5.0]
-    assert mean[0, :, normal].tolist() == [0.5, 0.5]
-    empty = Film(10, 8, layout, region=(0, 0, 1, 1)).aux_mean()
-    assert empty[0, 0, depth] == 1e10 and Film.bytes_per_pixel(layout) == 56 + 8 * layout.width
+    aux = np.zeros((5, layout.width))
+    aux[:, depth] = [3.0, 0.0, 5.0, 7.0, 0.0]  # the second and fifth samples see no surface
+    aux[:, depth + 1] = [1, 0, 1, 1, 0]
+    aux[:, normal] = [1.0, 0.0, 0.5, 0.5, 0.0]
+    film.add(np.array([24, 24, 25, 25, 26]), np.ones((5, 3)), aux)
+    assert film.aux_mean().shape == (1, 3, layout.width) and film.counts.tolist() == [[2, 2, 1]]
+    images = layout.images(film.aux_mean())
+    assert images["Depth"][0, :, 0].tolist() == [3.0, 6.0, 1e10]  # a mean over the samples on a surface
+    assert images["Normal"][0, :, 0].tolist() == [0.5, 0.5, 0.0]
+    assert Film.bytes_per_pixel(layout) == 56 + 8 * layout.width

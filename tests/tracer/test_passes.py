@@ -41,6 +41,7 @@ def test_depth_position_and_normal_of_a_wall_facing_the_camera():
     covered = depth < 100
     assert 0.2 < covered.mean() < 0.9
     assert np.allclose(depth[covered], 3.0, atol=1e-4)  # along the view axis, not the ray: flat across the frame
+    assert np.all(depth[covered] == depth[covered][0])
     assert np.all(depth[~covered] == BACKGROUND_DEPTH_M)
     full = np.linalg.norm(normal, axis=-1) > 0.999  # every sample on the wall (Position and Normal are means)
     assert full.sum() > 0.8 * covered.sum() - 4 * 16

@@ -26,15 +26,14 @@ def film_kernel(state, count, ws, rgb):
 
 
 @kernel
-def splat(total, total_sq, samples, aux_total, aux_min, pixels, rgb, aux, count, frame_width, x0, y0, width):
+def splat(total, total_sq, samples, aux_total, pixels, rgb, aux, count, frame_width, x0, y0, width):
     """Add ``rgb[j]`` (and the pass values ``aux[j]``) to pixel ``pixels[j]`` for j < count; returns how
     many samples were not finite. Pixels are frame indices; the film holds the rectangle whose top-left
     pixel is (x0, y0) and which is ``width`` pixels wide.
 
     A pixel's consecutive samples are summed first and their sum added to the film once (as the sum
     of a pass), so a render split into sample chunks (``Renderer.start_at_sample``) merges to the same
-    float64 sums as one render: chunk boundaries never split a pixel's samples within a pass. Pass
-    columns flagged in ``aux_min`` keep their smallest value instead of a sum."""
+    float64 sums as one render: chunk boundaries never split a pixel's samples within a pass."""
     dropped = 0
     columns = aux_total.shape[1]
     j = 0
@@ -66,17 +65,10 @@ def splat(total, total_sq, samples, aux_total, aux_min, pixels, rgb, aux, count,
         total_sq[local, 1] += g_sq
         total_sq[local, 2] += b_sq
         for c in range(columns):
-            if aux_min[c]:
-                lowest = aux_total[local, c]
-                for s in range(first, j):
-                    if aux[s, c] < lowest:
-                        lowest = aux[s, c]
-                aux_total[local, c] = lowest
-            else:
-                column_sum = 0.0
-                for s in range(first, j):
-                    v = aux[s, c]
-                    if math.isfinite(v):
-                        column_sum += v
-                aux_total[local, c] += column_sum
+            column_sum = 0.0
+            for s in range(first, j):
+                v = aux[s, c]
+                if math.isfinite(v):
+                    column_sum += v
+            aux_total[local, c] += column_sum
     return dropped

@@ -3,8 +3,7 @@
 Per path (``PassData``): ``values`` [n, columns] (data passes and AOVs, written directly), ``spectral``
 [n, slots, K] (light, albedo and colour buffers, per wavelength, turned into Rec.709 by
 ``convert_kernel``), and for the light split ``snapshot`` [n, K] and ``split`` [n, 2, 3, K]; ``feature``
-[n] (1 once the denoising features are written). Render constants: ``initial`` [columns] (a path's
-values before any stage writes them), ``camera_axes`` [3, 3] (camera to world: right, up, back columns),
+[n] (1 once the denoising features are written). Render constants: ``camera_axes`` [3, 3] (camera to world: right, up, back columns),
 ``eye`` [3] (camera position, m) and ``aov_table`` [materials, AOVs, 4] (what each material's AOV
 Outputs write).
 
@@ -30,7 +29,7 @@ from ..jit import inlined, kernel
 from ..spectra.table import spectrum_value
 from ..spectra.wavelength_sampling import radiance_to_rgb
 
-PassData = namedtuple("PassData", "values spectral snapshot split feature initial camera_axes eye aov_table")
+PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes eye aov_table")
 
 EMISSION = 0  # offsets from layout.light, in passes.LIGHT_SLOTS order
 ENVIRONMENT = 1
@@ -48,7 +47,6 @@ def new_pass_data(n: int, k: int, film_layout, view, eye, aov_table) -> PassData
     features = n if layout.denoising_albedo >= 0 or layout.denoising_normal >= 0 else 0
     return PassData(np.empty((n, layout.columns)), np.zeros((n, layout.slots, k)), np.zeros((light, k)),
                     np.zeros((light, 2, 3, k)), np.zeros(features, np.int8),
-                    np.ascontiguousarray(film_layout.initial, np.float64),
                     np.ascontiguousarray(view, np.float64), np.ascontiguousarray(eye, np.float64),
                     np.ascontiguousarray(aov_table, np.float64))
 
@@ -63,7 +61,7 @@ def reset_kernel(passes, layout, count):
     """Paths 0 .. count-1 start with no pass data."""
     for i in range(count):
         for c in range(layout.columns):
-            passes.values[i, c] = passes.initial[c]
+            passes.values[i, c] = 0.0
         for s in range(layout.slots):
             passes.spectral[i, s, :] = 0.0
         if passes.feature.shape[0] > 0:
@@ -112,6 +110,7 @@ def first_hit(passes, layout, i, p, n, material):
             passes.values[i, layout.aov + 4 * a + c] = passes.aov_table[material, a, c]
     if layout.depth >= 0:
         passes.values[i, layout.depth] = _camera_depth(passes, p)
+        passes.values[i, layout.depth + 1] = 1.0
     if layout.position >= 0:
         for c in range(3):
             passes.values[i, layout.position + c] = p[c] + passes.eye[c]
@@ -138,6 +137,7 @@ def surface_features(state, passes, layout, i, p, n, weight, spectra):
         passes.values[i, layout.denoising_normal + 2] = forward
     if layout.denoising_depth >= 0:
         passes.values[i, layout.denoising_depth] = _camera_depth(passes, p)
+        passes.values[i, layout.denoising_depth + 1] = 1.0
     if layout.denoising_albedo >= 0:
         for k in range(weight.shape[0]):
             value = state.throughput[i, k] * weight[k] * spectrum_value(spectra, layout.white, state.wavelength[i, k])
