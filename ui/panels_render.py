@@ -138,11 +138,11 @@ class _PassesPanel(PrismPanel):
     bl_context = "view_layer"
     bl_parent_id = "VIEWLAYER_PT_layer_passes"
 
-    def _column(self, heading):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        return layout.column(heading=heading, align=True)
+
+def _pass_column(layout, heading):
+    layout.use_property_split = True
+    layout.use_property_decorate = False
+    return layout.column(heading=heading, align=True)
 
 
 class PRISM_PT_passes_data(_PassesPanel, bpy.types.Panel):
@@ -153,12 +153,12 @@ class PRISM_PT_passes_data(_PassesPanel, bpy.types.Panel):
     def draw(self, context):
         layer = context.view_layer
         prism = context.scene.prism
-        column = self._column("Include")
+        column = _pass_column(self.layout, "Include")
         column.prop(layer, "use_pass_combined")
         column.prop(layer, "use_pass_z")
         column.prop(layer, "use_pass_position")
         column.prop(layer, "use_pass_normal")
-        column = self._column("Other")
+        column = _pass_column(self.layout, "Other")
         column.prop(prism, "use_pass_denoising_data")
         column.prop(prism, "use_pass_variance")
         column.prop(prism, "use_pass_sample_count")
@@ -173,11 +173,11 @@ class PRISM_PT_passes_light(_PassesPanel, bpy.types.Panel):
     def draw(self, context):
         layer = context.view_layer
         for heading, lobe in (("Diffuse", "diffuse"), ("Glossy", "glossy"), ("Transmission", "transmission")):
-            column = self._column(heading)
+            column = _pass_column(self.layout, heading)
             column.prop(layer, f"use_pass_{lobe}_direct", text="Direct")
             column.prop(layer, f"use_pass_{lobe}_indirect", text="Indirect")
             column.prop(layer, f"use_pass_{lobe}_color", text="Color")
-        column = self._column("Other")
+        column = _pass_column(self.layout, "Other")
         column.prop(layer, "use_pass_emit", text="Emission")
         column.prop(layer, "use_pass_environment")
 

@@ -74,8 +74,9 @@ def _draw(panel_class, context):
     return log
 
 
-def _context(scene, engine="PRISM", camera=None, light=None, material=None):
-    return SimpleNamespace(engine=engine, scene=scene, camera=camera, light=light, material=material, object=None)
+def _context(scene, engine="PRISM", camera=None, light=None, material=None, obj=None, world=None):
+    return SimpleNamespace(engine=engine, scene=scene, camera=camera, light=light, material=material, object=obj,
+                           world=world, view_layer=scene.view_layers[0])
 
 
 def _labels(log):
@@ -305,3 +306,19 @@ def test_wavelength_plot_follows_the_gaussians(prism_addon, fresh_scene):
     fresh_scene.prism.mean_r_nm = 610.0
     plot.plot_icon_id(fresh_scene.prism)
     assert plot._plot_key != key
+
+
+def test_light_group_panels_poll_and_draw(prism_addon, fresh_scene):
+    import bpy
+
+    obj = bpy.data.objects.new("Lamp", bpy.data.lights.new("Lamp", "POINT"))
+    world = bpy.data.worlds.new("Sky")
+    fresh_scene.view_layers[0].lightgroups.add(name="key")
+    obj.lightgroup = "key"
+    world.lightgroup = "fill"  # not a group of the view layer yet: the + button adds it
+    for panel in prism_addon.ui.panels_lightgroup.CLASSES:
+        assert panel.poll(_context(fresh_scene, obj=obj, world=world))
+        assert not panel.poll(_context(fresh_scene))
+        assert not panel.poll(_context(fresh_scene, engine="CYCLES", obj=obj, world=world))
+        log = _draw(panel, _context(fresh_scene, obj=obj, world=world))
+        assert [name for name, *_ in log].count("prop_search") == 1
