@@ -9,7 +9,9 @@ Imports no numpy until pixels are written (``update_render_passes`` runs in the 
 
 from __future__ import annotations
 
-from .tracer.passes import DENOISING_PASSES, PASSES, VIEW_LAYER_SWITCH, PassRequest, blender_passes
+from .tracer.errors import PrismInputError
+from .tracer.frame_plan import DEFAULT_TILE_SIZE, film_bytes_per_pixel, plan_frame
+from .tracer.passes import DENOISING_PASSES, PASSES, VIEW_LAYER_SWITCH, FilmLayout, PassRequest, blender_passes
 
 COMBINED = ("Combined", "RGBA", "COLOR")
 NOISY_IMAGE = ("Noisy Image", "RGBA", "COLOR")
@@ -62,6 +64,20 @@ def enabled_passes(scene, view_layer=None) -> list[tuple[str, int, str, str]]:
     if prism is not None and prism.use_pass_sample_count:
         out.append(SAMPLE_COUNT)
     return [(name, len(ids), ids, kind) for name, ids, kind in out]
+
+
+def frame_plan(scene, view_layer, width: int, height: int, region=None, whole_film: bool = False):
+    """Tiles of ``region`` (default: the frame) and the memory check for the passes ``view_layer`` asks
+    for (``tracer.frame_plan``); ``whole_film``: no tiles (a sample chunk keeps its whole film)."""
+    prism = getattr(scene, "prism", None)
+    layout = FilmLayout(pass_request(scene, view_layer, for_render=True))
+    channels = sum(channels for _, channels, _, _ in enabled_passes(scene, view_layer))
+    tile_size = DEFAULT_TILE_SIZE if prism is None else int(prism.tile_size) if prism.use_auto_tile else 0
+    try:
+        return plan_frame(width, height, region or (0, 0, width, height), film_bytes_per_pixel(layout), channels,
+                          0 if whole_film else tile_size)
+    except PrismInputError as error:
+        raise PrismInputError(f"Scene '{scene.name}': {error}") from None
 
 
 def bottom_up(image, alpha: bool = False):

@@ -22,11 +22,9 @@ from .export.border import render_border  # noqa: E402
 from .export.settings import export_settings  # noqa: E402
 from .fingerprint import render_fingerprint  # noqa: E402
 from .denoise import denoise as denoise_image  # noqa: E402
-from .passes import bottom_up, denoising, enabled_passes, pass_request, write_passes  # noqa: E402
+from .passes import bottom_up, denoising, enabled_passes, frame_plan, pass_request, write_passes  # noqa: E402
 from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
 from .tracer.errors import PrismInputError  # noqa: E402
-from .tracer.film import Film  # noqa: E402
-from .tracer.frame_plan import plan_frame  # noqa: E402
 
 
 class _Cancelled(Exception):
@@ -138,14 +136,7 @@ class RenderSession:
 
     def _plan(self, renderer, scene, view_layer, width, height):
         """Tiles and the memory check (a sample chunk keeps its whole film: never tiled)."""
-        prism = scene.prism
-        channels = sum(channels for _, channels, _, _ in enabled_passes(scene, view_layer))
-        tile_size = int(prism.tile_size) if prism.use_auto_tile and not self.request.keep_film else 0
-        try:
-            return plan_frame(width, height, renderer.region, Film.bytes_per_pixel(renderer.pass_layout), channels,
-                              tile_size)
-        except PrismInputError as error:
-            raise PrismInputError(f"Scene '{scene.name}': {error}") from None
+        return frame_plan(scene, view_layer, width, height, renderer.region, whole_film=self.request.keep_film)
 
     def _tiles(self, renderer, plan, border, warnings) -> None:
         """Each tile to all its samples, written to Blender's result as it finishes."""

@@ -55,15 +55,11 @@ def check_camera_scale(camera_object) -> None:
         )
 
 
-def check_frame_memory(scene_name: str, width: int, height: int) -> None:
-    """Refuse at once a resolution that cannot fit in memory even with Combined alone and tiles (the
-    render session checks again with the passes the view layer asks for)."""
-    from ..tracer.frame_plan import COMBINED_BYTES, DEFAULT_TILE_SIZE, plan_frame
+def check_frame_memory(scene, width: int, height: int) -> None:
+    """Refuse at once a frame whose image and passes cannot fit in memory (``engine.passes.frame_plan``)."""
+    from ..passes import frame_plan
 
-    try:
-        plan_frame(width, height, (0, 0, width, height), COMBINED_BYTES, 0, DEFAULT_TILE_SIZE)
-    except PrismInputError as error:
-        raise PrismInputError(f"Scene '{scene_name}': {error}") from None
+    frame_plan(scene, None, width, height)
 
 
 def rigid_matrix(matrix_world) -> np.ndarray:
@@ -136,7 +132,7 @@ def export_camera(scene) -> Camera:
         )
     check_camera_scale(camera_object)
     width, height = render_resolution(scene)
-    check_frame_memory(scene.name, width, height)
+    check_frame_memory(scene, width, height)
     film_w, film_h = film_size_mm(data, width, height)
     if not (np.isfinite(data.lens) and data.lens > 0):
         raise PrismInputError(f"Camera '{camera_object.name}' has focal length {data.lens} mm: use a positive value.")

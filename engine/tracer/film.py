@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .frame_plan import COMBINED_BYTES
+from .frame_plan import film_bytes_per_pixel
 from .stages.film import splat
 
 
@@ -36,10 +36,7 @@ class Film:
         self._aux = np.zeros((count, columns))
         self.nan_samples = 0
 
-    @staticmethod
-    def bytes_per_pixel(layout=None) -> int:
-        """Memory one pixel of a film takes (bytes)."""
-        return COMBINED_BYTES + 8 * (layout.width if layout is not None else 0)
+    bytes_per_pixel = staticmethod(film_bytes_per_pixel)
 
     def add(self, pixel_index: np.ndarray, rgb: np.ndarray, aux: np.ndarray | None = None) -> None:
         """Add one sample per entry: ``pixel_index`` [N] (y * frame width + x), ``rgb`` [N, 3], ``aux``

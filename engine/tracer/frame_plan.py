@@ -46,6 +46,11 @@ class FramePlan:
         return len(self.tiles) > 1
 
 
+def film_bytes_per_pixel(layout=None) -> int:
+    """Memory one pixel of a film takes (bytes): Combined and the columns of ``layout``'s passes."""
+    return COMBINED_BYTES + 8 * (layout.width if layout is not None else 0)
+
+
 def split_tiles(region, tile_size: int) -> list[tuple[int, int, int, int]]:
     """``region`` (x0, y0, x1, y1) cut into tiles of at most ``tile_size`` pixels a side, row by row from
     the top (0: one tile)."""
