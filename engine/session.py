@@ -111,7 +111,7 @@ class RenderSession:
                 kernel_cache.mark_compiled()
             if req.keep_film and not self.cancelled:
                 self.report.film = FilmSnapshot(
-                    mean=renderer.film.mean(),
+                    mean=renderer.frame_mean(),
                     samples=renderer.samples_done - req.sample_offset,
                     sample_offset=req.sample_offset,
                     seed=settings.seed,

@@ -404,6 +404,10 @@ class Renderer:
         frame[y0:y1, x0:x1] = region_image
         return frame
 
+    def frame_mean(self) -> np.ndarray:
+        """The film's float64 mean as a whole frame [H, W, 3] (0 outside the region)."""
+        return self._frame(self.film.mean())
+
     def image_rgb(self) -> np.ndarray:
         """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top (0 outside the region)."""
         return self._frame(self.film.mean().astype(np.float32))
