@@ -26,6 +26,9 @@ TILE_WORK_BYTES = 8 + 2 * 16
 BASE_BYTES = 1 * GB
 #: Of the memory available, how much a render may plan to use (the rest for the system and other work).
 USABLE_FRACTION = 0.9
+#: Bytes per pixel of the copy Blender saves an 8-bit image from (a 16384² frame measured 5.2 GB at peak
+#: with Combined alone, this model says 6.4 GB: benchmarks/experiments/huge_frames.py).
+SAVE_BYTES = 4
 #: Render ▸ Performance ▸ Tile Size's default (Cycles' too).
 DEFAULT_TILE_SIZE = 2048
 
@@ -97,8 +100,8 @@ def plan_frame(width: int, height: int, region, film_bytes_per_pixel: int, blend
     x0, y0, x1, y1 = region
     pixels = (x1 - x0) * (y1 - y0)
     largest = max((b[2] - b[0]) * (b[3] - b[1]) for b in tiles)
-    # Blender keeps every pass at full resolution and converts the Combined pass once more to save it.
-    blender = 4 * (blender_channels + 2 * 4) * pixels
+    # Blender keeps Combined and every pass at full resolution, and an 8-bit copy to save a PNG.
+    blender = (4 * (blender_channels + 4) + SAVE_BYTES) * pixels
     prism = (film_bytes_per_pixel + TILE_WORK_BYTES) * largest
     needed = BASE_BYTES + blender + prism
     available = available_memory_bytes() if available_bytes is None else available_bytes
