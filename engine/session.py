@@ -103,7 +103,7 @@ class RenderSession:
             if req.sample_offset:
                 renderer.start_at_sample(req.sample_offset)
             try:
-                self._tiles(renderer, plan, border or (0, 0, width, height), warnings)
+                self._passes(renderer, plan, border or (0, 0, width, height), warnings)
             finally:
                 if self.cancelled:
                     renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
@@ -138,8 +138,8 @@ class RenderSession:
         """Tiles and the memory check (a sample chunk keeps its whole film: never tiled)."""
         return frame_plan(scene, view_layer, width, height, renderer.region, whole_film=self.request.keep_film)
 
-    def _tiles(self, renderer, plan, border, warnings) -> None:
-        """Each tile to all its samples, written to Blender's result as it finishes."""
+    def _passes(self, renderer, plan, border, warnings) -> None:
+        """Every tile to all its samples, written to Blender's result as it finishes."""
         engine = self.engine
         scene = self.depsgraph.scene
         enabled = enabled_passes(scene, self.depsgraph.view_layer)
@@ -155,7 +155,7 @@ class RenderSession:
             warnings.append(f"The frame is rendered in {len(tiles)} tiles and denoised tile by tile: enlarge "
                             "Performance ▸ Tile Size to denoise it whole")
         for index, tile in enumerate(tiles):
-            if self.stop_requested():
+            if index and self.stop_requested():
                 self.cancelled = True
                 break
             budget = None
