@@ -109,9 +109,10 @@ def plan_frame(width: int, height: int, region, film_bytes_per_pixel: int, blend
     if available is not None and needed > USABLE_FRACTION * available:
         advice = ("lower Output ▸ Format ▸ Resolution %, turn off passes (View Layer ▸ Passes)"
                   + ("" if len(tiles) > 1 and largest < pixels else ", or turn on Render ▸ Performance ▸ Tiles"))
+        passes = f"Combined and {blender_channels} more pass channels" if blender_channels else "Combined"
         raise PrismInputError(
             f"a {width} x {height} frame needs about {needed / GB:.1f} GB ({blender / GB:.1f} GB for the image "
-            f"Blender keeps: Combined and {blender_channels} more pass channels; {prism / GB:.1f} GB for Prism's "
+            f"Blender keeps: {passes}; {prism / GB:.1f} GB for Prism's "
             f"{'tile' if len(tiles) > 1 else 'film'}) but only {available / GB:.1f} GB of memory is available: "
             f"{advice}."
         )
