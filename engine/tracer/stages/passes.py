@@ -119,7 +119,7 @@ def first_hit(passes, layout, i, p, n, material):
             passes.values[i, layout.normal + c] = n[c]
 
 
-@inlined
+@kernel
 def surface_features(state, passes, layout, i, p, n, weight, spectra):
     """Denoising features of the first surface that is not all mirror or glass: its camera-space
     normal and depth, and its albedo (the BSDF sample's weight, whose mean is the albedo) seen through
@@ -155,7 +155,7 @@ def _category(row, wo_z, wi_z):
     return TRANSMISSION
 
 
-@inlined
+@kernel
 def lobe_shares(rows, spectral, eta, count, wo, wi, wavelength_nm, hero, collapsed, scratch, out):
     """``out[c, k]``: the share of lobe category c (diffuse, glossy, transmission) in the material's f
     for light arriving from ``wi`` (local frame), per wavelength column k."""
@@ -174,7 +174,7 @@ def lobe_shares(rows, spectral, eta, count, wo, wi, wavelength_nm, hero, collaps
             out[c, k] = out[c, k] / total if total > 0.0 else (1.0 / 3.0)
 
 
-@inlined
+@kernel
 def first_bounce(state, passes, layout, i, rows, spectral, eta, count, wo, wi, lam, hero, collapsed, sampled,
                  weight, scratch, spectra):
     """At the first surface: the lobe shares of the sampled direction (delta lobes by what they did)
