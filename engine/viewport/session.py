@@ -75,7 +75,7 @@ class ViewportSession:
             if scene is not None:
                 change.scene, change.geometry = scene, geometry
             if updates.camera or updates.scene or self._scene_camera is None:
-                self._export_scene_camera(depsgraph.scene)
+                self._export_scene_camera(depsgraph)
             self._export_error = None
         except PrismInputError as error:
             self._export_error = str(error)
@@ -116,13 +116,14 @@ class ViewportSession:
         _live.discard(self)
 
     # ---- inside ---------------------------------------------------------------------------
-    def _export_scene_camera(self, scene) -> None:
+    def _export_scene_camera(self, depsgraph) -> None:
+        scene = depsgraph.scene
         self._scene_camera, self._camera_error = None, None
         if scene.camera is None:
             self._camera_error = f"Scene '{scene.name}' has no active camera to look through."
             return
         try:
-            self._scene_camera = export_camera(scene)
+            self._scene_camera = export_camera(scene, depsgraph)
         except PrismInputError as error:
             self._camera_error = str(error)
 

@@ -47,8 +47,8 @@ def test_shading_change_keeps_the_embree_scene_and_renders_as_a_new_renderer():
 
 def test_geometry_change_rebuilds_the_triangles():
     scene = _card_scene()
-    moved = make_scene([(*quad((0, 0, 0), (3, 0, 0), (0, 3, 0)), 0), (*quad((0.8, 0, 0.5), (0.6, 0, 0), (0, 0.6, 0)), 1)],
-                       scene.materials, scene.camera, scene.lights)
+    parts = [(*quad((0, 0, 0), (3, 0, 0), (0, 3, 0)), 0), (*quad((0.8, 0, 0.5), (0.6, 0, 0), (0, 0.6, 0)), 1)]
+    moved = make_scene(parts, scene.materials, scene.camera, scene.lights)
     with Renderer(scene, settings()) as r:
         before = _image(r)
         r.set_geometry(moved)
