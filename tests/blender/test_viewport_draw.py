@@ -127,3 +127,76 @@ def test_camera_view_shows_the_final_render(prism_addon, card_scene, tmp_path, l
     shown = _display_encoded(card_scene, viewport, tmp_path)
     expected = _display_encoded(card_scene, final[::-1], tmp_path)
     assert np.abs(shown - expected).max() < 1e-3
+
+
+def _perspective(width, height, fov_y=0.8, near=0.1, far=100.0):
+    f = 1.0 / np.tan(fov_y / 2)
+    return Matrix(((f * height / width, 0, 0, 0), (0, f, 0, 0),
+                   (0, 0, (far + near) / (near - far), 2 * far * near / (near - far)), (0, 0, -1, 0)))
+
+
+def test_the_lens_overlay_draws_over_the_rendered_viewport(prism_addon, card_scene, gpu_ready, monkeypatch):
+    """A free view beside the real-lens camera: ``view_draw`` puts the render in the region, then the
+    overlay's POST_VIEW drawing (as Blender calls it next) adds the ray fan on top of it."""
+    from mathutils import Vector
+
+    overlay = prism_addon.ui.lens_overlay_draw
+    camera = card_scene.camera
+    camera.data.prism.lens_model, camera.data.prism.lens_source = "REAL_LENS", "BUNDLED"
+    camera.data.prism.bundled_lens = "double_gauss_50mm"
+    settings = card_scene.prism.lens_overlay
+    settings.wavelength_source, settings.custom_wavelengths_nm = "CUSTOM", "450"
+    card_scene.prism.preview_samples = 2
+    bpy.context.view_layer.update()
+    size = width, height = 160, 120
+    side = camera.matrix_world.to_3x3() @ Vector((1.0, 0.0, 0.0))
+    ahead = camera.matrix_world.translation + camera.matrix_world.to_3x3() @ Vector((0.0, 0.0, -0.5))
+    eye = ahead + 2.5 * side
+    view = Matrix.Translation(eye) @ (ahead - eye).to_track_quat("-Z", "Z").to_matrix().to_4x4()
+    view = view.inverted()
+    window = _perspective(width, height)
+    seen = {}
+
+    def render(self, depsgraph):
+        import gpu
+        from helpers.viewport import view_context
+
+        context = view_context(view, window, size)
+        self.view_update(context, depsgraph)
+        seen["frame"] = wait_for_frame(self._prism_viewport, lambda f: f.divider == 1 and f.samples == 2)
+        offscreen = gpu.types.GPUOffScreen(width, height, format="RGBA32F")
+        try:
+            with offscreen.bind():
+                framebuffer = gpu.state.active_framebuffer_get()
+                framebuffer.clear(color=(0.0, 0.0, 0.0, 0.0))
+                with gpu.matrix.push_pop(), gpu.matrix.push_pop_projection():
+                    gpu.matrix.load_matrix(Matrix.Identity(4))
+                    gpu.matrix.load_projection_matrix(_pixel_space_projection(width, height))
+                    self.view_draw(context, depsgraph)
+                    gpu.matrix.load_projection_matrix(window)
+                    gpu.matrix.load_matrix(view)
+                    seen["overlay"] = overlay.draw_at_camera(depsgraph.scene, size, 1.0)
+                buffer = framebuffer.read_color(0, 0, width, height, 4, 0, "FLOAT")
+        finally:
+            offscreen.free()
+        buffer.dimensions = width * height * 4
+        seen["pixels"] = np.array(buffer, dtype=np.float32).reshape(height, width, 4)
+        self.end_result(self.begin_result(0, 0, 4, 4))
+
+    monkeypatch.setattr(prism_addon.engine.render_engine.PrismRenderEngine, "render", render)
+    card_scene.render.resolution_x = card_scene.render.resolution_y = 4
+    bpy.ops.render.render()
+    overlay.remove_handlers()
+    assert seen["overlay"]
+    frame, pixels = seen["frame"].rgba, seen["pixels"]
+    changed = np.abs(pixels[..., :3] - frame[..., :3]).max(axis=-1) > 0.05
+    assert 50 < changed.sum() < 0.2 * width * height  # the fan and the lens, over a small part
+    blue = changed & (pixels[..., 2] > pixels[..., 0] + 0.3)
+    assert blue.sum() > 20  # 450 nm rays
+    near = changed.copy()  # the lines' smoothed edges fade out over a pixel or two
+    for axis in (0, 1):
+        for step in (-2, -1, 1, 2):
+            near |= np.roll(changed, step, axis=axis)
+    untouched = ~near
+    assert untouched.mean() > 0.8
+    np.testing.assert_allclose(pixels[untouched], frame[untouched], rtol=2e-3, atol=1e-4)  # the render elsewhere
