@@ -108,13 +108,13 @@ class Renderer:
     def _build_geometry(self):
         """Triangles relative to ``origin`` and their Embree scene."""
         self.geometry, self._original_triangle, self._dropped = prepare_geometry(self.scene, self.origin)
+        self._used = sorted(set(np.unique(self.geometry.material).tolist()))
         self.accel = Accel(self.geometry)
 
     def _build_shading(self):
         """Everything the paths read besides the triangles and the camera: spectra, materials, lights,
         wavelength sampling, kernel settings."""
-        scene, settings = self.scene, self.settings
-        used = sorted(set(np.unique(self.geometry.material).tolist()))
+        scene, settings, used = self.scene, self.settings, self._used
         if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
             raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
         spectra = SpectrumTable()
@@ -122,7 +122,6 @@ class Renderer:
         materials = self.material_table.arrays
         self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
                                         self.geometry.material, materials.emission_strength, self.origin)
-        self._used = used
         lines = _monochromatic_lines(scene, used) if settings.wavelength_mode == "cie" else []
         self.wavelengths = wavelength_sampling.build(settings, lines)
         self._guided_lines = len(lines)
@@ -191,7 +190,7 @@ class Renderer:
         the ones being rendered (its camera is ignored); the image restarts."""
         started = time.perf_counter()
         scene = replace(scene, camera=self.scene.camera)
-        scene.validate()
+        scene.validate(triangles=False)
         self.scene = scene
         self._build_shading()
         self.restart(time.perf_counter() - started)
