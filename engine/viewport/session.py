@@ -161,7 +161,9 @@ class ViewportSession:
         self._unposted = Change()
 
     def _describe(self, renderer, passes, done, target, seconds) -> str:
-        self._compiling = None  # a pass finished: whatever had to compile did
+        if self._compiling:  # a pass finished: what it needed is compiled and cached, as after an F12 render
+            self._compiling = None
+            kernel_cache.mark_compiled()
         return stats_line(renderer, passes, done, target, seconds, self._sync.warnings)
 
     def status(self) -> str:
