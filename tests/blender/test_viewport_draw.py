@@ -11,7 +11,7 @@ import bpy
 import numpy as np
 import pytest
 from helpers.bpy_scenes import build_lit_card_scene, render_linear_rgb
-from helpers.viewport import StubEngine, camera_context, wait_for_frame
+from helpers.viewport import StubEngine, camera_context, view_context, wait_for_frame
 from mathutils import Matrix
 
 REGION = (48, 32)
@@ -45,6 +45,52 @@ def _pixel_space_projection(width, height):
     return Matrix(((2.0 / width, 0, 0, -1.0), (0, 2.0 / height, 0, -1.0), (0, 0, -1.0, 0), (0, 0, 0, 1.0)))
 
 
+def _draw_in_a_real_engine(addon, monkeypatch, context, samples, then=None) -> dict:
+    """Run a viewport session in an engine Blender made (for a render: its
+    ``bind_display_space_shader`` is real), wait for ``samples`` at full resolution, call
+    ``view_draw`` into a float offscreen the region's size, then ``then(depsgraph)`` with the
+    region's view matrices (Blender's POST_VIEW overlays). Returns the session's ``render`` and
+    ``frame``, the drawn ``pixels`` (rows from the bottom) and ``then``'s result."""
+    seen = {}
+    width, height = context.region.width, context.region.height
+
+    def render(self, depsgraph):
+        import gpu
+
+        self.view_update(context, depsgraph)
+        seen["render"] = self._prism_viewport.render
+        seen["frame"] = wait_for_frame(self._prism_viewport, lambda f: f.divider == 1 and f.samples == samples)
+        offscreen = gpu.types.GPUOffScreen(width, height, format="RGBA32F")
+        try:
+            with offscreen.bind():
+                framebuffer = gpu.state.active_framebuffer_get()
+                framebuffer.clear(color=(0.0, 0.0, 0.0, 0.0))
+                with gpu.matrix.push_pop(), gpu.matrix.push_pop_projection():
+                    gpu.matrix.load_matrix(Matrix.Identity(4))
+                    gpu.matrix.load_projection_matrix(_pixel_space_projection(width, height))
+                    self.view_draw(context, depsgraph)
+                    if then is not None:
+                        gpu.matrix.load_projection_matrix(context.region_data.window_matrix)
+                        gpu.matrix.load_matrix(context.region_data.view_matrix)
+                        seen["then"] = then(depsgraph)
+                buffer = framebuffer.read_color(0, 0, width, height, 4, 0, "FLOAT")
+        finally:
+            offscreen.free()
+        buffer.dimensions = width * height * 4
+        seen["pixels"] = np.array(buffer, dtype=np.float32).reshape(height, width, 4)
+        self.end_result(self.begin_result(0, 0, 4, 4))
+
+    monkeypatch.setattr(addon.engine.render_engine.PrismRenderEngine, "render", render)
+    scene = bpy.context.scene
+    resolution = scene.render.resolution_x, scene.render.resolution_y
+    scene.render.resolution_x = scene.render.resolution_y = 4
+    try:
+        bpy.ops.render.render()
+    finally:
+        scene.render.resolution_x, scene.render.resolution_y = resolution
+    return seen
+
+
 @pytest.fixture
 def card_scene(fresh_scene):
     build_lit_card_scene(resolution=REGION)
@@ -61,37 +107,7 @@ def test_view_draw_shows_the_session_image_through_the_display_shader(prism_addo
     """``view_draw`` of a real engine (one Blender made for a render: ``bind_display_space_shader``
     is real) into a float offscreen the size of the region: every pixel is the session's
     scene-linear value (HDR kept), which Blender's view transform then maps as the final render's."""
-    engine_class = prism_addon.engine.render_engine.PrismRenderEngine
-    seen = {}
-
-    def render(self, depsgraph):
-        import gpu
-
-        context = camera_context(depsgraph.scene, REGION)
-        self.view_update(context, depsgraph)
-        session = seen["session"] = self._prism_viewport
-        seen["render"] = session.render
-        seen["frame"] = wait_for_frame(session, lambda f: f.divider == 1 and f.samples == 8)
-        width, height = REGION
-        offscreen = gpu.types.GPUOffScreen(width, height, format="RGBA32F")
-        try:
-            with offscreen.bind():
-                framebuffer = gpu.state.active_framebuffer_get()
-                framebuffer.clear(color=(0.0, 0.0, 0.0, 0.0))
-                with gpu.matrix.push_pop(), gpu.matrix.push_pop_projection():
-                    gpu.matrix.load_matrix(Matrix.Identity(4))
-                    gpu.matrix.load_projection_matrix(_pixel_space_projection(width, height))
-                    self.view_draw(context, depsgraph)
-                buffer = framebuffer.read_color(0, 0, width, height, 4, 0, "FLOAT")
-        finally:
-            offscreen.free()
-        buffer.dimensions = width * height * 4
-        seen["pixels"] = np.array(buffer, dtype=np.float32).reshape(height, width, 4)
-        result = self.begin_result(0, 0, width, height)
-        self.end_result(result)
-
-    monkeypatch.setattr(engine_class, "render", render)
-    bpy.ops.render.render()
+    seen = _draw_in_a_real_engine(prism_addon, monkeypatch, camera_context(card_scene, REGION), samples=8)
     frame, drawn = seen["frame"], seen["pixels"]
     assert frame.rgba[..., :3].max() > 1.0  # highlights above 1 reach the view transform
     np.testing.assert_allclose(drawn, frame.rgba, rtol=2e-3, atol=1e-4)  # half floats
@@ -154,40 +170,11 @@ def test_the_lens_overlay_draws_over_the_rendered_viewport(prism_addon, card_sce
     eye = ahead + 2.5 * side
     view = Matrix.Translation(eye) @ (ahead - eye).to_track_quat("-Z", "Z").to_matrix().to_4x4()
     view = view.inverted()
-    window = _perspective(width, height)
-    seen = {}
-
-    def render(self, depsgraph):
-        import gpu
-        from helpers.viewport import view_context
-
-        context = view_context(view, window, size)
-        self.view_update(context, depsgraph)
-        seen["frame"] = wait_for_frame(self._prism_viewport, lambda f: f.divider == 1 and f.samples == 2)
-        offscreen = gpu.types.GPUOffScreen(width, height, format="RGBA32F")
-        try:
-            with offscreen.bind():
-                framebuffer = gpu.state.active_framebuffer_get()
-                framebuffer.clear(color=(0.0, 0.0, 0.0, 0.0))
-                with gpu.matrix.push_pop(), gpu.matrix.push_pop_projection():
-                    gpu.matrix.load_matrix(Matrix.Identity(4))
-                    gpu.matrix.load_projection_matrix(_pixel_space_projection(width, height))
-                    self.view_draw(context, depsgraph)
-                    gpu.matrix.load_projection_matrix(window)
-                    gpu.matrix.load_matrix(view)
-                    seen["overlay"] = overlay.draw_at_camera(depsgraph.scene, size, 1.0)
-                buffer = framebuffer.read_color(0, 0, width, height, 4, 0, "FLOAT")
-        finally:
-            offscreen.free()
-        buffer.dimensions = width * height * 4
-        seen["pixels"] = np.array(buffer, dtype=np.float32).reshape(height, width, 4)
-        self.end_result(self.begin_result(0, 0, 4, 4))
-
-    monkeypatch.setattr(prism_addon.engine.render_engine.PrismRenderEngine, "render", render)
-    card_scene.render.resolution_x = card_scene.render.resolution_y = 4
-    bpy.ops.render.render()
+    context = view_context(view, _perspective(width, height), size)
+    seen = _draw_in_a_real_engine(prism_addon, monkeypatch, context, samples=2,
+                                  then=lambda depsgraph: overlay.draw_at_camera(depsgraph.scene, size, 1.0))
     overlay.remove_handlers()
-    assert seen["overlay"]
+    assert seen["then"]
     frame, pixels = seen["frame"].rgba, seen["pixels"]
     changed = np.abs(pixels[..., :3] - frame[..., :3]).max(axis=-1) > 0.05
     assert 50 < changed.sum() < 0.2 * width * height  # the fan and the lens, over a small part
