@@ -91,7 +91,7 @@ class RenderSession:
             scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border
         )
         self.report.warnings = warnings
-        for message in warnings:
+        for message in warnings if not engine.is_preview else ():  # Blender's preview scene: not the user's to fix
             engine.report({"WARNING"}, message)
             self._print(f"Prism: warning: {message}")
         engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
