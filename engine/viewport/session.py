@@ -61,6 +61,7 @@ class ViewportSession:
         self._unposted = Change()
         self._export_error: str | None = None
         self._view_error: str | None = None
+        self._settings_error: str | None = None
         self._shown_status = None
         _live.add(self)
         weakref.finalize(engine, self.stop, True, STOP_WAIT_S)
@@ -100,15 +101,13 @@ class ViewportSession:
         if self._export_error is None:
             self._post(Change(), context, depsgraph.scene)
 
-    def stop(self, wait: bool = True, timeout: float = 30.0) -> None:
-        """Stop the render thread (and with it the Renderer's threads)."""
-        self._render.stop(wait, timeout)
-        _live.discard(self)
-
     @property
     def error(self) -> str | None:
         """Why the viewport shows nothing (the scene, the view or the render cannot be rendered)."""
-        return self._export_error or self._view_error or self._render.error
+        return self._scene_error() or self._render.error
+
+    def _scene_error(self) -> str | None:
+        return self._export_error or self._settings_error or self._view_error
 
     def stop(self, wait: bool = True, timeout: float = 30.0) -> None:
         """Stop the render thread (and with it the Renderer's threads)."""
@@ -134,8 +133,9 @@ class ViewportSession:
         try:
             settings = viewport_settings(scene)
         except PrismInputError as error:
-            self._view_error = str(error)
+            self._settings_error = str(error)
             return
+        self._settings_error = None
         if self._settings is None or not same(settings.render, self._settings.render):
             change.settings = settings.render
         if self._settings is None or settings.samples != self._settings.samples:
@@ -168,7 +168,7 @@ class ViewportSession:
 
     def status(self) -> str:
         """The line for the viewport header."""
-        error = self._export_error or self._view_error
+        error = self._scene_error()
         if error is not None:
             return f"Prism | {error}"
         line = self._render.status

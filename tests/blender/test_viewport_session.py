@@ -154,10 +154,13 @@ def test_pause_holds_the_image_until_resumed(viewport):
     wait_for_frame(session, lambda f: f.divider == 1 and f.samples >= 2)
     scene.prism.preview_pause = True
     session.sync_view(context, bpy.context.evaluated_depsgraph_get())
-    time.sleep(0.2)
-    held = session.render.frame
-    time.sleep(0.3)
-    assert session.render.frame is held and session.status().endswith("Paused")
+    assert session.status().endswith("Paused")
+    held, end = None, time.perf_counter() + 30.0
+    while held is not session.render.frame:  # the pass in flight finishes, then nothing more comes
+        assert time.perf_counter() < end
+        held = session.render.frame
+        time.sleep(0.5)
+    assert session.render.frame is held
     scene.prism.preview_pause = False
     session.sync_view(context, bpy.context.evaluated_depsgraph_get())
     wait_for_frame(session, lambda f: f.samples > held.samples)

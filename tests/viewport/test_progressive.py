@@ -113,10 +113,12 @@ def test_pause_and_stop_leave_no_thread(render):
     _start(render, scene, samples=0)
     _wait(render, lambda f: f.divider == 1)
     render.pause(True)
-    time.sleep(0.1)
-    samples = render.frame.samples
-    time.sleep(0.2)
-    assert render.frame.samples == samples
+    held, end = None, time.perf_counter() + 30.0
+    while held is not render.frame:  # the pass in flight finishes, then nothing more comes
+        assert time.perf_counter() < end
+        held = render.frame
+        time.sleep(0.3)
+    samples = held.samples
     render.pause(False)
     _wait(render, lambda f: f.samples > samples)
     started = time.perf_counter()
