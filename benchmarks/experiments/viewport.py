@@ -126,13 +126,12 @@ def run(quick: bool) -> dict:
         built = time.perf_counter() - built
         camera = scene.camera
         recorder = _Recorder()
+        start = Change(scene=scene, geometry=True, camera=camera, settings=settings, samples=TARGET_SAMPLES)
         try:
-            start = Change(scene=scene, geometry=True, camera=camera, settings=settings, samples=TARGET_SAMPLES)
-            rows.append({"scene": label, "triangles": scene.triangle_count, "change": "start",
-                         "region": f"{region[0]}x{region[1]}", **recorder.post(start)})
-            for change_name, change in _changes(scene, camera, moving_object):
+            for change_name, change in [("start", start)] + _changes(scene, camera, moving_object):
                 rows.append({"scene": label, "triangles": scene.triangle_count, "change": change_name,
                              "region": f"{region[0]}x{region[1]}", **recorder.post(change)})
+                print(f"viewport: {rows[-1]}", file=sys.stderr, flush=True)
         finally:
             recorder.stop()
         rows[-5]["scene build s (untimed)"] = round(built, 3)
