@@ -108,6 +108,7 @@ class Renderer:
 
     def _build_geometry(self):
         """Triangles relative to ``origin`` and their Embree scene."""
+        self.geometry = self.accel = None  # the old tables go first: one BVH in memory at a time
         self.geometry, self._original_triangle, self._dropped = prepare_geometry(self.scene, self.origin)
         self._used = sorted(set(np.unique(self.geometry.material).tolist()))
         self.accel = Accel(self.geometry)
