@@ -140,30 +140,52 @@ def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
     image_settings.file_format = OUTPUT_FORMATS[output.suffix.lower()]
     if image_settings.file_format == "OPEN_EXR":
         image_settings.color_depth = "32"
-    scene.render.use_file_extension = False
     with prism.output_files.atomic_output(output, signals) as temporary:
-        scene.render.filepath = str(temporary)
         blender_error = None
         with prism.requests.render_request(batch_request(arguments, prism, signals)) as report:
             try:
-                bpy.ops.render.render(write_still=not chunked)
+                # No write_still: Blender would announce the temporary file ("Saved: '.out.prism-…'").
+                bpy.ops.render.render(write_still=False)
             except RuntimeError as error:
                 blender_error = _blender_message(error)
         if report.error or not report.started:
             raise prism.errors.PrismInputError(report.error or blender_error or "Blender did not start the render.")
         if report.cancelled or signals.stop_requested():
+            if arguments.keep_partial:
+                try:
+                    save_render_result(scene, temporary, output, prism)
+                except prism.errors.PrismInputError:
+                    pass  # the message then says the unfinished image could not be kept
             raise _interrupted(arguments, output, temporary, prism, signals)
         if chunked:
             chunks = prism.chunks()
             chunks.write_chunk(temporary, chunks.chunk_of_film(report.film))
+        else:
+            save_render_result(scene, temporary, output, prism)
     return output
+
+
+def save_render_result(scene, path: Path, output: Path, prism: Prism) -> None:
+    """Write Blender's Render Result to ``path`` as ``scene``'s output settings ask, exactly as
+    ``write_still`` does (view transform for PNG, scene-linear EXR), without announcing ``path``."""
+    import bpy
+
+    result = next((image for image in bpy.data.images if image.type == "RENDER_RESULT"), None)
+    if result is None:
+        raise prism.errors.PrismInputError(f"Prism rendered but Blender kept no Render Result to write to '{output}'.")
+    try:
+        result.save_render(filepath=str(path), scene=scene)
+    except RuntimeError as error:
+        raise prism.errors.PrismInputError(
+            f"Cannot write '{output}': {_blender_message(error)}. Choose a folder that exists and that you can write to."
+        ) from None
 
 
 def _interrupted(arguments, output: Path, temporary: Path, prism: Prism, signals):
     """The exception that ends an interrupted frame; the partial image is kept first if asked."""
     cause = signals.signal_name() if signals.stop_requested() else "Esc"
     message = f"interrupted by {cause}: '{output}' was not written"
-    if arguments.keep_partial and temporary.is_file():
+    if arguments.keep_partial:
         partial = prism.output_files.partial_output(output)
         try:
             os.replace(temporary, partial)
@@ -185,7 +207,8 @@ def write_lens_diagram(arguments, prism: Prism, signals) -> Path:
 
 
 def _wrote(path: Path) -> None:
-    print(f"Prism: wrote {path}", file=sys.stderr, flush=True)
+    """Blender's own line for a written file, naming the final file (Flamenco's worker reads it)."""
+    print(f"Saved: '{path}'", file=sys.stderr, flush=True)
 
 
 def render_all(arguments, prism: Prism, signals) -> None:
@@ -196,10 +219,11 @@ def render_all(arguments, prism: Prism, signals) -> None:
     if arguments.output is None:
         return
     output = Path(arguments.output).resolve()
-    if arguments.frames is None:
+    scene = bpy.context.scene
+    if arguments.frames is None:  # the current frame; '#' in the name becomes its number, as in Blender
+        output = prism.output_files.numbered_output(output, scene.frame_current)
         _wrote(render_frame(arguments, output, prism, signals))
         return
-    scene = bpy.context.scene
     first, last = arguments.frames
     for frame in range(first, last + 1):
         signals.raise_if_stopped(f"frame {frame} and the frames after it")
