@@ -160,7 +160,8 @@ class RenderSession:
                 line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings)
                 engine.update_stats("", line)
                 self.report.stats = line
-                self._print(line)
+                # Blender's "Time: …" line, once per pass: render farms (Flamenco) count these as steps.
+                self._print(f"Time: {timecode(time.perf_counter() - started)} | {line}")
                 if self.cancelled:
                     break
         finally:
@@ -189,6 +190,15 @@ def bottom_up(image: np.ndarray, alpha: bool = False) -> np.ndarray:
         rgba[..., :channels] = image
         image = rgba
     return np.ascontiguousarray(image[::-1], dtype=np.float32).reshape(height * width, -1)
+
+
+def timecode(seconds: float) -> str:
+    """Elapsed time as Blender prints it: ``00:07.25`` (minutes, seconds, hundredths), ``01:02:07.25`` past an hour."""
+    hundredths = int(round(max(seconds, 0.0) * 100))
+    minutes, hundredths = divmod(hundredths, 6000)
+    hours, minutes = divmod(minutes, 60)
+    clock = f"{minutes:02d}:{hundredths // 100:02d}.{hundredths % 100:02d}"
+    return f"{hours:02d}:{clock}" if hours else clock
 
 
 def stats_line(renderer, pass_index: int, done: int, target: int, seconds: float, warnings) -> str:

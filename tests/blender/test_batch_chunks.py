@@ -6,12 +6,13 @@ from __future__ import annotations
 
 import importlib
 import json
+import re
 
 import bpy
 import numpy as np
 import pytest
 
-from helpers.batch import run_batch
+from helpers.batch import run_batch, run_batch_stderr
 from helpers.bpy_scenes import build_lit_card_scene
 
 
@@ -220,3 +221,15 @@ def test_chunk_samples_must_be_whole_passes(batch, tmp_path, capsys, bad_input):
     )
     assert not (tmp_path / "c.exr").exists()
     bad_input("--chunk-seed 1 --samples 3 with Samples per Pass 2", status, line)
+
+
+def test_every_pass_prints_a_time_line_that_render_farms_count(batch, tmp_path, capsys):
+    bpy.context.scene.prism.samples_per_pass = 2
+    status, stderr = run_batch_stderr(capsys, "--samples", 6, "--output", tmp_path / "x.exr")
+    assert status == 0, stderr
+    # Flamenco's worker counts a step for every line matching ^Time: ([0-9:.]+), as Blender prints per frame.
+    times = [line for line in stderr.splitlines() if re.match(r"Time: [0-9:.]+ ", line)]
+    assert [line.split(" | ")[2:4] for line in times] == [["Pass 1", "2/6 spp"], ["Pass 2", "4/6 spp"],
+                                                         ["Pass 3", "6/6 spp"]]
+    session = importlib.import_module("prism_spectral.engine.session")
+    assert [session.timecode(s) for s in (0.0, 7.254, 3727.25)] == ["00:00.00", "00:07.25", "01:02:07.25"]
