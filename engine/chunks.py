@@ -31,7 +31,7 @@ from .fingerprint import differing_parts
 from .tracer.errors import PrismInputError
 
 FORMAT_ATTRIBUTE = "prism:chunk"
-FORMAT_VERSION = "2"
+FORMAT_VERSION = "3"  # 3: the fingerprint holds the frame
 FINGERPRINT_ATTRIBUTE = "prism:fingerprint"
 SEED_ATTRIBUTE = "prism:seed"
 RANGES_ATTRIBUTE = "prism:sample_ranges"
@@ -69,6 +69,11 @@ class Chunk:
     @property
     def sample_offset(self) -> int:
         return self.sample_ranges[0][0]
+
+    @property
+    def frame(self) -> str:
+        """The frame it was rendered at, as written in its fingerprint (``"7"``, ``"7.5"``)."""
+        return self.fingerprint.get("frame", "")
 
 
 def chunk_of_film(film) -> Chunk:
@@ -239,6 +244,11 @@ def _check_same_render(first: Chunk, chunk: Chunk) -> None:
         raise PrismInputError(
             f"Chunk '{chunk.path}' is {chunk.mean.shape[1]}x{chunk.mean.shape[0]} pixels but "
             f"'{first.path}' is {first.mean.shape[1]}x{first.mean.shape[0]}: merge chunks of the same render only."
+        )
+    if chunk.frame != first.frame:
+        raise PrismInputError(
+            f"Chunk '{chunk.path}' is frame {chunk.frame} but '{first.path}' is frame {first.frame}: merge the "
+            "chunks of one frame only (--chunk-seed with --frames F renders a chunk of frame F)."
         )
     differ = differing_parts(first.fingerprint, chunk.fingerprint)
     if differ:

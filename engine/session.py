@@ -111,7 +111,7 @@ class RenderSession:
                     samples=renderer.samples_done - req.sample_offset,
                     sample_offset=req.sample_offset,
                     seed=settings.seed,
-                    fingerprint=render_fingerprint(tracer_scene, settings),
+                    fingerprint=render_fingerprint(tracer_scene, settings, scene.frame_current + scene.frame_subframe),
                 )
 
     def _passes(self, renderer, border, width, height, target, warnings) -> None:

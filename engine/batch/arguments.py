@@ -69,7 +69,9 @@ def _parser(in_blender: bool) -> argparse.ArgumentParser:
     parser.add_argument("--seed", type=int, help=f"random seed, 0..{MAX_SEED} (default: the scene's setting)")
     parser.add_argument("--threads", type=int, help="CPU threads (0 = all cores; default: the scene's setting)")
     parser.add_argument("--frames", type=frame_range, help="render frames A..B (inclusive) instead of the current one")
-    parser.add_argument("--chunk-seed", type=int, help="render sample chunk K (samples K*N..(K+1)*N-1) to an EXR")
+    parser.add_argument(
+        "--chunk-seed", type=int, help="render sample chunk K (samples K*N..(K+1)*N-1) of one frame to an EXR"
+    )
     parser.add_argument("--merge", nargs="+", metavar="CHUNK", help="merge chunk EXRs weighted by their samples")
     parser.add_argument("--output", help="output image, .png or .exr")
     parser.add_argument(
@@ -145,8 +147,10 @@ def _check_output(parser, arguments) -> None:
 def _check_chunk(parser, arguments) -> None:
     if arguments.samples is None:
         parser.error("--chunk-seed needs --samples (the chunk's sample count)")
-    if arguments.frames is not None:
-        parser.error("--chunk-seed renders one frame: leave out --frames")
+    if arguments.frames is not None and arguments.frames[0] != arguments.frames[1]:
+        first, last = arguments.frames
+        parser.error(f"--chunk-seed renders one frame: give --frames a single frame, e.g. --frames {first} "
+                     f"(got {first}..{last})")
     if arguments.keep_partial:
         parser.error("--chunk-seed writes a whole chunk or nothing (a partial chunk cannot merge): leave out --keep-partial")
     end = (arguments.chunk_seed + 1) * arguments.samples

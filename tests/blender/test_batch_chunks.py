@@ -233,3 +233,39 @@ def test_every_pass_prints_a_time_line_that_render_farms_count(batch, tmp_path, 
                                                          ["Pass 3", "6/6 spp"]]
     session = importlib.import_module("prism_spectral.engine.session")
     assert [session.timecode(s) for s in (0.0, 7.254, 3727.25)] == ["00:00.00", "00:07.25", "01:02:07.25"]
+
+
+def _animate_bulb():
+    """The light rises between frames 1 and 2: the frames render differently."""
+    bulb = bpy.data.objects["Bulb"]
+    for frame, height_m in ((1, 2.0), (2, 4.0)):
+        bulb.location = (0.3, 0.2, height_m)
+        bulb.keyframe_insert("location", frame=frame)
+    return bulb
+
+
+def test_a_chunk_renders_the_frame_given_and_chunks_of_two_frames_never_merge(batch, tmp_path, capsys, bad_input):
+    render, chunks = batch
+    scene = bpy.context.scene
+    bulb = _animate_bulb()
+    scene.frame_set(1)
+    assert _run(render, "--chunk-seed", 0, "--samples", 1, "--frames", 2, "--output", tmp_path / "c0_##.exr") == 0
+    scene.frame_set(2)  # what farm tasks did before --frames: set the frame, then render the current one
+    assert _run(render, "--chunk-seed", 0, "--samples", 1, "--output", tmp_path / "current.exr") == 0
+    by_option, at_current = chunks.read_chunk(tmp_path / "c0_02.exr"), chunks.read_chunk(tmp_path / "current.exr")
+    assert by_option.frame == at_current.frame == "2" and by_option.fingerprint == at_current.fingerprint
+    assert np.array_equal(by_option.mean, at_current.mean)
+
+    # Nothing moves any more: frames 1 and 2 export the same scene, yet their chunks are not one render's.
+    bulb.animation_data_clear()
+    assert _run(render, "--chunk-seed", 0, "--samples", 1, "--frames", 1, "--output", tmp_path / "a.exr") == 0
+    assert _run(render, "--chunk-seed", 1, "--samples", 1, "--frames", 2, "--output", tmp_path / "b.exr") == 0
+    first, second = tmp_path / "a_0001.exr", tmp_path / "b_0002.exr"  # --frames numbers a name without '#'
+    assert chunks.read_chunk(first).fingerprint != chunks.read_chunk(second).fingerprint
+    status, line = run_batch(capsys, "--merge", first, second, "--output", tmp_path / "m.exr")
+    assert status == 1 and line == (
+        f"Prism: error: Chunk '{second}' is frame 2 but '{first}' is frame 1: merge the chunks of one frame only "
+        "(--chunk-seed with --frames F renders a chunk of frame F)."
+    )
+    assert not (tmp_path / "m.exr").exists()
+    bad_input("--merge: a chunk of frame 2 given with frame 1's (a scene where nothing moves)", status, line)
