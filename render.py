@@ -236,7 +236,7 @@ def merge(arguments, prism: Prism, signals) -> None:
     chunks = prism.chunks()
     output = Path(arguments.output).resolve()
     with prism.output_files.atomic_output(output, signals) as temporary:
-        merged = chunks.merge_chunks([chunks.read_chunk(path) for path in arguments.merge])
+        merged = chunks.merge_chunks([chunks.read_chunk(path) for path in arguments.merge], arguments.expect_samples)
         chunks.write_chunk(temporary, merged)
         signals.raise_if_stopped(f"'{output}'")
     print(f"Prism: merged {len(arguments.merge)} chunks, {merged.samples} samples per pixel", file=sys.stderr)

@@ -208,8 +208,9 @@ def _check_finite(path, pixels: np.ndarray) -> None:
         raise _render_again(path, f"holds {int(bad.sum())} pixel(s) that are NaN or infinite (the first at x={x}, y={y} from the top)")
 
 
-def merge_chunks(chunks: list[Chunk]) -> Chunk:
-    """Sample-weighted mean of ``chunks`` (float64), after checking they belong together.
+def merge_chunks(chunks: list[Chunk], expect_samples: int | None = None) -> Chunk:
+    """Sample-weighted mean of ``chunks`` (float64), after checking they belong together and,
+    given ``expect_samples``, that they hold samples ``0 .. expect_samples - 1``, every one.
 
     Bit-identical (after rounding to float32) to one render of all the samples
     when the chunks are consecutive blocks of the same seed's sequence (offsets
@@ -229,14 +230,66 @@ def merge_chunks(chunks: list[Chunk]) -> Chunk:
                 f"Chunks '{path_a}' and '{path_b}' contain the same samples (from sample {start}): "
                 "give each chunk its own --chunk-seed."
             )
+    joined = _joined([(start, end) for start, end, _ in ranges])
+    if expect_samples is not None:
+        _check_complete(chunks, joined, expect_samples)
     total = sum(c.samples for c in chunks)
     weighted = sum(c.mean * c.samples for c in chunks)
     return Chunk(
         mean=weighted / total,
         seed=first.seed,
-        sample_ranges=_joined([(start, end) for start, end, _ in ranges]),
+        sample_ranges=joined,
         fingerprint=dict(first.fingerprint),
     )
+
+
+def _check_complete(chunks: list[Chunk], joined, expected: int) -> None:
+    """The chunks hold samples ``0 .. expected - 1`` and nothing else; else name what is missing or extra."""
+    if joined == ((0, expected),):
+        return
+    for chunk in chunks:
+        beyond = [(max(start, expected), end) for start, end in chunk.sample_ranges if end > expected]
+        if beyond:
+            raise PrismInputError(
+                f"Chunk '{chunk.path}' holds {_samples_text(beyond)}, past the {expected} samples --expect-samples "
+                "asks for: leave it out, or give the frame's real total to --expect-samples."
+            )
+    missing, cursor = [], 0
+    for start, end in joined:
+        if start > cursor:
+            missing.append((cursor, start))
+        cursor = end
+    if cursor < expected:
+        missing.append((cursor, expected))
+    held = sum(end - start for start, end in joined)
+    holders = "The chunk holds" if len(chunks) == 1 else f"The {len(chunks)} chunks hold"
+    raise PrismInputError(
+        f"{holders} {held} of the {expected} samples --expect-samples asks for: "
+        f"{_samples_text(missing)} {'is' if held == expected - 1 else 'are'} missing{_chunks_to_render(chunks, missing)}."
+    )
+
+
+def _samples_text(ranges) -> str:
+    """``[(2, 4), (6, 7)]`` → ``samples 2..3 and sample 6`` (inclusive, as people count)."""
+    parts = [f"sample {start}" if end - start == 1 else f"samples {start}..{end - 1}" for start, end in ranges[:4]]
+    if len(ranges) > 4:
+        parts.append(f"{len(ranges) - 4} more range(s)")
+    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
+
+
+def _chunks_to_render(chunks: list[Chunk], missing) -> str:
+    """`` (--chunk-seed 1 and 3 with --samples 2)`` when every chunk is one block of the same size."""
+    sizes = {chunk.samples for chunk in chunks}
+    if len(sizes) != 1 or any(len(chunk.sample_ranges) != 1 for chunk in chunks):
+        return ""
+    size = sizes.pop()
+    if any(start % size or end % size for start, end in missing):
+        return ""
+    seeds = [str(seed) for start, end in missing for seed in range(start // size, end // size)]
+    if len(seeds) > 8:
+        return f" (--chunk-seed {seeds[0]} … {seeds[-1]}, {len(seeds)} chunks of --samples {size})"
+    listed = seeds[0] if len(seeds) == 1 else ", ".join(seeds[:-1]) + " and " + seeds[-1]
+    return f" (the chunks of --chunk-seed {listed} with --samples {size})"
 
 
 def _check_same_render(first: Chunk, chunk: Chunk) -> None:

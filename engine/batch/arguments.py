@@ -73,6 +73,12 @@ def _parser(in_blender: bool) -> argparse.ArgumentParser:
         "--chunk-seed", type=int, help="render sample chunk K (samples K*N..(K+1)*N-1) of one frame to an EXR"
     )
     parser.add_argument("--merge", nargs="+", metavar="CHUNK", help="merge chunk EXRs weighted by their samples")
+    parser.add_argument(
+        "--expect-samples",
+        type=int,
+        metavar="TOTAL",
+        help="with --merge: the chunks must hold samples 0..TOTAL-1, every one (refuses a missing chunk)",
+    )
     parser.add_argument("--output", help="output image, .png or .exr")
     parser.add_argument(
         "--keep-partial",
@@ -127,6 +133,12 @@ def _check_numbers(parser, arguments) -> None:
         parser.error(f"--threads must be between 0 (all cores) and {MAX_THREADS} (got {arguments.threads})")
     if arguments.chunk_seed is not None and arguments.chunk_seed < 0:
         parser.error(f"--chunk-seed must be 0 or more (got {arguments.chunk_seed})")
+    if arguments.expect_samples is not None:
+        if not arguments.merge:
+            parser.error("--expect-samples checks what --merge adds up to: use it with --merge")
+        if not 1 <= arguments.expect_samples <= SAMPLE_SEQUENCE_LENGTH:
+            parser.error(f"--expect-samples must be between 1 and {SAMPLE_SEQUENCE_LENGTH} "
+                         f"(got {arguments.expect_samples})")
 
 
 def _check_output(parser, arguments) -> None:

@@ -269,3 +269,33 @@ def test_a_chunk_renders_the_frame_given_and_chunks_of_two_frames_never_merge(ba
     )
     assert not (tmp_path / "m.exr").exists()
     bad_input("--merge: a chunk of frame 2 given with frame 1's (a scene where nothing moves)", status, line)
+
+
+def test_expect_samples_refuses_a_gap_a_missing_end_and_samples_beyond(batch, tmp_path, capsys, bad_input):
+    render, chunks = batch
+    chunk = [tmp_path / f"c{k}.exr" for k in range(4)]
+    for k, path in enumerate(chunk):
+        assert _run(render, "--chunk-seed", k, "--samples", 1, "--output", path) == 0
+    merged = tmp_path / "m.exr"
+    assert _run(render, "--merge", *chunk, "--expect-samples", 4, "--output", merged) == 0
+    assert chunks.read_chunk(merged).sample_ranges == ((0, 4),)
+    merged.unlink()
+    cases = [
+        ("--merge: one chunk left out (--expect-samples 4)", [chunk[0], chunk[1], chunk[3]], 4,
+         "Prism: error: The 3 chunks hold 3 of the 4 samples --expect-samples asks for: sample 2 is missing "
+         "(the chunks of --chunk-seed 2 with --samples 1)."),
+        ("--merge: the last chunks left out (--expect-samples 4)", chunk[:2], 4,
+         "Prism: error: The 2 chunks hold 2 of the 4 samples --expect-samples asks for: samples 2..3 are missing "
+         "(the chunks of --chunk-seed 2 and 3 with --samples 1)."),
+        ("--merge: the first chunk left out (--expect-samples 2)", chunk[1:2], 2,
+         "Prism: error: The chunk holds 1 of the 2 samples --expect-samples asks for: sample 0 is missing "
+         "(the chunks of --chunk-seed 0 with --samples 1)."),
+        ("--merge: a chunk past --expect-samples", chunk, 3,
+         f"Prism: error: Chunk '{chunk[3]}' holds sample 3, past the 3 samples --expect-samples asks for: leave it "
+         "out, or give the frame's real total to --expect-samples."),
+    ]
+    for description, inputs, expected, message in cases:
+        status, line = run_batch(capsys, "--merge", *inputs, "--expect-samples", expected, "--output", merged)
+        assert (status, line) == (1, message), description
+        bad_input(description, status, line)
+    assert not merged.exists()
