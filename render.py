@@ -34,6 +34,7 @@ import importlib
 import importlib.util
 import os
 import sys
+from contextlib import contextmanager
 from pathlib import Path
 
 ADDON_PACKAGE = "prism_spectral"
@@ -136,11 +137,13 @@ def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
     check_scene(scene, prism)
     scene.render.engine = "PRISM"
     chunked = arguments.chunk_seed is not None
-    image_settings = scene.render.image_settings
-    image_settings.file_format = OUTPUT_FORMATS[output.suffix.lower()]
-    if image_settings.file_format == "OPEN_EXR":
-        image_settings.color_depth = "32"
-    with prism.output_files.atomic_output(output, signals) as temporary:
+    if chunked:  # what `--output x.png` would write with, for a merge into a PNG
+        with output_format(scene, "PNG"):
+            png_settings = prism.module("engine.png_output").png_settings(scene)
+    with (
+        output_format(scene, OUTPUT_FORMATS[output.suffix.lower()]),
+        prism.output_files.atomic_output(output, signals) as temporary,
+    ):
         blender_error = None
         with prism.requests.render_request(batch_request(arguments, prism, signals)) as report:
             try:
@@ -159,10 +162,24 @@ def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
             raise _interrupted(arguments, output, temporary, prism, signals)
         if chunked:
             chunks = prism.chunks()
-            chunks.write_chunk(temporary, chunks.chunk_of_film(report.film))
+            chunks.write_chunk(temporary, chunks.chunk_of_film(report.film, png_settings))
         else:
             save_render_result(scene, temporary, output, prism)
     return output
+
+
+@contextmanager
+def output_format(scene, file_format: str):
+    """The scene's output set to ``file_format`` (EXR: 32-bit float) for the block, then as it was."""
+    settings = scene.render.image_settings
+    before = settings.file_format, settings.color_depth
+    settings.file_format = file_format
+    if file_format == "OPEN_EXR":
+        settings.color_depth = "32"
+    try:
+        yield settings
+    finally:
+        settings.file_format, settings.color_depth = before
 
 
 def save_render_result(scene, path: Path, output: Path, prism: Prism) -> None:
@@ -233,13 +250,20 @@ def render_all(arguments, prism: Prism, signals) -> None:
 
 
 def merge(arguments, prism: Prism, signals) -> None:
+    """Merge the chunks into one EXR, or a PNG written as their scene writes PNGs."""
     chunks = prism.chunks()
-    output = Path(arguments.output).resolve()
+    merged = chunks.merge_chunks([chunks.read_chunk(path) for path in arguments.merge], arguments.expect_samples)
+    frame = int(float(merged.frame or 0))
+    output = prism.output_files.numbered_output(Path(arguments.output).resolve(), frame)  # '#': the chunks' frame
     with prism.output_files.atomic_output(output, signals) as temporary:
-        merged = chunks.merge_chunks([chunks.read_chunk(path) for path in arguments.merge], arguments.expect_samples)
-        chunks.write_chunk(temporary, merged)
+        if output.suffix.lower() == ".png":
+            png = prism.module("engine.png_output")
+            png.write_png(merged.mean, merged.png_settings, temporary, source=arguments.merge[0], frame=frame)
+        else:
+            chunks.write_chunk(temporary, merged)
         signals.raise_if_stopped(f"'{output}'")
-    print(f"Prism: merged {len(arguments.merge)} chunks, {merged.samples} samples per pixel", file=sys.stderr)
+    print(f"Prism: merged {len(arguments.merge)} chunks of frame {merged.frame}, {merged.samples} samples per pixel",
+          file=sys.stderr)
     _wrote(output)
 
 

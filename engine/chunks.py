@@ -9,10 +9,12 @@ works in float64 and its float32 result is bit-identical to the single render
 (see ``merge_chunks`` for when).
 
 Each chunk carries, as EXR string attributes (exact for any 64-bit number): the
-fingerprint of its scene and settings (``engine.fingerprint``), its seed, the
-sample ranges it holds, and a checksum over all of that and the pixels. A merge
-refuses chunks of different renders, overlapping samples, damaged or edited
-files and non-finite pixels, naming the file.
+fingerprint of its frame, scene and settings (``engine.fingerprint``), its seed,
+the sample ranges it holds, the settings its scene writes a PNG with
+(``engine.png_output``: a merge can write the frame's PNG without the .blend
+file), and a checksum over all of that and the pixels. A merge refuses chunks of
+different renders, overlapping samples, damaged or edited files and non-finite
+pixels, naming the file.
 
 EXR I/O uses OpenImageIO, which Blender bundles (``bpy.utils.system_resource``).
 """
@@ -31,11 +33,12 @@ from .fingerprint import differing_parts
 from .tracer.errors import PrismInputError
 
 FORMAT_ATTRIBUTE = "prism:chunk"
-FORMAT_VERSION = "3"  # 3: the fingerprint holds the frame
+FORMAT_VERSION = "3"  # 3: the fingerprint holds the frame; the PNG settings
 FINGERPRINT_ATTRIBUTE = "prism:fingerprint"
 SEED_ATTRIBUTE = "prism:seed"
 RANGES_ATTRIBUTE = "prism:sample_ranges"
 SAMPLES_ATTRIBUTE = "prism:samples"  # the total, for people reading the header
+PNG_SETTINGS_ATTRIBUTE = "prism:png_settings"
 CHECKSUM_ATTRIBUTE = "prism:checksum"
 CHANNELS = ("R", "G", "B", "A", "prism_lo_R", "prism_lo_G", "prism_lo_B")
 
@@ -54,12 +57,14 @@ def _oiio():
 @dataclass
 class Chunk:
     """A chunk's float64 mean [H, W, 3] (row 0 = top), seed, the half-open sample
-    ranges ``[(start, end), ...]`` it holds, and the fingerprint of its render."""
+    ranges ``[(start, end), ...]`` it holds, the fingerprint of its render, and the
+    settings its scene writes a PNG with (``engine.png_output.png_settings``)."""
 
     mean: np.ndarray
     seed: int
     sample_ranges: tuple[tuple[int, int], ...]
     fingerprint: dict[str, str]
+    png_settings: dict
     path: str = ""
 
     @property
@@ -76,13 +81,14 @@ class Chunk:
         return self.fingerprint.get("frame", "")
 
 
-def chunk_of_film(film) -> Chunk:
-    """The chunk of a finished render's ``FilmSnapshot``."""
+def chunk_of_film(film, png_settings: dict) -> Chunk:
+    """The chunk of a finished render's ``FilmSnapshot``, whose scene writes PNGs with ``png_settings``."""
     return Chunk(
         mean=film.mean,
         seed=int(film.seed),
         sample_ranges=((int(film.sample_offset), int(film.sample_offset + film.samples)),),
         fingerprint=dict(film.fingerprint),
+        png_settings=dict(png_settings),
     )
 
 
@@ -93,6 +99,7 @@ def _attributes(chunk: Chunk) -> dict[str, str]:
         SEED_ATTRIBUTE: str(int(chunk.seed)),
         RANGES_ATTRIBUTE: json.dumps([[int(a), int(b)] for a, b in chunk.sample_ranges]),
         SAMPLES_ATTRIBUTE: str(chunk.samples),
+        PNG_SETTINGS_ATTRIBUTE: json.dumps(chunk.png_settings, sort_keys=True),
     }
 
 
@@ -168,6 +175,7 @@ def read_chunk(path) -> Chunk:
         seed=int(attributes[SEED_ATTRIBUTE]),
         sample_ranges=tuple(tuple(r) for r in json.loads(attributes[RANGES_ATTRIBUTE])),
         fingerprint=json.loads(attributes[FINGERPRINT_ATTRIBUTE]),
+        png_settings=json.loads(attributes[PNG_SETTINGS_ATTRIBUTE]),
         path=str(path),
     )
 
@@ -183,13 +191,16 @@ def _read_attributes(path, spec) -> dict[str, str]:
     if version != FORMAT_VERSION:
         raise _render_again(path, f"has chunk format {version}, which this Prism does not read (it writes {FORMAT_VERSION})")
     attributes = {name: spec.get_string_attribute(name) for name in (
-        FORMAT_ATTRIBUTE, FINGERPRINT_ATTRIBUTE, SEED_ATTRIBUTE, RANGES_ATTRIBUTE, SAMPLES_ATTRIBUTE)}
+        FORMAT_ATTRIBUTE, FINGERPRINT_ATTRIBUTE, SEED_ATTRIBUTE, RANGES_ATTRIBUTE, SAMPLES_ATTRIBUTE,
+        PNG_SETTINGS_ATTRIBUTE)}
     try:
         int(attributes[SEED_ATTRIBUTE])
         ranges = json.loads(attributes[RANGES_ATTRIBUTE])
         fingerprint = json.loads(attributes[FINGERPRINT_ATTRIBUTE])
+        png_settings = json.loads(attributes[PNG_SETTINGS_ATTRIBUTE])
         valid = (
             isinstance(fingerprint, dict)
+            and isinstance(png_settings, dict)
             and isinstance(ranges, list)
             and ranges
             and all(isinstance(a, int) and isinstance(b, int) and 0 <= a < b for a, b in ranges)
@@ -197,7 +208,7 @@ def _read_attributes(path, spec) -> dict[str, str]:
     except (ValueError, TypeError):
         valid = False
     if not valid:
-        raise _render_again(path, "has damaged Prism attributes (seed, sample ranges or fingerprint)")
+        raise _render_again(path, "has damaged Prism attributes (seed, sample ranges, fingerprint or PNG settings)")
     return attributes
 
 
@@ -240,6 +251,7 @@ def merge_chunks(chunks: list[Chunk], expect_samples: int | None = None) -> Chun
         seed=first.seed,
         sample_ranges=joined,
         fingerprint=dict(first.fingerprint),
+        png_settings=dict(first.png_settings),
     )
 
 
@@ -308,6 +320,12 @@ def _check_same_render(first: Chunk, chunk: Chunk) -> None:
         raise PrismInputError(
             f"Chunks '{first.path}' and '{chunk.path}' come from different renders (their {', '.join(differ)} "
             "differ): merge only chunks rendered from the same .blend file, frame and settings."
+        )
+    if chunk.png_settings != first.png_settings:
+        raise PrismInputError(
+            f"Chunks '{first.path}' and '{chunk.path}' come from scenes with different Color Management or PNG "
+            "output settings (view transform, look, exposure, dither, colour depth, ...): merge only chunks "
+            "rendered from the same .blend file and settings."
         )
     if chunk.seed != first.seed:
         raise PrismInputError(

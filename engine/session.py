@@ -60,7 +60,10 @@ class RenderSession:
     def run(self) -> RenderReport:
         self.report.started = True
         try:
-            self._render()
+            if self.request.show_image is not None:
+                self._show(self.request.show_image)
+            else:
+                self._render()
         except PrismInputError as error:
             self.fail(str(error))
         except MemoryError:
@@ -113,6 +116,15 @@ class RenderSession:
                     seed=settings.seed,
                     fingerprint=render_fingerprint(tracer_scene, settings, scene.frame_current + scene.frame_subframe),
                 )
+
+    def _show(self, image: np.ndarray) -> None:
+        """Fill the Render Result with a finished image (see ``RenderRequest.show_image``)."""
+        height, width = image.shape[:2]
+        result = self.engine.begin_result(0, 0, width, height, layer=self.depsgraph.view_layer.name)
+        try:
+            result.layers[0].passes["Combined"].rect = bottom_up(np.asarray(image, np.float32), alpha=True)
+        finally:
+            self.engine.end_result(result)
 
     def _passes(self, renderer, border, width, height, target, warnings) -> None:
         engine = self.engine

@@ -151,9 +151,8 @@ def _check_output(parser, arguments) -> None:
         parser.error(f"--output '{arguments.output}' is one of the chunks to merge: give the merge another name")
     if arguments.lens_diagram is not None and Path(arguments.lens_diagram).resolve() == output.resolve():
         parser.error("--lens-diagram and --output name the same file: give them different names")
-    if (arguments.merge or arguments.chunk_seed is not None) and output.suffix.lower() != ".exr":
-        option = "--merge" if arguments.merge else "--chunk-seed"
-        parser.error(f"{option} writes an EXR: give --output a .exr name")
+    if arguments.chunk_seed is not None and output.suffix.lower() != ".exr":
+        parser.error("--chunk-seed writes an EXR (a chunk to merge): give --output a .exr name")
 
 
 def _check_chunk(parser, arguments) -> None:

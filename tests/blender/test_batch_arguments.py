@@ -46,7 +46,6 @@ def test_wrong_arguments_exit_2_naming_the_option(prism_addon, capsys, bad_input
     [
         (["--samples", "4"], "give --output (an image to render), --lens-diagram, or both"),
         (["--output", "out.exr"], "give the .blend file to render"),
-        (["--merge", "a.exr", "--output", "m.png"], "--merge writes an EXR: give --output a .exr name"),
         (["scene.blend", "--merge", "a.exr", "--output", "m.exr"], "--merge takes chunk EXRs, not a .blend file"),
         (["--merge", "a.exr", "--output", "m.exr", "--keep-partial"], "--merge writes the whole merged image or nothing"),
         (["--merge", "a.exr", "--output", "m.exr", "--expect-samples", "0"],

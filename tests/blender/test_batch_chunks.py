@@ -32,7 +32,7 @@ def test_chunks_merge_bit_identical_to_one_render(batch, tmp_path, capsys):
         assert _run(render, "--chunk-seed", k, "--samples", 2, "--seed", 7, "--output", tmp_path / f"chunk_{k}.exr") == 0
     assert _run(render, "--chunk-seed", 0, "--samples", 6, "--seed", 7, "--output", tmp_path / "single.exr") == 0
     assert _run(render, "--merge", *(tmp_path / f"chunk_{k}.exr" for k in (2, 0, 1)), "--output", tmp_path / "merged.exr") == 0
-    assert "merged 3 chunks, 6 samples per pixel" in capsys.readouterr().err
+    assert "merged 3 chunks of frame 1, 6 samples per pixel" in capsys.readouterr().err
 
     merged, single = chunks.read_chunk(tmp_path / "merged.exr"), chunks.read_chunk(tmp_path / "single.exr")
     assert merged.samples == single.samples == 6
@@ -110,6 +110,13 @@ def test_merge_of_chunks_from_two_scenes_is_refused(batch, tmp_path, capsys, bad
     status, line = run_batch(capsys, "--merge", tmp_path / "a.exr", tmp_path / "c.exr", "--output", tmp_path / "m.exr")
     assert status == 1 and "(seed 0) and '" in line and "(seed 5) have different seeds" in line
     bad_input("--merge: chunks rendered with different --seed", status, line)
+
+    bpy.context.scene.view_settings.exposure = 1.0  # the same render, another picture from it
+    assert _run(render, "--chunk-seed", 1, "--samples", 1, "--output", tmp_path / "e.exr") == 0
+    status, line = run_batch(capsys, "--merge", tmp_path / "a.exr", tmp_path / "e.exr", "--output", tmp_path / "m.exr")
+    assert status == 1 and "e.exr' come from scenes with different Color Management or PNG output settings" in line
+    bad_input("--merge: chunks whose scenes differ in Color Management (exposure)", status, line)
+    bpy.context.scene.view_settings.exposure = 0.0
 
     bpy.context.scene.prism.max_bounces = 2  # the same scene, other settings
     assert _run(render, "--chunk-seed", 1, "--samples", 1, "--output", tmp_path / "d.exr") == 0
@@ -299,3 +306,70 @@ def test_expect_samples_refuses_a_gap_a_missing_end_and_samples_beyond(batch, tm
         assert (status, line) == (1, message), description
         bad_input(description, status, line)
     assert not merged.exists()
+
+
+def _picture_settings(scene):
+    """Away from every default that shapes a PNG: view transform, look, exposure, gamma, curves,
+    white balance, no dither, 16-bit RGB."""
+    view = scene.view_settings
+    view.view_transform, view.look = "Filmic", "High Contrast"
+    view.exposure, view.gamma = 0.6, 1.2
+    view.use_curve_mapping = True
+    view.curve_mapping.curves[3].points.new(0.4, 0.55)
+    view.curve_mapping.update()
+    view.use_white_balance, view.white_balance_temperature = True, 5000.0
+    scene.render.dither_intensity = 0.0
+    image = scene.render.image_settings
+    image.file_format, image.color_depth, image.color_mode = "PNG", "16", "RGB"
+
+
+def _png(path):
+    """Pixels [H, W, 4] (bottom row first) and the PNG's (bit depth, colour type: 2 RGB, 6 RGBA)."""
+    image = bpy.data.images.load(str(path))
+    width, height = image.size
+    pixels = np.empty(width * height * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    header = path.read_bytes()[:26]  # signature, IHDR length and type, width, height, depth, colour type
+    return pixels.reshape(height, width, 4), (header[24], header[25])
+
+
+@pytest.mark.parametrize("picture", ["defaults", "graded"])
+def test_chunks_merge_into_the_png_of_one_render(batch, tmp_path, capsys, picture):
+    render, chunks = batch
+    scene = bpy.context.scene
+    if picture == "graded":
+        _picture_settings(scene)
+    assert _run(render, "--samples", 6, "--seed", 3, "--output", tmp_path / "single.png") == 0
+    for k in (0, 1, 2):
+        assert _run(render, "--chunk-seed", k, "--samples", 2, "--seed", 3, "--output", tmp_path / f"c{k}.exr") == 0
+    scene.view_settings.view_transform, scene.render.dither_intensity = "Standard", 1.0  # the merge ignores the open scene
+    capsys.readouterr()
+    status = render.main([str(a) for a in ("--merge", *(tmp_path / f"c{k}.exr" for k in (0, 1, 2)),
+                                           "--expect-samples", 6, "--output", tmp_path / "merged_##.png")], True)
+    merged_path = tmp_path / "merged_01.png"  # '#': the chunks' frame
+    assert status == 0 and capsys.readouterr().err.splitlines()[-1] == f"Saved: '{merged_path}'"
+    merged, merged_depth = _png(merged_path)
+    single, single_depth = _png(tmp_path / "single.png")
+    assert np.array_equal(merged, single), "the merged PNG is the PNG of one render of all the samples"
+    assert merged_depth == single_depth == ((16, 2) if picture == "graded" else (8, 6))  # 16-bit RGB, 8-bit RGBA
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []
+    assert "Prism PNG output" not in bpy.data.scenes  # the scratch scene is gone
+
+
+def test_a_png_merge_with_settings_this_blender_lacks_is_refused_and_writes_nothing(batch, tmp_path, capsys, bad_input):
+    render, chunks = batch
+    assert _run(render, "--chunk-seed", 0, "--samples", 1, "--output", tmp_path / "c.exr") == 0
+    foreign = chunks.read_chunk(tmp_path / "c.exr")
+    foreign.png_settings["view_settings"]["view_transform"] = "Studio Log 9"  # another studio's OCIO config
+    chunks.write_chunk(tmp_path / "foreign.exr", foreign)
+    (tmp_path / "m.png").write_bytes(b"yesterday's frame")
+    status, line = run_batch(capsys, "--merge", tmp_path / "foreign.exr", "--output", tmp_path / "m.png")
+    assert status == 1 and line.startswith(
+        f"Prism: error: '{tmp_path / 'foreign.exr'}' was rendered with Color Management ▸ View Transform "
+        "'Studio Log 9', which this Blender cannot use (")
+    assert line.endswith("write the PNG with the Blender the chunks were rendered with, or merge to EXR.")
+    assert (tmp_path / "m.png").read_bytes() == b"yesterday's frame"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.exr", "foreign.exr", "m.png"]
+    assert "Prism PNG output" not in bpy.data.scenes
+    bad_input("--merge … --output x.png: a chunk's view transform is unknown to this Blender", status, line)
