@@ -5,26 +5,33 @@
 
 Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--frames A..B`` (``#``
 in ``--output`` becomes the zero-padded frame number, else ``_NNNN`` is
-appended), ``--output`` ``.png`` (the scene's view transform) or ``.exr``
+appended; without ``--frames``, ``#`` becomes the current frame's number, as in
+Blender), ``--output`` ``.png`` (the scene's view transform) or ``.exr``
 (scene-linear, 32-bit float). ``--lens-diagram out.png`` writes the lens overlay
 drawing (cross-section, wavelength-coloured ray fans, spot diagram) of the
 camera's real lens, with or without a render.
 
-Chunked renders: ``--chunk-seed K --samples N --output chunk_K.exr`` renders
-samples ``K*N .. (K+1)*N-1`` of the seed's sequence and writes an EXR carrying
-its sample range, seed and a fingerprint of the scene and settings;
-``--merge a.exr b.exr ... --output merged.exr`` checks the chunks belong to one
-render and combines them weighted by their samples. Chunks ``0..K-1`` merge to
-the same image, bit for bit, as one render of ``K*N`` samples written with
-``--chunk-seed 0`` (see ``engine/chunks.py`` for when that holds).
+Chunked renders: ``--chunk-seed K --samples N [--frames F] --output chunk_K.exr``
+renders samples ``K*N .. (K+1)*N-1`` of the seed's sequence of frame F (default:
+the current frame) and writes an EXR carrying its sample range, seed, a
+fingerprint of the frame, scene and settings, and the settings the scene writes
+PNGs with; ``--merge a.exr b.exr ... [--expect-samples TOTAL] --output
+merged.exr|.png`` checks the chunks belong to one render (and, with
+``--expect-samples``, hold samples ``0..TOTAL-1`` with none missing) and combines
+them weighted by their samples. Chunks ``0..K-1`` merge to the same image, bit
+for bit, as one render of ``K*N`` samples written with ``--chunk-seed 0`` (see
+``engine/chunks.py`` for when that holds); a merged PNG has the pixels of that
+render's PNG.
 
 Every output is written whole or not at all (a temporary file, then one rename).
 Ctrl-C (or SIGTERM) stops the render after the current chunk: the file being
 rendered is not written (``--keep-partial`` keeps it as ``NAME.partial.exr``),
 files already finished stay, and the exit status is 130 (143 for SIGTERM).
 
-Progress goes to stderr. Exit status: 0 done, 1 the scene or a file cannot be
-used (one line naming the object and the fix), 2 a wrong argument, 130/143
+Progress goes to stderr: a ``Time: …`` line per pass (Blender's own format, which
+render farms such as Flamenco count as progress steps) and ``Saved: '…'`` naming
+each finished file. Exit status: 0 done, 1 the scene or a file cannot be used
+(one line naming the object and the fix), 2 a wrong argument, 130/143
 interrupted.
 """
 

@@ -290,7 +290,7 @@ def _samples_text(ranges) -> str:
 
 
 def _chunks_to_render(chunks: list[Chunk], missing) -> str:
-    """`` (--chunk-seed 1 and 3 with --samples 2)`` when every chunk is one block of the same size."""
+    """`` (render --chunk-seed 1 and 3 with --samples 2)`` when every chunk is one block of the same size."""
     sizes = {chunk.samples for chunk in chunks}
     if len(sizes) != 1 or any(len(chunk.sample_ranges) != 1 for chunk in chunks):
         return ""
@@ -299,9 +299,9 @@ def _chunks_to_render(chunks: list[Chunk], missing) -> str:
         return ""
     seeds = [str(seed) for start, end in missing for seed in range(start // size, end // size)]
     if len(seeds) > 8:
-        return f" (--chunk-seed {seeds[0]} … {seeds[-1]}, {len(seeds)} chunks of --samples {size})"
+        return f" (render the {len(seeds)} chunks from --chunk-seed {seeds[0]} to {seeds[-1]} with --samples {size})"
     listed = seeds[0] if len(seeds) == 1 else ", ".join(seeds[:-1]) + " and " + seeds[-1]
-    return f" (the chunks of --chunk-seed {listed} with --samples {size})"
+    return f" (render --chunk-seed {listed} with --samples {size})"
 
 
 def _check_same_render(first: Chunk, chunk: Chunk) -> None:

@@ -290,13 +290,13 @@ def test_expect_samples_refuses_a_gap_a_missing_end_and_samples_beyond(batch, tm
     cases = [
         ("--merge: one chunk left out (--expect-samples 4)", [chunk[0], chunk[1], chunk[3]], 4,
          "Prism: error: The 3 chunks hold 3 of the 4 samples --expect-samples asks for: sample 2 is missing "
-         "(the chunks of --chunk-seed 2 with --samples 1)."),
+         "(render --chunk-seed 2 with --samples 1)."),
         ("--merge: the last chunks left out (--expect-samples 4)", chunk[:2], 4,
          "Prism: error: The 2 chunks hold 2 of the 4 samples --expect-samples asks for: samples 2..3 are missing "
-         "(the chunks of --chunk-seed 2 and 3 with --samples 1)."),
+         "(render --chunk-seed 2 and 3 with --samples 1)."),
         ("--merge: the first chunk left out (--expect-samples 2)", chunk[1:2], 2,
          "Prism: error: The chunk holds 1 of the 2 samples --expect-samples asks for: sample 0 is missing "
-         "(the chunks of --chunk-seed 0 with --samples 1)."),
+         "(render --chunk-seed 0 with --samples 1)."),
         ("--merge: a chunk past --expect-samples", chunk, 3,
          f"Prism: error: Chunk '{chunk[3]}' holds sample 3, past the 3 samples --expect-samples asks for: leave it "
          "out, or give the frame's real total to --expect-samples."),
@@ -373,3 +373,19 @@ def test_a_png_merge_with_settings_this_blender_lacks_is_refused_and_writes_noth
     assert sorted(p.name for p in tmp_path.iterdir()) == ["c.exr", "foreign.exr", "m.png"]
     assert "Prism PNG output" not in bpy.data.scenes
     bad_input("--merge … --output x.png: a chunk's view transform is unknown to this Blender", status, line)
+
+
+def test_expect_samples_names_many_missing_chunks_as_a_range_and_odd_sizes_without_a_hint(prism_addon):
+    chunks = importlib.import_module(f"{prism_addon.__name__}.engine.chunks")
+    parts = importlib.import_module(f"{prism_addon.__name__}.engine.fingerprint").PARTS
+
+    def chunk(start, end, name):
+        return chunks.Chunk(mean=np.zeros((2, 2, 3)), seed=0, sample_ranges=((start, end),),
+                            fingerprint={part: "1" for part in parts}, png_settings={}, path=name)
+
+    with pytest.raises(chunks.PrismInputError, match=r"The 2 chunks hold 2 of the 12 samples --expect-samples asks "
+                       r"for: samples 1\.\.10 are missing \(render the 10 chunks from --chunk-seed 1 to 10 with "
+                       r"--samples 1\)\.$"):
+        chunks.merge_chunks([chunk(0, 1, "a.exr"), chunk(11, 12, "b.exr")], expect_samples=12)
+    with pytest.raises(chunks.PrismInputError, match=r"samples 2\.\.3 are missing\.$"):  # chunks of 2 and 1 samples
+        chunks.merge_chunks([chunk(0, 2, "a.exr"), chunk(4, 5, "b.exr")], expect_samples=5)

@@ -174,7 +174,7 @@ def test_chunks_on_workers_merge_into_the_frames_of_single_renders(animated_scen
     left_out = {**command, "parameters": {**command["parameters"], "args": [a for a in args if a != listed[1]]}}
     gap = flamenco_farm.run_blender_command(left_out)
     assert gap.returncode == 1 and (
-        "The 2 chunks hold 4 of the 6 samples --expect-samples asks for: samples 2..3 are missing (the chunks of "
+        "The 2 chunks hold 4 of the 6 samples --expect-samples asks for: samples 2..3 are missing (render "
         "--chunk-seed 1 with --samples 2)." in gap.stderr)
     on_disk[2].unlink()
     missing = flamenco_farm.run_blender_command(command)
