@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from helpers.batch import run_batch, run_batch_stderr
-from helpers.bpy_scenes import build_lit_card_scene
+from helpers.bpy_scenes import build_lit_card_scene, image_pixels
 
 
 @pytest.fixture
@@ -47,10 +47,7 @@ def test_chunks_merge_bit_identical_to_one_render(batch, tmp_path, capsys):
 
     # The plain EXR of the same render (Blender's writer, scene-linear) holds the same float32 values.
     assert _run(render, "--samples", 6, "--seed", 7, "--output", tmp_path / "plain.exr") == 0
-    image = bpy.data.images.load(str(tmp_path / "plain.exr"))
-    pixels = np.empty(16 * 12 * 4, np.float32)
-    image.pixels.foreach_get(pixels)
-    plain = pixels.reshape(12, 16, 4)[::-1, :, :3]
+    plain = image_pixels(tmp_path / "plain.exr")[::-1, :, :3]
     assert np.array_equal(plain, single.mean.astype(np.float32))
 
 
@@ -325,13 +322,8 @@ def _picture_settings(scene):
 
 def _png(path):
     """Pixels [H, W, 4] (bottom row first) and the PNG's (bit depth, colour type: 2 RGB, 6 RGBA)."""
-    image = bpy.data.images.load(str(path))
-    width, height = image.size
-    pixels = np.empty(width * height * 4, np.float32)
-    image.pixels.foreach_get(pixels)
-    bpy.data.images.remove(image)
     header = path.read_bytes()[:26]  # signature, IHDR length and type, width, height, depth, colour type
-    return pixels.reshape(height, width, 4), (header[24], header[25])
+    return image_pixels(path), (header[24], header[25])
 
 
 @pytest.mark.parametrize("picture", ["defaults", "graded"])
@@ -343,7 +335,8 @@ def test_chunks_merge_into_the_png_of_one_render(batch, tmp_path, capsys, pictur
     assert _run(render, "--samples", 6, "--seed", 3, "--output", tmp_path / "single.png") == 0
     for k in (0, 1, 2):
         assert _run(render, "--chunk-seed", k, "--samples", 2, "--seed", 3, "--output", tmp_path / f"c{k}.exr") == 0
-    scene.view_settings.view_transform, scene.render.dither_intensity = "Standard", 1.0  # the merge ignores the open scene
+    # The merge uses the chunks' settings, not the open scene's.
+    scene.view_settings.view_transform, scene.render.dither_intensity = "Standard", 1.0
     capsys.readouterr()
     status = render.main([str(a) for a in ("--merge", *(tmp_path / f"c{k}.exr" for k in (0, 1, 2)),
                                            "--expect-samples", 6, "--output", tmp_path / "merged_##.png")], True)

@@ -14,7 +14,7 @@ import bpy
 import numpy as np
 import pytest
 
-from helpers.bpy_scenes import build_lit_card_scene
+from helpers.bpy_scenes import build_lit_card_scene, image_pixels
 
 SAMPLES, CHUNKS, SEED = 6, 3, 7
 
@@ -53,15 +53,6 @@ def _render_in_process(scene, frame, *arguments):
     render = importlib.import_module("render")
     scene.frame_set(frame)
     assert render.main([str(a) for a in arguments], in_blender=True) == 0
-
-
-def _pixels(path):
-    image = bpy.data.images.load(str(path))
-    width, height = image.size
-    pixels = np.empty(width * height * 4, np.float32)
-    image.pixels.foreach_get(pixels)
-    bpy.data.images.remove(image)
-    return pixels.reshape(height, width, 4)
 
 
 def test_job_type_is_installed_with_its_settings(flamenco_farm):
@@ -140,7 +131,8 @@ def test_chunks_on_workers_merge_into_the_frames_of_single_renders(animated_scen
     # Each frame's PNG is the PNG of one render of all its samples.
     for frame in (1, 2):
         farm_frame = shared / "frames" / f"card_{frame:02d}.png"
-        assert np.array_equal(_pixels(farm_frame), _pixels(tmp_path / f"single_{frame}.png")), f"frame {frame}"
+        single = image_pixels(tmp_path / f"single_{frame}.png")
+        assert np.array_equal(image_pixels(farm_frame), single), f"frame {frame}"
     # The merges printed "Saved: '…/card_0N.png'": the worker read it and sent the PNG to the Manager.
     assert flamenco_farm.last_rendered(job["id"]), "no last-rendered image: Flamenco did not see a Saved: line"
 
@@ -205,7 +197,8 @@ def test_one_chunk_renders_plain_frames_without_merges(animated_scene, flamenco_
         assert task["steps_completed"] == task["steps_total"] == flamenco_farm.steps_logged(task["id"]) == SAMPLES
     for frame in (1, 2):
         farm_frame = shared / "frames" / f"card_{frame:04d}.exr"  # render.py's numbering without #
-        assert np.array_equal(_pixels(farm_frame), _pixels(tmp_path / f"card_{frame:04d}.exr")), f"frame {frame}"
+        single = image_pixels(tmp_path / f"card_{frame:04d}.exr")
+        assert np.array_equal(image_pixels(farm_frame), single), f"frame {frame}"
 
 
 def test_a_manager_without_the_job_type_says_how_to_install_it(flamenco_farm):
