@@ -235,8 +235,8 @@ def test_every_pass_prints_a_time_line_that_render_farms_count(batch, tmp_path, 
     times = [line for line in stderr.splitlines() if re.match(r"Time: [0-9:.]+ ", line)]
     assert [line.split(" | ")[2:4] for line in times] == [["Pass 1", "2/6 spp"], ["Pass 2", "4/6 spp"],
                                                          ["Pass 3", "6/6 spp"]]
-    session = importlib.import_module("prism_spectral.engine.session")
-    assert [session.timecode(s) for s in (0.0, 7.254, 3727.25)] == ["00:00.00", "00:07.25", "01:02:07.25"]
+    stats = importlib.import_module("prism_spectral.engine.stats")
+    assert [stats.timecode(s) for s in (0.0, 7.254, 3727.25)] == ["00:00.00", "00:07.25", "01:02:07.25"]
 
 
 def _animate_bulb():
