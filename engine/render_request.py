@@ -39,6 +39,9 @@ class RenderRequest:
     returning True stops the render as Esc does (batch renders: Ctrl-C).
     ``noise_threshold`` (0: adaptive sampling off), ``min_samples`` and
     ``time_limit_s`` (0: none) override the scene's Sampling settings.
+    ``show_image``: a finished scene-linear image [H, W, 3] (row 0 at the top) to
+    put in the Render Result instead of tracing the scene, so Blender's own
+    writers can save it with a scene's output settings (``engine.png_output``).
     """
 
     samples: int | None = None
@@ -52,6 +55,7 @@ class RenderRequest:
     keep_film: bool = False
     progress_stream: object = None
     stop_requested: Callable[[], bool] | None = None
+    show_image: np.ndarray | None = None
 
 
 @dataclass

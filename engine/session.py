@@ -24,6 +24,7 @@ from .fingerprint import render_fingerprint  # noqa: E402
 from .denoise import denoise as denoise_image  # noqa: E402
 from .passes import bottom_up, denoising, enabled_passes, frame_plan, pass_request, write_passes  # noqa: E402
 from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
+from .stats import stats_line, timecode  # noqa: E402
 from .tracer.errors import PrismInputError  # noqa: E402
 
 
@@ -61,7 +62,10 @@ class RenderSession:
     def run(self) -> RenderReport:
         self.report.started = True
         try:
-            self._render()
+            if self.request.show_image is not None:
+                self._show(self.request.show_image)
+            else:
+                self._render()
         except PrismInputError as error:
             self.fail(str(error))
         except MemoryError:
@@ -94,7 +98,7 @@ class RenderSession:
         )
         self._apply_overrides(settings, warnings)
         self.report.warnings = warnings
-        for message in warnings:
+        for message in warnings if not engine.is_preview else ():  # Blender's preview scene: not the user's to fix
             engine.report({"WARNING"}, message)
             self._print(f"Prism: warning: {message}")
         engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
@@ -115,7 +119,7 @@ class RenderSession:
                     samples=renderer.samples_done - req.sample_offset,
                     sample_offset=req.sample_offset,
                     seed=settings.seed,
-                    fingerprint=render_fingerprint(tracer_scene, settings),
+                    fingerprint=render_fingerprint(tracer_scene, settings, scene.frame_current + scene.frame_subframe),
                 )
 
     def _apply_overrides(self, settings, warnings) -> None:
@@ -133,6 +137,15 @@ class RenderSession:
             settings.adaptive_threshold = 0.0
             settings.time_limit_s = 0.0
         settings.validate()
+
+    def _show(self, image: np.ndarray) -> None:
+        """Fill the Render Result with a finished image (see ``RenderRequest.show_image``)."""
+        height, width = image.shape[:2]
+        result = self.engine.begin_result(0, 0, width, height, layer=self.depsgraph.view_layer.name)
+        try:
+            result.layers[0].passes["Combined"].rect = bottom_up(np.asarray(image, np.float32), alpha=True)
+        finally:
+            self.engine.end_result(result)
 
     def _plan(self, renderer, scene, view_layer, width, height):
         """Tiles and the memory check (a sample chunk keeps its whole film: never tiled)."""
@@ -219,7 +232,8 @@ class RenderSession:
             line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings, tile)
             engine.update_stats("", line)
             self.report.stats = line
-            self._print(line)
+            # Blender's "Time: …" line, once per pass: render farms (Flamenco) count these as steps.
+            self._print(f"Time: {timecode(time.perf_counter() - started)} | {line}")
             if self.cancelled:
                 break
         if self.cancelled:
@@ -244,24 +258,3 @@ class RenderSession:
         if "Sample Count" in wanted:
             images["Sample Count"] = renderer.film.counts.astype(np.float32)[..., None]
         write_passes(passes, images, wanted)
-
-
-def stats_line(renderer, pass_index: int, done: int, target: int, seconds: float, warnings, tile=(0, 1)) -> str:
-    """``Prism | Pass 3 | 12/64 spp | 1.30 M rays/s | <strategy> | ...`` for Blender's status bar."""
-    stats = renderer.stats
-    rays_per_second = stats.get("rays_cast", 0) / seconds if seconds > 0 else 0.0
-    head = f"Prism | Tile {tile[0] + 1}/{tile[1]}" if tile[1] > 1 else "Prism"
-    parts = [f"{head} | Pass {pass_index} | {done}/{target} spp", f"{rays_per_second / 1e6:.2f} M rays/s"]
-    if renderer.settings.adaptive_threshold > 0:
-        x0, y0, x1, y1 = renderer.region
-        parts.append("converged" if renderer.converged else
-                     f"{renderer.active_pixels / max(1, (x1 - x0) * (y1 - y0)):.0%} of pixels sampling")
-    if renderer.time_up:
-        parts.append("time limit reached")
-    parts.append(renderer.strategy)
-    if stats.get("nan_samples"):
-        parts.append(f"{stats['nan_samples']} NaN samples dropped")
-    notes = list(warnings) + list(stats.get("warnings") or [])
-    if notes:
-        parts.append(f"{len(notes)} warning(s): {notes[0]}")
-    return " | ".join(parts)

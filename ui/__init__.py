@@ -19,5 +19,6 @@ register, unregister = bpy.utils.register_submodule_factory(
         "panels_lightgroup",
         "lens_overlay_draw",
         "lens_overlay_panel",
+        "viewport_header",
     ),
 )

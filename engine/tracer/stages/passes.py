@@ -3,9 +3,10 @@
 Per path (``PassData``): ``values`` [n, columns] (data passes and AOVs, written directly), ``spectral``
 [n, slots, K] (light, albedo and colour buffers, per wavelength, turned into Rec.709 by
 ``convert_kernel``), and for the light split ``snapshot`` [n, K] and ``split`` [n, 2, 3, K]; ``feature``
-[n] (1 once the denoising features are written). Render constants: ``camera_axes`` [3, 3] (camera to world: right, up, back columns),
-``eye`` [3] (camera position, m) and ``aov_table`` [materials, AOVs, 4] (what each material's AOV
-Outputs write).
+[n] (1 once the denoising features are written). Render constants (``Renderer.pass_data``):
+``camera_axes`` [3, 3] (camera to world: right, up, back columns), ``camera_at`` [3] (the camera in the
+render's space, m), ``render_origin`` [3] (world position of the render space's origin, m) and
+``aov_table`` [materials, AOVs, 4] (what each material's AOV Outputs write).
 
 The light split (Cycles' meaning): light that reaches the camera straight from an emitter or the world
 is Emission or Environment; any other light is attributed to the lobes of the first surface it met,
@@ -29,7 +30,7 @@ from ..jit import inlined, kernel
 from ..spectra.table import spectrum_value
 from ..spectra.wavelength_sampling import radiance_to_rgb
 
-PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes eye aov_table")
+PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table")
 
 EMISSION = 0  # offsets from layout.light, in passes.LIGHT_SLOTS order
 ENVIRONMENT = 1
@@ -40,15 +41,15 @@ GLOSSY = 1
 TRANSMISSION = 2
 
 
-def new_pass_data(n: int, k: int, film_layout, view, eye, aov_table) -> PassData:
-    """Per-path pass storage for ``n`` paths of ``k`` wavelengths (empty arrays for what is off)."""
+def new_pass_data(n: int, k: int, film_layout) -> PassData:
+    """Per-path pass storage for ``n`` paths of ``k`` wavelengths (empty arrays for what is off); the
+    render constants are filled by ``Renderer.pass_data``."""
     layout = film_layout.kernel
     light = n if layout.light >= 0 else 0
     features = n if layout.denoising_albedo >= 0 or layout.denoising_normal >= 0 else 0
     return PassData(np.empty((n, layout.columns)), np.zeros((n, layout.slots, k)), np.zeros((light, k)),
                     np.zeros((light, 2, 3, k)), np.zeros(features, np.int8),
-                    np.ascontiguousarray(view, np.float64), np.ascontiguousarray(eye, np.float64),
-                    np.ascontiguousarray(aov_table, np.float64))
+                    np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)))
 
 
 def pass_work(layout) -> bool:
@@ -98,12 +99,13 @@ def features_done(passes, layout, i):
 
 @inlined
 def _camera_depth(passes, p):
-    return -(p[0] * passes.camera_axes[0, 2] + p[1] * passes.camera_axes[1, 2] + p[2] * passes.camera_axes[2, 2])
+    a, c = passes.camera_axes, passes.camera_at
+    return -((p[0] - c[0]) * a[0, 2] + (p[1] - c[1]) * a[1, 2] + (p[2] - c[2]) * a[2, 2])
 
 
 @inlined
 def first_hit(passes, layout, i, p, n, material):
-    """Depth, Position, Normal and AOVs of the surface the camera ray hit at ``p`` (camera-relative)
+    """Depth, Position, Normal and AOVs of the surface the camera ray hit at ``p`` (in the render's space)
     with normal ``n`` (facing the camera)."""
     for a in range(layout.aovs):
         for c in range(4):
@@ -113,7 +115,7 @@ def first_hit(passes, layout, i, p, n, material):
         passes.values[i, layout.depth + 1] = 1.0
     if layout.position >= 0:
         for c in range(3):
-            passes.values[i, layout.position + c] = p[c] + passes.eye[c]
+            passes.values[i, layout.position + c] = p[c] + passes.render_origin[c]
     if layout.normal >= 0:
         for c in range(3):
             passes.values[i, layout.normal + c] = n[c]

@@ -58,7 +58,7 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
                                   renderer.wavelengths, settings, renderer._pixels, first, count, samples_per_pixel,
                                   first_sample)
     rejected[0] += count - queued
-    passes = buffers.passes
+    passes = renderer.pass_data(buffers)
     layout = renderer.pass_layout.kernel
     if layout.columns:
         reset_kernel(passes, layout, count)
