@@ -32,11 +32,13 @@ from .cameras import make_camera
 from .errors import PrismInputError
 from .film import Film
 from .geometry import prepare_geometry
+from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
-from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials, is_emissive
+from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials
 from .sampler import SAMPLERS
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
+from .spectra.wavelength_guide import build_guide
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
 
@@ -53,17 +55,6 @@ def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int
 
 def worker_threads(requested: int) -> int:
     return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
-
-
-def _monochromatic_lines(scene, used):
-    from .spectra.emission_spectrum import emission_spectrum
-
-    specs = [light.spectrum for light in scene.lights if light.spectrum.kind == "monochromatic"]
-    for m in used:
-        material = scene.materials[m]
-        if is_emissive(material) and material.emission is not None and material.emission.kind == "monochromatic":
-            specs.append(material.emission)
-    return [emission_spectrum(spec) for spec in dict.fromkeys(specs)]
 
 
 class Renderer:
@@ -90,10 +81,13 @@ class Renderer:
         self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
                                         self.geometry.material, materials.emission_strength, self.camera.position)
         self.analysis = self._analyse(used)
-        lines = _monochromatic_lines(scene, used) if settings.wavelength_mode == "cie" else []
-        self.wavelengths = wavelength_sampling.build(settings, lines)
-        self.analysis.guided_lines = len(lines)
         self.spectra = spectra.arrays()
+        guide = None
+        if settings.wavelength_mode == "cie":
+            guide = build_guide(self.spectra, emitter_spectra(self.light_table, materials))
+        self.wavelengths = wavelength_sampling.build(settings, guide)
+        if guide is not None:
+            self.analysis.guided_lines, self.analysis.guided_measured = guide.lines, guide.measured
         self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
                                               bool(settings.use_mis), SAMPLERS[settings.sampler],
                                               int(settings.seed) & 0xFFFFFFFF)

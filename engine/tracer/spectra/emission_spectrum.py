@@ -25,9 +25,10 @@ from . import cie
 from .blackbody import blackbody_luminance, check_temperature, planck_spectral_radiance
 from ..errors import PrismInputError
 from .rgb_to_spectrum import RGBEmission
+from .sampled import check_sampled, resample_1nm
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
-SPECTRUM_KINDS = ("rgb", "blackbody", "monochromatic")
+SPECTRUM_KINDS = ("rgb", "blackbody", "monochromatic", "illuminant", "tabulated")
 _LINE_HALF_SUPPORT_FWHM = 3.0  # the Gaussian line is cut at ±3 FWHM (±7 sigma, mass lost < 1e-11)
 
 
@@ -133,6 +134,30 @@ class MonochromaticEmissionSpectrum:
         return wavelength_nm, self.pdf(wavelength_nm)
 
 
+class TabulatedEmissionSpectrum:
+    """A measured spectrum (a standard illuminant, a spectrum file), resampled once at every nanometre,
+    linearly interpolated in between, zero outside the data (``support_nm``), scaled to Y = 1."""
+
+    def __init__(self, wavelength_nm, values, what, kind="tabulated"):
+        self.kind = kind
+        wavelength_nm, values = check_sampled(wavelength_nm, values, what)
+        self.first_nm, self.values = resample_1nm(wavelength_nm, values)
+        self.support_nm = (self.first_nm, self.first_nm + len(self.values) - 1.0)
+        grid = self.first_nm + np.arange(len(self.values))
+        luminance = np.trapz(self.values * cie.cie_xyz_cmf(grid)[:, 1], grid) / cie.CMF_Y_INTEGRAL
+        if not luminance > 0.0:
+            raise PrismInputError(f"{what} has no visible luminance (it emits only where the eye sees nothing): "
+                                  "use a spectrum that emits within 380-780 nm.")
+        self._scale = 1.0 / luminance
+
+    def evaluate(self, wavelength_nm):
+        """Relative spectral radiance at ``wavelength_nm`` (any shape); 0 outside ``support_nm``."""
+        wavelength_nm = np.asarray(wavelength_nm, dtype=np.float64)
+        grid = self.first_nm + np.arange(len(self.values))
+        inside = (wavelength_nm >= self.support_nm[0]) & (wavelength_nm <= self.support_nm[1])
+        return np.where(inside, self._scale * np.interp(wavelength_nm, grid, self.values), 0.0)
+
+
 def emission_spectrum(spec):
     """The emission spectrum object (``.evaluate(wavelength_nm)``, ``.support_nm``) for a ``SpectrumSpec``."""
     kind = getattr(spec, "kind", None)
@@ -142,4 +167,12 @@ def emission_spectrum(spec):
         return BlackbodyEmissionSpectrum(spec.temperature_k)
     if kind == "monochromatic":
         return MonochromaticEmissionSpectrum(spec.wavelength_nm, spec.width_nm)
+    if kind == "illuminant":
+        from .illuminants import canonical_illuminant, illuminant_table
+
+        key = canonical_illuminant(spec.illuminant)
+        return TabulatedEmissionSpectrum(*illuminant_table(key), f"Illuminant {key}", kind="illuminant")
+    if kind == "tabulated" and spec.table is not None:
+        table = spec.table
+        return TabulatedEmissionSpectrum(table.wavelength_nm, table.values, table.source or "Tabulated spectrum")
     raise PrismInputError(f"Unknown emission spectrum kind {kind!r}: use one of {', '.join(SPECTRUM_KINDS)}.")

@@ -3,8 +3,9 @@
 Two modes (see ``wavelengths.py``, the reference implementation and test oracle):
 
 - ``cie``: K hero wavelengths, the inverse-CDF images of one uniform number rotated by j/K, from the
-  visible-light density ∝ 1/cosh²(0.0072 (λ − 538)) on 360–830 nm, or — when the scene has emission
-  lines — from a tabulated density that puts half its mass on the lines (0.1 nm cells). Radiance is
+  visible-light density ∝ 1/cosh²(0.0072 (λ − 538)) on 360–830 nm, or — when the scene's light has
+  lines or measured spectra — from a tabulated density that follows the scene's emission
+  (``wavelength_guide``, 0.1 nm cells). Radiance is
   integrated against the CIE 1931 functions into XYZ, then converted to scene-linear Rec.709.
 - ``gaussian_rgb``: one wavelength per R, G, B channel from that channel's truncated normal density,
   which is also the channel's response, so the channel value is radiance × response / pdf.
@@ -20,12 +21,11 @@ from collections import namedtuple
 import numpy as np
 
 from ..jit import inlined, kernel
+from .wavelength_guide import GUIDED_CELL_NM
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM, _TANH_HI, _TANH_LO, _VISIBLE_A_PER_NM, _VISIBLE_CENTRE_NM
 
 MODE_CIE = 0
 MODE_GAUSSIAN_RGB = 1
-GUIDED_CELL_NM = 0.1
-GUIDED_LINE_FRACTION = 0.5
 
 #: mode, count (K), guided_cdf [C+1] (empty: unguided), guided_mass [C], gaussian [3, 4] (mean nm,
 #: sigma nm, cdf at 360 nm, cdf mass on 360-830 nm), cmf [471, 3] (1 nm from 360 nm),
@@ -182,26 +182,9 @@ def radiance_to_rgb(ws, radiance, wavelength_nm, pdf):
             m[2, 0] * x + m[2, 1] * y + m[2, 2] * z)
 
 
-def _guided_table(lines):
-    """(cdf [C+1], mass [C]) of half the visible density and half the lines, on 0.1 nm cells."""
-    from .wavelengths import visible_wavelength_pdf
-
-    cells = int(round((VISIBLE_MAX_NM - VISIBLE_MIN_NM) / GUIDED_CELL_NM))
-    edges = np.linspace(VISIBLE_MIN_NM, VISIBLE_MAX_NM, cells + 1)
-    centres = 0.5 * (edges[1:] + edges[:-1])
-    density = (1.0 - GUIDED_LINE_FRACTION) * visible_wavelength_pdf(centres)
-    for line in lines:
-        shape = np.asarray(line.evaluate(centres), dtype=np.float64)
-        density += GUIDED_LINE_FRACTION / len(lines) * shape / (shape.sum() * GUIDED_CELL_NM)
-    mass = density / density.sum()
-    cdf = np.concatenate([[0.0], np.cumsum(mass)])
-    cdf[-1] = 1.0
-    return cdf, mass
-
-
-def build(settings, lines=()) -> WavelengthSampling:
-    """The sampling tables for ``settings`` (``RenderSettings``); ``lines``: emission spectra of the
-    scene's monochromatic emitters (``emission_spectrum.MonochromaticEmissionSpectrum``), cie mode only."""
+def build(settings, guide=None) -> WavelengthSampling:
+    """The sampling tables for ``settings`` (``RenderSettings``); ``guide``: the density that follows the
+    scene's emission (``wavelength_guide.build_guide``; cie mode only, None: the visible density)."""
     from . import cie
 
     table_nm, cmf = cie._cmf_table()
@@ -211,7 +194,7 @@ def build(settings, lines=()) -> WavelengthSampling:
     gaussian = np.zeros((3, 4))
     if settings.wavelength_mode == "cie":
         mode, count = MODE_CIE, int(settings.wavelengths_per_path)
-        guided_cdf, guided_mass = _guided_table(list(lines)) if lines else (empty, empty)
+        guided_cdf, guided_mass = (guide.cdf, guide.mass) if guide is not None else (empty, empty)
     else:
         from scipy.special import ndtr
 
