@@ -15,12 +15,14 @@ def export_settings(
     threads: int | None = None,
     preview: bool = False,
     border: tuple[int, int, int, int] | None = None,
+    spectral: bool = False,
 ) -> RenderSettings:
     """Render settings from the scene's Prism settings.
 
     ``samples``/``seed``/``threads`` override the scene's (batch renders);
     ``preview`` uses the preview sample count; ``border`` is the pixel rectangle
-    (x0, y0, x1, y1), rows from the top, half-open.
+    (x0, y0, x1, y1), rows from the top, half-open; ``spectral`` keeps band
+    radiance for a multispectral EXR (bands of the scene's Spectral Output width).
     """
     prism = scene.prism
     if samples is None:
@@ -40,6 +42,7 @@ def export_settings(
         border=border,
         pixel_filter=prism.pixel_filter.lower(),
         filter_width_px=float(prism.filter_width_px),
+        spectral_band_nm=float(prism.spectral_band_nm) if spectral else 0.0,
     )
     try:
         settings.validate()

@@ -4,6 +4,7 @@
     renderer.render_pass()          # + settings.samples_per_pass samples per pixel
     renderer.image_rgb()            # float32 [H, W, 3] scene-linear Rec.709, row 0 = top
     renderer.variance_rgb()         # float32 [H, W, 3] variance of the mean
+    renderer.spectral_film          # SpectralFilm (band radiance) when settings.spectral_band_nm > 0, else None
     renderer.samples_done, renderer.strategy, renderer.stats
     renderer.start_at_sample(n)     # continue the seed's sequence at sample n (chunked renders)
     renderer.cancel()               # from any thread: stop the current pass after running chunks
@@ -31,6 +32,7 @@ from .analysis import SceneAnalysis
 from .cameras import make_camera
 from .errors import PrismInputError
 from .film import Film
+from .spectral_film import SpectralFilm
 from .geometry import prepare_geometry
 from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
@@ -93,6 +95,8 @@ class Renderer:
                                               int(settings.seed) & 0xFFFFFFFF)
         self.accel = Accel(self.geometry)
         self.film = Film(self.width, self.height)
+        self.spectral_film = (SpectralFilm(self.width, self.height, settings.spectral_band_nm)
+                              if settings.spectral_band_nm else None)
         self._pixels = self._pixel_list(settings.border)
         self._workers = worker_threads(settings.threads)
         self._pool = ThreadPoolExecutor(self._workers)
@@ -165,7 +169,10 @@ class Renderer:
         buffers = self._buffers(count)
         clamps = np.zeros_like(self._glass_clamps)
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
-        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps
+        spectral = None
+        if self.spectral_film is not None:
+            spectral = self.spectral_film.record(buffers.state, count, self.wavelengths)
+        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps, spectral
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
@@ -220,12 +227,14 @@ class Renderer:
                 if job is None:
                     break
                 try:
-                    pixel, rgb, rays, rejected, clamps = job.result()
+                    pixel, rgb, rays, rejected, clamps, spectral = job.result()
                 except CancelledError:
                     break
                 with self._jobs_lock:
                     del jobs[i]
                 self.film.add(pixel, rgb)
+                if spectral is not None:
+                    self.spectral_film.add(pixel, *spectral)
                 self.stats["rays_cast"] += rays
                 self.stats["rejected_rays"] += rejected
                 self._glass_clamps += clamps

@@ -42,6 +42,8 @@ class RenderSettings:
     # Where every path's uniform numbers come from: "sobol" (Owen-scrambled, the default) or
     # "independent" (hashed random numbers, the reference the benchmark measures Sobol against).
     sampler: str = "sobol"
+    # Multispectral output (``spectral_film``): band width in nm, 0 = off (no spectral buffer at all).
+    spectral_band_nm: float = 0.0
 
     def validate(self) -> None:
         """Raise ``PrismInputError`` for settings no render can use."""
@@ -59,6 +61,10 @@ class RenderSettings:
             raise PrismInputError(
                 f"Wavelengths per path must be between 1 and 16 (got {self.wavelengths_per_path})."
             )
+        if self.spectral_band_nm:
+            from .spectral_film import band_edges_nm
+
+            band_edges_nm(self.spectral_band_nm)
         for channel, sigma in zip("RGB", self.channel_sigmas_nm):
             if not sigma > 0:
                 raise PrismInputError(f"The {channel} channel's sigma must be positive (got {sigma} nm).")

@@ -1,0 +1,45 @@
+"""Settings shared by lights and materials that name a measured spectrum: a colour-science illuminant
+key, a colour-checker patch, a spectrum file. Names are strings (as colour-science spells them) with
+a search list, so a saved choice never depends on a list's order; the export checks them."""
+
+from __future__ import annotations
+
+from bpy.props import StringProperty
+
+DEFAULT_ILLUMINANT = "D65"
+DEFAULT_PATCH = "ColorChecker N Ohta: dark skin"
+FILE_FORMATS = "CSV (wavelength_nm, value), IES TM-27-14 XML (.spdx), Sekonic CSV or UPRTek text export"
+
+
+def _matching(names, edit_text):
+    text = (edit_text or "").strip().lower()
+    return [name for name in names if text in name.lower()] if text else list(names)
+
+
+def illuminant_search(self, context, edit_text):
+    """colour-science's illuminant keys containing the typed text (imports colour-science once)."""
+    from ..tracer.spectra.illuminants import illuminant_names
+
+    try:
+        return _matching(illuminant_names(), edit_text)
+    except Exception:  # noqa: BLE001 - a search callback must never raise
+        return []
+
+
+def reflectance_search(self, context, edit_text):
+    """Colour-checker patches (``"<checker>: <patch>"``) containing the typed text."""
+    from ..tracer.spectra.measured_reflectance import reflectance_names
+
+    try:
+        return _matching(reflectance_names(), edit_text)
+    except Exception:  # noqa: BLE001
+        return []
+
+
+def illuminant_property(description: str):
+    return StringProperty(name="Illuminant", description=description, default=DEFAULT_ILLUMINANT,
+                          search=illuminant_search, search_options=set())
+
+
+def spectrum_file_property(name: str, description: str):
+    return StringProperty(name=name, description=f"{description}: {FILE_FORMATS}", default="", subtype="FILE_PATH")
