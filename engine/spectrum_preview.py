@@ -71,10 +71,11 @@ def _preview(compute, source, wait: bool):
 def _store(compute, source, key):
     from .tracer.errors import PrismInputError
 
+    # colour-science notes each time it resamples its tables for an index: noise in Blender's console.
+    # (A filter added once, not catch_warnings: that is not safe off the main thread.)
+    warnings.filterwarnings("ignore", message='Aligning ".*', module=r"colour\.")
     try:
-        with warnings.catch_warnings():  # colour-science's notes on aligning its tables
-            warnings.simplefilter("ignore")
-            preview = compute(source)
+        preview = compute(source)
     except PrismInputError as error:
         preview = SpectrumPreview(error=str(error))
     except Exception as error:  # noqa: BLE001 - a panel shows the problem instead of failing to draw

@@ -171,7 +171,7 @@ class Renderer:
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
         spectral = None
         if self.spectral_film is not None:
-            spectral = self.spectral_film.record(buffers.state, count, self.wavelengths)
+            spectral = self.spectral_film.record(buffers.state, count)
         return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps, spectral
 
     def start_at_sample(self, first_sample: int) -> None:

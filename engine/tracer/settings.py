@@ -65,6 +65,12 @@ class RenderSettings:
             from .spectral_film import band_edges_nm
 
             band_edges_nm(self.spectral_band_nm)
+            if self.wavelength_mode != "cie":
+                raise PrismInputError(
+                    "Spectral output needs CIE hero wavelengths: Gaussian RGB mode samples only around its three "
+                    "channels, so most bands would stay empty. Set Render ▸ Prism ▸ Wavelengths to CIE, or turn "
+                    "Spectral Output off."
+                )
         for channel, sigma in zip("RGB", self.channel_sigmas_nm):
             if not sigma > 0:
                 raise PrismInputError(f"The {channel} channel's sigma must be positive (got {sigma} nm).")

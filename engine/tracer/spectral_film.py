@@ -51,15 +51,14 @@ class SpectralFilm:
         """Band centres [B] in nm."""
         return 0.5 * (self.edges_nm[1:] + self.edges_nm[:-1])
 
-    def record(self, state, count: int, wavelengths):
+    def record(self, state, count: int):
         """(band [n, K], value [n, K]) of a traced chunk's first ``count`` paths (any worker thread)."""
         k = state.wavelength.shape[1]
         scratch = getattr(self._local, "scratch", None)
         if scratch is None or scratch[0].shape[0] < count or scratch[0].shape[1] != k:
             scratch = self._local.scratch = (np.empty((count, k), np.int32), np.empty((count, k)))
         band_of, value = scratch
-        spectral_bins_kernel(state, count, wavelengths, float(self.edges_nm[0]), self.band_nm, self.bands, band_of,
-                             value)
+        spectral_bins_kernel(state, count, float(self.edges_nm[0]), self.band_nm, self.bands, band_of, value)
         return band_of[:count].copy(), value[:count].copy()
 
     def add(self, pixels, band_of, value) -> None:

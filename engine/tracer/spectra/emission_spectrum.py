@@ -135,15 +135,18 @@ class MonochromaticEmissionSpectrum:
 
 
 class TabulatedEmissionSpectrum:
-    """A measured spectrum (a standard illuminant, a spectrum file), resampled once at every nanometre,
-    linearly interpolated in between, zero outside the data (``support_nm``), scaled to Y = 1."""
+    """A measured spectrum (a standard illuminant, a spectrum file), resampled once at every nanometre
+    of 360-830 nm and linearly interpolated in between, scaled to Y = 1. Beyond the data the end values
+    continue, as CIE 15 recommends for missing data and colour-science does (so chromaticities match)."""
 
     def __init__(self, wavelength_nm, values, what, kind="tabulated"):
         self.kind = kind
         wavelength_nm, values = check_sampled(wavelength_nm, values, what)
-        self.first_nm, self.values = resample_1nm(wavelength_nm, values)
-        self.support_nm = (self.first_nm, self.first_nm + len(self.values) - 1.0)
-        grid = self.first_nm + np.arange(len(self.values))
+        first_nm, values = resample_1nm(wavelength_nm, values)
+        grid = np.arange(VISIBLE_MIN_NM, VISIBLE_MAX_NM + 0.5)
+        self.first_nm = VISIBLE_MIN_NM
+        self.values = np.interp(grid, first_nm + np.arange(len(values)), values)
+        self.support_nm = (VISIBLE_MIN_NM, VISIBLE_MAX_NM)
         luminance = np.trapz(self.values * cie.cie_xyz_cmf(grid)[:, 1], grid) / cie.CMF_Y_INTEGRAL
         if not luminance > 0.0:
             raise PrismInputError(f"{what} has no visible luminance (it emits only where the eye sees nothing): "
@@ -151,7 +154,7 @@ class TabulatedEmissionSpectrum:
         self._scale = 1.0 / luminance
 
     def evaluate(self, wavelength_nm):
-        """Relative spectral radiance at ``wavelength_nm`` (any shape); 0 outside ``support_nm``."""
+        """Relative spectral radiance at ``wavelength_nm`` (any shape); 0 outside 360-830 nm."""
         wavelength_nm = np.asarray(wavelength_nm, dtype=np.float64)
         grid = self.first_nm + np.arange(len(self.values))
         inside = (wavelength_nm >= self.support_nm[0]) & (wavelength_nm <= self.support_nm[1])

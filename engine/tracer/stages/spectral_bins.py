@@ -2,32 +2,26 @@
 for a multispectral image (``spectral_film``). Runs only when spectral output is on.
 
 Band b covers [first + b·width, first + (b+1)·width) nm. A wavelength sample λⱼ adds L(λⱼ) / (K p(λⱼ))
-/ width to its band, so the expected value is the band's mean spectral radiance: in ``cie`` mode the K
-wavelengths share one marginal density p; in ``gaussian_rgb`` mode the three channels' samples are
-combined with the balance heuristic (L / Σ_c p_c(λ)), which stays finite where one channel's
-Gaussian is tiny.
+/ width to its band (``cie`` mode: the K hero wavelengths share one marginal density p; a path collapsed
+to its hero carries K× its radiance there and nothing elsewhere), so the expected value is the band's
+mean spectral radiance.
 """
 
 from __future__ import annotations
 
 from ..jit import kernel
-from ..spectra.wavelength_sampling import MODE_GAUSSIAN_RGB, gaussian_pdf
 
 
 @kernel
-def spectral_bins_kernel(state, count, ws, first_nm, band_nm, bands, band_of, value):
+def spectral_bins_kernel(state, count, first_nm, band_nm, bands, band_of, value):
     """``band_of[i, j]`` and ``value[i, j]`` for wavelength j of paths i < ``count``."""
     k = state.wavelength.shape[1]
     for i in range(count):
         for j in range(k):
-            lam = state.wavelength[i, j]
-            b = int((lam - first_nm) / band_nm)
+            b = int((state.wavelength[i, j] - first_nm) / band_nm)
             band_of[i, j] = min(max(b, 0), bands - 1)
             radiance = state.radiance[i, j]
-            if ws.mode == MODE_GAUSSIAN_RGB:
-                density = gaussian_pdf(ws, 0, lam) + gaussian_pdf(ws, 1, lam) + gaussian_pdf(ws, 2, lam)
-            else:
-                density = k * state.wavelength_pdf[i, j]
+            density = k * state.wavelength_pdf[i, j]
             value[i, j] = radiance / (density * band_nm) if radiance != 0.0 and density > 0.0 else 0.0
 
 
