@@ -18,6 +18,17 @@ from ..tracer.scene import ReflectanceSpec, SpectrumSpec
 VISIBLE_RANGE_NM = (360.0, 830.0)
 
 
+_EMISSION_FIELDS = {"BLACKBODY": ("temperature_k",), "MONOCHROMATIC": ("wavelength_nm", "width_nm"),
+                    "ILLUMINANT": ("illuminant",), "FILE": ("path",)}
+_REFLECTANCE_FIELDS = {"MEASURED": ("name",), "FILE": ("path",)}
+
+
+def _only_used(cls, fields_of_source, owner, panel, source, values):
+    """A source carrying only the values its kind uses: equal settings give equal (hashable) sources."""
+    used = fields_of_source.get(source, ("rgb",))
+    return cls(owner, panel, source, **{key: value for key, value in values.items() if key in used})
+
+
 @dataclass(frozen=True)
 class EmissionSource:
     """What a light's or emissive material's spectrum is made of. ``owner`` names it in messages
@@ -123,26 +134,25 @@ def light_emission_source(name: str, light_data) -> EmissionSource:
         values.update(temperature_k=float(settings.temperature_k), wavelength_nm=float(settings.wavelength_nm),
                       width_nm=float(settings.line_width_nm), illuminant=settings.illuminant,
                       path=absolute_path(settings.spectrum_file, light_data))
-    return EmissionSource(f"Light '{name}'", "Light ▸ Prism", source, **values)
+    return _only_used(EmissionSource, _EMISSION_FIELDS, f"Light '{name}'", "Light ▸ Prism", source, values)
 
 
 def material_emission_source(material, emission_color) -> EmissionSource:
     """The emission spectrum settings of a material (``Material.prism``; the Principled emission colour
     for ``COLOR``)."""
     settings = material.prism
-    return EmissionSource(
-        f"Material '{material.name}'", "Material ▸ Prism ▸ Emission", settings.emission_source,
-        rgb=tuple(float(c) for c in emission_color), temperature_k=float(settings.emission_temperature_k),
-        wavelength_nm=float(settings.emission_wavelength_nm), width_nm=float(settings.emission_line_width_nm),
-        illuminant=settings.emission_illuminant, path=absolute_path(settings.emission_file, material),
-    )
+    values = dict(rgb=tuple(float(c) for c in emission_color), temperature_k=float(settings.emission_temperature_k),
+                  wavelength_nm=float(settings.emission_wavelength_nm),
+                  width_nm=float(settings.emission_line_width_nm), illuminant=settings.emission_illuminant,
+                  path=absolute_path(settings.emission_file, material))
+    return _only_used(EmissionSource, _EMISSION_FIELDS, f"Material '{material.name}'", "Material ▸ Prism ▸ Emission",
+                      settings.emission_source, values)
 
 
 def material_reflectance_source(material, base_color) -> ReflectanceSource:
     """The base colour settings of a material (``Material.prism``; the Principled base colour for ``COLOR``)."""
     settings = material.prism
-    return ReflectanceSource(
-        f"Material '{material.name}'", "Material ▸ Prism ▸ Base Colour", settings.reflectance_source,
-        rgb=tuple(float(c) for c in base_color), name=settings.measured_reflectance,
-        path=absolute_path(settings.reflectance_file, material),
-    )
+    values = dict(rgb=tuple(float(c) for c in base_color), name=settings.measured_reflectance,
+                  path=absolute_path(settings.reflectance_file, material))
+    return _only_used(ReflectanceSource, _REFLECTANCE_FIELDS, f"Material '{material.name}'",
+                      "Material ▸ Prism ▸ Base Colour", settings.reflectance_source, values)
