@@ -4,7 +4,8 @@
   otherwise every path carries all its wavelengths to the end.
 - Emissive meshes are light-sampled only if some used material emits.
 - Shadow rays cross free-standing films only if the scene has one (else one occlusion query each).
-- Wavelength sampling follows the scene's emission only if an emitter has a line or a measured spectrum.
+- Wavelength sampling (cie mode) follows the scene's emission spectra; the visible density only when
+  nothing emits.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ class SceneAnalysis:
     world: bool = False
     guided_lines: int = 0
     guided_measured: int = 0
+    guided_smooth: int = 0
     camera_strategy: str = ""
     see_through_films: bool = False
     sampler: str = "sobol"
@@ -33,8 +35,9 @@ class SceneAnalysis:
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
         """One line for the render stats."""
         parts = [f"{self.wavelength_mode} x{self.wavelengths_per_path}"]
-        guides = ([f"{self.guided_lines} emission line(s)"] if self.guided_lines else []) + (
-            [f"{self.guided_measured} measured spectrum(s)"] if self.guided_measured else [])
+        counts = ((self.guided_lines, "emission line(s)"), (self.guided_measured, "measured spectrum(s)"),
+                  (self.guided_smooth, "smooth spectrum(s)"))
+        guides = [f"{count} {what}" for count, what in counts if count]
         if guides:
             parts[0] += " guided by " + " + ".join(guides)
         if self.dispersion:

@@ -89,7 +89,8 @@ class Renderer:
             guide = build_guide(self.spectra, emitter_spectra(self.light_table, materials))
         self.wavelengths = wavelength_sampling.build(settings, guide)
         if guide is not None:
-            self.analysis.guided_lines, self.analysis.guided_measured = guide.lines, guide.measured
+            a = self.analysis
+            a.guided_lines, a.guided_measured, a.guided_smooth = guide.lines, guide.measured, guide.smooth
         self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
                                               bool(settings.use_mis), SAMPLERS[settings.sampler],
                                               int(settings.seed) & 0xFFFFFFFF)

@@ -27,11 +27,12 @@ from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM, _TANH_HI, _TANH_LO, _VI
 MODE_CIE = 0
 MODE_GAUSSIAN_RGB = 1
 
-#: mode, count (K), guided_cdf [C+1] (empty: unguided), guided_mass [C], gaussian [3, 4] (mean nm,
+#: mode, count (K), guided_cdf [C+1] (empty: unguided), guided_mass [C], guided_start [4C] (the guide's
+#: cut points, see ``wavelength_guide``), gaussian [3, 4] (mean nm,
 #: sigma nm, cdf at 360 nm, cdf mass on 360-830 nm), cmf [471, 3] (1 nm from 360 nm),
 #: xyz_to_rgb [3, 3], cmf_y_integral.
 WavelengthSampling = namedtuple(
-    "WavelengthSampling", "mode count guided_cdf guided_mass gaussian cmf xyz_to_rgb cmf_y_integral"
+    "WavelengthSampling", "mode count guided_cdf guided_mass guided_start gaussian cmf xyz_to_rgb cmf_y_integral"
 )
 
 _VISIBLE_NORMALISATION = _TANH_HI - _TANH_LO
@@ -106,15 +107,11 @@ def gaussian_pdf(ws, channel, wavelength_nm):
 @inlined
 def _guided_sample(ws, u):
     cdf = ws.guided_cdf
-    lo = 0
-    hi = cdf.shape[0] - 1
-    while hi - lo > 1:  # cdf[lo] <= u < cdf[hi]
-        mid = (lo + hi) >> 1
-        if cdf[mid] <= u:
-            lo = mid
-        else:
-            hi = mid
-    cell = min(lo, ws.guided_mass.shape[0] - 1)
+    slots = ws.guided_start.shape[0]
+    last = ws.guided_mass.shape[0] - 1
+    cell = ws.guided_start[min(int(u * slots), slots - 1)]
+    while cell < last and cdf[cell + 1] <= u:  # the last cell with cdf <= u
+        cell += 1
     mass = ws.guided_mass[cell]
     frac = min(max((u - cdf[cell]) / mass, 0.0), 1.0) if mass > 0.0 else 0.5
     return VISIBLE_MIN_NM + (cell + frac) * GUIDED_CELL_NM, mass / GUIDED_CELL_NM
@@ -194,7 +191,8 @@ def build(settings, guide=None) -> WavelengthSampling:
     gaussian = np.zeros((3, 4))
     if settings.wavelength_mode == "cie":
         mode, count = MODE_CIE, int(settings.wavelengths_per_path)
-        guided_cdf, guided_mass = (guide.cdf, guide.mass) if guide is not None else (empty, empty)
+        guided_cdf, guided_mass, guided_start = (guide.cdf, guide.mass, guide.start) if guide is not None else (
+            empty, empty, np.zeros(0, np.int32))
     else:
         from scipy.special import ndtr
 
@@ -202,10 +200,10 @@ def build(settings, guide=None) -> WavelengthSampling:
 
         channels = GaussianChannels(settings.channel_means_nm, settings.channel_sigmas_nm)  # validates
         mode, count = MODE_GAUSSIAN_RGB, 3
-        guided_cdf, guided_mass = empty, empty
+        guided_cdf, guided_mass, guided_start = empty, empty, np.zeros(0, np.int32)
         gaussian[:, 0] = channels.means_nm
         gaussian[:, 1] = channels.sigmas_nm
         gaussian[:, 2] = ndtr((VISIBLE_MIN_NM - channels.means_nm) / channels.sigmas_nm)
         gaussian[:, 3] = channels._mass
-    return WavelengthSampling(mode, count, guided_cdf, guided_mass, gaussian, np.ascontiguousarray(cmf),
+    return WavelengthSampling(mode, count, guided_cdf, guided_mass, guided_start, gaussian, np.ascontiguousarray(cmf),
                               np.ascontiguousarray(cie.XYZ_TO_LINEAR_REC709), float(cie.CMF_Y_INTEGRAL))

@@ -39,7 +39,7 @@ def _reference_mass():
         area = np.concatenate([[0.0], np.cumsum(0.5 * (values[1:] + values[:-1]) * np.diff(fine))])
         emitted += power * np.diff(area[::20])
     guided = emitted * cie.cie_xyz_cmf(centres).sum(axis=1)
-    visible = visible_wavelength_pdf(centres)
+    visible = np.where(emitted > 0, visible_wavelength_pdf(centres), 0.0)
     mass = (1 - GUIDED_FRACTION) * visible / visible.sum() + GUIDED_FRACTION * guided / guided.sum()
     return mass / mass.sum()
 
@@ -72,7 +72,29 @@ def test_sampler_draws_from_the_guide_chi_square_with_exact_pdfs():
         assert stats.chisquare(observed[keep], expected[keep] / expected[keep].sum() * len(u)).pvalue > 1e-3
 
 
-def test_scenes_lit_by_smooth_spectra_are_not_guided():
+def test_wavelengths_nothing_emits_are_never_drawn():
+    table = SpectrumTable()
+    lines = [(table.emission(SpectrumSpec(kind="monochromatic", wavelength_nm=nm, width_nm=2.0)), 1.0)
+             for nm in (460.0, 580.0)]
+    guide = build_guide(table.arrays(), lines)
+    edges = cell_edges_nm()
+    near = np.zeros(len(guide.mass), bool)
+    for nm in (460.0, 580.0):
+        near |= (edges[1:] > nm - 6.0) & (edges[:-1] < nm + 6.0)  # the lines' ±3 FWHM support
+    assert guide.mass[~near].sum() == 0.0 and guide.mass[near].min() >= 0.0
+
+
+def test_smooth_spectra_are_followed_too_and_a_dark_scene_keeps_the_visible_density():
     smooth = [(SpectrumSpec(kind="rgb", rgb=(1.0, 0.5, 0.2)), 1.0), (SpectrumSpec(kind="blackbody"), 3.0)]
-    assert _guide(smooth) is None
+    guide = _guide(smooth)
+    assert (guide.lines, guide.measured, guide.smooth) == (0, 0, 2)
     assert _guide(smooth + [(SpectrumSpec(kind="illuminant", illuminant="D65"), 1.0)]).measured == 1
+    assert _guide([]) is None
+
+
+def test_cut_points_start_each_search_at_or_before_its_cell():
+    guide = _guide()
+    slots = len(guide.start)
+    u = np.arange(slots) / slots
+    assert np.all(guide.cdf[guide.start] <= u)
+    assert np.all(np.diff(guide.start) >= 0)
