@@ -7,12 +7,11 @@ like Cycles' light colour). The light's strength/power multiplies it; nothing
 else does. So a blackbody's temperature changes its colour, not its brightness,
 and a monochromatic line is as bright (in luminance) as a white light.
 
-Sampling note for the tracer: a monochromatic line is a narrow feature that the
-``cie`` wavelength sampler hits rarely (noise). ``.support_nm`` gives the
-interval (lo, hi) outside which ``evaluate`` is exactly 0, so the tracer can
-importance-sample it if it wants (monochromatic spectra also offer
-``sample_wavelengths(u)`` / ``pdf``, proportional to the line); it is the visible
-range for the broad kinds.
+Sampling note: ``.support_nm`` gives the interval (lo, hi) outside which
+``evaluate`` is exactly 0 (the visible range for all but lines); monochromatic
+spectra also offer ``sample_wavelengths(u)`` / ``pdf``, proportional to the line.
+The tracer's ``cie`` sampler follows the scene's emission from the spectrum table
+itself (``wavelength_guide``).
 """
 
 from __future__ import annotations
