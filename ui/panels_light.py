@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import bpy
 
-from ..engine.properties.light import TEMPERATURE_RANGE_K
+from ..engine.properties.spectrum_sources import TEMPERATURE_RANGE_K
 from ._panel_base import PrismPanel, error_label
 from .spectrum_display import draw_spectrum
 

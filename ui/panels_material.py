@@ -20,6 +20,24 @@ def _material_poll(context):
     return context.engine == "PRISM" and context.material is not None
 
 
+class MaterialSubpanel(PrismPanel):
+    """Mixin: a subpanel of Material ▸ Prism."""
+
+    bl_context = "material"
+    bl_parent_id = "PRISM_PT_material"
+
+    @classmethod
+    def poll(cls, context):
+        return _material_poll(context)
+
+
+def _split(layout):
+    """``layout`` with properties split into label and value columns, without decorators."""
+    layout.use_property_split = True
+    layout.use_property_decorate = False
+    return layout
+
+
 class PRISM_PT_material(PrismPanel, bpy.types.Panel):
     """What Prism renders for this material."""
 
@@ -63,24 +81,16 @@ class PRISM_PT_material(PrismPanel, bpy.types.Panel):
             error_label(layout, message)
 
 
-class PRISM_PT_material_glass(PrismPanel, bpy.types.Panel):
+class PRISM_PT_material_glass(MaterialSubpanel, bpy.types.Panel):
     """Dispersion of a transmissive material."""
 
     bl_label = "Glass"
-    bl_context = "material"
-    bl_parent_id = "PRISM_PT_material"
-
-    @classmethod
-    def poll(cls, context):
-        return _material_poll(context)
 
     def draw(self, context):
-        layout = self.layout
+        layout = _split(self.layout)
         material = context.material
         settings = material.prism
         reading = read_principled(material)
-        layout.use_property_split = True
-        layout.use_property_decorate = False
         layout.active = material_kind(reading, settings) == "dielectric"
         layout.prop(settings, "glass_source")
         if settings.glass_source == "CATALOGUE":
@@ -93,43 +103,27 @@ class PRISM_PT_material_glass(PrismPanel, bpy.types.Panel):
             layout.label(text=f"Constant IOR {reading.ior:.4g} from the Principled BSDF: no dispersion.")
 
 
-class PRISM_PT_material_metal(PrismPanel, bpy.types.Panel):
+class PRISM_PT_material_metal(MaterialSubpanel, bpy.types.Panel):
     """Which metal a metallic material is."""
 
     bl_label = "Metal"
-    bl_context = "material"
-    bl_parent_id = "PRISM_PT_material"
-
-    @classmethod
-    def poll(cls, context):
-        return _material_poll(context)
 
     def draw(self, context):
-        layout = self.layout
+        layout = _split(self.layout)
         material = context.material
-        layout.use_property_split = True
-        layout.use_property_decorate = False
         layout.active = material_kind(read_principled(material), material.prism) == "conductor"
         layout.prop(material.prism, "conductor")
 
 
-class PRISM_PT_material_films(PrismPanel, bpy.types.Panel):
+class PRISM_PT_material_films(MaterialSubpanel, bpy.types.Panel):
     """Coatings and free-standing thin films (interference colours)."""
 
     bl_label = "Coating and Thin Film"
-    bl_context = "material"
-    bl_parent_id = "PRISM_PT_material"
     bl_options = {"DEFAULT_CLOSED"}
 
-    @classmethod
-    def poll(cls, context):
-        return _material_poll(context)
-
     def draw(self, context):
-        layout = self.layout
+        layout = _split(self.layout)
         settings = context.material.prism
-        layout.use_property_split = True
-        layout.use_property_decorate = False
         column = layout.column(align=True)
         column.prop(settings, "coating_thickness_nm")
         sub = column.column(align=True)
@@ -142,27 +136,19 @@ class PRISM_PT_material_films(PrismPanel, bpy.types.Panel):
         column.prop(settings, "film_ior")
 
 
-class PRISM_PT_material_base_spectrum(PrismPanel, bpy.types.Panel):
+class PRISM_PT_material_base_spectrum(MaterialSubpanel, bpy.types.Panel):
     """Where the base colour's reflectance spectrum comes from, and its plot."""
 
     bl_label = "Base Colour Spectrum"
-    bl_context = "material"
-    bl_parent_id = "PRISM_PT_material"
-
-    @classmethod
-    def poll(cls, context):
-        return _material_poll(context)
 
     def draw(self, context):
         from ..engine.export.spectra import material_reflectance_source
         from ..engine.spectrum_preview import reflectance_preview
 
-        layout = self.layout
+        layout = _split(self.layout)
         material = context.material
         settings = material.prism
         reading = read_principled(material)
-        layout.use_property_split = True
-        layout.use_property_decorate = False
         layout.active = material_kind(reading, settings) in {"diffuse", "conductor"}
         layout.prop(settings, "reflectance_source")
         if settings.reflectance_source == "MEASURED":
@@ -173,28 +159,20 @@ class PRISM_PT_material_base_spectrum(PrismPanel, bpy.types.Panel):
         draw_spectrum(layout, "material_reflectance", preview, "Reflectance 0-1, 360-830 nm", metrics=False)
 
 
-class PRISM_PT_material_emission_spectrum(PrismPanel, bpy.types.Panel):
+class PRISM_PT_material_emission_spectrum(MaterialSubpanel, bpy.types.Panel):
     """The emission's spectrum (strength: the Principled BSDF's Emission Strength), its plot and metrics."""
 
     bl_label = "Emission Spectrum"
-    bl_context = "material"
-    bl_parent_id = "PRISM_PT_material"
     bl_options = {"DEFAULT_CLOSED"}
-
-    @classmethod
-    def poll(cls, context):
-        return _material_poll(context)
 
     def draw(self, context):
         from ..engine.export.spectra import material_emission_source
         from ..engine.spectrum_preview import emission_preview
 
-        layout = self.layout
+        layout = _split(self.layout)
         material = context.material
         settings = material.prism
         reading = read_principled(material)
-        layout.use_property_split = True
-        layout.use_property_decorate = False
         layout.active = reading.emission_strength > 0.0
         layout.prop(settings, "emission_source")
         column = layout.column(align=True)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..properties.light import TEMPERATURE_RANGE_K
+from ..properties.spectrum_sources import TEMPERATURE_RANGE_K
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import ReflectanceSpec, SpectrumSpec
 

@@ -5,10 +5,9 @@ import importlib
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
 
-from ._common import (TEMPERATURE_SUBTYPE, WAVELENGTH_SUBTYPE, DynamicEnumCache, register_group, stable_enum_number,
-                      unregister_group)
-from .light import TEMPERATURE_RANGE_K
-from .spectrum_sources import DEFAULT_PATCH, illuminant_property, reflectance_search, spectrum_file_property
+from ._common import DynamicEnumCache, register_group, stable_enum_number, unregister_group
+from .spectrum_sources import (DEFAULT_PATCH, illuminant_property, line_wavelength_property, line_width_property,
+                               reflectance_search, spectrum_file_property, temperature_property)
 
 DEFAULT_GLASS = "N-BK7"
 
@@ -144,32 +143,9 @@ class PrismMaterialSettings(bpy.types.PropertyGroup):
         items=EMISSION_SOURCE_ITEMS,
         default="COLOR",
     )
-    emission_temperature_k: FloatProperty(
-        name="Temperature",
-        description="Colour temperature of the blackbody emission in kelvin (1000-40000 K render)",
-        default=6500.0,
-        min=1.0,
-        soft_min=TEMPERATURE_RANGE_K[0],
-        soft_max=TEMPERATURE_RANGE_K[1],
-        subtype=TEMPERATURE_SUBTYPE,
-    )
-    emission_wavelength_nm: FloatProperty(
-        name="Wavelength",
-        description="Centre wavelength of the emission line in nm",
-        default=550.0,
-        min=360.0,
-        max=830.0,
-        subtype=WAVELENGTH_SUBTYPE,
-    )
-    emission_line_width_nm: FloatProperty(
-        name="Line Width",
-        description="Full width at half maximum of the emission line in nm",
-        default=10.0,
-        min=0.1,
-        soft_max=100.0,
-        max=470.0,
-        subtype=WAVELENGTH_SUBTYPE,
-    )
+    emission_temperature_k: temperature_property("Colour temperature of the blackbody emission in kelvin")
+    emission_wavelength_nm: line_wavelength_property()
+    emission_line_width_nm: line_width_property()
     emission_illuminant: illuminant_property("colour-science's key of the standard illuminant the surface emits")
     emission_file: spectrum_file_property("Spectrum File", "Measured emission spectrum of the surface")
     reflectance_source: EnumProperty(
