@@ -2,9 +2,10 @@
 for a multispectral image (``spectral_film``). Runs only when spectral output is on.
 
 Band b covers [first + b·width, first + (b+1)·width) nm. A wavelength sample λⱼ adds L(λⱼ) / (K p(λⱼ))
-/ width to its band (``cie`` mode: the K hero wavelengths share one marginal density p; a path collapsed
-to its hero carries K× its radiance there and nothing elsewhere), so the expected value is the band's
-mean spectral radiance.
+/ width to its band, p the full density (``cie`` mode: column j covers the j-th of K equal-probability
+strata, so the K terms together estimate the integral; a path collapsed to its uniformly drawn hero
+carries K× its radiance there and nothing elsewhere), so the expected value is the band's mean spectral
+radiance.
 """
 
 from __future__ import annotations

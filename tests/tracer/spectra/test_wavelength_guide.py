@@ -66,10 +66,12 @@ def test_sampler_draws_from_the_guide_chi_square_with_exact_pdfs():
     cuts = np.searchsorted(guide.cdf, np.linspace(0, 1, 201)[1:-1])
     starts = np.unique(np.concatenate([[0], cuts]))
     expected = np.add.reduceat(guide.mass, starts)
-    for column in range(4):  # every hero column has the guide as its marginal
-        observed = np.add.reduceat(np.bincount(cell[:, column], minlength=len(guide.mass)), starts)
-        keep = expected > 0
-        assert stats.chisquare(observed[keep], expected[keep] / expected[keep].sum() * len(u)).pvalue > 1e-3
+    # Column j covers the j-th quarter of the cdf; the four columns together are distributed by the guide.
+    observed = np.add.reduceat(np.bincount(cell.ravel(), minlength=len(guide.mass)), starts)
+    keep = expected > 0
+    assert stats.chisquare(observed[keep], expected[keep] / expected[keep].sum() * cell.size).pvalue > 1e-3
+    for column in range(4):
+        assert np.all((guide.cdf[cell[:, column]] <= (column + 1) / 4) & (guide.cdf[cell[:, column] + 1] >= column / 4))
 
 
 def test_wavelengths_nothing_emits_are_never_drawn():
