@@ -26,12 +26,12 @@ UNITS_TEXT = "per nm, scene-linear; integrated against CIE 1931 ybar / (integral
 def requested_path(scene, request, preview: bool) -> Path | None:
     """Where this render's spectral EXR goes: the request's path (batch ``--spectral-output``), else the
     scene's Render ▸ Prism ▸ Spectral Output file (``#`` → the frame number) when it is on; None for
-    previews and when nothing asks for it."""
+    previews, sample chunks (``--chunk-seed``) and when nothing asks for it."""
     if request.spectral_output:
         return Path(request.spectral_output)
     prism = scene.prism
-    if preview or not prism.use_spectral_output:
-        return None
+    if preview or request.keep_film or not prism.use_spectral_output:
+        return None  # a chunk of a render holds some of its samples: its spectra are not the render's
     import bpy
 
     from .batch.output_files import frame_output

@@ -58,14 +58,18 @@ def test_render_py_writes_the_bands_prism_rendered(fresh_scene, tmp_path, capsys
     assert np.allclose(cie.xyz_to_linear_rec709(xyz), rgb.mean(axis=(0, 1)), rtol=0.1)
 
 
-def test_f12_writes_the_scenes_spectral_output(fresh_scene, tmp_path):
+def test_f12_writes_the_scenes_spectral_output_and_sample_chunks_do_not(fresh_scene, tmp_path, capsys):
     _lamp_scene()
     fresh_scene.prism.use_spectral_output = True
     fresh_scene.prism.spectral_output_path = str(tmp_path / "f12_##.exr")
     fresh_scene.frame_current = 7
     render_linear_rgb(fresh_scene, samples=4)
-    info, wavelengths, values, _ = read_with_colour(tmp_path / "f12_07.exr", tmp_path)
+    written = tmp_path / "f12_07.exr"
+    info, wavelengths, values, _ = read_with_colour(written, tmp_path)
     assert info["emissive"] and len(wavelengths) == 47 and values.shape == (6, 10, 47)
+    written.unlink()
+    status, line = run_batch(capsys, "--chunk-seed", 0, "--samples", 2, "--output", tmp_path / "chunk.exr")
+    assert status == 0 and not written.exists()  # a chunk holds some samples, not the render's spectra
 
 
 @pytest.mark.parametrize("arguments, message", [
