@@ -94,7 +94,8 @@ CASES = {
     ),
     "spectrum file that is not a spectrum": (
         _file("notes.txt", "shopping list\nmilk, eggs\n"), _light(color_source="FILE", spectrum_file="{tmp}/notes.txt"),
-        "Light 'Bulb' (Light ▸ Prism): spectrum file '{tmp}/notes.txt' is not a spectrum Prism can read",
+        "Light 'Bulb' (Light ▸ Prism): spectrum file '{tmp}/notes.txt': row 2 ('milk, eggs') is not "
+        "numbers, so this is not a spectrum",
     ),
     "spectrum file in micrometres": (
         _file("um.csv", "0.40,1\n0.55,2\n0.70,1\n"), _light(color_source="FILE", spectrum_file="{tmp}/um.csv"),

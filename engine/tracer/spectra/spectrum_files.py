@@ -97,9 +97,18 @@ def _read_csv(path, text):
     if not lines:
         raise PrismInputError("the file is empty: it needs rows of 'wavelength_nm, value'.")
     delimiter = _delimiter(lines[0])
-    fields = [field.strip() for field in lines[0].split(delimiter)]
-    if all(_NUMBER.match(field) for field in fields if field):
+
+    def numbers(line):
+        return all(_NUMBER.match(field) for field in (f.strip() for f in line.split(delimiter)) if field)
+
+    if numbers(lines[0]):
         return _headerless(path, delimiter)
+    for row, line in enumerate(lines[1:], start=2):
+        if not numbers(line):
+            raise PrismInputError(
+                f"row {row} ('{line.strip()[:40]}') is not numbers, so this is not a spectrum: after an optional "
+                "header row every row must be 'wavelength_nm, value'."
+            )
     sds = import_colour().io.read_sds_from_csv_file(str(path), delimiter=delimiter or " ")
     if len(sds) != 1:
         names = ", ".join(f"'{name}'" for name in sds) or "none"

@@ -49,7 +49,8 @@ def test_csv_with_or_without_header_and_common_delimiters(tmp_path, text):
 @pytest.mark.parametrize("content, message", [
     (None, "does not exist: choose a spectrum file"),
     (b"\x89PNG\r\n\x1a\n\0\0\0", "is a binary file, not a spectrum"),
-    ("hello world\nthis is not a spectrum\n", "is not a spectrum Prism can read"),
+    ("hello world\nthis is not a spectrum\n", "row 2 \\('this is not a spectrum'\\) is not numbers, so this is not a spectrum"),
+    ("400,0.1\n500,abc\n", "some rows are not numbers"),
     ("400,0.1,0.2\n500,0.5,0.3\n", "exactly two columns"),
     ("wavelength,a,b\n400,0.1,0.2\n500,0.5,0.3\n", "exactly two columns .* value columns 'a', 'b'"),
     ("0.40,1\n0.50,2\n0.60,3\n", "first column must be the wavelength in nanometres"),
