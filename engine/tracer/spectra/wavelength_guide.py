@@ -15,10 +15,10 @@ other spectra are read from the dense table at cell centres (exact for the piece
 tables, whose knots are cell edges). The sampler draws a cell by its mass and a wavelength uniformly
 in it, so the pdf it reports is exact.
 
-Measured on the benchmark's grey Cornell box lit by an RGB white lamp (16 spp), following the emission
-instead of drawing from the visible density alone halves the colour noise and lowers relMSE by 10 %
-(18 % with the glass ball); spiky lamps gain far more (``benchmarks/experiments/line_spectra.py``). A
-scene that emits nothing keeps the visible density.
+Measured on the benchmark's Cornell boxes (64 x 64, 16 spp, 5 seeds), following the emission instead of
+drawing from the visible density alone lowers relMSE by 9 % (grey) and 16 % (glass ball) and divides
+the colour noise of an RGB white lamp by 2.4; spiky lamps gain far more
+(``benchmarks/experiments/line_spectra.py``). A scene that emits nothing keeps the visible density.
 """
 
 from __future__ import annotations
