@@ -39,6 +39,9 @@ class RenderRequest:
     returning True stops the render as Esc does (batch renders: Ctrl-C).
     ``spectral_output``: also write a multispectral EXR there (absolute path;
     None: the scene's Spectral Output setting decides).
+    ``show_image``: a finished scene-linear image [H, W, 3] (row 0 at the top) to
+    put in the Render Result instead of tracing the scene, so Blender's own
+    writers can save it with a scene's output settings (``engine.png_output``).
     """
 
     samples: int | None = None
@@ -50,6 +53,7 @@ class RenderRequest:
     progress_stream: object = None
     stop_requested: Callable[[], bool] | None = None
     spectral_output: str | None = None
+    show_image: np.ndarray | None = None
 
 
 @dataclass

@@ -34,10 +34,9 @@ def requested_path(scene, request, preview: bool) -> Path | None:
         return None  # a chunk of a render holds some of its samples: its spectra are not the render's
     import bpy
 
-    from .batch.output_files import frame_output
+    from .batch.output_files import numbered_output
 
-    path = Path(bpy.path.abspath(prism.spectral_output_path) or "spectral.exr")
-    return frame_output(path, scene.frame_current) if "#" in path.name else path
+    return numbered_output(Path(bpy.path.abspath(prism.spectral_output_path) or "spectral.exr"), scene.frame_current)
 
 
 def write_spectral_exr(path, centres_nm, bands, rgb) -> Path:
