@@ -17,11 +17,12 @@ from . import kernel_cache
 
 kernel_cache.configure()  # before anything below imports a tracer kernel module
 
+from . import spectral_exr  # noqa: E402
+from .denoise import denoise as denoise_image  # noqa: E402
 from .export import export_scene  # noqa: E402
 from .export.border import render_border  # noqa: E402
 from .export.settings import export_settings  # noqa: E402
 from .fingerprint import render_fingerprint  # noqa: E402
-from .denoise import denoise as denoise_image  # noqa: E402
 from .passes import bottom_up, denoising, enabled_passes, frame_plan, pass_request, write_passes  # noqa: E402
 from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
 from .stats import stats_line, timecode  # noqa: E402
@@ -92,9 +93,10 @@ class RenderSession:
         width, height = tracer_scene.camera.resolution
         border = render_border(scene, width, height)
         view_layer = self.depsgraph.view_layer
+        spectral_path = spectral_exr.requested_path(scene, req, engine.is_preview)
         settings = export_settings(
             scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border,
-            passes=pass_request(scene, view_layer, for_render=True),
+            passes=pass_request(scene, view_layer, for_render=True), spectral=spectral_path is not None,
         )
         self._apply_overrides(settings, warnings)
         self.report.warnings = warnings
@@ -103,7 +105,8 @@ class RenderSession:
             self._print(f"Prism: warning: {message}")
         engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
         with Renderer(tracer_scene, settings) as renderer:
-            plan = self._plan(renderer, scene, view_layer, width, height)
+            # The spectral film and the spectral EXR's RGB cover the whole frame: no tiles then.
+            plan = self._plan(renderer, scene, view_layer, width, height, whole=spectral_path is not None)
             if req.sample_offset:
                 renderer.start_at_sample(req.sample_offset)
             try:
@@ -113,6 +116,8 @@ class RenderSession:
                     renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
             if compiling and not self.cancelled:
                 kernel_cache.mark_compiled()
+            if spectral_path is not None and not self.cancelled:
+                self._write_spectral(renderer, spectral_path)
             if req.keep_film and not self.cancelled:
                 self.report.film = FilmSnapshot(
                     mean=renderer.frame_mean(),
@@ -147,9 +152,10 @@ class RenderSession:
         finally:
             self.engine.end_result(result)
 
-    def _plan(self, renderer, scene, view_layer, width, height):
+    def _plan(self, renderer, scene, view_layer, width, height, whole=False):
         """Tiles and the memory check (a sample chunk keeps its whole film: never tiled)."""
-        return frame_plan(scene, view_layer, width, height, renderer.region, whole_film=self.request.keep_film)
+        return frame_plan(scene, view_layer, width, height, renderer.region,
+                          whole_film=whole or self.request.keep_film)
 
     def _passes(self, renderer, plan, border, warnings) -> None:
         """Every tile to all its samples, written to Blender's result as it finishes."""
@@ -239,6 +245,14 @@ class RenderSession:
         if self.cancelled:
             engine.update_stats("", f"Prism | Cancelled at {renderer.samples_done - start_done}/{target} spp")
             self._print("Prism: cancelled")
+
+    def _write_spectral(self, renderer, path) -> None:
+        film = renderer.spectral_film
+        written = spectral_exr.write_spectral_exr(path, film.centres_nm, film.mean(), renderer.image_rgb())
+        self.report.spectral_output = str(written)
+        if self.request.progress_stream is None:  # a batch script names the files it wrote itself
+            self.engine.report({"INFO"}, f"Prism: spectral image ({film.bands} bands of {film.band_nm:.3g} nm) "
+                                         f"written to {written}")
 
     def _write(self, result, renderer, wanted, denoise: bool) -> None:
         """The region's Combined (denoised on the final pass when asked) and passes into ``result``."""

@@ -136,6 +136,28 @@ class PRISM_PT_performance(PrismPanel, bpy.types.Panel):
         sub.prop(settings, "tile_size")
 
 
+class PRISM_PT_spectral_output(PrismPanel, bpy.types.Panel):
+    """The optional multispectral EXR."""
+
+    bl_label = "Spectral Output"
+    bl_context = "render"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.prism, "use_spectral_output", text="")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.prism
+        column = layout.column()
+        column.active = settings.use_spectral_output
+        column.prop(settings, "spectral_band_nm")
+        column.prop(settings, "spectral_output_path")
+        column.label(text="Bands as S0.<nm> channels (Fichet et al. 2021), with the render as R, G, B.")
+
+
 class _PassesPanel(PrismPanel):
     bl_context = "view_layer"
     bl_parent_id = "VIEWLAYER_PT_layer_passes"
@@ -184,8 +206,8 @@ class PRISM_PT_passes_light(_PassesPanel, bpy.types.Panel):
         column.prop(layer, "use_pass_environment")
 
 
-CLASSES = (PRISM_PT_sampling, PRISM_PT_denoise, PRISM_PT_light_paths, PRISM_PT_wavelengths, PRISM_PT_performance,
-           PRISM_PT_passes_data, PRISM_PT_passes_light)
+CLASSES = (PRISM_PT_sampling, PRISM_PT_denoise, PRISM_PT_light_paths, PRISM_PT_wavelengths, PRISM_PT_spectral_output,
+           PRISM_PT_performance, PRISM_PT_passes_data, PRISM_PT_passes_light)
 
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -21,6 +21,7 @@ def export_settings(
     preview: bool = False,
     border: tuple[int, int, int, int] | None = None,
     passes: PassRequest | None = None,
+    spectral: bool = False,
 ) -> RenderSettings:
     """Render settings from the scene's Prism settings.
 
@@ -28,7 +29,8 @@ def export_settings(
     ``preview`` (a material or light preview) renders ``PREVIEW_SAMPLES`` with the
     viewport's bounces; ``border`` is the pixel rectangle (x0, y0, x1, y1), rows
     from the top, half-open; ``passes`` what besides Combined to render
-    (``engine.passes.pass_request``).
+    (``engine.passes.pass_request``); ``spectral`` keeps band radiance for a multispectral
+    EXR (bands of the scene's Spectral Output width).
     """
     prism = scene.prism
     if samples is None:
@@ -52,6 +54,7 @@ def export_settings(
         adaptive_threshold=float(prism.adaptive_threshold) if prism.use_adaptive_sampling else 0.0,
         adaptive_min_samples=int(prism.adaptive_min_samples),
         time_limit_s=float(prism.time_limit),
+        spectral_band_nm=float(prism.spectral_band_nm) if spectral else 0.0,
     )
     try:
         settings.validate()

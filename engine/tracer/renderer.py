@@ -4,6 +4,7 @@
     renderer.render_pass()          # + settings.samples_per_pass samples per pixel
     renderer.image_rgb()            # float32 [H, W, 3] scene-linear Rec.709, row 0 = top
     renderer.variance_rgb()         # float32 [H, W, 3] variance of the mean
+    renderer.spectral_film          # SpectralFilm (band radiance) when settings.spectral_band_nm > 0, else None
     renderer.samples_done, renderer.strategy, renderer.stats
     renderer.start_at_sample(n)     # continue the seed's sequence at sample n (chunked renders)
     renderer.finished               # every pixel has its samples, converged (adaptive) or time is up
@@ -42,13 +43,16 @@ from .cameras import make_camera
 from .errors import PrismInputError
 from .film import Film
 from .geometry import prepare_geometry
+from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
-from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials, is_emissive
+from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials
 from .passes import FilmLayout
 from .sampler import SAMPLERS
 from .scene import SpectrumSpec
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
+from .spectra.wavelength_guide import build_guide
+from .spectral_film import SpectralFilm
 from .stages.passes import new_pass_data
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
@@ -70,17 +74,6 @@ def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int
 
 def worker_threads(requested: int) -> int:
     return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
-
-
-def _monochromatic_lines(scene, used):
-    from .spectra.emission_spectrum import emission_spectrum
-
-    specs = [light.spectrum for light in scene.lights if light.spectrum.kind == "monochromatic"]
-    for m in used:
-        material = scene.materials[m]
-        if is_emissive(material) and material.emission is not None and material.emission.kind == "monochromatic":
-            specs.append(material.emission)
-    return [emission_spectrum(spec) for spec in dict.fromkeys(specs)]
 
 
 def aov_table(materials, aovs: dict) -> np.ndarray:
@@ -157,10 +150,12 @@ class Renderer:
         white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
         self.pass_layout = FilmLayout(settings.passes, white)
         self._aov_table = aov_table(scene.materials, settings.passes.aovs)
-        lines = _monochromatic_lines(scene, used) if settings.wavelength_mode == "cie" else []
-        self.wavelengths = wavelength_sampling.build(settings, lines)
-        self._guided_lines = len(lines)
         self.spectra = spectra.arrays()
+        guide = None
+        if settings.wavelength_mode == "cie":
+            guide = build_guide(self.spectra, emitter_spectra(self.light_table, materials))
+        self.wavelengths = wavelength_sampling.build(settings, guide)
+        self._guide = guide
         self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
                                               bool(settings.use_mis), SAMPLERS[settings.sampler],
                                               int(settings.seed) & 0xFFFFFFFF)
@@ -169,12 +164,16 @@ class Renderer:
 
     def _describe(self):
         self.analysis = self._analyse(self._used)
-        self.analysis.guided_lines = self._guided_lines
+        if self._guide is not None:
+            a, guide = self.analysis, self._guide
+            a.guided_lines, a.guided_measured, a.guided_smooth = guide.lines, guide.measured, guide.smooth
         self.strategy = self.analysis.strategy(self.settings.use_mis, self.settings.pixel_filter)
 
     def restart(self, setup_seconds: float = 0.0) -> None:
         """Start the image again: an empty film and no samples, a cancelled renderer rendering again.
         Call it (as the ``set_*`` methods do) only while no pass runs."""
+        self.spectral_film = (SpectralFilm(self.width, self.height, self.settings.spectral_band_nm)
+                              if self.settings.spectral_band_nm else None)
         self._first_sample = 0
         self._passes = 0
         self._glass_clamps[:] = 0
@@ -352,7 +351,11 @@ class Renderer:
         clamps = np.zeros_like(self._glass_clamps)
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
         values = buffers.passes.values[:count].copy()
-        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), values, rays, rejected, clamps
+        spectral = None
+        if self.spectral_film is not None:
+            spectral = self.spectral_film.record(buffers.state, count)
+        return (buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), values, rays, rejected, clamps,
+                spectral)
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
@@ -413,12 +416,14 @@ class Renderer:
                 if job is None:
                     break
                 try:
-                    pixel, rgb, values, rays, rejected, clamps = job.result()
+                    pixel, rgb, values, rays, rejected, clamps, spectral = job.result()
                 except CancelledError:
                     break
                 with self._jobs_lock:
                     del jobs[i]
                 self.film.add(pixel, rgb, values)
+                if spectral is not None:
+                    self.spectral_film.add(pixel, *spectral)
                 self.stats["rays_cast"] += rays
                 self.stats["rejected_rays"] += rejected
                 self._glass_clamps += clamps
