@@ -147,8 +147,11 @@ def _render_exr(scene, path):
     return pixels.reshape(height, width, 4)[::-1, :, :3]
 
 
-def test_compositor_denoise_node_and_the_denoise_option_agree(prism_addon, card_scene, tmp_path):
-    card_scene.prism.samples = card_scene.prism.samples_per_pass = 4
+def test_compositor_denoise_node_and_the_denoise_option_clean_the_frame(prism_addon, card_scene, tmp_path):
+    card_scene.render.resolution_x, card_scene.render.resolution_y = 64, 48
+    card_scene.prism.samples = card_scene.prism.samples_per_pass = 256
+    reference = _render_exr(card_scene, tmp_path / "reference.exr")
+    card_scene.prism.samples = card_scene.prism.samples_per_pass = 2
     card_scene.prism.use_pass_denoising_data = True
     noisy = _render_exr(card_scene, tmp_path / "noisy.exr")
     _denoise_tree(card_scene)
@@ -159,11 +162,9 @@ def test_compositor_denoise_node_and_the_denoise_option_agree(prism_addon, card_
     layers = _render_layers(prism_addon, card_scene, tmp_path / "denoised.exr")
     denoised = layers["Combined"][..., :3]
     assert np.array_equal(layers["Noisy Image"][..., :3], noisy)
-    assert not np.allclose(denoised, noisy, atol=1e-3)
-    roughness = lambda image: np.abs(np.diff(image, axis=1)).mean()  # noqa: E731
-    assert roughness(denoised) < 0.8 * roughness(noisy) and roughness(composited) < 0.8 * roughness(noisy)
-    # The same library on the same passes; Blender's node differs in details of its own (not bit for bit).
-    assert np.abs(denoised - composited).mean() < 0.5 * np.abs(noisy - composited).mean()
+    error = lambda image: float(np.mean((image - reference) ** 2 / (reference ** 2 + 1e-2)))  # noqa: E731
+    # Both run Blender's OpenImageDenoise on Prism's passes (Blender's node differs in details of its own).
+    assert error(denoised) < 0.33 * error(noisy) and error(composited) < 0.33 * error(noisy)
 
 
 def test_a_frame_too_large_for_memory_fails_at_once(prism_addon, card_scene, bad_input):
