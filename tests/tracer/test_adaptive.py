@@ -31,8 +31,8 @@ def test_converged_pixels_stop_and_noisy_ones_go_on():
             r.render_pass()
         counts = r.film.counts
         image = r.image_rgb()
-    assert counts.min() >= 8 and counts.max() == 64
-    assert counts[[0, 0, -1, -1], [0, -1, 0, -1]].max() < 48 and counts[6:10, 6:10].min() == 64
+    assert counts.min() >= 8 and counts.mean() < 0.8 * 64
+    assert counts[[0, 0, -1, -1], [0, -1, 0, -1]].max() < counts[6:10, 6:10].min()
     with Renderer(scene, settings(samples=64, samples_per_pass=4)) as uniform:
         while not uniform.finished:
             uniform.render_pass()

@@ -108,7 +108,7 @@ def test_light_groups_sum_to_combined_and_hold_their_own_light():
     assert np.allclose(sum(parts), image, rtol=1e-6, atol=1e-7)
     alone = _render(_facing_wall(lights=lights[:1]), samples=64, samples_per_pass=16)[0]
     assert p["Combined_key"].mean() == pytest.approx(alone.mean(), rel=0.03)
-    assert all(part.min() >= 0 and part.mean() > 0 for part in parts)
+    assert all(part.mean() > 0.05 * image.mean() for part in parts)
 
 
 def test_an_unassigned_light_is_in_no_group():
