@@ -1,15 +1,33 @@
-"""Material properties: what Prism renders of this material's nodes, what it leaves out, and Prism's
-additions (dispersive glass, measured metals, coatings, thin films)."""
+"""Material properties: what Prism reads from the Principled BSDF, and Prism's overrides."""
 
 from __future__ import annotations
 
 import bpy
 
+from ..engine.properties.principled import read_principled
 from ._panel_base import PrismPanel, error_label
-
+from .spectrum_display import draw_spectrum
 
 def _material_poll(context):
     return context.engine == "PRISM" and context.material is not None
+
+
+class MaterialSubpanel(PrismPanel):
+    """Mixin: a subpanel of Material ▸ Prism."""
+
+    bl_context = "material"
+    bl_parent_id = "PRISM_PT_material"
+
+    @classmethod
+    def poll(cls, context):
+        return _material_poll(context)
+
+
+def _split(layout):
+    """``layout`` with properties split into label and value columns, without decorators."""
+    layout.use_property_split = True
+    layout.use_property_decorate = False
+    return layout
 
 
 def _preview(material):
@@ -44,6 +62,7 @@ def _preview(material):
 
 
 def _kinds(material):
+    """(what renders, whether it emits, warnings) of ``material`` as Prism renders it."""
     if material.prism.is_thin_film:
         return ["Thin film"], False, []
     if not material.use_nodes or material.node_tree is None:
@@ -52,7 +71,7 @@ def _kinds(material):
 
 
 class PRISM_PT_material(PrismPanel, bpy.types.Panel):
-    """What Prism renders for this material."""
+    """What Prism renders of this material's nodes, and what it leaves out."""
 
     bl_label = "Prism"
     bl_context = "material"
@@ -67,8 +86,7 @@ class PRISM_PT_material(PrismPanel, bpy.types.Panel):
         names, emits, warnings = _kinds(material)
         text = " + ".join(names) if names else "Black (nothing connected)"
         layout.label(text=f"Renders as: {text}{' + emission' if emits else ''}", icon="SHADING_RENDERED")
-        layout.use_property_split = True
-        layout.use_property_decorate = False
+        layout = _split(layout)
         if not material.use_nodes or material.node_tree is None:
             column = layout.column(align=True)
             column.label(text="No nodes: using the viewport display values.", icon="INFO")
@@ -79,24 +97,16 @@ class PRISM_PT_material(PrismPanel, bpy.types.Panel):
             error_label(layout, message)
 
 
-class PRISM_PT_material_glass(PrismPanel, bpy.types.Panel):
+class PRISM_PT_material_glass(MaterialSubpanel, bpy.types.Panel):
     """Dispersion of a transmissive material."""
 
     bl_label = "Glass"
-    bl_context = "material"
-    bl_parent_id = "PRISM_PT_material"
-
-    @classmethod
-    def poll(cls, context):
-        return _material_poll(context)
 
     def draw(self, context):
-        layout = self.layout
+        layout = _split(self.layout)
         material = context.material
         settings = material.prism
         names = _kinds(material)[0]
-        layout.use_property_split = True
-        layout.use_property_decorate = False
         layout.active = "Glass (refractive)" in names or "Refraction" in names
         layout.prop(settings, "glass_source")
         if settings.glass_source == "CATALOGUE":
@@ -109,43 +119,27 @@ class PRISM_PT_material_glass(PrismPanel, bpy.types.Panel):
             layout.label(text="The shader's constant IOR at every wavelength: no dispersion.")
 
 
-class PRISM_PT_material_metal(PrismPanel, bpy.types.Panel):
+class PRISM_PT_material_metal(MaterialSubpanel, bpy.types.Panel):
     """Which metal a metallic material is."""
 
     bl_label = "Metal"
-    bl_context = "material"
-    bl_parent_id = "PRISM_PT_material"
-
-    @classmethod
-    def poll(cls, context):
-        return _material_poll(context)
 
     def draw(self, context):
-        layout = self.layout
+        layout = _split(self.layout)
         material = context.material
-        layout.use_property_split = True
-        layout.use_property_decorate = False
         layout.active = "Metal" in _kinds(material)[0]
         layout.prop(material.prism, "conductor")
 
 
-class PRISM_PT_material_films(PrismPanel, bpy.types.Panel):
+class PRISM_PT_material_films(MaterialSubpanel, bpy.types.Panel):
     """Coatings and free-standing thin films (interference colours)."""
 
     bl_label = "Coating and Thin Film"
-    bl_context = "material"
-    bl_parent_id = "PRISM_PT_material"
     bl_options = {"DEFAULT_CLOSED"}
 
-    @classmethod
-    def poll(cls, context):
-        return _material_poll(context)
-
     def draw(self, context):
-        layout = self.layout
+        layout = _split(self.layout)
         settings = context.material.prism
-        layout.use_property_split = True
-        layout.use_property_decorate = False
         column = layout.column(align=True)
         column.prop(settings, "coating_thickness_nm")
         sub = column.column(align=True)
@@ -158,7 +152,65 @@ class PRISM_PT_material_films(PrismPanel, bpy.types.Panel):
         column.prop(settings, "film_ior")
 
 
-CLASSES = (PRISM_PT_material, PRISM_PT_material_glass, PRISM_PT_material_metal, PRISM_PT_material_films)
+class PRISM_PT_material_base_spectrum(MaterialSubpanel, bpy.types.Panel):
+    """Where the base colour's reflectance spectrum comes from, and its plot."""
+
+    bl_label = "Base Colour Spectrum"
+
+    def draw(self, context):
+        from ..engine.export.spectra import material_reflectance_source
+        from ..engine.spectrum_preview import reflectance_preview
+
+        layout = _split(self.layout)
+        material = context.material
+        settings = material.prism
+        reading = read_principled(material)
+        layout.active = bool({"Diffuse", "Metal"} & set(_kinds(material)[0]))
+        layout.prop(settings, "reflectance_source")
+        if settings.reflectance_source == "MEASURED":
+            layout.prop(settings, "measured_reflectance")
+        elif settings.reflectance_source == "FILE":
+            layout.prop(settings, "reflectance_file")
+        preview = reflectance_preview(material_reflectance_source(material, reading.base_color))
+        draw_spectrum(layout, "material_reflectance", preview, "Reflectance 0-1, 360-830 nm", metrics=False)
+
+
+class PRISM_PT_material_emission_spectrum(MaterialSubpanel, bpy.types.Panel):
+    """The emission's spectrum (strength: the Principled BSDF's Emission Strength), its plot and metrics."""
+
+    bl_label = "Emission Spectrum"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        from ..engine.export.spectra import material_emission_source
+        from ..engine.spectrum_preview import emission_preview
+
+        layout = _split(self.layout)
+        material = context.material
+        settings = material.prism
+        reading = read_principled(material)
+        layout.active = reading.emission_strength > 0.0
+        layout.prop(settings, "emission_source")
+        column = layout.column(align=True)
+        source = settings.emission_source
+        if source == "BLACKBODY":
+            column.prop(settings, "emission_temperature_k")
+        elif source == "MONOCHROMATIC":
+            column.prop(settings, "emission_wavelength_nm")
+            column.prop(settings, "emission_line_width_nm")
+        elif source == "ILLUMINANT":
+            column.prop(settings, "emission_illuminant")
+        elif source == "FILE":
+            column.prop(settings, "emission_file")
+        if reading.emission_strength <= 0.0:
+            layout.label(text="Set the Principled BSDF's Emission Strength above 0 to emit.", icon="INFO")
+            return
+        preview = emission_preview(material_emission_source(material, reading.emission_color))
+        draw_spectrum(layout, "material_emission", preview, "Relative spectral power, 360-830 nm", metrics=True)
+
+
+CLASSES = (PRISM_PT_material, PRISM_PT_material_base_spectrum, PRISM_PT_material_emission_spectrum,
+           PRISM_PT_material_glass, PRISM_PT_material_metal, PRISM_PT_material_films)
 
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

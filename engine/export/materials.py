@@ -14,8 +14,10 @@ import math
 from ..tracer.bsdf.closure import CONDUCTOR, DIELECTRIC, FRESNEL_CONDUCTOR, FRESNEL_F82
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Material, SpectrumSpec
+from .aovs import read_aovs
 from .nodes import AttributeSlots, compile_material
 from .nodes.overrides import check_film
+from .spectra import material_emission_source, material_reflectance_source
 
 DEFAULT_MATERIAL = Material(name="Default", kind="diffuse", base_color=(0.8, 0.8, 0.8))
 
@@ -102,11 +104,19 @@ class MaterialExporter:
             return _thin_film(material, settings)
         if not material.use_nodes or material.node_tree is None:
             return _viewport_material(material)
-        compiled = compile_material(material, self.slots, self.image_cache, self._evaluator())
+        overrides = {}
+        if settings is not None and settings.reflectance_source != "COLOR":
+            overrides["reflectance"] = material_reflectance_source(material, (0.0, 0.0, 0.0)).spec()
+        if settings is not None and settings.emission_source != "COLOR":
+            overrides["emission"] = material_emission_source(material, (1.0, 1.0, 1.0)).spec()
+        compiled = compile_material(material, self.slots, self.image_cache, self._evaluator(), overrides=overrides)
         if self.warnings is not None:
             self.warnings.extend(compiled.warnings)
         self.needs[material.name] = compiled.needs
-        return _summary(material, compiled)
+        exported = _summary(material, compiled)
+        exported.aovs = read_aovs(material, self.warnings)
+        exported.reflectance = overrides.get("reflectance")
+        return exported
 
 
 def export_material(material, warnings: list[str] | None = None) -> Material:

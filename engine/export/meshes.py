@@ -40,6 +40,7 @@ class ExportedGeometry:
     corner_normals: np.ndarray
     object_names: list[str]
     materials: list[Material]
+    object_light_groups: list[str] = field(default_factory=list)
     surface: object = None  # scene.SurfaceAttributes read by node materials, or None
 
 
@@ -51,6 +52,7 @@ class _Instances:
     geometry: LocalMesh | LocalHair
     matrices: list = field(default_factory=list)  # 16 floats each, row-major
     infos: list = field(default_factory=list)  # (colour RGBA, pass index, random id) per instance
+    light_group: str = ""  # Object ▸ Shading ▸ Light Group
 
 
 class _Materials:
@@ -90,7 +92,13 @@ class _Materials:
         return request
 
 
-def _gather(depsgraph, warnings, materials) -> list[_Instances]:
+def read_geometry(key: tuple, obj, request: AttributeRequest | None = None, warn=None) -> LocalMesh | LocalHair | None:
+    """The evaluated geometry of ``obj`` (``key``: (type, original name, data pointer), the piece it is)
+    with the per-corner data ``request`` names (meshes)."""
+    return read_mesh(obj, request, warn) if key[0] == "MESH" else read_hair(obj)
+
+
+def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     """Every rendered piece of geometry with the matrices of its instances."""
     pieces: dict[tuple, _Instances | None] = {}
     warned: set[str] = set()
@@ -116,12 +124,10 @@ def _gather(depsgraph, warnings, materials) -> list[_Instances]:
             continue
         key = (kind, obj.original.name, obj.data.as_pointer())
         if key not in pieces:
-            if kind == "MESH":  # read now: the object may be temporary
-                request = materials.request([slot.material for slot in obj.material_slots])
-                geometry = read_mesh(obj, request, lambda message: warn_once(obj, [message]))
-            else:
-                geometry = read_hair(obj)
-            pieces[key] = _Instances(obj.name, geometry) if geometry is not None else None
+            request = materials.request([slot.material for slot in obj.material_slots]) if kind == "MESH" else None
+            # read now: the object may be temporary
+            geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
+            pieces[key] = _Instances(obj.name, geometry, light_group=obj.lightgroup) if geometry is not None else None
         piece = pieces[key]
         if piece is not None:
             matrix = instance.matrix_world
@@ -130,17 +136,20 @@ def _gather(depsgraph, warnings, materials) -> list[_Instances]:
     return [piece for piece in pieces.values() if piece is not None]
 
 
-def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=None) -> ExportedGeometry:
+def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=None,
+                  read=read_geometry) -> ExportedGeometry:
     """Every visible mesh and hair instance, in world space (metres, float64 vertices).
 
-    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera.
+    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera. ``read(key, obj)``
+    returns a piece's geometry (the viewport passes one that keeps what did not change).
     Material warnings and geometry Prism skips are appended to ``warnings``.
     """
     materials = _Materials(warnings)
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
+    groups: list[str] = []
     camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
-    pieces = _gather(depsgraph, warnings, materials)
+    pieces = _gather(depsgraph, warnings, read, materials)
     surface = SurfaceCollector(materials.exporter.slots)
     for piece in pieces:
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
@@ -150,6 +159,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                 placed, slots = hair_ribbons(piece.geometry, matrix, camera)
                 parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
                 names.append(piece.name)
+                groups.append(piece.light_group)
                 surface.add_other(len(placed.triangles))
             continue
         local = piece.geometry
@@ -157,10 +167,12 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
         slots = lookup[np.clip(local.slot_index, 0, len(lookup) - 1)]
         parts.append((placed, np.tile(slots, len(matrices))))
         names.append(piece.name)
+        groups.append(piece.light_group)
         surface.add_mesh(local, matrices, piece.infos, np.linalg.det(matrices[:, :3, :3]) < 0)
-    exported = _assemble(parts, names, materials.materials)
-    exported.surface = surface.surface()
-    return exported
+    geometry = _assemble(parts, names, materials.materials)
+    geometry.object_light_groups = groups
+    geometry.surface = surface.surface()
+    return geometry
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

@@ -27,10 +27,14 @@ class CompiledMaterial:
     kinds: set = field(default_factory=set)  # closure kinds, for the panel's summary
 
 
-def compile_material(material, slots=None, image_cache=None, evaluate=None, load_pixels=True) -> CompiledMaterial:
-    """Compile ``material``'s node tree (its Material Output for Cycles)."""
+def compile_material(material, slots=None, image_cache=None, evaluate=None, load_pixels=True,
+                     overrides=None) -> CompiledMaterial:
+    """Compile ``material``'s node tree (its Material Output for Cycles). ``overrides``: Material ▸ Prism's
+    spectra for the Principled BSDF, ``reflectance`` (a ``scene.ReflectanceSpec`` for its base colour) and
+    ``emission`` (a ``scene.SpectrumSpec`` for its emission)."""
     compiler = MaterialCompiler(material, getattr(material, "prism", None), slots, evaluate, load_pixels,
-                                image_cache=image_cache if image_cache is not None else {})
+                                image_cache=image_cache if image_cache is not None else {},
+                                overrides=dict(overrides or {}))
     if not compiler.compile_surface():
         compiler.warn(None, "has no Material Output for Cycles; Prism renders it black.")
         return CompiledMaterial(None, compiler.warnings, compiler.needs)

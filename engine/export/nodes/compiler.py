@@ -45,6 +45,7 @@ class PendingClosure:
     coat_nm: float = 0.0
     coat_ior: float = 1.0
     normal: Value | None = None
+    measured: object = None  # a scene.ReflectanceSpec replacing the colour part of the tint (diffuse) or s0
 
 
 @dataclass
@@ -76,6 +77,7 @@ class MaterialCompiler:
     glass_description: tuple | None = None
     conductor: str | None = None
     displacement: object = None
+    overrides: dict = field(default_factory=dict)  # see ``nodes.compile_material``
     _outputs: dict = field(default_factory=dict)
     _warned: set = field(default_factory=set)
 

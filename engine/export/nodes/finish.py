@@ -33,7 +33,18 @@ def _closure(c, pending, normal_register):
     spec = ClosureSpec(pending.kind, fresnel=pending.fresnel, glass=pending.glass, coat_nm=pending.coat_nm,
                        coat_ior=pending.coat_ior)
     scale, colour = c.known(pending.weight.scale), c.known(pending.weight.colour)
-    if scale is not None and colour is not None:
+    if pending.measured is not None and pending.kind != CONDUCTOR:
+        spec.tint = Colour(spectrum=pending.measured)
+        if scale is None:
+            spec.bindings.append((C_TINT_SCALE, pending.weight.scale.register, True))
+        elif scale <= 0.0:
+            return None
+        else:
+            spec.scale = float(scale)
+        if colour is None or colour != (1.0, 1.0, 1.0):
+            c.warn(pending.node, "has a measured base colour under a coloured layer (coat tint); Prism leaves the "
+                                 "layer's tint out there.")
+    elif scale is not None and colour is not None:
         rgb = tuple(max(x * scale, 0.0) for x in colour)
         if max(rgb) <= 0.0:
             return None
@@ -45,7 +56,7 @@ def _closure(c, pending, normal_register):
     else:
         tinted = pending.weight.colour if scale == 1.0 else c.multiply(pending.weight.colour, pending.weight.scale)
         spec.tint = Colour(register=tinted.register)
-    spec.s0 = _colour(c, pending.s0)
+    spec.s0 = Colour(spectrum=pending.measured) if pending.measured is not None else _colour(c, pending.s0)
     spec.s1 = _colour(c, pending.s1)
     if pending.alpha is not None:
         alpha = c.known(pending.alpha)

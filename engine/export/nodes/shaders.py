@@ -107,8 +107,10 @@ def principled(c, node, context, weight: Weight):
             weight = c.weighted(weight, colour=mixed)
 
     emission_colour = _val(c, node, "Emission Color", context, COLOR)
-    c.add_emission(weight, emission_colour, _val(c, node, "Emission Strength", context),
-                   spectrum=_blackbody_spectrum(c, node, "Emission Color", context))
+    strength = _val(c, node, "Emission Strength", context)
+    _non_negative(c, node, "Emission Strength", strength)
+    spectrum = c.overrides.get("emission") or _blackbody_spectrum(c, node, "Emission Color", context)
+    c.add_emission(weight, None if "emission" in c.overrides else emission_colour, strength, spectrum=spectrum)
 
     film = _val(c, node, "Thin Film Thickness", context)
     film_nm = c.known(film)
@@ -121,7 +123,7 @@ def principled(c, node, context, weight: Weight):
     if c.known(metallic) != 0.0:
         metal = PendingClosure(CONDUCTOR, c.weighted(weight, scale=metallic), node, alpha=alpha, fresnel=FRESNEL_F82,
                                s0=_saturate(c, base), s1=c.vector_math("MINIMUM", specular_tint, c.const(1.0, 1.0, 1.0)),
-                               normal=normal)
+                               normal=normal, measured=c.overrides.get("reflectance"))
         conductor_override(c, metal)
         prism_coating(c, metal)
         c.add_closure(metal)
@@ -164,9 +166,18 @@ def principled(c, node, context, weight: Weight):
         c.warn(node, "has Subsurface Weight; Prism renders subsurface scattering as diffuse reflection.")
     if c.known(_val(c, node, "Diffuse Roughness", context)) != 0.0:
         c.warn(node, "has Diffuse Roughness; Prism renders Lambertian (smooth) diffuse reflection.")
-    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=c.vector_math("MAXIMUM", base,
-                                                                                  c.const(0.0, 0.0, 0.0))),
-                                 node, normal=normal))
+    measured = c.overrides.get("reflectance")
+    colour = c.vector_math("MAXIMUM", base, c.const(0.0, 0.0, 0.0)) if measured is None else None
+    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=normal, measured=measured))
+
+
+def _non_negative(c, node, name, value):
+    """A negative constant strength is bad input (Prism has no negative light)."""
+    from ...tracer.errors import PrismInputError
+
+    known = c.known(value)
+    if known is not None and known < 0:
+        raise PrismInputError(f"Material '{c.material.name}': {name} {known:g} is negative.")
 
 
 def _blackbody_spectrum(c, node, name, context):
@@ -264,7 +275,9 @@ def transparent(c, node, context, weight):
 def emission(c, node, context, weight):
     spectrum = _blackbody_spectrum(c, node, "Color", context)
     colour = None if spectrum is not None else _val(c, node, "Color", context, COLOR)
-    c.add_emission(weight, colour, _val(c, node, "Strength", context), spectrum=spectrum)
+    strength = _val(c, node, "Strength", context)
+    _non_negative(c, node, "Strength", strength)
+    c.add_emission(weight, colour, strength, spectrum=spectrum)
 
 
 def holdout(c, node, context, weight):

@@ -51,8 +51,10 @@ def _coating(material, spec):
 def legacy_shader(material) -> ShaderProgram:
     """The one-closure program of a kind-described material."""
     kind = material.kind
+    base = (Colour(spectrum=material.reflectance) if getattr(material, "reflectance", None) is not None
+            else Colour(rgb=tuple(material.base_color)))
     if kind == "diffuse":
-        closure = ClosureSpec(DIFFUSE, s0=Colour(rgb=tuple(material.base_color)))
+        closure = ClosureSpec(DIFFUSE, s0=base)
     elif kind == "conductor":
         closure = _coating(material, ClosureSpec(CONDUCTOR, alpha=_alpha(material)))
         if material.conductor:
@@ -61,7 +63,7 @@ def legacy_shader(material) -> ShaderProgram:
             closure.s1 = Colour(spectrum=("k", material.conductor))
         else:
             closure.fresnel = FRESNEL_SCHLICK
-            closure.s0 = Colour(rgb=tuple(material.base_color))
+            closure.s0 = base
     elif kind == "dielectric":
         closure = _coating(material, ClosureSpec(DIELECTRIC, alpha=_alpha(material), fresnel=GLASS,
                                                  glass=glass_of(material)))

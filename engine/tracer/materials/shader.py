@@ -51,6 +51,7 @@ class ClosureSpec:
     film_nm: float = 0.0
     film_ior: float = 1.0
     selection: float = 1.0
+    scale: float = 1.0  # a constant factor of the tint
     bindings: list = field(default_factory=list)  # (column, register, multiply): scalars the program sets
 
 

@@ -73,6 +73,8 @@ def _source(colour, spectra, name, bounded=True):
     if colour.register is not None:
         return register_source(colour.register), 1.0
     if colour.spectrum is not None:
+        if not isinstance(colour.spectrum, tuple):  # a measured reflectance (scene.ReflectanceSpec)
+            return float(spectra.measured_reflectance(colour.spectrum, f"Material '{name}'")), 1.0
         what, metal = colour.spectrum
         from ..spectra.conductors import _lookup
 
@@ -106,6 +108,7 @@ def _row(spec, spectra, glasses, glass_index, name):
     row[C_SPECTRUM], _ = _source(spec.s0, spectra, name)
     row[C_S1], _ = _source(spec.s1, spectra, name)
     row[C_TINT], row[C_TINT_SCALE] = _source(spec.tint, spectra, name, bounded=False)
+    row[C_TINT_SCALE] *= float(spec.scale)
     if spec.kind == DIELECTRIC:
         glass = spec.glass
         if glass is None:
@@ -213,12 +216,16 @@ def build_materials(materials, used, spectra) -> MaterialTable:
             varies = emission.register is not None or shader.emission_scale >= 0
             if emission.register is not None:
                 emission_register[m] = emission.register
+                emission_spectrum[m] = spectra.emission(SpectrumSpec())  # what the wavelength guide follows
                 needs_lut = True
             else:
                 spec = emission.spectrum if emission.spectrum is not None else SpectrumSpec("rgb", tuple(emission.rgb))
                 if spec.kind == "rgb" and not max(spec.rgb) > 0:
                     continue
-                emission_spectrum[m] = spectra.emission(spec)
+                try:
+                    emission_spectrum[m] = spectra.emission(spec)
+                except PrismInputError as error:
+                    raise PrismInputError(f"Material '{material.name}': {error}") from None
             flags[m] |= MAT_EMISSIVE
             emission_strength[m] = float(shader.emission_strength)
             if varies:
