@@ -125,7 +125,9 @@ def read_image(image, node, warn, cache):
     else:
         table = _level_table(colour_space)
         levels = np.clip(np.rint(pixels * 255.0), 0, 255).astype(np.uint8)
-        if table is not None:
+        if colour_space == "sRGB":  # Blender filters sRGB levels and decodes after
+            result = TextureImage(image.name, levels, None, interpolation, node.extension, srgb_levels=True)
+        elif table is not None:
             result = TextureImage(image.name, levels, table, interpolation, node.extension)
         else:
             decoded = _to_linear(colour_space, pixels[..., :3].reshape(-1, 3))

@@ -62,6 +62,7 @@ class TextureImage:
     decode: np.ndarray | None = None  # float32 [256, 3]: scene-linear value of each 8-bit level per channel
     interpolation: str = "Linear"  # "Closest", "Linear" ("Cubic" and "Smart" render as Linear)
     extension: str = "REPEAT"  # "REPEAT", "EXTEND", "CLIP", "MIRROR"
+    srgb_levels: bool = False  # 8-bit sRGB: levels are filtered, then decoded (Blender's order)
 
 
 @dataclass

@@ -3,8 +3,8 @@ Extend, Clip and Mirror extension.
 
 Texels are stored once per render, row 0 at the bottom as Blender stores images, each image a run of
 width × height × 4 values: 8-bit images as they are (``bytes``) with a table decoding each channel's 256
-levels to scene-linear (``decode``, the image's colour space), others decoded to scene-linear float32
-(``floats``). An image's row of ``TextureArrays.images`` holds (first value, width, height,
+levels to scene-linear (``decode``, the image's colour space) — 8-bit sRGB images are filtered as levels
+and decoded after (as Blender does) — others decoded to scene-linear float32 (``floats``). An image's row of ``TextureArrays.images`` holds (first value, width, height,
 interpolation, extension, decode table or -1). Texel centres sit at (i + 0.5) / width, as in Blender.
 """
 
@@ -22,6 +22,7 @@ TextureArrays = namedtuple("TextureArrays", "images floats bytes decode")
 
 I_OFFSET, I_WIDTH, I_HEIGHT, I_INTERPOLATION, I_EXTENSION, I_DECODE = range(6)
 IMAGE_ROW = 6
+SRGB_LEVELS = -2  # ``I_DECODE`` of 8-bit sRGB images: levels filtered first, then decoded (as Blender does)
 INTERPOLATIONS = {"Linear": 0, "Closest": 1, "Cubic": 2, "Smart": 2}
 EXTENSIONS = {"REPEAT": 0, "EXTEND": 1, "CLIP": 2, "MIRROR": 3}
 
@@ -33,10 +34,11 @@ def build_textures(images) -> TextureArrays:
     for image in images:
         height, width = image.texels.shape[:2]
         kind = [INTERPOLATIONS.get(image.interpolation, 0), EXTENSIONS.get(image.extension, 0)]
-        if image.decode is not None:
+        if image.decode is not None or image.srgb_levels:
             texels = np.ascontiguousarray(image.texels, dtype=np.uint8).reshape(-1)
-            rows.append([byte_offset, width, height, *kind, len(decode)])
-            decode.append(np.asarray(image.decode, dtype=np.float32).reshape(256, 3))
+            rows.append([byte_offset, width, height, *kind, SRGB_LEVELS if image.srgb_levels else len(decode)])
+            if not image.srgb_levels:
+                decode.append(np.asarray(image.decode, dtype=np.float32).reshape(256, 3))
             byte_chunks.append(texels)
             byte_offset += texels.size
         else:
@@ -68,12 +70,21 @@ def _index(i, size, extension):
     return i if i < size else period - 1 - i
 
 
+@kernel
+def _srgb_to_linear(v):
+    return v / 12.92 if v <= 0.04045 else ((v + 0.055) / 1.055) ** 2.4
+
+
 @inlined
 def _texel(textures, decode, offset, width, x, y, out_weight, acc):
     """Add ``out_weight`` × texel (x, y) to ``acc`` (a 4-tuple); texels at -1 are transparent black."""
     if x < 0 or y < 0 or out_weight == 0.0:
         return acc
     base = offset + (y * width + x) * 4
+    if decode == SRGB_LEVELS:
+        texels = textures.bytes
+        return (acc[0] + out_weight * texels[base] / 255.0, acc[1] + out_weight * texels[base + 1] / 255.0,
+                acc[2] + out_weight * texels[base + 2] / 255.0, acc[3] + out_weight * texels[base + 3] / 255.0)
     if decode >= 0:
         texels = textures.bytes
         table = textures.decode[decode]
@@ -95,6 +106,14 @@ def _bspline(t):
 @inlined
 def image_lookup(textures, image, s, t):
     """RGBA of image ``image`` at texture coordinates (s, t) (0-1 across the image, (0, 0) bottom left)."""
+    rgba = _filtered(textures, image, s, t)
+    if int(textures.images[image, I_DECODE]) != SRGB_LEVELS:
+        return rgba
+    return (_srgb_to_linear(rgba[0]), _srgb_to_linear(rgba[1]), _srgb_to_linear(rgba[2]), rgba[3])
+
+
+@inlined
+def _filtered(textures, image, s, t):
     row = textures.images[image]
     offset = int(row[I_OFFSET])
     width = int(row[I_WIDTH])
