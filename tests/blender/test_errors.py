@@ -231,7 +231,6 @@ CASES = {
     "unknown glass in lens": (_unknown_glass_in_lens, "glass.lens, line 7 (surface 1, 'glass'): unknown glass 'UNOBTAINIUM'"),
     "unknown glass": (_glass("CATALOGUE", raw_glass_name=12345), "Material 'Floor material' uses a catalogue glass that is not in"),
     "invalid Abbe glass": (_glass("ABBE", glass_nd=1.0), "Material 'Floor material': Glass n_d 1 is invalid"),
-    "IOR below 1": (_glass("PRINCIPLED_IOR", ior=0.8), "Material 'Floor material': IOR 0.8 is below 1"),
     "temperature out of range": (
         _light(color_source="BLACKBODY", temperature_k=500.0),
         "Light 'Bulb': blackbody temperature 500 K is outside 1000-40000 K",
@@ -272,7 +271,7 @@ CASES = {
         "Material 'Floor material': Material ▸ Prism ▸ Coating IOR is 0; a film's refractive index must be 1",
     ),
     "thin film IOR 0.5": (_thin_film_material, "Material 'Floor material': Material ▸ Prism ▸ Film IOR is 0.5"),
-    "NaN roughness": (_principled(Roughness=math.nan), "Material 'Floor material': Roughness is nan; enter a finite"),
+    "NaN roughness": (_principled(Roughness=math.nan), "Material 'Floor material': Principled BSDF ▸ Roughness is nan; enter a finite number."),
     "negative emission strength": (
         _principled(Emission_Strength=-2.0), "Material 'Floor material': Emission Strength -2 is negative."
     ),

@@ -69,20 +69,28 @@ def test_metallic_becomes_a_conductor(prism_addon, basic):
     assert _material(_export(prism_addon)).conductor == "Au"
 
 
+def _closures(exported):
+    return exported.shader.closures
+
+
 def test_emission_coating_and_thin_film(prism_addon, basic):
+    closure = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.bsdf.closure")
     node = _principled(basic)
     node.inputs["Emission Color"].default_value = (1.0, 0.5, 0.25, 1.0)
     node.inputs["Emission Strength"].default_value = 3.0
-    node.inputs["Metallic"].default_value = 1.0
     node.inputs["Thin Film Thickness"].default_value = 300.0
     node.inputs["Thin Film IOR"].default_value = 1.5
     exported = _material(_export(prism_addon))
     assert exported.emission.kind == "rgb" and exported.emission.rgb == pytest.approx((1.0, 0.5, 0.25))
     assert exported.emission_strength == pytest.approx(3.0)
-    assert (exported.coating_thickness_nm, exported.coating_ior) == (pytest.approx(300.0), pytest.approx(1.5))
+    # Blender's thin film sits on the Principled's dielectric specular layer.
+    specular = next(c for c in _closures(exported) if c.fresnel == closure.FRESNEL_DIELECTRIC)
+    assert (specular.coat_nm, specular.coat_ior) == (pytest.approx(300.0), pytest.approx(1.5))
+    node.inputs["Metallic"].default_value = 1.0
     settings = basic.active_material.prism
-    settings.coating_thickness_nm, settings.coating_ior = 120.0, 1.38  # the override wins
-    assert _material(_export(prism_addon)).coating_thickness_nm == pytest.approx(120.0)
+    settings.coating_thickness_nm, settings.coating_ior = 120.0, 1.38  # Prism's coating: on metal and glass
+    metal = next(c for c in _closures(_material(_export(prism_addon))) if c.fresnel == closure.FRESNEL_F82)
+    assert (metal.coat_nm, metal.coat_ior) == (pytest.approx(120.0), pytest.approx(1.38))
     settings.is_thin_film = True
     settings.film_thickness_nm, settings.film_ior = 420.0, 1.34
     exported = _material(_export(prism_addon))
@@ -93,27 +101,25 @@ def test_emission_coating_and_thin_film(prism_addon, basic):
     )
 
 
-def test_unmodelled_inputs_warn_once_naming_material_and_socket(prism_addon, basic):
+def test_what_prism_leaves_out_warns_once_naming_material_node_and_what_it_did(prism_addon, basic):
     material = basic.active_material
     node = _principled(basic)
     texture = material.node_tree.nodes.new("ShaderNodeTexChecker")
     material.node_tree.links.new(texture.outputs["Color"], node.inputs["Base Color"])
     node.inputs["Sheen Weight"].default_value = 0.3
+    node.distribution = "GGX"
     warnings = []
     _export(prism_addon, warnings)
-    assert len(warnings) == 2
-    assert "Material 'Thing material'" in warnings[0] and "'Base Color'" in warnings[0]
-    assert "'Sheen Weight'" in warnings[1]
+    assert warnings == ["Material 'Thing material': the 'Principled BSDF' node (Principled BSDF) has Sheen, which "
+                        "Prism does not model; the sheen is left out."]
 
-    other = material.node_tree.nodes.new("ShaderNodeBsdfDiffuse")
+    toon = material.node_tree.nodes.new("ShaderNodeBsdfToon")
     output = material.node_tree.nodes["Material Output"]
-    material.node_tree.links.new(other.outputs["BSDF"], output.inputs["Surface"])
+    material.node_tree.links.new(toon.outputs["BSDF"], output.inputs["Surface"])
     warnings = []
     _export(prism_addon, warnings)
-    assert warnings == [
-        "Material 'Thing material': the 'Diffuse BSDF' node (Diffuse BSDF) is not supported; Prism renders its "
-        "viewport colour instead. Connect a Principled BSDF to the Material Output."
-    ]
+    assert warnings == ["Material 'Thing material': the 'Toon BSDF' node (Toon BSDF) is not modelled by Prism; it "
+                        "is left out (black)."]
 
 
 @pytest.mark.parametrize(

@@ -11,8 +11,10 @@ per-hit colour upsampling.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
+from ...tracer.errors import PrismInputError
 from ...tracer.materials import opcodes as op
 from ...tracer.materials.program_builder import ProgramBuilder, Value
 from .graph import Source, follow, output_node
@@ -114,7 +116,11 @@ class MaterialCompiler:
         return self.emit(op.VECTOR_MATH, [a, b, c, s], mode=_VECTOR_MATH[operation], width=width)
 
     def multiply(self, a: Value, b: Value) -> Value:
-        """a × b for scalars or vectors (a vector times a scalar scales it); constant 1 factors vanish."""
+        """a × b for scalars or vectors (a vector times a scalar scales it); constant 1 factors vanish and
+        a constant 0 factor gives 0 (a lobe weighted 0 is left out even where the rest varies)."""
+        width = max(a.width, b.width)
+        if 0.0 in (self.known(a), self.known(b)) or (0.0,) * 3 in (self.known(a), self.known(b)):
+            return self.const(*(0.0,) * width)
         if self.known(a) in (1.0, (1.0, 1.0, 1.0)) and a.width >= b.width:
             return b if a.width == b.width else self.broadcast(b)
         if self.known(b) in (1.0, (1.0, 1.0, 1.0)) and b.width >= a.width:
@@ -192,6 +198,9 @@ class MaterialCompiler:
             values = [float(x) for x in raw]
         except TypeError:
             values = [float(raw)]
+        if not all(math.isfinite(v) for v in values):
+            raise PrismInputError(f"Material '{self.material.name}': {socket.node.name} ▸ {socket.name} is "
+                                  f"{', '.join(f'{v:g}' for v in values)}; enter a finite number.")
         socket_kind = _SOCKET_KINDS.get(socket.type, FLOAT)
         if socket_kind == COLOR:
             values = values[:3]
@@ -265,7 +274,7 @@ class MaterialCompiler:
 
     def add_emission(self, weight: Weight, colour: Value | None, strength: Value, spectrum=None) -> None:
         scale = self.multiply(weight.scale, strength)
-        if self.known(scale) == 0.0:
+        if 0.0 in (self.known(strength), self.known(weight.scale), self.known(scale)):
             return
         colour = self.multiply(weight.colour, colour) if colour is not None else weight.colour
         if spectrum is not None and self.known(weight.colour) != (1.0, 1.0, 1.0):

@@ -14,7 +14,7 @@ from ...tracer.bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_COND
                                     FRESNEL_F82, FRESNEL_NONE, GLASS, REFRACTION_ONLY, TRANSLUCENT, TRANSPARENT)
 from ...tracer.materials import opcodes as op
 from .compiler import COLOR, FLOAT, VECTOR, PendingClosure, Weight
-from .overrides import conductor_override, glass_override, prism_coating
+from .overrides import check_film, conductor_override, glass_override, prism_coating
 
 
 def _val(c, node, name, context, kind=FLOAT):
@@ -117,7 +117,13 @@ def principled(c, node, context, weight: Weight):
     if film_nm is None:
         c.warn(node, "has a textured Thin Film Thickness; Prism uses no film there.")
         film_nm = 0.0
-    film_ior = c.known(_val(c, node, "Thin Film IOR", context)) or 1.33
+    film_ior = c.known(_val(c, node, "Thin Film IOR", context))
+    if film_ior is None:
+        c.warn(node, "has a textured Thin Film IOR; Prism uses 1.33 there.")
+        film_ior = 1.33
+    if film_nm > 0.1:
+        check_film(c.material.name, f"{node.name} ▸ Thin Film Thickness", film_nm, f"{node.name} ▸ Thin Film IOR",
+                   film_ior)
 
     metallic = c.clamp01(_val(c, node, "Metallic", context))
     if c.known(metallic) != 0.0:
