@@ -8,6 +8,9 @@ from ..engine.properties.principled import read_principled
 from ._panel_base import PrismPanel, error_label
 from .spectrum_display import draw_spectrum
 
+_evaluator = []  # the constant folder, once kernels are on disk
+
+
 def _material_poll(context):
     return context.engine == "PRISM" and context.material is not None
 
@@ -30,14 +33,28 @@ def _split(layout):
     return layout
 
 
+def _fold():
+    """The kernels' constant folder if they are compiled already, else None: a panel must never wait for
+    numba (the summary then also lists lobes that constant weights of 0 would remove)."""
+    from ..engine import kernel_cache
+    from ..engine.tracer import jit
+
+    kernel_cache.configure()  # before any kernel is imported: the cache a render would use
+    if not _evaluator and jit.cache_is_warm():
+        from ..engine.tracer.materials.folding import fold_evaluator
+
+        _evaluator.append(fold_evaluator())
+    return _evaluator[0] if _evaluator else None
+
+
 def _preview(material):
-    """The material compiled as a render would (no folding, no image read): (lobe names, emits, warnings)."""
+    """The material compiled as a render would (no image read): (lobe names, emits, warnings)."""
     from ..engine.export.nodes import compile_material
     from ..engine.tracer.bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_DIELECTRIC, FRESNEL_NONE,
                                               GLASS, TRANSLUCENT, TRANSPARENT)
 
     try:
-        compiled = compile_material(material, load_pixels=False)
+        compiled = compile_material(material, evaluate=_fold(), load_pixels=False)
     except Exception as error:  # noqa: BLE001 - a panel must draw; the render reports the error itself
         return [], False, [str(error)]
     shader = compiled.shader
