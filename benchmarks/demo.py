@@ -1,0 +1,102 @@
+"""The demo render (``make render``) now and before the compiled core, timed in the same run.
+
+Both sides run exactly what ``make render`` runs, each from its own source tree: this checkout, and
+the tree of ``BEFORE_COMMIT`` (the numpy tracer, the last commit before the compiled core) exported
+with ``git archive`` into a temporary folder. Each tree builds the demo scene with its own
+``demo/build_demo_scene.py`` (the same scene script in both) and renders it with its own
+``render.py --samples 64`` (480 x 320, all cores) in a fresh process, after one untimed 1-spp render
+of the same scene (imports from disk, kernels compiled into the harness's kernel cache, so the timed
+render is a user's second ``make render``). Reported: the process's wall time (bpy start-up, scene
+load, export, render, PNG) and Blender's own ``Time:`` line (the render job). The images are kept.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from .references import CACHE_DIR, REPO_ROOT
+
+BEFORE_COMMIT = "8fdab610b5d103e736e24abd3dc9abee44c279c1"
+FULL_SPP, QUICK_SPP = 64, 4
+_BLENDER_TIME = re.compile(r"Time: (\d+):(\d+(?:\.\d+)?)")
+
+
+def _export_tree(commit: str, folder: Path) -> None:
+    archive = subprocess.run(["git", "archive", "--format=tar", commit], cwd=REPO_ROOT, capture_output=True,
+                             check=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True, capture_output=True)
+
+
+def _run(tree: Path, args, env, timeout=1800) -> tuple[float, str]:
+    start = time.perf_counter()
+    proc = subprocess.run([sys.executable, *args], cwd=tree, env=env, capture_output=True, text=True,
+                          timeout=timeout)
+    seconds = time.perf_counter() - start
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(args[:2])} in {tree} failed ({proc.returncode}): {proc.stderr[-1500:]}")
+    return seconds, proc.stdout + proc.stderr
+
+
+def _blender_seconds(output: str) -> float:
+    found = _BLENDER_TIME.findall(output)
+    return float("nan") if not found else 60 * int(found[-1][0]) + float(found[-1][1])
+
+
+def _prepare(tree: Path, work: Path, env) -> Path:
+    blend = work / "demo.blend"
+    _run(tree, ["demo/build_demo_scene.py", str(blend)], env)
+    _run(tree, ["render.py", str(blend), "--samples", "1", "--output", str(work / "warm.png")], env)
+    return blend
+
+
+def _timed(tree: Path, blend: Path, spp: int, image: Path, env) -> dict:
+    seconds, output = _run(tree, ["render.py", str(blend), "--samples", str(spp), "--output", str(image)], env)
+    return dict(process_seconds=seconds, blender_seconds=_blender_seconds(output), image=str(image))
+
+
+def measure(results_dir: Path, quick: bool) -> dict:
+    """Time the demo render of this tree and of ``BEFORE_COMMIT``'s; images go to ``results_dir``
+    (``demo.png``, ``demo_before.png``). ``before`` holds an ``error`` when that tree is not available
+    (no git history, e.g. an exported copy)."""
+    spp = QUICK_SPP if quick else FULL_SPP
+    results_dir.mkdir(parents=True, exist_ok=True)
+    env = dict(os.environ, PRISM_KERNEL_CACHE=str(CACHE_DIR / "kernels"))  # kept between runs
+    env.pop("NUMBA_CACHE_DIR", None)
+    out = dict(spp=spp, resolution=[480, 320], before_commit=BEFORE_COMMIT, load_start=list(os.getloadavg()))
+    with tempfile.TemporaryDirectory(prefix="prism-demo-") as tmp:
+        tmp = Path(tmp)
+        (tmp / "now").mkdir()
+        now_blend = _prepare(REPO_ROOT, tmp / "now", env)
+        before_tree = tmp / "before_tree"
+        before_blend = None
+        try:
+            before_tree.mkdir()
+            _export_tree(BEFORE_COMMIT, before_tree)
+            (tmp / "before").mkdir()
+            before_blend = _prepare(before_tree, tmp / "before", env)
+        except (subprocess.CalledProcessError, RuntimeError, OSError) as exc:
+            out["before"] = dict(error=f"{type(exc).__name__}: {str(exc)[-300:]}")
+        # interleaved: now, before, now -- a change in the machine's load falls on both
+        now_runs = [_timed(REPO_ROOT, now_blend, spp, tmp / "now" / "demo.png", env)]
+        if before_blend is not None:
+            out["before"] = _timed(before_tree, before_blend, spp, tmp / "before" / "demo.png", env)
+            shutil.copyfile(out["before"]["image"], results_dir / "demo_before.png")
+            out["before"]["image"] = "demo_before.png"
+            now_runs.append(_timed(REPO_ROOT, now_blend, spp, tmp / "now" / "demo.png", env))
+        shutil.copyfile(now_runs[-1]["image"], results_dir / "demo.png")
+        # the mean of the runs before and after the old tree's: the load they saw brackets its load
+        out["now"] = dict(process_seconds=sum(r["process_seconds"] for r in now_runs) / len(now_runs),
+                          blender_seconds=sum(r["blender_seconds"] for r in now_runs) / len(now_runs),
+                          runs=[r["process_seconds"] for r in now_runs], image="demo.png")
+    out["load_end"] = list(os.getloadavg())
+    if "process_seconds" in out.get("before", {}):
+        out["speedup_process"] = out["before"]["process_seconds"] / out["now"]["process_seconds"]
+        out["speedup_blender"] = out["before"]["blender_seconds"] / out["now"]["blender_seconds"]
+    return out
