@@ -24,14 +24,14 @@ def _glass_ceiling(results):
 
 
 def _peer_ratio(c):
-    """(ratio, note) of a peer comparison: at equal total time, or at equal render time when the
-    total-time curves do not overlap."""
+    """(ratio, note, measured) of a peer comparison: at equal total time, or at equal render time when
+    the total-time curves do not overlap; ``measured`` is False when only an extrapolation exists."""
     ratio, note = c["ratio"], f" at {c['seconds']:.2f} s"
     if c["extrapolated"] and np.isfinite(c.get("ratio_render_only", float("nan"))):
-        ratio, note = c["ratio_render_only"], " at equal render time, set-up excluded (total times do not overlap)"
-    elif c["extrapolated"]:
-        note += " (extrapolated)"
-    return ratio, note
+        return c["ratio_render_only"], " at equal render time, set-up excluded (total times do not overlap)", True
+    if c["extrapolated"]:
+        return ratio, note + " (extrapolated: the curves do not overlap in time)", False
+    return ratio, note, True
 
 
 def _targets(results):
@@ -48,10 +48,11 @@ def _targets(results):
     comps = results.get("peer_comparisons", [])
     for c in comps:
         target = report.peer_target(c["peer"])
-        ratio, note = _peer_ratio(c)
+        ratio, note, measured = _peer_ratio(c)
         bound = "no worse than" if target == 1.0 else f"within {target:g}x of"
-        lines.append(f"| equal-time relMSE {bound} {c['peer']}, {c['scene']} | Prism / peer = {ratio:.2f}{note} | "
-                     f"{_status(ratio <= target)} |")
+        value = f"Prism / peer = {ratio:.3g}{note}" if measured else "the two curves do not overlap in time"
+        lines.append(f"| equal-time relMSE {bound} {c['peer']}, {c['scene']} | {value} | "
+                     f"{_status(ratio <= target) if measured else 'not measured'} |")
     if not comps:
         lines.append("| equal-time relMSE against Cycles and Mitsuba 3 | not measured | - |")
     gains = results.get("sampler_gain", [])
@@ -143,7 +144,7 @@ def _reading(results):
         direction = "lower" if c["ratio"] < 1 else "higher"
         ttime = "" if not np.isfinite(c["time_ratio"]) else (
             f"; {c['peer']} reaches that error of Prism's in {c['peer_seconds_to_prism_error']:.2f} s, "
-            f"{c['time_ratio']:.1f}x " + ("sooner" if c["time_ratio"] >= 1 else "later")
+            + (f"{c['time_ratio']:.1f}x sooner" if c["time_ratio"] >= 1 else f"{1 / c['time_ratio']:.1f}x later")
             + (" (extrapolated)" if c["time_extrapolated"] else ""))
         render_only = c.get("ratio_render_only", float("nan"))
         if c["extrapolated"]:
@@ -419,7 +420,11 @@ def document(results, tables, plots, rel):
         "- Peers run in their own processes with the same triangles, camera, light power and thread count: "
         "Mitsuba 3 `llvm_ad_spectral` (box filter, independent sampler, emitters hidden from the camera as "
         "Blender lights are) and Cycles through the bpy module on the CPU (no denoising, no adaptive sampling, "
-        "its default 1.5 px Blackman-Harris filter). Each is scored against its own high-sample reference.",
+        "its default 1.5 px Blackman-Harris filter). Each is scored against its own high-sample reference. "
+        "On a scene with peers, Prism's default settings are then rendered again until they have run as long "
+        "as the slowest peer's longest render (spp doubling, same seeds, at most 1/8 of the reference's spp), "
+        "and the equal-time ratio is read where both curves end: at the longest time both measured, each "
+        "curve interpolated log-log.",
         "- The sampler's gain: every scene also renders its default settings with `sampler=\"independent\"` "
         "(same seeds, same checkpoints, same reference as the Sobol default).",
         "",

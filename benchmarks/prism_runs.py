@@ -26,7 +26,19 @@ def settings_for(overrides: dict, samples: int, seed: int, threads: int) -> Rend
 def progressive(scene, settings: RenderSettings, checkpoints, on_renderer=None):
     """Render up to max(checkpoints) spp; return a list of dicts (spp, seconds,
     image, rays_cast) at each checkpoint, and the renderer's stats."""
-    checkpoints = sorted(set(int(c) for c in checkpoints))
+    return _checkpoints(scene, settings, sorted(set(int(c) for c in checkpoints)), float("inf"), on_renderer)
+
+
+def progressive_until(scene, settings: RenderSettings, first_spp: int, seconds: float, max_spp: int):
+    """Like ``progressive`` with checkpoints doubling from ``first_spp`` until the render has taken
+    ``seconds`` (or reached ``max_spp``)."""
+    spp = [int(first_spp)]
+    while spp[-1] * 2 <= max_spp:
+        spp.append(spp[-1] * 2)
+    return _checkpoints(scene, settings, spp, seconds)
+
+
+def _checkpoints(scene, settings, checkpoints, seconds, on_renderer=None):
     settings = replace(settings, samples=checkpoints[-1])
     start = time.perf_counter()
     renderer = Renderer(scene, settings)
@@ -43,6 +55,8 @@ def progressive(scene, settings: RenderSettings, checkpoints, on_renderer=None):
                 elapsed += time.perf_counter() - t0
             out.append(dict(spp=renderer.samples_done, seconds=elapsed, setup=setup, image=renderer.image_rgb(),
                             rays_cast=int(renderer.stats["rays_cast"])))
+            if elapsed >= seconds:
+                break
         stats = dict(renderer.stats)
         stats["strategy"] = renderer.strategy
     finally:

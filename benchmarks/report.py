@@ -57,6 +57,11 @@ def plot_scene(name, entry, path):
         t, e = _times(strategy["curve"])
         axes[0].loglog(t, e, "o-", label=f"Prism {strategy['label']}", ms=3)
         axes[1].loglog(t, [p["flip"] for p in strategy["curve"]], "o-", ms=3)
+    if entry.get("equal_time"):
+        curve = entry["equal_time"]["curve"]
+        t, e = _times(curve)
+        axes[0].loglog(t, e, "k.:", label="Prism default, as long as the peers", ms=4)
+        axes[1].loglog(t, [p["flip"] for p in curve], "k.:", ms=4)
     for peer in entry.get("peers", []):
         t, e = _times(peer["curve"])
         axes[0].loglog(t, e, "s--", label=peer["info"]["renderer"], ms=3)
@@ -110,6 +115,11 @@ def scene_table(name, entry):
         rays = p.get("rays", float("nan")) / (p["spp"] * entry["_pixels"]) if entry.get("_pixels") else float("nan")
         rows.append(f"| {s['label']} | {p['spp']} | {p['seconds']:.2f} {_spread(p)} | {_fmt(p['relmse'])} | {p['flip']:.3f} | "
                     f"{_fmt(eff)} | {_fmt(rays)} |")
+    if entry.get("equal_time"):
+        p = entry["equal_time"]["curve"][-1]
+        eff = (base["relmse"] * base["seconds"]) / (p["relmse"] * p["seconds"])
+        rows.append(f"| {entry['strategies'][0]['label']}, as long as the peers | {p['spp']} | {p['seconds']:.2f} "
+                    f"{_spread(p)} | {_fmt(p['relmse'])} | {p['flip']:.3f} | {_fmt(eff)} | |")
     for peer in entry.get("peers", []):
         p = peer["curve"][-1]
         rows.append(f"| {peer['info']['renderer']} ({peer['info'].get('variant', 'CPU')}) | {p['spp']} | "
@@ -124,7 +134,7 @@ def peer_comparisons(results):
     for name, entry in results["scenes"].items():
         if not entry.get("strategies"):
             continue
-        prism_curve = entry["strategies"][0]["curve"]
+        prism_curve = entry.get("equal_time", {}).get("curve") or entry["strategies"][0]["curve"]
         qt, qe = _times(prism_curve)
         for peer in entry.get("peers", []):
             pt, pe = _times(peer["curve"])

@@ -26,17 +26,21 @@ from pathlib import Path
 import numpy as np
 
 from . import ceiling, demo, experiments, metrics, references, report, scenes, stage_split, startup
-from .prism_runs import PASS_SPP, progressive, settings_for
+from .prism_runs import PASS_SPP, progressive, progressive_until, settings_for
 
 RESULTS_DIR = references.BENCH_DIR / "results"
 
-FULL = dict(resolution=64, checkpoints=[4, 8, 16, 32, 64, 128], repeats=3, ref_spp=512, ref_max_seconds=120.0,
+# References have at least 8x the samples of any image scored against them (the equal-time curves
+# for the peers stop there too), so their own noise adds at most ~1/8 to a measured relMSE.
+FULL = dict(resolution=64, checkpoints=[4, 8, 16, 32, 64, 128], repeats=3, ref_spp=2048, ref_max_seconds=150.0,
             peer_spp={"mitsuba": [4, 8, 16, 32, 64, 128, 256, 512], "cycles": [4, 8, 16, 32, 64, 128]},
             peer_ref_spp={"mitsuba": 8192, "cycles": 1024}, ceiling_passes=3, scaling_rounds=5,
             per_scene={"prism": dict(resolution=32, checkpoints=[16, 32, 64, 128, 256, 512], ref_spp=4096,
                                      ref_max_seconds=150.0),
-                       "mesh_1m": dict(peer_spp={"mitsuba": [4, 8, 16, 32, 64, 128, 256, 512]},
-                                       peer_ref_spp={"mitsuba": 2048})})
+                       "cornell_grey": dict(ref_spp=8192, ref_max_seconds=240.0),
+                       "mesh_1m": dict(ref_spp=4096, ref_max_seconds=240.0,
+                                       peer_spp={"mitsuba": [4, 8, 16, 32, 64, 128, 256, 512]},
+                                       peer_ref_spp={"mitsuba": 4096})})
 QUICK = dict(resolution=32, checkpoints=[2, 4, 8, 16], repeats=2, ref_spp=256, ref_max_seconds=30.0,
              peer_spp={"mitsuba": [2, 4, 8, 16, 32, 64], "cycles": [2, 4, 8, 16, 32, 64]},
              peer_ref_spp={"mitsuba": 2048, "cycles": 512}, ceiling_passes=2, scaling_rounds=2,
@@ -256,6 +260,24 @@ def measure_stage_split(name, cfg):
                 **{str(t): stage_split.stage_split(scene, {}, t, passes=cfg["ceiling_passes"]) for t in (1, 2)})
 
 
+def equal_time_curve(name, cfg, entry, reference):
+    """Prism's default settings rendered until they have taken as long as the slowest peer's longest
+    render (spp doubling from the first checkpoint, at most 1/8 of the reference's spp), ``repeats``
+    seeds, medians: the Prism side of the equal-time comparisons, so that both curves cover the time
+    at which they are compared."""
+    cfg = scene_config(cfg, name)
+    target = max(max(p["seconds"] for p in peer["curve"]) for peer in entry["peers"])
+    scene = scenes.build(name, (cfg["resolution"], cfg["resolution"]))
+    max_spp = max(cfg["checkpoints"][-1], entry["references"]["cie"]["spp"] // 8)
+    points, _ = progressive_until(scene, settings_for({}, 1, seed=0, threads=THREADS), cfg["checkpoints"][0],
+                                  target, max_spp)
+    runs = [points]
+    checkpoints = [p["spp"] for p in points]
+    for r in range(1, cfg["repeats"]):
+        runs.append(progressive(scene, settings_for({}, 1, seed=r, threads=THREADS), checkpoints)[0])
+    return dict(curve=curve_stats(runs, reference), target_seconds=target, max_spp=max_spp)
+
+
 def run_peer(peer, name, cfg, prism_entry):
     """Run a peer in its own process; return its curve against its own reference."""
     cfg = scene_config(cfg, name)
@@ -388,6 +410,15 @@ def main(argv=None):
                     log(f"  FAILED: {exc}")
                 finally:
                     results["scenes"][name].pop("_ref_image", None)
+            if results["scenes"][name].get("peers"):
+                _section(results, f"Prism on {name} for as long as the peers")
+                try:
+                    results["scenes"][name]["equal_time"] = eq = equal_time_curve(
+                        name, cfg, results["scenes"][name], {"image": images[(name, "cie")]})
+                    last = eq["curve"][-1]
+                    log(f"  Prism: {last['spp']} spp {last['seconds']:.2f} s relMSE {last['relmse']:.3g}")
+                except Exception as exc:
+                    results["errors"].append(f"equal-time Prism curve on {name}: {type(exc).__name__}: {exc}")
     if not args.no_demo:
         _section(results, "demo render (make render) now and before the compiled core")
         try:
