@@ -6,8 +6,9 @@ with ``git archive`` into a temporary folder. Each tree builds the demo scene wi
 ``demo/build_demo_scene.py`` (the same scene script in both) and renders it with its own
 ``render.py --samples 64`` (480 x 320, all cores) in a fresh process, after one untimed 1-spp render
 of the same scene (imports from disk, kernels compiled into the harness's kernel cache, so the timed
-render is a user's second ``make render``). Reported: the process's wall time (bpy start-up, scene
-load, export, render, PNG) and Blender's own ``Time:`` line (the render job). The images are kept.
+render is a user's second ``make render``). matplotlib is hidden from these processes, as it is absent
+from the project's venv and from Blender. Reported: the process's wall time (bpy start-up, scene load,
+export, render, PNG) and Blender's own ``Time:`` line (the render job). The images are kept.
 """
 
 from __future__ import annotations
@@ -34,10 +35,17 @@ def _export_tree(commit: str, folder: Path) -> None:
     subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True, capture_output=True)
 
 
+# Runs a script as ``python script args`` would, with matplotlib hidden: the project's venv
+# (requirements.txt) and Blender have none, but ``make bench`` installs it, and colour-science then
+# imports matplotlib.pyplot (about a second) in every render process.
+_WITHOUT_MATPLOTLIB = ("import runpy, sys; sys.modules['matplotlib'] = None; sys.argv = sys.argv[1:]; "
+                       "sys.path.insert(0, '.'); runpy.run_path(sys.argv[0], run_name='__main__')")
+
+
 def _run(tree: Path, args, env, timeout=1800) -> tuple[float, str]:
     start = time.perf_counter()
-    proc = subprocess.run([sys.executable, *args], cwd=tree, env=env, capture_output=True, text=True,
-                          timeout=timeout)
+    proc = subprocess.run([sys.executable, "-c", _WITHOUT_MATPLOTLIB, *args], cwd=tree, env=env, capture_output=True,
+                          text=True, timeout=timeout)
     seconds = time.perf_counter() - start
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(args[:2])} in {tree} failed ({proc.returncode}): {proc.stderr[-1500:]}")

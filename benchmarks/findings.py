@@ -421,10 +421,11 @@ def document(results, tables, plots, rel):
         "Mitsuba 3 `llvm_ad_spectral` (box filter, independent sampler, emitters hidden from the camera as "
         "Blender lights are) and Cycles through the bpy module on the CPU (no denoising, no adaptive sampling, "
         "its default 1.5 px Blackman-Harris filter). Each is scored against its own high-sample reference. "
-        "On a scene with peers, Prism's default settings are then rendered again until they have run as long "
-        "as the slowest peer's longest render (spp doubling, same seeds, at most 1/8 of the reference's spp), "
-        "and the equal-time ratio is read where both curves end: at the longest time both measured, each "
-        "curve interpolated log-log.",
+        "On a scene with peers, Prism's default settings are rendered again until they have run as long "
+        "as the slowest peer's longest render (spp doubling, at most 1/8 of the reference's spp), one "
+        "repeat at a time, interleaved with the peers' repeats (peer processes of one repeat each), so a "
+        "change in the machine's load falls on every side; the equal-time ratio is read at the longest time "
+        "both curves measured, each interpolated log-log.",
         "- The sampler's gain: every scene also renders its default settings with `sampler=\"independent\"` "
         "(same seeds, same checkpoints, same reference as the Sobol default).",
         "",

@@ -260,37 +260,16 @@ def measure_stage_split(name, cfg):
                 **{str(t): stage_split.stage_split(scene, {}, t, passes=cfg["ceiling_passes"]) for t in (1, 2)})
 
 
-def equal_time_curve(name, cfg, entry, reference):
-    """Prism's default settings rendered until they have taken as long as the slowest peer's longest
-    render (spp doubling from the first checkpoint, at most 1/8 of the reference's spp), ``repeats``
-    seeds, medians: the Prism side of the equal-time comparisons, so that both curves cover the time
-    at which they are compared."""
-    cfg = scene_config(cfg, name)
-    target = max(max(p["seconds"] for p in peer["curve"]) for peer in entry["peers"])
-    scene = scenes.build(name, (cfg["resolution"], cfg["resolution"]))
-    max_spp = max(cfg["checkpoints"][-1], entry["references"]["cie"]["spp"] // 8)
-    points, _ = progressive_until(scene, settings_for({}, 1, seed=0, threads=THREADS), cfg["checkpoints"][0],
-                                  target, max_spp)
-    runs = [points]
-    checkpoints = [p["spp"] for p in points]
-    for r in range(1, cfg["repeats"]):
-        runs.append(progressive(scene, settings_for({}, 1, seed=r, threads=THREADS), checkpoints)[0])
-    return dict(curve=curve_stats(runs, reference), target_seconds=target, max_spp=max_spp)
-
-
-def run_peer(peer, name, cfg, prism_entry):
-    """Run a peer in its own process; return its curve against its own reference."""
-    cfg = scene_config(cfg, name)
+def _peer_round(peer, name, cfg, first_repeat, reference_key):
+    """One peer process rendering repeat ``first_repeat`` of its sweep (and its reference when
+    ``reference_key`` is given); returns the loaded output and the process's wall time."""
     res = cfg["resolution"]
-    version = {"mitsuba": "mitsuba", "cycles": "cycles"}[peer]
-    key = references.peer_reference_key(peer, name, res, cfg["peer_ref_spp"][peer], version)
-    cached = references.load(key)
     with tempfile.TemporaryDirectory() as folder:
         out = os.path.join(folder, "peer.npz")
         cmd = [sys.executable, "-m", f"benchmarks.peers.{peer}", "--scene", name, "--resolution", str(res),
-               "--threads", str(THREADS), "--repeats", str(cfg["repeats"]), "--out", out,
+               "--threads", str(THREADS), "--repeats", "1", "--first-repeat", str(first_repeat), "--out", out,
                "--spp", *[str(s) for s in cfg["peer_spp"][peer]]]
-        if cached is None:
+        if reference_key is not None:
             cmd += ["--reference-spp", str(cfg["peer_ref_spp"][peer]), "--reference-chunks", "8"]
         start = time.perf_counter()
         proc = subprocess.run(cmd, cwd=references.REPO_ROOT, capture_output=True, text=True, timeout=1500)
@@ -299,27 +278,82 @@ def run_peer(peer, name, cfg, prism_entry):
         from .peers.common import load
 
         data = load(out)
-    if cached is None:
-        cached = references.store(key, data["reference"], data["reference_variance"], int(data["reference_spp"]),
-                                  float(data["reference_seconds"]))
-    ref = cached
+    if reference_key is not None:
+        references.store(reference_key, data["reference"], data["reference_variance"], int(data["reference_spp"]),
+                         float(data["reference_seconds"]))
+    return data, time.perf_counter() - start
+
+
+def _peer_result(peer, rounds, ref, prism_ref, wall):
+    """A peer's curve (medians over its rounds) against its own reference."""
+    seconds = np.concatenate([d["seconds"] for d in rounds])
+    images = np.concatenate([d["images"] for d in rounds])
     curve = []
-    for k, spp in enumerate(data["spp"]):
-        errs = [metrics.relmse(data["images"][r, k], ref["image"]) for r in range(len(data["images"]))]
-        flips = [metrics.flip(data["images"][r, k], ref["image"]) for r in range(len(data["images"]))]
-        curve.append(dict(spp=int(spp), seconds=float(np.median(data["seconds"][:, k])),
+    for k, spp in enumerate(rounds[0]["spp"]):
+        errs = [metrics.relmse(images[r, k], ref["image"]) for r in range(len(images))]
+        flips = [metrics.flip(images[r, k], ref["image"]) for r in range(len(images))]
+        curve.append(dict(spp=int(spp), seconds=float(np.median(seconds[:, k])),
                           relmse=float(np.median(errs)), flip=float(np.median(flips)),
-                          relmse_all=[float(e) for e in errs],
-                          seconds_all=[float(t) for t in data["seconds"][:, k]]))
-    prism_ref = prism_entry["_ref_image"]
+                          relmse_all=[float(e) for e in errs], seconds_all=[float(t) for t in seconds[:, k]]))
     ratio = ref["image"] / np.maximum(prism_ref, 1e-6)
     lit = prism_ref > 0.05 * prism_ref.mean()
-    return dict(peer=peer, info=data["info"], curve=curve, wall_seconds=time.perf_counter() - start,
+    return dict(peer=peer, info=rounds[0]["info"], curve=curve, wall_seconds=wall,
                 reference=dict(spp=ref["spp"], seconds=ref["seconds"], cached=ref.get("cached", False),
                                noise_floor=metrics.relmse_noise_floor(ref["image"], ref["variance"]),
-                negative_fraction=float((np.asarray(ref["image"]) < 0).any(axis=2).mean())),
+                               negative_fraction=float((np.asarray(ref["image"]) < 0).any(axis=2).mean())),
                 convention_ratio_median=float(np.median(ratio[lit])),
-                convention_ratio_of_means=float(ref["image"].mean() / prism_ref.mean())), ref["image"]
+                convention_ratio_of_means=float(ref["image"].mean() / prism_ref.mean()))
+
+
+def run_peers(name, cfg, entry, prism_ref, log=log):
+    """The peers of scene ``name`` and Prism's equal-time curve, interleaved repeat by repeat (peer A
+    repeat r, peer B repeat r, Prism repeat r, ...) so that a change in the machine's load falls on
+    every side. Prism's default settings render until they have taken as long as the slowest peer's
+    longest render of the first round (spp doubling from the first checkpoint, at most 1/8 of the
+    reference's spp; later repeats use the same checkpoints), so both curves cover the time at which
+    they are compared. Returns ({peer: result}, {peer: reference image}, equal-time curve or None,
+    {peer: error})."""
+    cfg = scene_config(cfg, name)
+    peers = list(scenes.SCENES[name].peers)
+    keys = {p: references.peer_reference_key(p, name, cfg["resolution"], cfg["peer_ref_spp"][p], p) for p in peers}
+    refs = {p: references.load(keys[p]) for p in peers}
+    rounds = {p: [] for p in peers}
+    walls = {p: 0.0 for p in peers}
+    errors = {}
+    scene = scenes.build(name, (cfg["resolution"], cfg["resolution"]))
+    max_spp = max(cfg["checkpoints"][-1], entry["references"]["cie"]["spp"] // 8)
+    prism_runs, checkpoints, target = [], None, None
+    for r in range(cfg["repeats"]):
+        for peer in [p for p in peers if p not in errors]:
+            log(f"  {peer} repeat {r + 1}/{cfg['repeats']}" + (" + reference" if refs[peer] is None else ""))
+            try:
+                data, wall = _peer_round(peer, name, cfg, r, keys[peer] if refs[peer] is None else None)
+            except Exception as exc:
+                errors[peer] = f"{type(exc).__name__}: {exc}"
+                log(f"  FAILED: {exc}")
+                continue
+            if refs[peer] is None:
+                refs[peer] = references.load(keys[peer])
+            rounds[peer].append(data)
+            walls[peer] += wall
+        done = [p for p in peers if rounds[p]]
+        if not done:
+            break
+        if target is None:
+            target = max(float(rounds[p][0]["seconds"].max()) for p in done)
+            points, _ = progressive_until(scene, settings_for({}, 1, seed=0, threads=THREADS), cfg["checkpoints"][0],
+                                          target, max_spp)
+            checkpoints = [p["spp"] for p in points]
+        else:
+            points, _ = progressive(scene, settings_for({}, 1, seed=r, threads=THREADS), checkpoints)
+        prism_runs.append(points)
+    found = {p: _peer_result(p, rounds[p], refs[p], prism_ref, walls[p]) for p in peers if rounds[p]}
+    images = {p: refs[p]["image"] for p in found}
+    equal_time = None
+    if prism_runs:
+        equal_time = dict(curve=curve_stats(prism_runs, {"image": prism_ref}), target_seconds=target,
+                          max_spp=max_spp)
+    return found, images, equal_time, errors
 
 
 def main(argv=None):
@@ -395,30 +429,26 @@ def main(argv=None):
     except Exception as exc:
         results["errors"].append(f"start-up: {type(exc).__name__}: {exc}")
     if not args.no_peers:
-        for name in [n for n in args.scenes if n in results["scenes"]]:
-            for peer in scenes.SCENES[name].peers:
-                _section(results, f"peer {peer} on {name}")
-                try:
-                    results["scenes"][name]["_ref_image"] = images[(name, "cie")]
-                    peer_result, peer_image = run_peer(peer, name, cfg, results["scenes"][name])
-                    results["scenes"][name].setdefault("peers", []).append(peer_result)
-                    images[(name, peer)] = peer_image
-                    last = peer_result["curve"][-1]
-                    log(f"  {peer}: {last['spp']} spp {last['seconds']:.2f} s relMSE {last['relmse']:.3g}")
-                except Exception as exc:
-                    results["errors"].append(f"peer {peer} on {name}: {type(exc).__name__}: {exc}")
-                    log(f"  FAILED: {exc}")
-                finally:
-                    results["scenes"][name].pop("_ref_image", None)
-            if results["scenes"][name].get("peers"):
-                _section(results, f"Prism on {name} for as long as the peers")
-                try:
-                    results["scenes"][name]["equal_time"] = eq = equal_time_curve(
-                        name, cfg, results["scenes"][name], {"image": images[(name, "cie")]})
-                    last = eq["curve"][-1]
-                    log(f"  Prism: {last['spp']} spp {last['seconds']:.2f} s relMSE {last['relmse']:.3g}")
-                except Exception as exc:
-                    results["errors"].append(f"equal-time Prism curve on {name}: {type(exc).__name__}: {exc}")
+        for name in [n for n in args.scenes if n in results["scenes"] and scenes.SCENES[n].peers]:
+            _section(results, f"peers on {name} ({', '.join(scenes.SCENES[name].peers)}) and Prism, interleaved")
+            entry = results["scenes"][name]
+            try:
+                found, peer_images, equal_time, errors = run_peers(name, cfg, entry, images[(name, "cie")])
+            except Exception as exc:
+                results["errors"].append(f"peers on {name}: {type(exc).__name__}: {exc}")
+                log(f"  FAILED: {exc}")
+                continue
+            for peer, error in errors.items():
+                results["errors"].append(f"peer {peer} on {name}: {error}")
+            for peer, result in found.items():
+                entry.setdefault("peers", []).append(result)
+                images[(name, peer)] = peer_images[peer]
+                last = result["curve"][-1]
+                log(f"  {peer}: {last['spp']} spp {last['seconds']:.2f} s relMSE {last['relmse']:.3g}")
+            if equal_time is not None and found:
+                entry["equal_time"] = equal_time
+                last = equal_time["curve"][-1]
+                log(f"  Prism: {last['spp']} spp {last['seconds']:.2f} s relMSE {last['relmse']:.3g}")
     if not args.no_demo:
         _section(results, "demo render (make render) now and before the compiled core")
         try:
