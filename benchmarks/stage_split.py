@@ -16,12 +16,11 @@ waiting for the last chunk, the pool, other processes).
 
 from __future__ import annotations
 
+import importlib
 import threading
 import time
 from contextlib import contextmanager
-
-from engine.tracer.renderer import Renderer
-from engine.tracer.stages import trace
+from dataclasses import replace
 
 from .prism_runs import PASS_SPP, settings_for
 
@@ -67,10 +66,17 @@ class _Clock:
         return timed
 
 
+def _tracer(scene) -> str:
+    """The tracer package ``scene`` belongs to: ``engine.tracer``, or the add-on's copy
+    (``prism_spectral.engine.tracer``) for a scene exported from Blender by the add-on."""
+    return type(scene).__module__.rsplit(".", 1)[0]
+
+
 @contextmanager
 def timed_stages(renderer, clock: _Clock):
-    """Replace the stage kernels (module ``stages.trace``), the accel's queries and the film's ``add``
-    of ``renderer`` by timing wrappers for the duration of the block."""
+    """Replace the stage kernels (module ``stages.trace`` of the renderer's tracer), the accel's queries
+    and the film's ``add`` of ``renderer`` by timing wrappers for the duration of the block."""
+    trace = importlib.import_module(type(renderer).__module__.rsplit(".", 1)[0] + ".stages.trace")
     module_names = [n for _, names in KERNEL_STAGES for n in names] + [CHUNK]
     saved_module = {n: getattr(trace, n) for n in module_names}
     accel_names = [n for _, names in EMBREE_STAGES for n in names]
@@ -91,15 +97,19 @@ def timed_stages(renderer, clock: _Clock):
         del renderer.film.add
 
 
-def stage_split(scene, overrides: dict, threads: int, passes: int = 3, seed: int = 5) -> dict:
+def stage_split(scene, overrides: dict, threads: int, passes: int = 3, seed: int = 5, settings=None) -> dict:
     """Per pass (mean over ``passes`` wrapped passes after an unwrapped warm-up pass): ``rows``
     [{stage, cpu, wall, calls, share}] for every stage kernel, Embree, the Python around them in the
     chunks and ``film.add`` (share = of ``chunk_cpu``, the CPU time of all chunks; ``film.add`` runs on
     the main thread, outside the chunks); ``pass_seconds`` (wall), ``chunk_cpu``, ``chunk_wall``,
     ``unexplained`` = threads x pass wall - chunk CPU (idle, waits, descheduled), ``threads``,
-    ``paths``."""
-    settings = settings_for(overrides, samples=PASS_SPP * (passes + 2), seed=seed, threads=threads)
-    renderer = Renderer(scene, settings)
+    ``paths``. ``settings`` (else the harness's, with ``overrides``) get the samples, seed and threads."""
+    samples = PASS_SPP * (passes + 2)
+    if settings is None:
+        settings = settings_for(overrides, samples=samples, seed=seed, threads=threads)
+    else:
+        settings = replace(settings, samples=settings.samples_per_pass * (passes + 2), seed=seed, threads=threads)
+    renderer = importlib.import_module(_tracer(scene) + ".renderer").Renderer(scene, settings)
     clock = _Clock()
     try:
         renderer.render_pass()  # warm-up: kernels loaded, buffers allocated

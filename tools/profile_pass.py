@@ -2,6 +2,11 @@
 
     .venv/bin/python tools/profile_pass.py cornell_glass [--size 64] [--spp 16] [--threads 2]
         [--passes 5] [--seed 0] [--no-ceiling] [--no-stages]
+    .venv/bin/python tools/profile_pass.py --blend renders/demo.blend [--spp 4] ...   (bpy module)
+
+The first form renders a benchmark scene (``benchmarks/scenes.py``); ``--blend`` exports a .blend
+file's scene and render settings through the add-on, as ``render.py`` does (``--size`` is then the
+file's resolution).
 
 Prints the best of ``--passes`` timed passes after a warm-up pass (wall and process CPU time, paths/s,
 rays/s), the time bare embreex needs for exactly the rays of one pass (recorded on another, untimed
@@ -14,6 +19,8 @@ shared machine the CPU-time figures are the stable ones; wall-clock ratios need 
 from __future__ import annotations
 
 import argparse
+import importlib
+import os
 import sys
 import time
 from pathlib import Path
@@ -28,6 +35,24 @@ def _timed_pass(renderer):
     return time.perf_counter() - wall, time.process_time() - cpu, renderer.stats["rays_cast"] - rays
 
 
+def _blend(path, args):
+    """(scene, settings) of a .blend file, exported by the add-on as ``render.py`` does."""
+    import bpy
+    from dataclasses import replace
+
+    from render import load_addon_package
+
+    package = load_addon_package()
+    package.register()
+    bpy.ops.wm.open_mainfile(filepath=str(Path(path).resolve()))
+    export = importlib.import_module(package.__name__ + ".engine.export")
+    export_settings = importlib.import_module(package.__name__ + ".engine.export.settings").export_settings
+    scene = export.export_scene(bpy.context.evaluated_depsgraph_get(), [])
+    settings = export_settings(bpy.context.scene, samples=10**6, seed=args.seed, threads=args.threads, preview=False,
+                               border=None)
+    return scene, replace(settings, samples_per_pass=args.spp)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("scene", nargs="?", default="cornell_glass")
@@ -38,22 +63,28 @@ def main(argv=None) -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--no-ceiling", action="store_true")
     parser.add_argument("--no-stages", action="store_true")
+    parser.add_argument("--blend", help="a .blend file to export and profile instead of a benchmark scene")
     args = parser.parse_args(argv)
 
     from dataclasses import replace
 
     from benchmarks import ceiling, prism_runs, scenes, stage_split
-    from engine.tracer.renderer import Renderer
 
-    scene = scenes.build(args.scene, (args.size, args.size))
-    settings = replace(prism_runs.settings_for({}, samples=10**6, seed=args.seed, threads=args.threads),
-                       samples_per_pass=args.spp)
-    paths = args.size * args.size * args.spp
+    if args.blend:
+        scene, settings = _blend(args.blend, args)
+        args.scene = Path(args.blend).name
+    else:
+        scene = scenes.build(args.scene, (args.size, args.size))
+        settings = replace(prism_runs.settings_for({}, samples=10**6, seed=args.seed, threads=args.threads),
+                           samples_per_pass=args.spp)
+    Renderer = importlib.import_module(stage_split._tracer(scene) + ".renderer").Renderer
+    width, height = (int(r) for r in scene.camera.resolution)
+    paths = width * height * args.spp
     with Renderer(scene, settings) as renderer:
         renderer.render_pass()  # warm-up: kernels loaded, buffers allocated
         runs = [_timed_pass(renderer) for _ in range(args.passes)]
         wall, cpu, rays = min(runs)  # the least disturbed pass on a shared machine
-        print(f"scene {args.scene} {args.size}x{args.size}, {args.spp} spp/pass ({paths:,} paths), "
+        print(f"scene {args.scene} {width}x{height}, {args.spp} spp/pass ({paths:,} paths), "
               f"{args.threads} thread(s); best of {args.passes} passes")
         print(f"  pass wall {wall:.4f} s, cpu {cpu:.4f} s, {rays:,} rays ({rays / paths:.2f} per path)")
         print(f"  paths/s {paths / wall:,.0f}   rays/s {rays / wall:,.0f}   rays per CPU-s {rays / cpu:,.0f}")
@@ -71,13 +102,17 @@ def main(argv=None) -> int:
             print(f"  fraction of the ceiling: {embree * rays / n / wall:.1%} (wall), "
                   f"{embree_cpu * rays / n / cpu:.1%} (CPU time)")
     if not args.no_stages:
-        split = stage_split.stage_split(scene, {}, args.threads, passes=args.passes, seed=args.seed)
+        split = stage_split.stage_split(scene, {}, args.threads, passes=args.passes, seed=args.seed, settings=settings)
         print(f"  stages, CPU ms per pass of {split['paths']:,} paths (mean of {args.passes} wrapped passes; "
               f"pass wall {1000 * split['pass_seconds']:.1f} ms, chunks' CPU {1000 * split['chunk_cpu']:.1f} ms):")
         for row in split["rows"]:
             share = "" if row["share"] != row["share"] else f"{100 * row['share']:5.1f} %"
             print(f"    {row['stage']:48s} {1000 * row['cpu']:8.2f}  {share:>7s}  {row['calls']:6.0f} calls")
         print(f"    {'threads x wall - chunks CPU (idle, waits)':48s} {1000 * split['unexplained']:8.2f}")
+    if args.blend:  # the bpy module can hang at exit after a render (../shared/ENVIRONMENT.md)
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(0)
     return 0
 
 

@@ -56,6 +56,7 @@ def test_replay_finds_the_renderers_hits(glass_scene):
 
 def test_stage_split_accounts_for_the_chunks_and_restores_the_kernels(glass_scene):
     originals = {name: getattr(trace, name) for _, names in stage_split.KERNEL_STAGES for name in names}
+    originals[stage_split.CHUNK] = getattr(trace, stage_split.CHUNK)
     split = stage_split.stage_split(glass_scene, {}, threads=1, passes=1)
     assert {name: getattr(trace, name) for name in originals} == originals
     rows = {r["stage"]: r for r in split["rows"]}
