@@ -8,11 +8,13 @@ with ``git archive`` into a temporary folder. Each tree builds the demo scene wi
 of the same scene (imports from disk, kernels compiled into the harness's kernel cache, so the timed
 render is a user's second ``make render``). matplotlib is hidden from these processes, as it is absent
 from the project's venv and from Blender. Reported: the process's wall time (bpy start-up, scene load,
-export, render, PNG) and Blender's own ``Time:`` line (the render job). The images are kept.
+export, render, PNG) and Blender's own ``Time:`` line (the render job). The images are kept, and the
+demo scene's pass is split by stage (``tools/profile_pass.py --blend``) to say where its time goes.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import shutil
@@ -69,6 +71,17 @@ def _timed(tree: Path, blend: Path, spp: int, image: Path, env) -> dict:
     return dict(process_seconds=seconds, blender_seconds=_blender_seconds(output), image=str(image))
 
 
+def _profile(blend: Path, path: Path, env) -> dict:
+    """The demo scene's pass split by stage and against the embreex ceiling (``tools/profile_pass.py
+    --blend``, 4-spp passes, 2 threads), or ``{"error": ...}``."""
+    try:
+        _run(REPO_ROOT, ["tools/profile_pass.py", "--blend", str(blend), "--spp", "4", "--passes", "3",
+                         "--json", str(path)], env)
+        return json.loads(path.read_text())
+    except (RuntimeError, OSError, ValueError) as exc:
+        return dict(error=f"{type(exc).__name__}: {str(exc)[-300:]}")
+
+
 def measure(results_dir: Path, quick: bool) -> dict:
     """Time the demo render of this tree and of ``BEFORE_COMMIT``'s; images go to ``results_dir``
     (``demo.png``, ``demo_before.png``). ``before`` holds an ``error`` when that tree is not available
@@ -103,6 +116,7 @@ def measure(results_dir: Path, quick: bool) -> dict:
         out["now"] = dict(process_seconds=sum(r["process_seconds"] for r in now_runs) / len(now_runs),
                           blender_seconds=sum(r["blender_seconds"] for r in now_runs) / len(now_runs),
                           runs=[r["process_seconds"] for r in now_runs], image="demo.png")
+        out["profile"] = _profile(now_blend, tmp / "profile.json", env)
     out["load_end"] = list(os.getloadavg())
     if "process_seconds" in out.get("before", {}):
         out["speedup_process"] = out["before"]["process_seconds"] / out["now"]["process_seconds"]

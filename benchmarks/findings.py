@@ -357,6 +357,26 @@ def _demo_section(demo, rel):
     return "\n".join(lines)
 
 
+def _demo_profile(demo):
+    """Where the demo scene's pass goes (its stage split), or a note."""
+    prof = demo.get("profile")
+    if not prof:
+        return []
+    if "error" in prof:
+        return [f"The demo scene's profile failed in this run ({prof['error']}).", ""]
+    split = prof["stages"]
+    lines = [f"Where a pass of the demo scene goes (`tools/profile_pass.py --blend demo.blend --spp {prof['spp']}`, "
+             f"{prof['width']} x {prof['height']}, {prof['triangles']:,} triangles, {prof['threads']} threads): "
+             f"{prof['rays'] / prof['paths']:.2f} rays per path, {1e6 * split['chunk_cpu'] / split['paths']:.2f} "
+             f"CPU-us per path in the chunks, {_pct(prof.get('fraction'))} of the embreex ceiling "
+             f"({_pct(prof.get('cpu_fraction'))} in CPU time).", "",
+             "| stage | CPU ms per pass | share |", "|---|---:|---:|"]
+    for row in split["rows"]:
+        if np.isfinite(row["share"]):
+            lines.append(f"| {row['stage']} | {1000 * row['cpu']:.1f} | {_pct(row['share'])} |")
+    return lines + [""]
+
+
 def _cell(value):
     if isinstance(value, float):
         return "n/a" if not np.isfinite(value) else f"{value:.3g}"
@@ -497,7 +517,7 @@ def document(results, tables, plots, rel):
                   f"`make render`'s scene and command (`render.py demo.blend --samples {demo['spp']}`, "
                   "480 x 320, all cores), each tree rendering its own build of the demo scene after an untimed "
                   "1-spp render; the compiled core is timed before and after the numpy tracer and averaged "
-                  "(`benchmarks/demo.py`).", "", _demo_section(demo, rel), ""]
+                  "(`benchmarks/demo.py`).", "", _demo_section(demo, rel), ""] + _demo_profile(demo)
     for name, table in tables.items():
         entry = results["scenes"][name]
         refs = ", ".join(f"{k}: {v['spp']} spp, {v['seconds']:.0f} s, noise floor {v['noise_floor']:.2g}"

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import json
 import os
 import sys
 import time
@@ -64,7 +65,9 @@ def main(argv=None) -> int:
     parser.add_argument("--no-ceiling", action="store_true")
     parser.add_argument("--no-stages", action="store_true")
     parser.add_argument("--blend", help="a .blend file to export and profile instead of a benchmark scene")
+    parser.add_argument("--json", help="also write the figures to this file (JSON)")
     args = parser.parse_args(argv)
+    report = dict(scene=args.scene, threads=args.threads, spp=args.spp)
 
     from dataclasses import replace
 
@@ -88,6 +91,8 @@ def main(argv=None) -> int:
               f"{args.threads} thread(s); best of {args.passes} passes")
         print(f"  pass wall {wall:.4f} s, cpu {cpu:.4f} s, {rays:,} rays ({rays / paths:.2f} per path)")
         print(f"  paths/s {paths / wall:,.0f}   rays/s {rays / wall:,.0f}   rays per CPU-s {rays / cpu:,.0f}")
+        report.update(scene=args.scene, width=width, height=height, paths=paths, pass_seconds=wall, pass_cpu=cpu,
+                      rays=rays, triangles=int(len(renderer.geometry.triangles)))
         if not args.no_ceiling:
             recorder = ceiling.record_pass(renderer)
             replayer = ceiling.Replayer(renderer.geometry, recorder.batches, args.threads)
@@ -101,6 +106,7 @@ def main(argv=None) -> int:
             # the recorded pass and the timed passes cast about as many rays: scale to the timed pass's
             print(f"  fraction of the ceiling: {embree * rays / n / wall:.1%} (wall), "
                   f"{embree_cpu * rays / n / cpu:.1%} (CPU time)")
+            report.update(fraction=embree * rays / n / wall, cpu_fraction=embree_cpu * rays / n / cpu)
     if not args.no_stages:
         split = stage_split.stage_split(scene, {}, args.threads, passes=args.passes, seed=args.seed, settings=settings)
         print(f"  stages, CPU ms per pass of {split['paths']:,} paths (mean of {args.passes} wrapped passes; "
@@ -109,6 +115,9 @@ def main(argv=None) -> int:
             share = "" if row["share"] != row["share"] else f"{100 * row['share']:5.1f} %"
             print(f"    {row['stage']:48s} {1000 * row['cpu']:8.2f}  {share:>7s}  {row['calls']:6.0f} calls")
         print(f"    {'threads x wall - chunks CPU (idle, waits)':48s} {1000 * split['unexplained']:8.2f}")
+        report["stages"] = split
+    if args.json:
+        Path(args.json).write_text(json.dumps(report, indent=1))
     if args.blend:  # the bpy module can hang at exit after a render (../shared/ENVIRONMENT.md)
         sys.stdout.flush()
         sys.stderr.flush()
