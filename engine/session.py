@@ -23,6 +23,7 @@ from .export.settings import export_settings  # noqa: E402
 from .fingerprint import render_fingerprint  # noqa: E402
 from .render_engine import enabled_passes  # noqa: E402
 from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
+from .stats import stats_line, timecode  # noqa: E402
 from .tracer.errors import PrismInputError  # noqa: E402
 
 
@@ -60,7 +61,10 @@ class RenderSession:
     def run(self) -> RenderReport:
         self.report.started = True
         try:
-            self._render()
+            if self.request.show_image is not None:
+                self._show(self.request.show_image)
+            else:
+                self._render()
         except PrismInputError as error:
             self.fail(str(error))
         except MemoryError:
@@ -90,7 +94,7 @@ class RenderSession:
             scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border
         )
         self.report.warnings = warnings
-        for message in warnings:
+        for message in warnings if not engine.is_preview else ():  # Blender's preview scene: not the user's to fix
             engine.report({"WARNING"}, message)
             self._print(f"Prism: warning: {message}")
         engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
@@ -111,8 +115,17 @@ class RenderSession:
                     samples=renderer.samples_done - req.sample_offset,
                     sample_offset=req.sample_offset,
                     seed=settings.seed,
-                    fingerprint=render_fingerprint(tracer_scene, settings),
+                    fingerprint=render_fingerprint(tracer_scene, settings, scene.frame_current + scene.frame_subframe),
                 )
+
+    def _show(self, image: np.ndarray) -> None:
+        """Fill the Render Result with a finished image (see ``RenderRequest.show_image``)."""
+        height, width = image.shape[:2]
+        result = self.engine.begin_result(0, 0, width, height, layer=self.depsgraph.view_layer.name)
+        try:
+            result.layers[0].passes["Combined"].rect = bottom_up(np.asarray(image, np.float32), alpha=True)
+        finally:
+            self.engine.end_result(result)
 
     def _passes(self, renderer, border, width, height, target, warnings) -> None:
         engine = self.engine
@@ -160,7 +173,8 @@ class RenderSession:
                 line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings)
                 engine.update_stats("", line)
                 self.report.stats = line
-                self._print(line)
+                # Blender's "Time: …" line, once per pass: render farms (Flamenco) count these as steps.
+                self._print(f"Time: {timecode(time.perf_counter() - started)} | {line}")
                 if self.cancelled:
                     break
         finally:
@@ -189,20 +203,3 @@ def bottom_up(image: np.ndarray, alpha: bool = False) -> np.ndarray:
         rgba[..., :channels] = image
         image = rgba
     return np.ascontiguousarray(image[::-1], dtype=np.float32).reshape(height * width, -1)
-
-
-def stats_line(renderer, pass_index: int, done: int, target: int, seconds: float, warnings) -> str:
-    """``Prism | Pass 3 | 12/64 spp | 1.30 M rays/s | <strategy> | ...`` for Blender's status bar."""
-    stats = renderer.stats
-    rays_per_second = stats.get("rays_cast", 0) / seconds if seconds > 0 else 0.0
-    parts = [
-        f"Prism | Pass {pass_index} | {done}/{target} spp",
-        f"{rays_per_second / 1e6:.2f} M rays/s",
-        renderer.strategy,
-    ]
-    if stats.get("nan_samples"):
-        parts.append(f"{stats['nan_samples']} NaN samples dropped")
-    notes = list(warnings) + list(stats.get("warnings") or [])
-    if notes:
-        parts.append(f"{len(notes)} warning(s): {notes[0]}")
-    return " | ".join(parts)

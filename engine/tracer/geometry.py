@@ -1,8 +1,8 @@
-"""The render's triangles, relative to the camera, and the hit-point maths the kernels share.
+"""The render's triangles, relative to the render's origin, and the hit-point maths the kernels share.
 
-World positions are float64 (``scene.Scene``); the camera position is subtracted in float64 before
-anything becomes float32, so Embree's float32 precision is spent near the camera: a scene moved 1e7 m
-from the origin renders as it does at the origin. Zero-area and non-finite triangles are dropped here
+World positions are float64 (``scene.Scene``); the origin (the camera position, see ``cameras``) is
+subtracted in float64 before anything becomes float32, so Embree's float32 precision is spent near the
+camera: a scene moved 1e7 m from the origin renders as it does at the origin. Zero-area and non-finite triangles are dropped here
 (Embree ids are then this table's rows; ``original`` maps them back for messages).
 
 ``Geometry``: ``vertices`` float32 [V, 3] (camera-relative metres), ``triangles`` int32 [T, 3],
