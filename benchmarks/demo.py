@@ -4,12 +4,13 @@ Both sides run exactly what ``make render`` runs, each from its own source tree:
 the tree of ``BEFORE_COMMIT`` (the numpy tracer, the last commit before the compiled core) exported
 with ``git archive`` into a temporary folder. Each tree builds the demo scene with its own
 ``demo/build_demo_scene.py`` (the same scene script in both) and renders it with its own
-``render.py --samples 64`` (480 x 320, all cores) in a fresh process, after one untimed 1-spp render
-of the same scene (imports from disk, kernels compiled into the harness's kernel cache, so the timed
-render is a user's second ``make render``). matplotlib is hidden from these processes, as it is absent
+``render.py --samples 64`` (480 x 320, all cores) in a fresh process, twice (seeds 0 and 1, the trees
+taking turns), after one untimed 1-spp render of the same scene (imports from disk, kernels compiled
+into the harness's kernel cache, so the timed render is a user's second ``make render``). matplotlib is hidden from these processes, as it is absent
 from the project's venv and from Blender. Reported: the process's wall time (bpy start-up, scene load,
-export, render, PNG) and Blender's own ``Time:`` line (the render job). The images are kept, and the
-demo scene's pass is split by stage (``tools/profile_pass.py --blend``) to say where its time goes.
+export, render, PNG) and Blender's own ``Time:`` line (the render job), each the mean of the two seeds;
+the noise of each tree's image (``display_noise``: what two seeds disagree on, in display levels); the
+images; and the demo scene's pass split by stage (``tools/profile_pass.py --blend``).
 """
 
 from __future__ import annotations
@@ -66,9 +67,25 @@ def _prepare(tree: Path, work: Path, env) -> Path:
     return blend
 
 
-def _timed(tree: Path, blend: Path, spp: int, image: Path, env) -> dict:
-    seconds, output = _run(tree, ["render.py", str(blend), "--samples", str(spp), "--output", str(image)], env)
+def _timed(tree: Path, blend: Path, spp: int, image: Path, seed: int, env) -> dict:
+    seconds, output = _run(tree, ["render.py", str(blend), "--samples", str(spp), "--seed", str(seed),
+                                  "--output", str(image)], env)
     return dict(process_seconds=seconds, blender_seconds=_blender_seconds(output), image=str(image))
+
+
+def display_noise(first: Path, second: Path) -> float:
+    """Noise of one image in 8-bit display levels: the RMS difference of two renders with different
+    seeds (as PNGs, through the scene's view transform, as a user sees them) divided by sqrt(2)."""
+    import imageio.v3 as iio
+    import numpy as np
+
+    a = iio.imread(first)[..., :3].astype(np.float64)
+    b = iio.imread(second)[..., :3].astype(np.float64)
+    return float(np.sqrt(np.mean((a - b) ** 2) / 2.0))
+
+
+def _mean(runs, key):
+    return sum(r[key] for r in runs) / len(runs)
 
 
 def _profile(blend: Path, path: Path, env) -> dict:
@@ -104,21 +121,24 @@ def measure(results_dir: Path, quick: bool) -> dict:
             before_blend = _prepare(before_tree, tmp / "before", env)
         except (subprocess.CalledProcessError, RuntimeError, OSError) as exc:
             out["before"] = dict(error=f"{type(exc).__name__}: {str(exc)[-300:]}")
-        # interleaved: now, before, now -- a change in the machine's load falls on both
-        now_runs = [_timed(REPO_ROOT, now_blend, spp, tmp / "now" / "demo.png", env)]
-        if before_blend is not None:
-            out["before"] = _timed(before_tree, before_blend, spp, tmp / "before" / "demo.png", env)
-            shutil.copyfile(out["before"]["image"], results_dir / "demo_before.png")
-            out["before"]["image"] = "demo_before.png"
-            now_runs.append(_timed(REPO_ROOT, now_blend, spp, tmp / "now" / "demo.png", env))
-        shutil.copyfile(now_runs[-1]["image"], results_dir / "demo.png")
-        # the mean of the runs before and after the old tree's: the load they saw brackets its load
-        out["now"] = dict(process_seconds=sum(r["process_seconds"] for r in now_runs) / len(now_runs),
-                          blender_seconds=sum(r["blender_seconds"] for r in now_runs) / len(now_runs),
-                          runs=[r["process_seconds"] for r in now_runs], image="demo.png")
+        # interleaved: now, before, now, before (seeds 0, 0, 1, 1) -- a change in the machine's load falls
+        # on both, and each tree's two seeds measure its noise
+        runs = {"now": [], "before": []}
+        trees = [("now", REPO_ROOT, now_blend)] + ([("before", before_tree, before_blend)] if before_blend else [])
+        for seed in (0, 1):
+            for side, tree, blend in trees:
+                runs[side].append(_timed(tree, blend, spp, tmp / side / f"demo_{seed}.png", seed, env))
+        for side, _, _ in trees:
+            name = "demo.png" if side == "now" else "demo_before.png"
+            shutil.copyfile(runs[side][0]["image"], results_dir / name)
+            out[side] = dict(process_seconds=_mean(runs[side], "process_seconds"),
+                             blender_seconds=_mean(runs[side], "blender_seconds"),
+                             runs=[r["process_seconds"] for r in runs[side]], image=name,
+                             noise=display_noise(runs[side][0]["image"], runs[side][1]["image"]))
         out["profile"] = _profile(now_blend, tmp / "profile.json", env)
     out["load_end"] = list(os.getloadavg())
     if "process_seconds" in out.get("before", {}):
         out["speedup_process"] = out["before"]["process_seconds"] / out["now"]["process_seconds"]
         out["speedup_blender"] = out["before"]["blender_seconds"] / out["now"]["blender_seconds"]
+        out["noise_ratio"] = out["before"]["noise"] / out["now"]["noise"]
     return out
