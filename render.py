@@ -3,11 +3,13 @@
     blender -b scene.blend -P render.py -- --samples 64 --output out.png
     python render.py scene.blend --samples 64 --output out.exr      (bpy module)
 
-Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--frames A..B`` (``#``
+Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--noise-threshold T`` and
+``--min-samples N`` (adaptive sampling), ``--time-limit SECONDS``, ``--frames A..B`` (``#``
 in ``--output`` becomes the zero-padded frame number, else ``_NNNN`` is
 appended; without ``--frames``, ``#`` becomes the current frame's number, as in
 Blender), ``--output`` ``.png`` (the scene's view transform) or ``.exr``
-(scene-linear, 32-bit float). ``--lens-diagram out.png`` writes the lens overlay
+(scene-linear, 32-bit float; a multilayer EXR with every pass when the view
+layer has passes besides Combined). ``--lens-diagram out.png`` writes the lens overlay
 drawing (cross-section, wavelength-coloured ray fans, spot diagram) of the
 camera's real lens, with or without a render.
 
@@ -22,6 +24,10 @@ them weighted by their samples. Chunks ``0..K-1`` merge to the same image, bit
 for bit, as one render of ``K*N`` samples written with ``--chunk-seed 0`` (see
 ``engine/chunks.py`` for when that holds); a merged PNG has the pixels of that
 render's PNG.
+
+``--spectral-output spectra.exr`` also writes a multispectral EXR (the layout
+of Fichet et al. 2021, read by colour-science): radiance in wavelength bands
+across 360-830 nm, band width from Render ▸ Prism ▸ Spectral Output.
 
 Every output is written whole or not at all (a temporary file, then one rename).
 Ctrl-C (or SIGTERM) stops the render after the current chunk: the file being
@@ -121,13 +127,17 @@ def check_scene(scene, prism: Prism) -> None:
     prism.export.render_border(scene, width, height)  # Blender says only "Image too small"
 
 
-def batch_request(arguments, prism: Prism, signals):
+def batch_request(arguments, prism: Prism, signals, spectral_output: Path | None = None):
     """The RenderRequest of one batch frame: the command line's overrides, no quick first pass."""
     chunked = arguments.chunk_seed is not None
     return prism.requests.RenderRequest(
+        spectral_output=str(spectral_output) if spectral_output else None,
         samples=arguments.samples,
         seed=arguments.seed,
         threads=arguments.threads,
+        noise_threshold=arguments.noise_threshold,
+        min_samples=arguments.min_samples,
+        time_limit_s=arguments.time_limit,
         sample_offset=arguments.chunk_seed * arguments.samples if chunked else 0,
         quick_first_pass=False,
         keep_film=chunked,
@@ -136,8 +146,8 @@ def batch_request(arguments, prism: Prism, signals):
     )
 
 
-def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
-    """Render the current frame to ``output`` (whole, or not at all)."""
+def render_frame(arguments, output: Path, prism: Prism, signals, frame: int | None = None) -> Path:
+    """Render the current frame to ``output`` (whole, or not at all); frame ``frame`` of a --frames run."""
     import bpy
 
     scene = bpy.context.scene
@@ -147,12 +157,21 @@ def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
     if chunked:  # what `--output x.png` would write with, for a merge into a PNG
         with output_format(scene, "PNG"):
             png_settings = prism.module("engine.png_output").png_settings(scene)
+    file_format = OUTPUT_FORMATS[output.suffix.lower()]
+    if file_format == "OPEN_EXR" and not chunked and prism.module("engine.passes").enabled_passes(scene):
+        file_format = "OPEN_EXR_MULTILAYER"  # every pass, named as Blender names them
     with (
-        output_format(scene, OUTPUT_FORMATS[output.suffix.lower()]),
+        output_format(scene, file_format),
         prism.output_files.atomic_output(output, signals) as temporary,
     ):
         blender_error = None
-        with prism.requests.render_request(batch_request(arguments, prism, signals)) as report:
+        spectral = None
+        if arguments.spectral_output:
+            spectral = Path(arguments.spectral_output).resolve()
+            files = prism.output_files  # '#' becomes the frame number, as in --output
+            spectral = files.numbered_output(spectral, scene.frame_current) if frame is None else files.frame_output(
+                spectral, frame)
+        with prism.requests.render_request(batch_request(arguments, prism, signals, spectral)) as report:
             try:
                 # No write_still: Blender would announce the temporary file ("Saved: '.out.prism-…'").
                 bpy.ops.render.render(write_still=False)
@@ -172,6 +191,8 @@ def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
             chunks.write_chunk(temporary, chunks.chunk_of_film(report.film, png_settings))
         else:
             save_render_result(scene, temporary, output, prism)
+    if report.spectral_output:
+        _wrote(Path(report.spectral_output))
     return output
 
 
@@ -181,7 +202,7 @@ def output_format(scene, file_format: str):
     settings = scene.render.image_settings
     before = settings.file_format, settings.color_depth
     settings.file_format = file_format
-    if file_format == "OPEN_EXR":
+    if file_format.startswith("OPEN_EXR"):
         settings.color_depth = "32"
     try:
         yield settings
@@ -253,7 +274,7 @@ def render_all(arguments, prism: Prism, signals) -> None:
         signals.raise_if_stopped(f"frame {frame} and the frames after it")
         print(f"Prism: frame {frame} ({frame - first + 1}/{last - first + 1})", file=sys.stderr, flush=True)
         scene.frame_set(frame)
-        _wrote(render_frame(arguments, prism.output_files.frame_output(output, frame), prism, signals))
+        _wrote(render_frame(arguments, prism.output_files.frame_output(output, frame), prism, signals, frame))
 
 
 def merge(arguments, prism: Prism, signals) -> None:

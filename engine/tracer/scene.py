@@ -16,12 +16,25 @@ from .errors import PrismInputError
 
 
 @dataclass(frozen=True)
+class SampledSpectrum:
+    """Values measured or tabulated at increasing ``wavelength_nm`` (e.g. read from a spectrum file);
+    ``source`` says where they came from, for messages (not part of the physics)."""
+
+    wavelength_nm: tuple[float, ...]
+    values: tuple[float, ...]
+    source: str = ""
+
+
+@dataclass(frozen=True)
 class SpectrumSpec:
     """How an emitter's spectrum is defined.
 
     kind: ``"rgb"`` (linear Rec.709 triple, upsampled against D65),
-    ``"blackbody"`` (``temperature_k``, 1000-40000 K) or ``"monochromatic"``
-    (a narrow line at ``wavelength_nm`` with full width ``width_nm``).
+    ``"blackbody"`` (``temperature_k``, 1000-40000 K), ``"monochromatic"``
+    (a narrow line at ``wavelength_nm`` with full width ``width_nm``),
+    ``"illuminant"`` (``illuminant``: a key of colour-science's ``SDS_ILLUMINANTS``,
+    e.g. ``"FL2"``, ``"LED-B3"``, ``"HP1"``) or ``"tabulated"`` (``table``, a
+    ``SampledSpectrum``, e.g. from a spectrum file).
     The spectrum is normalised so its luminance is that of the RGB white of the
     same strength; strength/power lives on the light, not here.
     """
@@ -31,6 +44,22 @@ class SpectrumSpec:
     temperature_k: float = 6500.0
     wavelength_nm: float = 550.0
     width_nm: float = 10.0
+    illuminant: str = ""
+    table: SampledSpectrum | None = None
+
+
+@dataclass(frozen=True)
+class ReflectanceSpec:
+    """A measured reflectance used instead of an RGB base colour.
+
+    kind: ``"measured"`` (``name`` = ``"<colour checker>: <patch>"`` from colour-science's
+    ``SDS_COLOURCHECKERS``, e.g. ``"ColorChecker N Ohta: dark skin"``) or ``"tabulated"``
+    (``table``: values 0-1, e.g. from a spectrum file).
+    """
+
+    kind: str = "measured"
+    name: str = ""
+    table: SampledSpectrum | None = None
 
 
 @dataclass
@@ -48,6 +77,8 @@ class Material:
     thin-film interference over a dielectric or conductor.
     ``emission_strength`` > 0 makes the surface an emitter (radiance =
     strength x spectrum, as Cycles' Emission strength).
+    ``reflectance``, when set, replaces ``base_color`` wherever a base colour is
+    used (diffuse albedo, a conductor's normal-incidence reflectance).
     """
 
     name: str
@@ -65,6 +96,8 @@ class Material:
     film_ior: float = 1.33
     emission: SpectrumSpec | None = None
     emission_strength: float = 0.0
+    aovs: dict = field(default_factory=dict)  # shader AOV name -> (r, g, b, value) on this material
+    reflectance: ReflectanceSpec | None = None
 
 
 @dataclass
@@ -100,6 +133,7 @@ class Light:
     size_u_m: float = 1.0
     size_v_m: float = 1.0
     sun_angle_rad: float = 0.0
+    light_group: str = ""  # Blender's Object ▸ Shading ▸ Light Group ("" = none)
 
 
 @dataclass
@@ -137,6 +171,7 @@ class World:
 
     color: tuple[float, float, float] = (0.0, 0.0, 0.0)
     strength: float = 1.0
+    light_group: str = ""
 
 
 @dataclass
@@ -149,7 +184,8 @@ class Scene:
     ``triangle_material`` int32 [T] indexes ``materials``, ``triangle_object``
     int32 [T] indexes ``object_names`` (for messages), ``corner_normals`` float32
     [T, 3, 3] (unit shading normals at each triangle corner) or None for flat
-    shading.
+    shading. ``object_light_groups`` (parallel to ``object_names``, may be empty): each object's light
+    group, for the light its emissive triangles give.
     """
 
     vertices: np.ndarray
@@ -162,6 +198,7 @@ class Scene:
     triangle_object: np.ndarray | None = None
     object_names: list[str] = field(default_factory=list)
     corner_normals: np.ndarray | None = None
+    object_light_groups: list[str] = field(default_factory=list)
 
     @property
     def triangle_count(self) -> int:
