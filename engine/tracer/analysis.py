@@ -5,6 +5,8 @@
 - Emissive meshes are light-sampled only if some used material emits.
 - Shadow rays cross free-standing films only if the scene has one (else one occlusion query each).
 - Wavelength sampling is guided toward emission lines only if an emitter has one.
+- Caustics come from light tracing (``choose_light_tracing``) only if a smooth glass or mirror can
+  focus a light onto a surface that is not purely specular, seen through a pinhole or thin lens.
 """
 
 from __future__ import annotations
@@ -28,6 +30,8 @@ class SceneAnalysis:
     camera_strategy: str = ""
     see_through_films: bool = False
     sampler: str = "sobol"
+    light_tracing: bool = False
+    light_tracing_note: str = ""  # what the stats line says about light tracing
 
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
         """One line for the render stats."""
@@ -52,4 +56,24 @@ class SceneAnalysis:
         parts.append(f"{self.sampler} sampler")
         if self.camera_strategy:
             parts.append(self.camera_strategy)
+        if self.light_tracing_note:
+            parts.append(self.light_tracing_note)
         return " | ".join(parts)
+
+
+def choose_light_tracing(mode: str, specular: list[str], films: list[str], receivers: bool, lights: bool,
+                         real_lens: bool) -> tuple[bool, str]:
+    """(trace caustics from the lights?, the stats line's words) for the setting ``mode`` ("auto", "off",
+    "on"); ``specular``: names of the purely specular materials that can focus light (smooth glass,
+    mirrors), ``films``: free-standing films (they only count when forced on), ``receivers``: some
+    surface is not purely specular, ``lights``: some light other than the world emits."""
+    if mode == "off":
+        return False, "light tracing off"
+    focusing = specular + (films if mode == "on" else [])
+    if real_lens:
+        return False, "caustics by path tracing (real lens)"
+    if not focusing:
+        return False, "no caustics to light-trace" if mode == "auto" else "light tracing on, but nothing specular"
+    if not (receivers and lights):
+        return False, "no caustics to light-trace" if mode == "auto" else "light tracing on, but no light or receiver"
+    return True, f"caustics by light tracing ({', '.join(focusing)})"

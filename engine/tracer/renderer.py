@@ -27,13 +27,14 @@ from concurrent.futures import CancelledError, ThreadPoolExecutor
 import numpy as np
 
 from .accel import Accel
-from .analysis import SceneAnalysis
+from .analysis import SceneAnalysis, choose_light_tracing
 from .cameras import make_camera
 from .errors import PrismInputError
 from .film import Film
 from .geometry import prepare_geometry
+from .lights.caustic_targets import build_caustic_targets
 from .lights.table import build_lights
-from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials, is_emissive
+from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials, is_emissive
 from .sampler import SAMPLERS
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
@@ -53,6 +54,13 @@ def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int
 
 def worker_threads(requested: int) -> int:
     return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
+
+
+def _kept(triangle_object, original):
+    """The object of each kept triangle (``original``: their indices before dropping), or None."""
+    if triangle_object is None:
+        return None
+    return np.asarray(triangle_object)[original]
 
 
 def _monochromatic_lines(scene, used):
@@ -96,7 +104,11 @@ class Renderer:
         self.spectra = spectra.arrays()
         self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
                                               bool(settings.use_mis), SAMPLERS[settings.sampler],
-                                              int(settings.seed) & 0xFFFFFFFF)
+                                              int(settings.seed) & 0xFFFFFFFF, bool(self.analysis.light_tracing))
+        self.caustic_targets = None
+        if self.analysis.light_tracing:
+            self.caustic_targets = build_caustic_targets(self.geometry, materials.flags, MAT_DELTA,
+                                                         _kept(scene.triangle_object, self._original_triangle))
         self.accel = Accel(self.geometry)
         self.film = Film(self.width, self.height)
         self._pixels = self._pixel_list(settings.border)
@@ -125,6 +137,8 @@ class Renderer:
             "paths": 0,
             "warnings": warnings,
             "strategy": self.strategy,
+            "light_paths": 0,
+            "light_splats": 0,
         }
 
     def _analyse(self, used) -> SceneAnalysis:
@@ -144,6 +158,13 @@ class Renderer:
         a.light_kinds = [light.kind for light in self.scene.lights]
         a.features = list(self.material_table.features)
         a.world = self.light_table.arrays.world_strength > 0
+        specular, films = [], []
+        for m in used:
+            if flags[m] & MAT_DELTA:
+                (films if flags[m] & MAT_NULL else specular).append(self.scene.materials[m].name)
+        a.light_tracing, a.light_tracing_note = choose_light_tracing(
+            s.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used),
+            self.light_table.arrays.select_prob.shape[0] > 0, self.camera.lens is not None)
         return a
 
     def _pixel_list(self, border):
@@ -163,13 +184,21 @@ class Renderer:
             buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count)
         return buffers
 
-    def _chunk(self, start, stop, spp):
-        """Trace paths ``start .. stop`` of the pass; returns (pixel [n], rgb [n, 3], rays, counters)."""
-        from .stages.trace import trace_chunk
-
+    def _chunk(self, start, stop, spp, light=False):
+        """Trace camera (or, with ``light``, light) paths ``start .. stop`` of the pass; returns
+        (pixel [n], rgb [n, 3], rays, counters): one sample per camera path, the splats of light paths."""
         count = stop - start
         buffers = self._buffers(count)
         clamps = np.zeros_like(self._glass_clamps)
+        if light:
+            from .stages.light_trace import light_buffers, trace_light_chunk
+
+            extra = light_buffers(self._local, count)
+            splats, rays, rejected = trace_light_chunk(self, buffers, extra, start, count, spp, self.samples_done,
+                                                       clamps)
+            return extra.pixel[:splats].copy(), buffers.rgb[:splats].copy(), rays, rejected, clamps
+        from .stages.trace import trace_chunk
+
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
         return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps
 
@@ -213,15 +242,19 @@ class Renderer:
         total = len(self._pixels) * spp
         size = chunk_size(total, self._workers, spp)
         bounds = list(range(0, total, size)) + [total]
-        chunks = list(zip(bounds[:-1], bounds[1:]))
+        chunks = [(a, b, False) for a, b in zip(bounds[:-1], bounds[1:])]
+        if self.analysis.light_tracing:  # as many light paths as camera paths, numbered the same way
+            chunks += [(a, b, True) for a, b, _ in chunks]
         window = 2 * self._workers  # chunks in flight: bounded memory for huge frames
         jobs = self._jobs
+        light_splats = []  # (pixel, rgb, paths) of the pass's light chunks, in chunk order
         try:
             for i in range(len(chunks)):
                 with self._jobs_lock:
                     for j in range(i, min(i + window, len(chunks))):
                         if j not in jobs and not self._cancel.is_set():
-                            jobs[j] = self._pool.submit(self._chunk, *chunks[j], spp)
+                            start, stop, light = chunks[j]
+                            jobs[j] = self._pool.submit(self._chunk, start, stop, spp, light)
                 job = jobs.get(i)
                 if job is None:
                     break
@@ -231,7 +264,10 @@ class Renderer:
                     break
                 with self._jobs_lock:
                     del jobs[i]
-                self.film.add(pixel, rgb)
+                if chunks[i][2]:
+                    light_splats.append((pixel, rgb, chunks[i][1] - chunks[i][0]))
+                else:
+                    self.film.add(pixel, rgb)
                 self.stats["rays_cast"] += rays
                 self.stats["rejected_rays"] += rejected
                 self._glass_clamps += clamps
@@ -241,6 +277,8 @@ class Renderer:
                     break
         finally:
             self._drop_jobs()
+            if light_splats:
+                self._add_light_splats(light_splats)
             self.stats["seconds"] += time.perf_counter() - started
         if self._cancel.is_set():
             self.cancelled = True
@@ -251,6 +289,14 @@ class Renderer:
         self.stats["paths"] += total
         self.stats["nan_samples"] = self.film.nan_samples
         self.stats["samples"] = self.samples_done
+
+    def _add_light_splats(self, chunks):
+        """Add a pass's light-traced splats to the film (all at once: see ``stages.light_splat``)."""
+        paths = sum(count for _, _, count in chunks)
+        self.film.add_light(np.concatenate([p for p, _, _ in chunks]), np.concatenate([c for _, c, _ in chunks]),
+                            paths)
+        self.stats["light_paths"] += paths
+        self.stats["light_splats"] += sum(len(p) for p, _, _ in chunks)
 
     def _drop_jobs(self):
         """Cancel queued chunks and wait for running ones (after a cancel or an error)."""

@@ -19,6 +19,7 @@ from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
 from ..state import COLLAPSED, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
+from .caustic_split import classify_vertex
 from .nee import consistent, sample_direct
 from .queue import push_ray
 from .roulette import survives
@@ -87,7 +88,10 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         state.eta_scale[i] *= eta_scale
         if not survives(state, i, depth, settings, collapsed):
             continue
-        if not (mflags & MAT_NULL and wo_l[2] * wi_l[2] < 0.0):
+        null_crossing = (mflags & MAT_NULL) != 0 and wo_l[2] * wi_l[2] < 0.0
+        if settings.light_tracing:
+            classify_vertex(state, i, mflags, sampled, null_crossing)
+        if not null_crossing:
             state.prev_pdf[i] = pdf
             if sampled & SAMPLED_DELTA:
                 state.flags[i] |= PREV_DELTA
