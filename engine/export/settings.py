@@ -40,6 +40,7 @@ def export_settings(
         border=border,
         pixel_filter=prism.pixel_filter.lower(),
         filter_width_px=float(prism.filter_width_px),
+        light_tracing=prism.light_tracing.lower(),
     )
     try:
         settings.validate()
