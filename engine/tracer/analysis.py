@@ -6,7 +6,8 @@
 - Shadow rays cross free-standing films only if the scene has one (else one occlusion query each).
 - Wavelength sampling is guided toward emission lines only if an emitter has one.
 - Caustics come from light tracing (``choose_light_tracing``) only if a smooth glass or mirror can
-  focus a light onto a surface that is not purely specular, seen through a pinhole or thin lens.
+  focus a small light (``lights.apparent_size``) onto a surface that is not purely specular, seen
+  through a pinhole or thin lens.
 """
 
 from __future__ import annotations
@@ -61,19 +62,22 @@ class SceneAnalysis:
         return " | ".join(parts)
 
 
-def choose_light_tracing(mode: str, specular: list[str], films: list[str], receivers: bool, lights: bool,
-                         real_lens: bool) -> tuple[bool, str]:
+def choose_light_tracing(mode: str, specular: list[str], films: list[str], receivers: bool, small_lights: list[str],
+                         lights: bool, real_lens: bool) -> tuple[bool, str]:
     """(trace caustics from the lights?, the stats line's words) for the setting ``mode`` ("auto", "off",
-    "on"); ``specular``: names of the purely specular materials that can focus light (smooth glass,
-    mirrors), ``films``: free-standing films (they only count when forced on), ``receivers``: some
-    surface is not purely specular, ``lights``: some light other than the world emits."""
+    "on"). ``specular``: names of the purely specular materials that can focus light (smooth glass,
+    mirrors); ``films``: free-standing films (they count only when forced on); ``receivers``: some
+    surface is not purely specular; ``small_lights``: lights that look small from the specular objects
+    (``lights.apparent_size``: path tracing alone would not find their caustics); ``lights``: some
+    light other than the world emits. Auto needs a small light: a large one's caustics path tracing
+    finds by itself, and light paths would only take time from the rest of the image."""
     if mode == "off":
         return False, "light tracing off"
     focusing = specular + (films if mode == "on" else [])
     if real_lens:
         return False, "caustics by path tracing (real lens)"
-    if not focusing:
-        return False, "no caustics to light-trace" if mode == "auto" else "light tracing on, but nothing specular"
-    if not (receivers and lights):
-        return False, "no caustics to light-trace" if mode == "auto" else "light tracing on, but no light or receiver"
+    if not (focusing and receivers and lights):
+        return False, "no caustics to light-trace" if mode == "auto" else "light tracing on, but nothing to trace"
+    if mode == "auto" and not small_lights:
+        return False, "caustics by path tracing (lights large enough)"
     return True, f"caustics by light tracing ({', '.join(focusing)})"

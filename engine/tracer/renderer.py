@@ -32,6 +32,7 @@ from .cameras import make_camera
 from .errors import PrismInputError
 from .film import Film
 from .geometry import prepare_geometry
+from .lights.apparent_size import small_lights
 from .lights.caustic_targets import build_caustic_targets
 from .lights.table import build_lights
 from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials, is_emissive
@@ -105,10 +106,8 @@ class Renderer:
         self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
                                               bool(settings.use_mis), SAMPLERS[settings.sampler],
                                               int(settings.seed) & 0xFFFFFFFF, bool(self.analysis.light_tracing))
-        self.caustic_targets = None
-        if self.analysis.light_tracing:
-            self.caustic_targets = build_caustic_targets(self.geometry, materials.flags, MAT_DELTA,
-                                                         _kept(scene.triangle_object, self._original_triangle))
+        if not self.analysis.light_tracing:
+            self.caustic_targets = None
         self.accel = Accel(self.geometry)
         self.film = Film(self.width, self.height)
         self._pixels = self._pixel_list(settings.border)
@@ -162,9 +161,16 @@ class Renderer:
         for m in used:
             if flags[m] & MAT_DELTA:
                 (films if flags[m] & MAT_NULL else specular).append(self.scene.materials[m].name)
+        lights = self.light_table.arrays
+        small = []
+        if specular or films:
+            self.caustic_targets = build_caustic_targets(self.geometry, flags, MAT_DELTA,
+                                                         _kept(self.scene.triangle_object, self._original_triangle))
+            small = small_lights(lights.rows[:len(self.light_table.names)], self.light_table.names, lights.mesh,
+                                 self.caustic_targets)
         a.light_tracing, a.light_tracing_note = choose_light_tracing(
-            s.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used),
-            self.light_table.arrays.select_prob.shape[0] > 0, self.camera.lens is not None)
+            s.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
+            lights.select_prob.shape[0] > 0, self.camera.lens is not None)
         return a
 
     def _pixel_list(self, border):
