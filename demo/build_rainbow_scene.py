@@ -11,7 +11,6 @@ Needs the Prism add-on registered (its settings live on the data-blocks).
 """
 
 import math
-import os
 import sys
 from pathlib import Path
 
@@ -20,21 +19,13 @@ import numpy as np
 from mathutils import Matrix
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from build_demo_scene import principled, run, save_with_world  # noqa: E402
 from render import load_addon_package  # noqa: E402  (the add-on, for its settings)
 
 N_D = 1.78472  # N-SF11 at 587.6 nm: the lamp is aimed for minimum deviation
 SIDE, HEIGHT = 0.12, 0.15  # prism triangle side and length (m)
 PEDESTAL = 0.3  # the prism stands on a block this high (m)
-
-
-def principled(name, color, **inputs):
-    material = bpy.data.materials.new(name)
-    material.use_nodes = True
-    node = material.node_tree.nodes["Principled BSDF"]
-    node.inputs["Base Color"].default_value = (*color, 1.0)
-    for socket, value in inputs.items():
-        node.inputs[socket].default_value = value
-    return material
 
 
 def glass(name, catalogue_name, ior):
@@ -149,24 +140,9 @@ def build(path: Path, light_tracing: str = "AUTO") -> None:
     scene.collection.objects.link(camera)
     scene.camera = camera
 
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.02, 0.02, 0.025, 1)
-    scene.world = world
-    path.parent.mkdir(parents=True, exist_ok=True)
-    bpy.ops.wm.save_as_mainfile(filepath=str(path.resolve()))
+    save_with_world(scene, (0.02, 0.02, 0.025), path)
 
 
 if __name__ == "__main__":
-    arguments = [a for a in sys.argv[1:] if not a.startswith("--")]
-    target = Path(arguments[0] if arguments else "renders/rainbow.blend")
-    status = 0
-    try:
-        build(target, "OFF" if "--path-tracing-only" in sys.argv else "AUTO")
-        print(f"Rainbow scene written to {target}", file=sys.stderr)
-    except Exception as error:  # noqa: BLE001 - report and exit non-zero
-        print(f"Could not build the rainbow scene: {error}", file=sys.stderr)
-        status = 1
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(status)
+    run(build, "renders/rainbow.blend", "Rainbow scene",
+        light_tracing="OFF" if "--path-tracing-only" in sys.argv else "AUTO")

@@ -25,7 +25,9 @@ from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Light, Material, Scene, World
 from engine.tracer.settings import RenderSettings
 
+from ..geometry import MeshBuilder, quad
 from ..metrics import relmse
+from ..scenes import look_at
 
 TITLE = "Light tracing: time for the rainbow of a prism to reach a relMSE, with and without light tracing"
 PT_BUDGET = 12.0  # path tracing renders this many times light tracing's time to the target
@@ -33,20 +35,10 @@ GLASS = "N-SF11"
 N_D = 1.78472  # the glass's n_d: the lamp is aimed for minimum deviation at 587.6 nm
 
 
-def _look_at(eye, target, up=(0.0, 0.0, 1.0)):
-    eye = np.asarray(eye, float)
-    forward = np.asarray(target, float) - eye
-    forward /= np.linalg.norm(forward)
-    right = np.cross(forward, up)
-    right /= np.linalg.norm(right)
-    m = np.eye(4)
-    m[:3, 0], m[:3, 1], m[:3, 2], m[:3, 3] = right, np.cross(right, forward), -forward, eye
-    return m
-
-
 def _quad(centre, u, v):
+    """The parallelogram centre ± u ± v (metres) as a ``geometry`` part."""
     c, u, v = (np.asarray(a, float) for a in (centre, u, v))
-    return np.array([c - u - v, c + u - v, c + u + v, c - u + v]), np.array([[0, 1, 2], [0, 2, 3]])
+    return quad(c - u - v, c + u - v, c + u + v, c - u + v)
 
 
 def _rotate_z(angle):
@@ -60,8 +52,8 @@ def rainbow_scene(resolution=(96, 64), side_m=0.12, height_m=0.15, slit_m=(0.006
     The lamp sits at the back of a black tube that ends just before the prism, so the light reaches the
     prism nearly parallel (within about 1°) and nothing else directly."""
     a, b, c = np.array([-side_m / 2, 0, 0]), np.array([side_m / 2, 0, 0]), np.array([0, side_m * np.sqrt(3) / 2, 0])
-    prism = (np.array([[*p[:2], z] for z in (0.0, height_m) for p in (a, b, c)]),
-             np.array([[0, 2, 1], [3, 4, 5], [0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4], [2, 0, 3], [2, 3, 5]]))
+    prism = (np.array([[*p[:2], z] for z in (0.0, height_m) for p in (a, b, c)], np.float32),
+             np.array([[0, 2, 1], [3, 4, 5], [0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4], [2, 0, 3], [2, 3, 5]]), None)
     left = np.array([-np.sqrt(3) / 2, 0.5, 0.0])
     incidence = np.arcsin(N_D * 0.5)  # minimum deviation: symmetric passage
     d_in = _rotate_z(incidence) @ -left
@@ -72,30 +64,27 @@ def rainbow_scene(resolution=(96, 64), side_m=0.12, height_m=0.15, slit_m=(0.006
     wall_centre, wall_normal = exit_point + wall_distance_m * out, -out
     across = np.cross(d_in, up)
     lamp = entry - lamp_distance_m * d_in
-    parts = [(*prism, 1), (*_quad(wall_centre, np.cross(up, wall_normal) * 0.6, up * 0.4), 0)]
+    builder = MeshBuilder()
+    builder.add("Prism", 1, prism)
+    builder.add("Wall", 0, _quad(wall_centre, np.cross(up, wall_normal) * 0.6, up * 0.4))
     tube_length, gap = lamp_distance_m - 0.08, slit_m[0]
     mouth = lamp + d_in * tube_length / 2
     for side in (-1, 1):
-        parts.append((*_quad(mouth + side * across * gap, d_in * tube_length / 2, up * (slit_m[1] / 2 + gap)), 2))
-        parts.append((*_quad(mouth + side * up * (slit_m[1] / 2 + gap), d_in * tube_length / 2, across * gap), 2))
-    parts.append((*_quad(lamp - d_in * 1e-3, across * gap, up * (slit_m[1] / 2 + gap)), 2))
-    vertices, triangles, material, offset = [], [], [], 0
-    for v, t, m in parts:
-        vertices.append(v)
-        triangles.append(t + offset)
-        material.append(np.full(len(t), m))
-        offset += len(v)
+        builder.add("Hood", 2, _quad(mouth + side * across * gap, d_in * tube_length / 2, up * (slit_m[1] / 2 + gap)))
+        builder.add("Hood", 2, _quad(mouth + side * up * (slit_m[1] / 2 + gap), d_in * tube_length / 2, across * gap))
+    builder.add("Hood", 2, _quad(lamp - d_in * 1e-3, across * gap, up * (slit_m[1] / 2 + gap)))
+    vertices, triangles, material, objects, _ = builder.arrays(smooth=False)
     eye = wall_centre + 0.55 * wall_normal + 0.25 * up
     focal, film = 35.0, 36.0
-    camera = Camera("Camera", _look_at(eye, eye - wall_normal), resolution, focal_length_mm=focal, film_width_mm=film,
+    camera = Camera("Camera", look_at(eye, eye - wall_normal), resolution, focal_length_mm=focal, film_width_mm=film,
                     film_height_mm=film * resolution[1] / resolution[0], shift_y=-0.25 / 0.55 * focal / film)
     light = Light("Slit", "area", lamp, direction=d_in, axis_u=up, axis_v=across, power_w=lamp_power_w,
                   size_u_m=slit_m[1], size_v_m=slit_m[0])
     materials = [Material("Wall", base_color=(0.8, 0.8, 0.8)), Material("Prism", kind="dielectric", glass=GLASS),
                  Material("Hood", base_color=(0.02, 0.02, 0.02))]
-    return Scene(vertices=np.concatenate(vertices), triangles=np.concatenate(triangles).astype(np.int32),
-                 triangle_material=np.concatenate(material).astype(np.int32), materials=materials, camera=camera,
-                 lights=[light], world=World())
+    return Scene(vertices=vertices.astype(np.float64), triangles=triangles, triangle_material=material,
+                 materials=materials, camera=camera, lights=[light], world=World(), triangle_object=objects,
+                 object_names=builder.object_names)
 
 
 def _settings(mode, samples, seed, per_pass=4):

@@ -29,7 +29,7 @@ class Film:
         self._count = np.zeros(count, dtype=np.int64)
         self.nan_samples = 0
         self.light_paths = 0  # light paths traced so far (the light splats' denominator)
-        self._light_sum = self._light_sum_sq = None
+        self._light_sum = self._light_sum_sq = self._light_splats = None
 
     def add(self, pixel_index: np.ndarray, rgb: np.ndarray) -> None:
         """Add one sample per entry: ``pixel_index`` [N] (y * width + x), ``rgb`` [N, 3]."""
@@ -43,9 +43,10 @@ class Film:
         if self._light_sum is None:
             self._light_sum = np.zeros_like(self._sum)
             self._light_sum_sq = np.zeros_like(self._sum)
+            self._light_splats = np.zeros_like(self._count)
         pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
         rgb = np.ascontiguousarray(rgb, dtype=np.float64).reshape(-1, 3)
-        self.nan_samples += add_pass_splats(self._light_sum, self._light_sum_sq, pixel_index, rgb)
+        self.nan_samples += add_pass_splats(self._light_sum, self._light_sum_sq, self._light_splats, pixel_index, rgb)
         self.light_paths += int(paths)
 
     @property

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 
-from ..bsdf.dispatch import bsdf_evaluate, bsdf_sample
+from ..bsdf.dispatch import bsdf_evaluate
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..lights.emission import sample_emission
@@ -35,16 +35,16 @@ from ..lights.point import spot_falloff
 from ..lights.row import L_KIND, POINT, SPHERE
 from ..materials.resolve import resolve_material
 from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
-from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, pixel_seed, sample_1d, sample_2d
+from ..sampler import pixel_seed, sample_1d, sample_2d
 from ..spectra.wavelength_sampling import radiance_to_rgb
 from ..state import COLLAPSED, LIGHT_CONNECTED, LIGHT_SPECULAR
-from ..vec3 import tangents, to_local, to_world
+from ..vec3 import tangents, to_local
 from .camera import draw_wavelengths
 from .camera_connection import connect_to_camera
 from .nee import SHADOW_SHORTEN, consistent
 from .queue import push_ray
 from .roulette import survives
-from .shade import collapse_to_hero
+from .shade import collapse_to_hero, sample_scattering
 
 STREAM_SALT = 0x4C16A7E5  # light paths' sampler seed = the render's seed ^ this
 # Slots of the light paths' own decisions, far above any bounce slot (bounces use the usual slots).
@@ -183,17 +183,10 @@ def light_bounce_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, l
         tangent, bitangent = tangents(n)
         wo_l = to_local(toward_light, tangent, bitangent, n)
         closures = resolve_material(materials, spectra, material, lam, hero, rows, spectral, eta, glass_clamps)
-        ps = state.seed[i]
-        sample = state.sample[i]
-        u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
-        u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
-        wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, lam, hero, collapsed, u_lobe,
-                                                    u1, u2, weight, mix)
-        wi = to_world(wi_l, tangent, bitangent, n)
+        wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
+                                                                       closures, wo_l, (tangent, bitangent, n),
+                                                                       collapsed, weight, mix)
         cos_out_g = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
-        largest = 0.0
-        for c in range(k):
-            largest = max(largest, weight[c])
         if not (largest > 0.0 and pdf > 0.0 and cos_in_g != 0.0 and wi_l[2] != 0.0
                 and consistent(cos_in_g, cos_out_g, wo_l[2], wi_l[2])):
             continue

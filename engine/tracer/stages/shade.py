@@ -35,6 +35,22 @@ def collapse_to_hero(state, i):
     state.flags[i] |= COLLAPSED
 
 
+@inlined
+def sample_scattering(state, i, depth, settings, rows, spectral, eta, closures, wo_l, frame, collapsed, weight, mix):
+    """BSDF sampling at path ``i``'s vertex of bounce ``depth`` (its uniforms from that bounce's slots):
+    (wi local, wi world, pdf, sampled flags, eta scale, largest ``weight[k]``)."""
+    ps = state.seed[i]
+    sample = state.sample[i]
+    u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
+    u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
+    wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, state.wavelength[i],
+                                                state.hero[i], collapsed, u_lobe, u1, u2, weight, mix)
+    largest = 0.0
+    for c in range(weight.shape[0]):
+        largest = max(largest, weight[c])
+    return wi_l, to_world(wi_l, frame[0], frame[1], frame[2]), pdf, sampled, eta_scale, largest
+
+
 @kernel
 def shade_kernel(state, surface, count, geometry, materials, lights, spectra, settings, depth, next_rays, shadows,
                  scratch, glass_clamps, rejected):
@@ -70,17 +86,9 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                       materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
                                       mix)
-        ps = state.seed[i]
-        sample = state.sample[i]
-        u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
-        u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
-        wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, lam, hero, collapsed, u_lobe,
-                                                    u1, u2, weight, mix)
-        wi = to_world(wi_l, tangent, bitangent, n)
+        wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
+                                                                       closures, wo_l, frame, collapsed, weight, mix)
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
-        largest = 0.0
-        for c in range(k):
-            largest = max(largest, weight[c])
         if not (largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])):
             continue
         for c in range(k):
