@@ -1,4 +1,7 @@
-"""Prism's ``RenderEngine``: thin, it hands every render to a ``RenderSession``."""
+"""Prism's ``RenderEngine``: thin, it hands every render to a ``RenderSession`` and the rendered
+viewport to a ``ViewportSession``."""
+
+import sys
 
 import bpy
 
@@ -22,15 +25,24 @@ class PrismRenderEngine(bpy.types.RenderEngine):
 
     bl_idname = "PRISM"
     bl_label = "Prism"
-    # Material/light previews are drawn by EEVEE: a spectral preview would cost seconds per icon.
-    bl_use_preview = False
-    bl_use_eevee_viewport = True
+    bl_use_preview = True  # material and light previews render with Prism (fast settings)
+    bl_use_eevee_viewport = True  # Material Preview shading stays EEVEE's; Rendered is Prism's
 
     def render(self, depsgraph):
         from .render_request import handed_over
         from .session import RenderSession
 
         RenderSession(self, depsgraph, *handed_over()).run()
+
+    def view_update(self, context, depsgraph):
+        from .viewport.session import session_of
+
+        session_of(self).view_update(context, depsgraph)
+
+    def view_draw(self, context, depsgraph):
+        from .viewport.session import session_of
+
+        session_of(self).view_draw(self, context, depsgraph)
 
     def update_render_passes(self, scene=None, renderlayer=None):
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
@@ -43,4 +55,7 @@ def register():
 
 
 def unregister():
+    viewport = sys.modules.get(f"{__package__}.viewport.session")
+    if viewport is not None:  # never imported when no viewport rendered
+        viewport.stop_all()
     bpy.utils.unregister_class(PrismRenderEngine)

@@ -23,6 +23,7 @@ from .export.settings import export_settings  # noqa: E402
 from .fingerprint import render_fingerprint  # noqa: E402
 from .render_engine import enabled_passes  # noqa: E402
 from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
+from .stats import stats_line  # noqa: E402
 from .tracer.errors import PrismInputError  # noqa: E402
 
 
@@ -90,7 +91,7 @@ class RenderSession:
             scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border
         )
         self.report.warnings = warnings
-        for message in warnings:
+        for message in warnings if not engine.is_preview else ():  # Blender's preview scene: not the user's to fix
             engine.report({"WARNING"}, message)
             self._print(f"Prism: warning: {message}")
         engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
@@ -189,20 +190,3 @@ def bottom_up(image: np.ndarray, alpha: bool = False) -> np.ndarray:
         rgba[..., :channels] = image
         image = rgba
     return np.ascontiguousarray(image[::-1], dtype=np.float32).reshape(height * width, -1)
-
-
-def stats_line(renderer, pass_index: int, done: int, target: int, seconds: float, warnings) -> str:
-    """``Prism | Pass 3 | 12/64 spp | 1.30 M rays/s | <strategy> | ...`` for Blender's status bar."""
-    stats = renderer.stats
-    rays_per_second = stats.get("rays_cast", 0) / seconds if seconds > 0 else 0.0
-    parts = [
-        f"Prism | Pass {pass_index} | {done}/{target} spp",
-        f"{rays_per_second / 1e6:.2f} M rays/s",
-        renderer.strategy,
-    ]
-    if stats.get("nan_samples"):
-        parts.append(f"{stats['nan_samples']} NaN samples dropped")
-    notes = list(warnings) + list(stats.get("warnings") or [])
-    if notes:
-        parts.append(f"{len(notes)} warning(s): {notes[0]}")
-    return " | ".join(parts)

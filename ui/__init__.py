@@ -18,5 +18,6 @@ register, unregister = bpy.utils.register_submodule_factory(
         "panels_material",
         "lens_overlay_draw",
         "lens_overlay_panel",
+        "viewport_header",
     ),
 )

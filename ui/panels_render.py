@@ -23,7 +23,7 @@ class PRISM_PT_sampling(PrismPanel, bpy.types.Panel):
         settings = context.scene.prism
         column = layout.column(align=True)
         column.prop(settings, "samples", text="Render")
-        column.prop(settings, "preview_samples", text="Preview")
+        column.prop(settings, "preview_samples", text="Viewport")
         column = layout.column()
         column.prop(settings, "samples_per_pass")
         column.prop(settings, "seed")
@@ -44,8 +44,10 @@ class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.use_property_decorate = False
         settings = context.scene.prism
+        column = layout.column(align=True)
+        column.prop(settings, "max_bounces", text="Max Bounces")
+        column.prop(settings, "preview_max_bounces", text="Viewport")
         column = layout.column()
-        column.prop(settings, "max_bounces")
         column.prop(settings, "russian_roulette_depth")
         column.prop(settings, "use_mis")
         column = layout.column(heading="Caustics")

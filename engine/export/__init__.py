@@ -46,7 +46,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     Inputs Prism ignores are appended to ``warnings`` (one message each).
     """
     scene = depsgraph.scene
-    camera = export_camera(scene)
+    camera = export_camera(scene, depsgraph)
     geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
     tracer_scene = Scene(
         vertices=geometry.vertices,

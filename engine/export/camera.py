@@ -126,9 +126,12 @@ def _lens_file(camera_object) -> str:
     return path
 
 
-def export_camera(scene) -> Camera:
-    """The scene's active camera; a clear error when there is none or it is unsupported."""
+def export_camera(scene, depsgraph=None) -> Camera:
+    """The scene's active camera (as ``depsgraph`` evaluated it, when given: a material preview's
+    scene is not evaluated itself); a clear error when there is none or it is unsupported."""
     camera_object = scene.camera
+    if camera_object is not None and depsgraph is not None:
+        camera_object = camera_object.evaluated_get(depsgraph)
     if camera_object is None:
         raise PrismInputError(
             f"Scene '{scene.name}' has no active camera: add a camera and make it active "

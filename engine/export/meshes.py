@@ -69,7 +69,12 @@ class _Materials:
         return self.index[key]
 
 
-def _gather(depsgraph, warnings) -> list[_Instances]:
+def read_geometry(key: tuple, obj) -> LocalMesh | LocalHair | None:
+    """The evaluated geometry of ``obj`` (``key``: (type, original name, data pointer), the piece it is)."""
+    return read_mesh(obj) if key[0] == "MESH" else read_hair(obj)
+
+
+def _gather(depsgraph, warnings, read=read_geometry) -> list[_Instances]:
     """Every rendered piece of geometry with the matrices of its instances."""
     pieces: dict[tuple, _Instances | None] = {}
     warned: set[str] = set()
@@ -95,7 +100,7 @@ def _gather(depsgraph, warnings) -> list[_Instances]:
             continue
         key = (kind, obj.original.name, obj.data.as_pointer())
         if key not in pieces:
-            geometry = read_mesh(obj) if kind == "MESH" else read_hair(obj)  # now: the object may be temporary
+            geometry = read(key, obj)  # now: the object may be temporary
             pieces[key] = _Instances(obj.name, geometry) if geometry is not None else None
         piece = pieces[key]
         if piece is not None:
@@ -104,17 +109,19 @@ def _gather(depsgraph, warnings) -> list[_Instances]:
     return [piece for piece in pieces.values() if piece is not None]
 
 
-def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=None) -> ExportedGeometry:
+def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=None,
+                  read=read_geometry) -> ExportedGeometry:
     """Every visible mesh and hair instance, in world space (metres, float64 vertices).
 
-    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera.
+    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera. ``read(key, obj)``
+    returns a piece's geometry (the viewport passes one that keeps what did not change).
     Material warnings and geometry Prism skips are appended to ``warnings``.
     """
     materials = _Materials(warnings)
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
     camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
-    for piece in _gather(depsgraph, warnings):
+    for piece in _gather(depsgraph, warnings, read):
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
         lookup = materials.slot_lookup(piece.geometry.slot_materials)
         if isinstance(piece.geometry, LocalHair):

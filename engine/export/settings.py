@@ -6,6 +6,10 @@ from ..tracer.errors import PrismInputError
 from ..tracer.settings import RenderSettings
 
 _MODES = {"CIE": "cie", "GAUSSIAN_RGB": "gaussian_rgb"}
+#: Samples of a material or light preview (``preview=True``): Blender renders them in its own preview
+#: scene, whose Prism settings are the defaults, so the count is fixed here; enough for a dispersive
+#: glass to show its fringes on a thumbnail.
+PREVIEW_SAMPLES = 16
 
 
 def export_settings(
@@ -19,16 +23,17 @@ def export_settings(
     """Render settings from the scene's Prism settings.
 
     ``samples``/``seed``/``threads`` override the scene's (batch renders);
-    ``preview`` uses the preview sample count; ``border`` is the pixel rectangle
-    (x0, y0, x1, y1), rows from the top, half-open.
+    ``preview`` (a material or light preview) renders ``PREVIEW_SAMPLES`` with the
+    viewport's bounces; ``border`` is the pixel rectangle (x0, y0, x1, y1), rows
+    from the top, half-open.
     """
     prism = scene.prism
     if samples is None:
-        samples = prism.preview_samples if preview else prism.samples
+        samples = PREVIEW_SAMPLES if preview else prism.samples
     settings = RenderSettings(
         samples=int(samples),
         samples_per_pass=int(prism.samples_per_pass),
-        max_bounces=int(prism.max_bounces),
+        max_bounces=int(prism.preview_max_bounces if preview else prism.max_bounces),
         seed=int(prism.seed if seed is None else seed),
         wavelength_mode=_MODES[prism.wavelength_mode],
         wavelengths_per_path=int(prism.wavelengths_per_path),

@@ -72,11 +72,25 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         soft_max=64,
     )
     preview_samples: IntProperty(
-        name="Preview Samples",
-        description="Samples per pixel of viewport and material previews",
+        name="Viewport Samples",
+        description="Samples per pixel of the rendered viewport (0: refine until stopped)",
+        default=1024,
+        min=0,
+        soft_max=4096,
+    )
+    preview_max_bounces: IntProperty(
+        name="Viewport Max Bounces",
+        description="Maximum number of times a path scatters in the rendered viewport and in material "
+        "previews (lower than a final render's: a faster first image)",
         default=4,
-        min=1,
-        soft_max=256,
+        min=0,
+        max=1024,
+        soft_max=64,
+    )
+    preview_pause: BoolProperty(
+        name="Pause Preview",
+        description="Pause the rendered viewport (changes are applied when it resumes)",
+        default=False,
     )
     max_bounces: IntProperty(
         name="Max Bounces",

@@ -4,7 +4,9 @@
 pinhole or thin lens, and for every camera the pixel filter and orientation), ``lens`` and
 ``lens_tables`` (the ``lens.camera.RealLensCamera`` of a real lens and its kernel tables, else None),
 ``disperses`` (a real lens refracts per wavelength: paths keep only their hero), ``strategy`` (for the
-render stats) and ``position`` (world metres: the origin of the render's camera-relative space).
+render stats), ``position`` (the camera's world position, m) and ``origin`` (world metres: the origin of
+the render's space, which every position the kernels see is relative to; the camera position unless the
+caller keeps another one, as the viewport does while the view moves).
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ class CameraSetup:
     disperses: bool = False
     strategy: str = ""
     position: np.ndarray = None
+    origin: np.ndarray = None
 
 
 def _check_common(camera):
@@ -36,10 +39,13 @@ def _check_common(camera):
         raise PrismInputError(f"Camera '{camera.name}': sensor size must be positive.")
 
 
-def make_camera(camera, settings) -> CameraSetup:
-    """The camera for ``camera.model``: "pinhole", "thin_lens" or "real_lens"."""
+def make_camera(camera, settings, origin=None) -> CameraSetup:
+    """The camera for ``camera.model``: "pinhole", "thin_lens" or "real_lens", in a render space whose
+    origin is ``origin`` (world, m; default: the camera's position)."""
     _check_common(camera)
     position = np.asarray(camera.camera_to_world, dtype=np.float64)[:3, 3].copy()
+    origin = position.copy() if origin is None else np.asarray(origin, dtype=np.float64).copy()
+    relative = position - origin
     if camera.model in ("pinhole", "thin_lens"):
         if not camera.focal_length_mm > 0:
             raise PrismInputError(f"Camera '{camera.name}': focal length must be positive.")
@@ -49,13 +55,14 @@ def make_camera(camera, settings) -> CameraSetup:
             if not camera.focus_distance_m > 0:
                 raise PrismInputError(f"Camera '{camera.name}': focus distance must be positive.")
         kind = THIN_LENS if camera.model == "thin_lens" else PINHOLE
-        return CameraSetup(camera_data(camera, settings, kind), position=position)
+        return CameraSetup(camera_data(camera, settings, kind, relative), position=position, origin=origin)
     if camera.model == "real_lens":
         from .lens.camera import RealLensCamera
 
         lens = RealLensCamera(camera, settings)
-        return CameraSetup(camera_data(camera, settings, PINHOLE), lens=lens, lens_tables=lens.kernel_tables(),
-                           disperses=True, strategy=lens.strategy, position=position)
+        return CameraSetup(camera_data(camera, settings, PINHOLE, relative), lens=lens,
+                           lens_tables=lens.kernel_tables(), disperses=True, strategy=lens.strategy,
+                           position=position, origin=origin)
     raise PrismInputError(
         f"Camera '{camera.name}': unknown camera model '{camera.model}'; use pinhole, thin_lens or real_lens."
     )

@@ -9,8 +9,13 @@
     renderer.cancel()               # from any thread: stop the current pass after running chunks
     renderer.close()                # free the thread pool (or use ``with Renderer(...) as r:``)
 
+    # between passes (the viewport): rebuild only what changed, then the image starts again
+    renderer.set_camera(camera, border)   renderer.set_shading(scene)
+    renderer.set_geometry(scene)          renderer.set_settings(settings)   renderer.restart()
+
 Set-up turns the scene into tables once (``geometry``, ``spectra.table``, ``materials``, ``lights``,
-``spectra.wavelength_sampling``, the camera) with every position relative to the camera. A pass is cut
+``spectra.wavelength_sampling``, the camera) with every position relative to the render's origin (the
+camera's position; the viewport keeps the first one while the view moves). A pass is cut
 into chunks of paths that run on Prism's thread pool; a chunk runs the stages of ``stages`` bounce by
 bounce, Embree queries in between (kernels and Embree release the GIL). Every random number comes from
 the sampler indexed by (pixel, sample, dimension) and the film adds samples in path order, so the image
@@ -23,6 +28,7 @@ import os
 import threading
 import time
 from concurrent.futures import CancelledError, ThreadPoolExecutor
+from dataclasses import replace
 
 import numpy as np
 
@@ -44,24 +50,21 @@ from .state import ChunkBuffers
 
 MAX_CHUNK_PATHS = 1 << 16  # largest chunk one thread traces at once (memory ~0.5 kB per path)
 MIN_CHUNK_PATHS = 4096  # below this, per-bounce Python overhead dominates
+#: A camera this far (m) from the render's origin gets the geometry rebuilt around it (``set_camera``):
+#: float32 positions keep ~0.1 mm there.
+REBASE_DISTANCE_M = 1000.0
 
 
 def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int:
-    """Paths per chunk: about two chunks per thread (load balance), within the bounds above, and a
-    multiple of ``samples_per_pixel`` (a chunk never splits a pixel's samples of a pass: see ``film``)."""
-    size = max(MIN_CHUNK_PATHS, min(MAX_CHUNK_PATHS, -(-path_count // (2 * max(threads, 1)))))
+    """Paths per chunk: one chunk per thread (fewer kernel launches: each holds the GIL for ~10 µs),
+    within the bounds above, and a multiple of ``samples_per_pixel`` (a chunk never splits a pixel's
+    samples of a pass: see ``film``)."""
+    size = max(MIN_CHUNK_PATHS, min(MAX_CHUNK_PATHS, -(-path_count // max(threads, 1))))
     return int(max(samples_per_pixel, size - size % samples_per_pixel))
 
 
 def worker_threads(requested: int) -> int:
     return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
-
-
-def _kept(triangle_object, original):
-    """The object of each kept triangle (``original``: their indices before dropping), or None."""
-    if triangle_object is None:
-        return None
-    return np.asarray(triangle_object)[original]
 
 
 def _monochromatic_lines(scene, used):
@@ -75,41 +78,34 @@ def _monochromatic_lines(scene, used):
     return [emission_spectrum(spec) for spec in dict.fromkeys(specs)]
 
 
+def _kept(triangle_object, original):
+    """The object of each kept triangle (``original``: their indices before dropping), or None."""
+    if triangle_object is None:
+        return None
+    return np.asarray(triangle_object)[original]
+
+
+def _check_settings(settings) -> None:
+    settings.validate()
+    if settings.pixel_filter not in ("box", "gaussian") or not settings.filter_width_px > 0:
+        raise PrismInputError(f"Pixel filter '{settings.pixel_filter}' is not supported: use box or gaussian.")
+    if settings.sampler not in SAMPLERS:
+        raise PrismInputError(f"Sampler '{settings.sampler}' is unknown: use one of {', '.join(SAMPLERS)}.")
+
+
 class Renderer:
-    def __init__(self, scene, settings, progress=None):
+    def __init__(self, scene, settings, progress=None, origin=None):
         started = time.perf_counter()
-        settings.validate()
+        _check_settings(settings)
         scene.validate()
-        if settings.pixel_filter not in ("box", "gaussian") or not settings.filter_width_px > 0:
-            raise PrismInputError(f"Pixel filter '{settings.pixel_filter}' is not supported: use box or gaussian.")
-        if settings.sampler not in SAMPLERS:
-            raise PrismInputError(f"Sampler '{settings.sampler}' is unknown: use one of {', '.join(SAMPLERS)}.")
         self.scene = scene
         self.settings = settings
         self.progress = progress
-        self.camera = make_camera(scene.camera, settings)
+        self.camera = make_camera(scene.camera, settings, origin)
+        self.origin = self.camera.origin
         self.width, self.height = (int(r) for r in scene.camera.resolution)
-        self.geometry, self._original_triangle, dropped = prepare_geometry(scene, self.camera.position)
-        used = sorted(set(np.unique(self.geometry.material).tolist()))
-        if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
-            raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
-        spectra = SpectrumTable()
-        self.material_table = build_materials(scene.materials, set(used), spectra)
-        materials = self.material_table.arrays
-        self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
-                                        self.geometry.material, materials.emission_strength, self.camera.position)
-        self.analysis = self._analyse(used)
-        lines = _monochromatic_lines(scene, used) if settings.wavelength_mode == "cie" else []
-        self.wavelengths = wavelength_sampling.build(settings, lines)
-        self.analysis.guided_lines = len(lines)
-        self.spectra = spectra.arrays()
-        self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
-                                              bool(settings.use_mis), SAMPLERS[settings.sampler],
-                                              int(settings.seed) & 0xFFFFFFFF, bool(self.analysis.light_tracing))
-        if not self.analysis.light_tracing:
-            self.caustic_targets = None
-        self.accel = Accel(self.geometry)
-        self.film = Film(self.width, self.height)
+        self._build_geometry()
+        self._build_shading()
         self._pixels = self._pixel_list(settings.border)
         self._workers = worker_threads(settings.threads)
         self._pool = ThreadPoolExecutor(self._workers)
@@ -117,28 +113,129 @@ class Renderer:
         self._cancel = threading.Event()
         self._jobs_lock = threading.Lock()
         self._jobs = {}
+        self.restart(time.perf_counter() - started)
+
+    def _build_geometry(self):
+        """Triangles relative to ``origin`` and their Embree scene."""
+        self.geometry = self.accel = None  # the old tables go first: one BVH in memory at a time
+        self.geometry, self._original_triangle, self._dropped = prepare_geometry(self.scene, self.origin)
+        self._used = sorted(set(np.unique(self.geometry.material).tolist()))
+        self.accel = Accel(self.geometry)
+
+    def _build_shading(self):
+        """Everything the paths read besides the triangles and the camera: spectra, materials, lights,
+        wavelength sampling, kernel settings."""
+        scene, settings, used = self.scene, self.settings, self._used
+        if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
+            raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
+        spectra = SpectrumTable()
+        self.material_table = build_materials(scene.materials, set(used), spectra)
+        materials = self.material_table.arrays
+        self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
+                                        self.geometry.material, materials.emission_strength, self.origin)
+        lines = _monochromatic_lines(scene, used) if settings.wavelength_mode == "cie" else []
+        self.wavelengths = wavelength_sampling.build(settings, lines)
+        self._guided_lines = len(lines)
+        self.spectra = spectra.arrays()
+        self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
+                                              bool(settings.use_mis), SAMPLERS[settings.sampler],
+                                              int(settings.seed) & 0xFFFFFFFF, False)
         self._glass_clamps = np.zeros(len(materials.glasses), np.int64)
+        self._describe()
+
+    def _describe(self):
+        self.analysis = self._analyse(self._used)
+        self.analysis.guided_lines = self._guided_lines
+        self.kernel_settings = self.kernel_settings._replace(light_tracing=bool(self.analysis.light_tracing))
+        if not self.analysis.light_tracing:
+            self.caustic_targets = None
+        self.strategy = self.analysis.strategy(self.settings.use_mis, self.settings.pixel_filter)
+
+    def restart(self, setup_seconds: float = 0.0) -> None:
+        """Start the image again: an empty film and no samples, a cancelled renderer rendering again.
+        Call it (as the ``set_*`` methods do) only while no pass runs."""
+        self.film = Film(self.width, self.height)
         self.samples_done = 0
         self._first_sample = 0
         self._passes = 0
+        self._glass_clamps[:] = 0
+        self._cancel.clear()
         self.cancelled = False
-        self.strategy = self.analysis.strategy(settings.use_mis, settings.pixel_filter)
-        warnings = []
-        if dropped:
-            warnings.append(f"{dropped} zero-area triangle(s) dropped")
+        warnings = [f"{self._dropped} zero-area triangle(s) dropped"] if self._dropped else []
         self.stats = {
             "rays_cast": 0,
             "seconds": 0.0,
-            "setup_seconds": time.perf_counter() - started,
+            "setup_seconds": setup_seconds,
             "nan_samples": 0,
             "rejected_rays": 0,
-            "dropped_triangles": dropped,
+            "dropped_triangles": self._dropped,
             "paths": 0,
             "warnings": warnings,
             "strategy": self.strategy,
             "light_paths": 0,
             "light_splats": 0,
         }
+
+    # ---- changes between passes (the viewport): each rebuilds only the tables it touches ----------
+    def set_camera(self, camera, border=None) -> None:
+        """Render from ``camera`` (a ``scene.Camera``: placement, lens, resolution) with ``border``
+        (a pixel rectangle of its resolution, see ``RenderSettings``; None: the whole frame), keeping
+        the triangles, their Embree scene and the shading tables; the image restarts. The render's
+        origin stays put unless the camera went further than ``REBASE_DISTANCE_M`` from it, when the
+        geometry is rebuilt around the camera (float32 precision is kept near the viewer)."""
+        started = time.perf_counter()
+        scene = replace(self.scene, camera=camera)
+        scene._validate_camera()
+        self.scene = scene
+        self.settings = replace(self.settings, border=border)
+        position = np.asarray(camera.camera_to_world, dtype=np.float64)[:3, 3]
+        rebase = np.abs(position - self.origin).max() > REBASE_DISTANCE_M
+        self.camera = make_camera(camera, self.settings, position if rebase else self.origin)
+        self.origin = self.camera.origin
+        self.width, self.height = (int(r) for r in camera.resolution)
+        if rebase:
+            self._build_geometry()
+            self._build_shading()
+        else:
+            self._describe()
+        self._pixels = self._pixel_list(border)
+        self.restart(time.perf_counter() - started)
+
+    def set_shading(self, scene) -> None:
+        """Materials, lights and world of ``scene``, whose triangles (and their material indices) are
+        the ones being rendered (its camera is ignored); the image restarts."""
+        started = time.perf_counter()
+        scene = replace(scene, camera=self.scene.camera)
+        scene.validate(triangles=False)
+        self.scene = scene
+        self._build_shading()
+        self.restart(time.perf_counter() - started)
+
+    def set_geometry(self, scene) -> None:
+        """Everything of ``scene`` but its camera: new triangles (and their Embree scene), materials,
+        lights and world; the image restarts."""
+        started = time.perf_counter()
+        scene = replace(scene, camera=self.scene.camera)
+        scene.validate()
+        self.scene = scene
+        self._build_geometry()
+        self._build_shading()
+        self.restart(time.perf_counter() - started)
+
+    def set_settings(self, settings) -> None:
+        """Render with ``settings`` (bounces, wavelengths, filter, seed, threads, border) from now on;
+        the image restarts."""
+        started = time.perf_counter()
+        _check_settings(settings)
+        self.settings = settings
+        self.camera = make_camera(self.scene.camera, settings, self.origin)
+        self._build_shading()
+        self._pixels = self._pixel_list(settings.border)
+        workers = worker_threads(settings.threads)
+        if workers != self._workers:
+            self._pool.shutdown(wait=True)
+            self._workers, self._pool = workers, ThreadPoolExecutor(workers)
+        self.restart(time.perf_counter() - started)
 
     def _analyse(self, used) -> SceneAnalysis:
         s = self.settings
@@ -229,8 +326,8 @@ class Renderer:
     def cancel(self) -> None:
         """Stop the pass in progress (thread-safe, returns at once): queued chunks are
         dropped, running ones finish; ``render_pass`` then returns early without
-        counting the pass (and later passes do nothing). The film keeps the chunks
-        already added."""
+        counting the pass (and later passes do nothing until ``restart``). The film
+        keeps the chunks already added."""
         self._cancel.set()
         with self._jobs_lock:
             jobs = list(self._jobs.values())

@@ -172,14 +172,15 @@ class Scene:
             return f"triangle {index}"
         return self.object_names[int(self.triangle_object[index])]
 
-    def validate(self) -> None:
+    def validate(self, triangles: bool = True) -> None:
         """Raise ``PrismInputError`` naming the object if the scene cannot render (or would
         render wrong without a word): malformed arrays, non-finite or absurdly distant
-        positions, indices that point nowhere."""
+        positions, indices that point nowhere. ``triangles=False`` skips the geometry (already
+        checked: the viewport changed only materials or lights)."""
         if self.vertices.ndim != 2 or self.vertices.shape[1:] != (3,):
             raise PrismInputError("Scene vertices must be an array of shape [V, 3].")
         self._validate_camera()
-        if len(self.triangles):
+        if triangles and len(self.triangles):
             self._validate_triangles()
         for light in self.lights:
             _check_position(f"Light '{light.name}'", light.position)

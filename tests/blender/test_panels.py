@@ -123,7 +123,7 @@ def test_render_panels_draw_in_both_wavelength_modes(prism_addon, fresh_scene):
             drawn += _props(_draw(panel, _context(fresh_scene)))
         for name in ("samples", "max_bounces", "seed", "wavelength_mode", "wavelengths_per_path", "threads",
                      "mean_r_nm", "sigma_r_nm", "mean_g_nm", "sigma_g_nm", "mean_b_nm", "sigma_b_nm",
-                     "use_pass_variance", "use_pass_sample_count", "preview_samples", "use_mis",
+                     "use_pass_variance", "use_pass_sample_count", "preview_samples", "preview_max_bounces", "use_mis",
                      "pixel_filter", "filter_width_px", "light_tracing"):
             assert name in drawn
     log = _draw(prism_addon.ui.panels_render.PRISM_PT_wavelengths, _context(fresh_scene))
@@ -305,3 +305,17 @@ def test_wavelength_plot_follows_the_gaussians(prism_addon, fresh_scene):
     fresh_scene.prism.mean_r_nm = 610.0
     plot.plot_icon_id(fresh_scene.prism)
     assert plot._plot_key != key
+
+
+@pytest.mark.parametrize("shading, engine, shown", [("RENDERED", "PRISM", True), ("SOLID", "PRISM", False),
+                                                     ("RENDERED", "CYCLES", False)])
+def test_viewport_header_pause_button_in_prisms_rendered_shading(prism_addon, fresh_scene, shading, engine, shown):
+    log = []
+    header = SimpleNamespace(layout=RecordingLayout(log))
+    space = SimpleNamespace(shading=SimpleNamespace(type=shading))
+    context = SimpleNamespace(engine=engine, scene=fresh_scene, space_data=space)
+    for paused, icon in ((False, "PAUSE"), (True, "PLAY")):
+        log.clear()
+        fresh_scene.prism.preview_pause = paused
+        prism_addon.ui.viewport_header.draw_pause(header, context)
+        assert log == ([("prop", (fresh_scene.prism, "preview_pause"), {"text": "", "icon": icon})] if shown else [])

@@ -2,10 +2,15 @@
 
 Two modes (see ``wavelengths.py``, the reference implementation and test oracle):
 
-- ``cie``: K hero wavelengths, the inverse-CDF images of one uniform number rotated by j/K, from the
+- ``cie``: K wavelengths, the inverse-CDF images of (u + j) / K for one uniform u, from the
   visible-light density ∝ 1/cosh²(0.0072 (λ − 538)) on 360–830 nm, or — when the scene has emission
-  lines — from a tabulated density that puts half its mass on the lines (0.1 nm cells). Radiance is
-  integrated against the CIE 1931 functions into XYZ, then converted to scene-linear Rec.709.
+  lines — from a tabulated density that puts half its mass on the lines (0.1 nm cells). Column j
+  covers the j-th of K equal-probability strata, so the sampler's stratification of u across a pixel's
+  samples stratifies every stratum (rotating u by j/K instead, as hero-wavelength sampling usually
+  does, keeps only the offsets modulo 1/K, which the sampler does not stratify). Each estimate divides
+  by the full density p(λ) and the hero column is drawn uniformly, so the mixture over columns is p:
+  unbiased whether a path carries all K or, after dispersion, only its hero. Radiance is integrated
+  against the CIE 1931 functions into XYZ, then converted to scene-linear Rec.709.
 - ``gaussian_rgb``: one wavelength per R, G, B channel from that channel's truncated normal density,
   which is also the channel's response, so the channel value is radiance × response / pdf.
 
@@ -135,9 +140,7 @@ def sample_wavelengths(ws, u0, u1, u2, wavelength_nm, pdf):
             pdf[c] = gaussian_pdf(ws, c, lam)
         return
     for j in range(count):
-        u = u0 + j / count
-        if u >= 1.0:
-            u -= 1.0
+        u = (u0 + j) / count
         if ws.guided_cdf.shape[0] > 0:
             wavelength_nm[j], pdf[j] = _guided_sample(ws, u)
         else:

@@ -5,7 +5,8 @@ paths each; path p is sample ``first_sample + p % spp`` of pixel ``pixels[p // s
 come from the sampler's pixel slot: uniform in the pixel ("box"), or filter importance sampling of a
 Gaussian of standard deviation width/3 truncated at ``width`` ("gaussian", weight 1).
 
-Cameras (``CameraData``, camera-relative: the camera sits at the origin): ``PINHOLE``, ``THIN_LENS``
+Cameras (``CameraData``, in the render's space: world positions minus the render's origin, where the
+camera sits at ``origin``: 0 for a final render, anywhere near it in the viewport): ``PINHOLE``, ``THIN_LENS``
 (aperture radius focal/(2 f-stop), sharp at ``focus_distance_m`` along the view axis). Blender's
 conventions: the camera looks down its local -Z, +Y up; lens shift in units of the larger film side.
 """
@@ -31,16 +32,18 @@ FILTER_GAUSSIAN = 1
 
 #: kind, rotation float64 [3, 3] (camera to world), tan_w / tan_h (film size / focal length), shift_x /
 #: shift_y (in the same units), aperture_radius_m, focus_distance_m, width, height (pixels),
-#: filter_kind, filter_width_px, filter_cdf_lo (Gaussian mass below -width).
+#: filter_kind, filter_width_px, filter_cdf_lo (Gaussian mass below -width), origin float64 [3] (the
+#: camera's position in the render's space, m).
 CameraData = namedtuple(
     "CameraData",
     "kind rotation tan_w tan_h shift_x shift_y aperture_radius_m focus_distance_m width height "
-    "filter_kind filter_width_px filter_cdf_lo",
+    "filter_kind filter_width_px filter_cdf_lo origin",
 )
 
 
-def camera_data(camera, settings, kind) -> CameraData:
-    """``CameraData`` of a ``scene.Camera`` for ``kind`` (``PINHOLE`` or ``THIN_LENS``)."""
+def camera_data(camera, settings, kind, origin_m=(0.0, 0.0, 0.0)) -> CameraData:
+    """``CameraData`` of a ``scene.Camera`` for ``kind`` (``PINHOLE`` or ``THIN_LENS``), the camera at
+    ``origin_m`` in the render's space."""
     from scipy.special import ndtr
 
     width, height = (int(r) for r in camera.resolution)
@@ -52,7 +55,8 @@ def camera_data(camera, settings, kind) -> CameraData:
                       camera.film_width_mm / f, camera.film_height_mm / f, camera.shift_x * larger,
                       camera.shift_y * larger, aperture, float(camera.focus_distance_m), width, height,
                       FILTER_GAUSSIAN if settings.pixel_filter == "gaussian" else FILTER_BOX,
-                      float(settings.filter_width_px), float(ndtr(-settings.filter_width_px / sigma)))
+                      float(settings.filter_width_px), float(ndtr(-settings.filter_width_px / sigma)),
+                      np.ascontiguousarray(origin_m, dtype=np.float64))
 
 
 @inlined
@@ -103,7 +107,7 @@ def draw_wavelengths(state, i, ws, sampler, ps, sample):
 @inlined
 def camera_ray(camera, x, y, lens_u, lens_v):
     """(origin, unit direction) of the camera ray through raster position (x, y) (pixels from the
-    top-left corner) and lens sample (lens_u, lens_v), camera-relative world space."""
+    top-left corner) and lens sample (lens_u, lens_v), in the render's space."""
     d = film_direction(camera, x, y)
     o = (0.0, 0.0, 0.0)
     if camera.kind == THIN_LENS:
@@ -114,9 +118,10 @@ def camera_ray(camera, x, y, lens_u, lens_v):
         o = (lx, ly, 0.0)
         d = (d[0] * f - lx, d[1] * f - ly, -f)
     r = camera.rotation
-    wo = (r[0, 0] * o[0] + r[0, 1] * o[1] + r[0, 2] * o[2],
-          r[1, 0] * o[0] + r[1, 1] * o[1] + r[1, 2] * o[2],
-          r[2, 0] * o[0] + r[2, 1] * o[1] + r[2, 2] * o[2])
+    c = camera.origin
+    wo = (c[0] + r[0, 0] * o[0] + r[0, 1] * o[1] + r[0, 2] * o[2],
+          c[1] + r[1, 0] * o[0] + r[1, 1] * o[1] + r[1, 2] * o[2],
+          c[2] + r[2, 0] * o[0] + r[2, 1] * o[1] + r[2, 2] * o[2])
     wd = (r[0, 0] * d[0] + r[0, 1] * d[1] + r[0, 2] * d[2],
           r[1, 0] * d[0] + r[1, 1] * d[1] + r[1, 2] * d[2],
           r[2, 0] * d[0] + r[2, 1] * d[1] + r[2, 2] * d[2])

@@ -67,7 +67,7 @@ def filter_pick(camera, x, count, u):
 
 @inlined
 def connect_to_camera(camera, p, u_lens, u_filter):
-    """(pixel or -1, lens point (camera-relative world), importance W, distance d (m)) of the surface
+    """(pixel or -1, lens point (the render's space), importance W, distance d (m)) of the surface
     point ``p``: radiance L leaving ``p`` toward the lens point adds L |cos_p| / d² · W per unit area at
     ``p`` to the pixel (filter weight included). ``u_lens``, ``u_filter``: pairs of uniforms."""
     lx = ly = 0.0
@@ -76,7 +76,8 @@ def connect_to_camera(camera, p, u_lens, u_filter):
         lx *= camera.aperture_radius_m
         ly *= camera.aperture_radius_m
     r = camera.rotation
-    lens = (r[0, 0] * lx + r[0, 1] * ly, r[1, 0] * lx + r[1, 1] * ly, r[2, 0] * lx + r[2, 1] * ly)
+    c = camera.origin
+    lens = (c[0] + r[0, 0] * lx + r[0, 1] * ly, c[1] + r[1, 0] * lx + r[1, 1] * ly, c[2] + r[2, 0] * lx + r[2, 1] * ly)
     w = (p[0] - lens[0], p[1] - lens[1], p[2] - lens[2])
     dist = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
     vx = r[0, 0] * w[0] + r[1, 0] * w[1] + r[2, 0] * w[2]

@@ -1,0 +1,22 @@
+"""The one-line render status Blender shows: in the status bar for F12, in the viewport header when
+the viewport renders. No bpy: the viewport's render thread builds it too."""
+
+from __future__ import annotations
+
+
+def stats_line(renderer, pass_index: int, done: int, target: int | None, seconds: float, warnings) -> str:
+    """``Prism | Pass 3 | 12/64 spp | 1.30 M rays/s | <strategy> | ...`` (``12 spp`` when ``target`` is
+    None: a viewport rendering until stopped)."""
+    stats = renderer.stats
+    rays_per_second = stats.get("rays_cast", 0) / seconds if seconds > 0 else 0.0
+    parts = [
+        f"Prism | Pass {pass_index} | {done}/{target} spp" if target else f"Prism | Pass {pass_index} | {done} spp",
+        f"{rays_per_second / 1e6:.2f} M rays/s",
+        renderer.strategy,
+    ]
+    if stats.get("nan_samples"):
+        parts.append(f"{stats['nan_samples']} NaN samples dropped")
+    notes = list(warnings) + list(stats.get("warnings") or [])
+    if notes:
+        parts.append(f"{len(notes)} warning(s): {notes[0]}")
+    return " | ".join(parts)
