@@ -220,3 +220,23 @@ def test_spot_light_caustics_follow_the_cone():
             r.render_pass()
             sums[name] = r.film._light_sum.sum()
     assert sums["point"] > 0 and sums["spot"] == sums["point"] and sums["away"] == 0
+
+
+def test_a_moved_viewport_camera_connects_light_paths_to_where_it_stands():
+    """The viewport keeps the render's origin while the camera moves: connections go to the camera's
+    position in that space, so the caustic matches a new renderer's at the new place."""
+    from dataclasses import replace
+
+    scene = _ball_on_floor(resolution=(24, 18))
+    moved = replace(scene.camera, camera_to_world=look_at((0.8, -2.6, 2.2), (0.0, 0.0, 0.3)))
+    with Renderer(scene, settings(samples=16, samples_per_pass=16, light_tracing="on")) as r:
+        r.render_pass()
+        r.set_camera(moved)
+        assert np.abs(r.origin - scene.camera.camera_to_world[:3, 3]).max() == 0
+        r.render_pass()
+        moved_light = _light_part(r)
+    with Renderer(replace(scene, camera=moved), settings(samples=16, samples_per_pass=16, light_tracing="on")) as r:
+        r.render_pass()
+        fresh_light = _light_part(r)
+    assert fresh_light.sum() > 0
+    assert np.abs(moved_light - fresh_light).sum() < 1e-3 * fresh_light.sum()
