@@ -13,6 +13,8 @@ after each pass the relMSE over the region (``benchmarks.metrics.relmse``) is re
 render's own time. The target relMSE is what light tracing reaches after a few seconds; path tracing
 gets at least 10x that time (``PT_BUDGET``): its time to the target is measured if it gets there,
 else bounded from below by its budget.
+
+``python -m benchmarks.experiments.light_tracing [--quick]`` prints the curves and the summary.
 """
 
 from __future__ import annotations
@@ -21,13 +23,12 @@ import time
 
 import numpy as np
 
+from benchmarks.geometry import MeshBuilder, quad
+from benchmarks.metrics import relmse
+from benchmarks.scenes import look_at
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Light, Material, Scene, World
 from engine.tracer.settings import RenderSettings
-
-from ..geometry import MeshBuilder, quad
-from ..metrics import relmse
-from ..scenes import look_at
 
 TITLE = "Light tracing: time for the rainbow of a prism to reach a relMSE, with and without light tracing"
 PT_BUDGET = 12.0  # path tracing renders this many times light tracing's time to the target
@@ -97,13 +98,12 @@ def _curve(scene, mode, region, reference, seconds, target, seed):
     light tracing)."""
     points = []
     with Renderer(scene, _settings(mode, 1 << 30, seed)) as r:
-        r.render_pass()  # compiles nothing new, warms caches; not counted
-        r.film.__init__(r.width, r.height)
-        spent = r.stats["seconds"]
+        r.render_pass()  # warms caches and thread buffers; not counted
+        r.restart()
         while True:
             r.render_pass()
             image = r.film.mean()[region][:, None, :]
-            points.append((r.stats["seconds"] - spent, relmse(image, reference), r.film.counts.max()))
+            points.append((r.stats["seconds"], relmse(image, reference), r.film.counts.max()))
             if points[-1][0] >= seconds or (mode == "on" and points[-1][1] <= target):
                 return points, r.strategy
 
@@ -138,8 +138,9 @@ def run(quick: bool) -> dict:
         for seconds, error, spp in points:
             rows.append(dict(strategy=name, seconds=round(seconds, 3), spp=int(spp), relmse=float(error)))
     if t_pt is None:
+        guess = pt[-1][0] * pt[-1][1] / target  # if it fell as 1/t from its last point: a rough guess
         ratio = f"> {pt[-1][0] / t_lt:.0f}x sooner (path tracing had not reached it after {pt[-1][0]:.1f} s, " \
-                f"relMSE {pt[-1][1]:.3g})"
+                f"relMSE {pt[-1][1]:.3g}; falling as 1/t from there it would need ~{guess:.0f} s)"
     else:
         ratio = f"{t_pt / t_lt:.0f}x sooner (path tracing: {t_pt:.1f} s)"
     summary = (f"Rainbow region ({int(region.sum())} px of {resolution[0]}x{resolution[1]}): relMSE {target} in "
