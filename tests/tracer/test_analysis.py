@@ -93,3 +93,12 @@ def test_the_analysis_reads_materials_lights_and_the_camera_for_light_tracing():
     scene.camera.lens_file = str(Path(__file__).parents[2] / "lenses" / "double_gauss_50mm.lens")
     r = Renderer(scene, settings())
     assert not r.analysis.light_tracing and "caustics by path tracing (real lens)" in r.strategy
+
+
+def test_an_unknown_light_tracing_mode_is_refused():
+    import pytest
+
+    from engine.tracer.errors import PrismInputError
+
+    with pytest.raises(PrismInputError, match="Unknown light tracing mode 'sometimes': use one of auto, off, on."):
+        Renderer(plane_under_point_light(size=4), settings(light_tracing="sometimes"))
