@@ -37,6 +37,9 @@ class RenderRequest:
     report. ``progress_stream``: where to print one line per pass and the
     warnings (e.g. ``sys.stderr``). ``stop_requested``: polled between chunks;
     returning True stops the render as Esc does (batch renders: Ctrl-C).
+    ``show_image``: a finished scene-linear image [H, W, 3] (row 0 at the top) to
+    put in the Render Result instead of tracing the scene, so Blender's own
+    writers can save it with a scene's output settings (``engine.png_output``).
     """
 
     samples: int | None = None
@@ -47,6 +50,7 @@ class RenderRequest:
     keep_film: bool = False
     progress_stream: object = None
     stop_requested: Callable[[], bool] | None = None
+    show_image: np.ndarray | None = None
 
 
 @dataclass

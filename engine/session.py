@@ -23,7 +23,7 @@ from .export.settings import export_settings  # noqa: E402
 from .fingerprint import render_fingerprint  # noqa: E402
 from .render_engine import enabled_passes  # noqa: E402
 from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
-from .stats import stats_line  # noqa: E402
+from .stats import stats_line, timecode  # noqa: E402
 from .tracer.errors import PrismInputError  # noqa: E402
 
 
@@ -61,7 +61,10 @@ class RenderSession:
     def run(self) -> RenderReport:
         self.report.started = True
         try:
-            self._render()
+            if self.request.show_image is not None:
+                self._show(self.request.show_image)
+            else:
+                self._render()
         except PrismInputError as error:
             self.fail(str(error))
         except MemoryError:
@@ -112,8 +115,17 @@ class RenderSession:
                     samples=renderer.samples_done - req.sample_offset,
                     sample_offset=req.sample_offset,
                     seed=settings.seed,
-                    fingerprint=render_fingerprint(tracer_scene, settings),
+                    fingerprint=render_fingerprint(tracer_scene, settings, scene.frame_current + scene.frame_subframe),
                 )
+
+    def _show(self, image: np.ndarray) -> None:
+        """Fill the Render Result with a finished image (see ``RenderRequest.show_image``)."""
+        height, width = image.shape[:2]
+        result = self.engine.begin_result(0, 0, width, height, layer=self.depsgraph.view_layer.name)
+        try:
+            result.layers[0].passes["Combined"].rect = bottom_up(np.asarray(image, np.float32), alpha=True)
+        finally:
+            self.engine.end_result(result)
 
     def _passes(self, renderer, border, width, height, target, warnings) -> None:
         engine = self.engine
@@ -161,7 +173,8 @@ class RenderSession:
                 line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings)
                 engine.update_stats("", line)
                 self.report.stats = line
-                self._print(line)
+                # Blender's "Time: …" line, once per pass: render farms (Flamenco) count these as steps.
+                self._print(f"Time: {timecode(time.perf_counter() - started)} | {line}")
                 if self.cancelled:
                     break
         finally:

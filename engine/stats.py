@@ -20,3 +20,12 @@ def stats_line(renderer, pass_index: int, done: int, target: int | None, seconds
     if notes:
         parts.append(f"{len(notes)} warning(s): {notes[0]}")
     return " | ".join(parts)
+
+
+def timecode(seconds: float) -> str:
+    """Elapsed time as Blender prints it: ``00:07.25`` (minutes, seconds, hundredths), ``01:02:07.25`` past an hour."""
+    hundredths = int(round(max(seconds, 0.0) * 100))
+    minutes, hundredths = divmod(hundredths, 6000)
+    hours, minutes = divmod(minutes, 60)
+    clock = f"{minutes:02d}:{hundredths // 100:02d}.{hundredths % 100:02d}"
+    return f"{hours:02d}:{clock}" if hours else clock

@@ -69,8 +69,16 @@ def _parser(in_blender: bool) -> argparse.ArgumentParser:
     parser.add_argument("--seed", type=int, help=f"random seed, 0..{MAX_SEED} (default: the scene's setting)")
     parser.add_argument("--threads", type=int, help="CPU threads (0 = all cores; default: the scene's setting)")
     parser.add_argument("--frames", type=frame_range, help="render frames A..B (inclusive) instead of the current one")
-    parser.add_argument("--chunk-seed", type=int, help="render sample chunk K (samples K*N..(K+1)*N-1) to an EXR")
+    parser.add_argument(
+        "--chunk-seed", type=int, help="render sample chunk K (samples K*N..(K+1)*N-1) of one frame to an EXR"
+    )
     parser.add_argument("--merge", nargs="+", metavar="CHUNK", help="merge chunk EXRs weighted by their samples")
+    parser.add_argument(
+        "--expect-samples",
+        type=int,
+        metavar="TOTAL",
+        help="with --merge: the chunks must hold samples 0..TOTAL-1, every one (refuses a missing chunk)",
+    )
     parser.add_argument("--output", help="output image, .png or .exr")
     parser.add_argument(
         "--keep-partial",
@@ -125,6 +133,12 @@ def _check_numbers(parser, arguments) -> None:
         parser.error(f"--threads must be between 0 (all cores) and {MAX_THREADS} (got {arguments.threads})")
     if arguments.chunk_seed is not None and arguments.chunk_seed < 0:
         parser.error(f"--chunk-seed must be 0 or more (got {arguments.chunk_seed})")
+    if arguments.expect_samples is not None:
+        if not arguments.merge:
+            parser.error("--expect-samples checks what --merge adds up to: use it with --merge")
+        if not 1 <= arguments.expect_samples <= SAMPLE_SEQUENCE_LENGTH:
+            parser.error(f"--expect-samples must be between 1 and {SAMPLE_SEQUENCE_LENGTH} "
+                         f"(got {arguments.expect_samples})")
 
 
 def _check_output(parser, arguments) -> None:
@@ -137,16 +151,17 @@ def _check_output(parser, arguments) -> None:
         parser.error(f"--output '{arguments.output}' is one of the chunks to merge: give the merge another name")
     if arguments.lens_diagram is not None and Path(arguments.lens_diagram).resolve() == output.resolve():
         parser.error("--lens-diagram and --output name the same file: give them different names")
-    if (arguments.merge or arguments.chunk_seed is not None) and output.suffix.lower() != ".exr":
-        option = "--merge" if arguments.merge else "--chunk-seed"
-        parser.error(f"{option} writes an EXR: give --output a .exr name")
+    if arguments.chunk_seed is not None and output.suffix.lower() != ".exr":
+        parser.error("--chunk-seed writes an EXR (a chunk to merge): give --output a .exr name")
 
 
 def _check_chunk(parser, arguments) -> None:
     if arguments.samples is None:
         parser.error("--chunk-seed needs --samples (the chunk's sample count)")
-    if arguments.frames is not None:
-        parser.error("--chunk-seed renders one frame: leave out --frames")
+    if arguments.frames is not None and arguments.frames[0] != arguments.frames[1]:
+        first, last = arguments.frames
+        parser.error(f"--chunk-seed renders one frame: give --frames a single frame, e.g. --frames {first} "
+                     f"(got {first}..{last})")
     if arguments.keep_partial:
         parser.error("--chunk-seed writes a whole chunk or nothing (a partial chunk cannot merge): leave out --keep-partial")
     end = (arguments.chunk_seed + 1) * arguments.samples
