@@ -23,6 +23,10 @@ for bit, as one render of ``K*N`` samples written with ``--chunk-seed 0`` (see
 ``engine/chunks.py`` for when that holds); a merged PNG has the pixels of that
 render's PNG.
 
+``--spectral-output spectra.exr`` also writes a multispectral EXR (the layout
+of Fichet et al. 2021, read by colour-science): radiance in wavelength bands
+across 360-830 nm, band width from Render ▸ Prism ▸ Spectral Output.
+
 Every output is written whole or not at all (a temporary file, then one rename).
 Ctrl-C (or SIGTERM) stops the render after the current chunk: the file being
 rendered is not written (``--keep-partial`` keeps it as ``NAME.partial.exr``),
@@ -121,10 +125,11 @@ def check_scene(scene, prism: Prism) -> None:
     prism.export.render_border(scene, width, height)  # Blender says only "Image too small"
 
 
-def batch_request(arguments, prism: Prism, signals):
+def batch_request(arguments, prism: Prism, signals, spectral_output: Path | None = None):
     """The RenderRequest of one batch frame: the command line's overrides, no quick first pass."""
     chunked = arguments.chunk_seed is not None
     return prism.requests.RenderRequest(
+        spectral_output=str(spectral_output) if spectral_output else None,
         samples=arguments.samples,
         seed=arguments.seed,
         threads=arguments.threads,
@@ -136,8 +141,8 @@ def batch_request(arguments, prism: Prism, signals):
     )
 
 
-def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
-    """Render the current frame to ``output`` (whole, or not at all)."""
+def render_frame(arguments, output: Path, prism: Prism, signals, frame: int | None = None) -> Path:
+    """Render the current frame to ``output`` (whole, or not at all); frame ``frame`` of a --frames run."""
     import bpy
 
     scene = bpy.context.scene
@@ -152,7 +157,13 @@ def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
         prism.output_files.atomic_output(output, signals) as temporary,
     ):
         blender_error = None
-        with prism.requests.render_request(batch_request(arguments, prism, signals)) as report:
+        spectral = None
+        if arguments.spectral_output:
+            spectral = Path(arguments.spectral_output).resolve()
+            files = prism.output_files  # '#' becomes the frame number, as in --output
+            spectral = files.numbered_output(spectral, scene.frame_current) if frame is None else files.frame_output(
+                spectral, frame)
+        with prism.requests.render_request(batch_request(arguments, prism, signals, spectral)) as report:
             try:
                 # No write_still: Blender would announce the temporary file ("Saved: '.out.prism-…'").
                 bpy.ops.render.render(write_still=False)
@@ -172,6 +183,8 @@ def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
             chunks.write_chunk(temporary, chunks.chunk_of_film(report.film, png_settings))
         else:
             save_render_result(scene, temporary, output, prism)
+    if report.spectral_output:
+        _wrote(Path(report.spectral_output))
     return output
 
 
@@ -253,7 +266,7 @@ def render_all(arguments, prism: Prism, signals) -> None:
         signals.raise_if_stopped(f"frame {frame} and the frames after it")
         print(f"Prism: frame {frame} ({frame - first + 1}/{last - first + 1})", file=sys.stderr, flush=True)
         scene.frame_set(frame)
-        _wrote(render_frame(arguments, prism.output_files.frame_output(output, frame), prism, signals))
+        _wrote(render_frame(arguments, prism.output_files.frame_output(output, frame), prism, signals, frame))
 
 
 def merge(arguments, prism: Prism, signals) -> None:

@@ -23,13 +23,13 @@ from __future__ import annotations
 
 import hashlib
 import json
-import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from .fingerprint import differing_parts
+from .openimageio import import_openimageio as _oiio
 from .tracer.errors import PrismInputError
 
 FORMAT_ATTRIBUTE = "prism:chunk"
@@ -41,17 +41,6 @@ SAMPLES_ATTRIBUTE = "prism:samples"  # the total, for people reading the header
 PNG_SETTINGS_ATTRIBUTE = "prism:png_settings"
 CHECKSUM_ATTRIBUTE = "prism:checksum"
 CHANNELS = ("R", "G", "B", "A", "prism_lo_R", "prism_lo_G", "prism_lo_B")
-
-
-def _oiio():
-    try:
-        import OpenImageIO
-    except ImportError:
-        import bpy
-
-        sys.path.append(str(Path(bpy.utils.system_resource("PYTHON")) / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages"))
-        import OpenImageIO
-    return OpenImageIO
 
 
 @dataclass

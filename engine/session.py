@@ -17,6 +17,7 @@ from . import kernel_cache
 
 kernel_cache.configure()  # before anything below imports a tracer kernel module
 
+from . import spectral_exr  # noqa: E402
 from .export import export_scene  # noqa: E402
 from .export.border import render_border  # noqa: E402
 from .export.settings import export_settings  # noqa: E402
@@ -90,8 +91,10 @@ class RenderSession:
         tracer_scene = export_scene(self.depsgraph, warnings)
         width, height = tracer_scene.camera.resolution
         border = render_border(scene, width, height)
+        spectral_path = spectral_exr.requested_path(scene, req, engine.is_preview)
         settings = export_settings(
-            scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border
+            scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border,
+            spectral=spectral_path is not None,
         )
         self.report.warnings = warnings
         for message in warnings if not engine.is_preview else ():  # Blender's preview scene: not the user's to fix
@@ -109,6 +112,8 @@ class RenderSession:
                     renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
             if compiling and not self.cancelled:
                 kernel_cache.mark_compiled()
+            if spectral_path is not None and not self.cancelled:
+                self._write_spectral(renderer, spectral_path)
             if req.keep_film and not self.cancelled:
                 self.report.film = FilmSnapshot(
                     mean=renderer.film.mean(),
@@ -182,6 +187,14 @@ class RenderSession:
         if self.cancelled:
             engine.update_stats("", f"Prism | Cancelled at {renderer.samples_done - start_done}/{target} spp")
             self._print("Prism: cancelled")
+
+    def _write_spectral(self, renderer, path) -> None:
+        film = renderer.spectral_film
+        written = spectral_exr.write_spectral_exr(path, film.centres_nm, film.mean(), renderer.image_rgb())
+        self.report.spectral_output = str(written)
+        if self.request.progress_stream is None:  # a batch script names the files it wrote itself
+            self.engine.report({"INFO"}, f"Prism: spectral image ({film.bands} bands of {film.band_nm:.3g} nm) "
+                                         f"written to {written}")
 
     @staticmethod
     def _write(result, renderer, box, wanted) -> None:

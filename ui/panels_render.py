@@ -100,6 +100,28 @@ class PRISM_PT_performance(PrismPanel, bpy.types.Panel):
         layout.prop(context.scene.prism, "threads")
 
 
+class PRISM_PT_spectral_output(PrismPanel, bpy.types.Panel):
+    """The optional multispectral EXR."""
+
+    bl_label = "Spectral Output"
+    bl_context = "render"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.prism, "use_spectral_output", text="")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.prism
+        column = layout.column()
+        column.active = settings.use_spectral_output
+        column.prop(settings, "spectral_band_nm")
+        column.prop(settings, "spectral_output_path")
+        column.label(text="Bands as S0.<nm> channels (Fichet et al. 2021), with the render as R, G, B.")
+
+
 class PRISM_PT_passes(PrismPanel, bpy.types.Panel):
     """Optional render passes (View Layer properties)."""
 
@@ -115,7 +137,8 @@ class PRISM_PT_passes(PrismPanel, bpy.types.Panel):
         column.prop(context.scene.prism, "use_pass_sample_count")
 
 
-CLASSES = (PRISM_PT_sampling, PRISM_PT_light_paths, PRISM_PT_wavelengths, PRISM_PT_performance, PRISM_PT_passes)
+CLASSES = (PRISM_PT_sampling, PRISM_PT_light_paths, PRISM_PT_wavelengths, PRISM_PT_spectral_output, PRISM_PT_performance,
+           PRISM_PT_passes)
 
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

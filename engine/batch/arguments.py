@@ -81,6 +81,12 @@ def _parser(in_blender: bool) -> argparse.ArgumentParser:
     )
     parser.add_argument("--output", help="output image, .png or .exr")
     parser.add_argument(
+        "--spectral-output",
+        metavar="EXR",
+        help="also write a multispectral EXR (wavelength bands of Render ▸ Prism ▸ Spectral Output's width, "
+        "Fichet et al. 2021 layout); # becomes the frame number as in --output",
+    )
+    parser.add_argument(
         "--keep-partial",
         action="store_true",
         help="when interrupted, keep the unfinished image as NAME.partial.png/.exr (never under --output's name)",
@@ -100,6 +106,8 @@ def parse_arguments(argv: list[str], in_blender: bool) -> argparse.Namespace:
     _check_numbers(parser, arguments)
     if arguments.lens_diagram is not None and Path(arguments.lens_diagram).suffix.lower() != ".png":
         parser.error(f"--lens-diagram must end in .png (got '{arguments.lens_diagram}')")
+    if arguments.spectral_output is not None:
+        _check_spectral_output(parser, arguments)
     if arguments.output is None:
         if arguments.lens_diagram is None or arguments.merge:
             parser.error("give --output (an image to render), --lens-diagram, or both")
@@ -153,6 +161,21 @@ def _check_output(parser, arguments) -> None:
         parser.error("--lens-diagram and --output name the same file: give them different names")
     if arguments.chunk_seed is not None and output.suffix.lower() != ".exr":
         parser.error("--chunk-seed writes an EXR (a chunk to merge): give --output a .exr name")
+
+
+def _check_spectral_output(parser, arguments) -> None:
+    spectral = Path(arguments.spectral_output)
+    if spectral.suffix.lower() != ".exr":
+        parser.error(f"--spectral-output must end in .exr (got '{arguments.spectral_output}')")
+    if spectral.is_dir():
+        parser.error(f"--spectral-output '{arguments.spectral_output}' is a folder: give a file name ending in .exr")
+    if arguments.output is None:
+        parser.error("--spectral-output is written with a render: give --output too")
+    if spectral.resolve() == Path(arguments.output).resolve():
+        parser.error("--spectral-output and --output name the same file: give them different names")
+    if arguments.merge or arguments.chunk_seed is not None:
+        option = "--merge" if arguments.merge else "--chunk-seed"
+        parser.error(f"--spectral-output needs a whole render, which {option} does not make: leave out one of them")
 
 
 def _check_chunk(parser, arguments) -> None:

@@ -1,7 +1,7 @@
 """``Scene.prism``: render settings stored in the .blend (the session turns them into ``RenderSettings``)."""
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from ._common import WAVELENGTH_SUBTYPE, register_group, unregister_group
 from .farm import PrismFarmSettings
@@ -187,6 +187,28 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         description="Add a Sample Count pass: samples accumulated in each pixel",
         default=False,
         update=_update_render_passes,
+    )
+    use_spectral_output: BoolProperty(
+        name="Spectral Output",
+        description="Also write a multispectral EXR (radiance in wavelength bands across 360-830 nm, the "
+        "layout of Fichet et al. 2021) when a render finishes",
+        default=False,
+    )
+    spectral_band_nm: FloatProperty(
+        name="Band Width",
+        description="Width of the spectral EXR's wavelength bands in nm (adjusted to tile 360-830 nm evenly: "
+        "10 nm gives 47 bands)",
+        default=10.0,
+        min=1.0,
+        max=100.0,
+        subtype=WAVELENGTH_SUBTYPE,
+    )
+    spectral_output_path: StringProperty(
+        name="File",
+        description="Where the spectral EXR is written (// is the .blend file's folder; # becomes the frame "
+        "number)",
+        default="//spectral_####.exr",
+        subtype="FILE_PATH",
     )
     lens_overlay: PointerProperty(
         type=PrismLensOverlaySettings,

@@ -4,7 +4,8 @@
   otherwise every path carries all its wavelengths to the end.
 - Emissive meshes are light-sampled only if some used material emits.
 - Shadow rays cross free-standing films only if the scene has one (else one occlusion query each).
-- Wavelength sampling is guided toward emission lines only if an emitter has one.
+- Wavelength sampling (cie mode) follows the scene's emission spectra; the visible density only when
+  nothing emits.
 - Caustics come from light tracing (``choose_light_tracing``) only if a smooth glass or mirror can
   focus a small light (``lights.apparent_size``) onto a surface that is not purely specular, seen
   through a pinhole or thin lens.
@@ -28,6 +29,8 @@ class SceneAnalysis:
     features: list[str] = field(default_factory=list)
     world: bool = False
     guided_lines: int = 0
+    guided_measured: int = 0
+    guided_smooth: int = 0
     camera_strategy: str = ""
     see_through_films: bool = False
     sampler: str = "sobol"
@@ -37,8 +40,11 @@ class SceneAnalysis:
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
         """One line for the render stats."""
         parts = [f"{self.wavelength_mode} x{self.wavelengths_per_path}"]
-        if self.guided_lines:
-            parts[0] += f" guided by {self.guided_lines} emission line(s)"
+        counts = ((self.guided_lines, "emission line(s)"), (self.guided_measured, "measured spectrum(s)"),
+                  (self.guided_smooth, "smooth spectrum(s)"))
+        guides = [f"{count} {what}" for count, what in counts if count]
+        if guides:
+            parts[0] += " guided by " + " + ".join(guides)
         if self.dispersion:
             what = ", ".join(self.dispersive + (["lens"] if self.camera_disperses else []))
             parts.append(f"hero-wavelength termination ({what})")
@@ -63,19 +69,21 @@ class SceneAnalysis:
 
 
 def choose_light_tracing(mode: str, specular: list[str], films: list[str], receivers: bool, small_lights: list[str],
-                         lights: bool, real_lens: bool) -> tuple[bool, str]:
+                         lights: bool, path_tracing_only: str = "") -> tuple[bool, str]:
     """(trace caustics from the lights?, the stats line's words) for the setting ``mode`` ("auto", "off",
     "on"). ``specular``: names of the purely specular materials that can focus light (smooth glass,
     mirrors); ``films``: free-standing films (they count only when forced on); ``receivers``: some
     surface is not purely specular; ``small_lights``: lights that look small from the specular objects
     (``lights.apparent_size``: path tracing alone would not find their caustics); ``lights``: some
-    light other than the world emits. Auto needs a small light: a large one's caustics path tracing
-    finds by itself, and light paths would only take time from the rest of the image."""
+    light other than the world emits; ``path_tracing_only``: why this render cannot light-trace
+    ("real lens": connections do not go through lens systems; "spectral output": the spectral film
+    takes camera samples only), "" if it can. Auto needs a small light: a large one's caustics path
+    tracing finds by itself, and light paths would only take time from the rest of the image."""
     if mode == "off":
         return False, "light tracing off"
     focusing = specular + (films if mode == "on" else [])
-    if real_lens:
-        return False, "caustics by path tracing (real lens)"
+    if path_tracing_only:
+        return False, f"caustics by path tracing ({path_tracing_only})"
     if not (focusing and receivers and lights):
         return False, "no caustics to light-trace" if mode == "auto" else "light tracing on, but nothing to trace"
     if mode == "auto" and not small_lights:

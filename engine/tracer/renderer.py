@@ -4,6 +4,7 @@
     renderer.render_pass()          # + settings.samples_per_pass samples per pixel
     renderer.image_rgb()            # float32 [H, W, 3] scene-linear Rec.709, row 0 = top
     renderer.variance_rgb()         # float32 [H, W, 3] variance of the mean
+    renderer.spectral_film          # SpectralFilm (band radiance) when settings.spectral_band_nm > 0, else None
     renderer.samples_done, renderer.strategy, renderer.stats
     renderer.start_at_sample(n)     # continue the seed's sequence at sample n (chunked renders)
     renderer.cancel()               # from any thread: stop the current pass after running chunks
@@ -40,11 +41,14 @@ from .film import Film
 from .geometry import prepare_geometry
 from .lights.apparent_size import small_lights
 from .lights.caustic_targets import build_caustic_targets
+from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
-from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials, is_emissive
+from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials
 from .sampler import SAMPLERS
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
+from .spectra.wavelength_guide import build_guide
+from .spectral_film import SpectralFilm
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
 
@@ -65,17 +69,6 @@ def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int
 
 def worker_threads(requested: int) -> int:
     return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
-
-
-def _monochromatic_lines(scene, used):
-    from .spectra.emission_spectrum import emission_spectrum
-
-    specs = [light.spectrum for light in scene.lights if light.spectrum.kind == "monochromatic"]
-    for m in used:
-        material = scene.materials[m]
-        if is_emissive(material) and material.emission is not None and material.emission.kind == "monochromatic":
-            specs.append(material.emission)
-    return [emission_spectrum(spec) for spec in dict.fromkeys(specs)]
 
 
 def _kept(triangle_object, original):
@@ -133,10 +126,12 @@ class Renderer:
         materials = self.material_table.arrays
         self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
                                         self.geometry.material, materials.emission_strength, self.origin)
-        lines = _monochromatic_lines(scene, used) if settings.wavelength_mode == "cie" else []
-        self.wavelengths = wavelength_sampling.build(settings, lines)
-        self._guided_lines = len(lines)
         self.spectra = spectra.arrays()
+        guide = None
+        if settings.wavelength_mode == "cie":
+            guide = build_guide(self.spectra, emitter_spectra(self.light_table, materials))
+        self.wavelengths = wavelength_sampling.build(settings, guide)
+        self._guide = guide
         self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
                                               bool(settings.use_mis), SAMPLERS[settings.sampler],
                                               int(settings.seed) & 0xFFFFFFFF, False)
@@ -145,7 +140,9 @@ class Renderer:
 
     def _describe(self):
         self.analysis = self._analyse(self._used)
-        self.analysis.guided_lines = self._guided_lines
+        if self._guide is not None:
+            a, guide = self.analysis, self._guide
+            a.guided_lines, a.guided_measured, a.guided_smooth = guide.lines, guide.measured, guide.smooth
         self.kernel_settings = self.kernel_settings._replace(light_tracing=bool(self.analysis.light_tracing))
         if not self.analysis.light_tracing:
             self.caustic_targets = None
@@ -155,6 +152,8 @@ class Renderer:
         """Start the image again: an empty film and no samples, a cancelled renderer rendering again.
         Call it (as the ``set_*`` methods do) only while no pass runs."""
         self.film = Film(self.width, self.height)
+        self.spectral_film = (SpectralFilm(self.width, self.height, self.settings.spectral_band_nm)
+                              if self.settings.spectral_band_nm else None)
         self.samples_done = 0
         self._first_sample = 0
         self._passes = 0
@@ -267,7 +266,8 @@ class Renderer:
                                  self.caustic_targets)
         a.light_tracing, a.light_tracing_note = choose_light_tracing(
             s.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
-            lights.select_prob.shape[0] > 0, self.camera.lens is not None)
+            lights.select_prob.shape[0] > 0,
+            "real lens" if self.camera.lens is not None else "spectral output" if s.spectral_band_nm else "")
         return a
 
     def _pixel_list(self, border):
@@ -299,11 +299,14 @@ class Renderer:
             extra = light_buffers(self._local, count)
             splats, rays, rejected = trace_light_chunk(self, buffers, extra, start, count, spp, self.samples_done,
                                                        clamps)
-            return extra.pixel[:splats].copy(), buffers.rgb[:splats].copy(), rays, rejected, clamps
+            return extra.pixel[:splats].copy(), buffers.rgb[:splats].copy(), rays, rejected, clamps, None
         from .stages.trace import trace_chunk
 
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
-        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps
+        spectral = None
+        if self.spectral_film is not None:
+            spectral = self.spectral_film.record(buffers.state, count)
+        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps, spectral
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
@@ -362,7 +365,7 @@ class Renderer:
                 if job is None:
                     break
                 try:
-                    pixel, rgb, rays, rejected, clamps = job.result()
+                    pixel, rgb, rays, rejected, clamps, spectral = job.result()
                 except CancelledError:
                     break
                 with self._jobs_lock:
@@ -371,6 +374,8 @@ class Renderer:
                     light_splats.append((pixel, rgb, chunks[i][1] - chunks[i][0]))
                 else:
                     self.film.add(pixel, rgb)
+                    if spectral is not None:
+                        self.spectral_film.add(pixel, *spectral)
                 self.stats["rays_cast"] += rays
                 self.stats["rejected_rays"] += rejected
                 self._glass_clamps += clamps

@@ -46,6 +46,8 @@ class RenderSettings:
     # Caustics from light tracing (paths from the lights through specular objects, seen by the camera):
     # "auto" (where the scene analysis finds specular objects a light can shine through), "off", "on".
     light_tracing: str = "auto"
+    # Multispectral output (``spectral_film``): band width in nm, 0 = off (no spectral buffer at all).
+    spectral_band_nm: float = 0.0
 
     def validate(self) -> None:
         """Raise ``PrismInputError`` for settings no render can use."""
@@ -67,6 +69,16 @@ class RenderSettings:
             raise PrismInputError(
                 f"Wavelengths per path must be between 1 and 16 (got {self.wavelengths_per_path})."
             )
+        if self.spectral_band_nm:
+            from .spectral_film import band_edges_nm
+
+            band_edges_nm(self.spectral_band_nm)
+            if self.wavelength_mode != "cie":
+                raise PrismInputError(
+                    "Spectral output needs CIE hero wavelengths: Gaussian RGB mode samples only around its three "
+                    "channels, so most bands would stay empty. Set Render ▸ Prism ▸ Wavelengths to CIE, or turn "
+                    "Spectral Output off."
+                )
         for channel, sigma in zip("RGB", self.channel_sigmas_nm):
             if not sigma > 0:
                 raise PrismInputError(f"The {channel} channel's sigma must be positive (got {sigma} nm).")

@@ -9,6 +9,7 @@ fails the test just as it would print an error in Blender.
 
 from __future__ import annotations
 
+import importlib
 from types import SimpleNamespace
 
 import pytest
@@ -191,7 +192,7 @@ def test_light_panels_draw_for_every_type_and_colour_source(prism_addon, fresh_s
     import bpy
 
     light = bpy.data.lights.new("Lamp", light_type)
-    for source in ("RGB", "BLACKBODY", "MONOCHROMATIC"):
+    for source in ("RGB", "BLACKBODY", "MONOCHROMATIC", "ILLUMINANT", "FILE"):
         light.prism.color_source = source
         shapes = ("SQUARE", "RECTANGLE", "DISK", "ELLIPSE") if light_type == "AREA" else (None,)
         for shape in shapes:
@@ -305,6 +306,59 @@ def test_wavelength_plot_follows_the_gaussians(prism_addon, fresh_scene):
     fresh_scene.prism.mean_r_nm = 610.0
     plot.plot_icon_id(fresh_scene.prism)
     assert plot._plot_key != key
+
+
+def test_spectrum_panels_plot_the_spectrum_and_the_lights_colour_rendering(prism_addon, fresh_scene, tmp_path):
+    import bpy
+
+    preview = importlib.import_module(f"{prism_addon.__name__}.engine.spectrum_preview")
+    sources = importlib.import_module(f"{prism_addon.__name__}.engine.export.spectra")
+    light = bpy.data.lights.new("Lamp", "AREA")
+    light.prism.color_source, light.prism.illuminant = "ILLUMINANT", "FL2"
+    preview.emission_preview(sources.light_emission_source("Lamp", light), wait=True)
+    log = _draw(prism_addon.ui.panels_light.PRISM_PT_light_spectrum, _context(fresh_scene, light=light))
+    labels = _labels(log)
+    assert any(name == "template_icon" for name, _, _ in log)
+    assert "CCT 4225 K, Duv +0.0019" in labels and "CRI Ra 64" in labels and "TM-30 Rf 70, Rg 86" in labels
+    assert light.prism.preview_color[0] == 1.0 and 0.6 < light.prism.preview_color[1] < 0.8  # warm white
+
+    light.prism.color_source, light.prism.spectrum_file = "FILE", str(tmp_path / "nowhere.csv")
+    preview.emission_preview(sources.light_emission_source("Lamp", light), wait=True)
+    labels = _labels(_draw(prism_addon.ui.panels_light.PRISM_PT_light_spectrum, _context(fresh_scene, light=light)))
+    assert any("nowhere.csv' does not exist" in text for text in labels)
+
+    material = bpy.data.materials.new("Patch")
+    material.use_nodes = True
+    material.prism.reflectance_source = "MEASURED"
+    material.prism.measured_reflectance = "ColorChecker N Ohta: blue"
+    node = material.node_tree.nodes["Principled BSDF"]
+    preview.reflectance_preview(sources.material_reflectance_source(material, (0.8, 0.8, 0.8)), wait=True)
+    log = _draw(prism_addon.ui.panels_material.PRISM_PT_material_base_spectrum, _context(fresh_scene, material=material))
+    assert "measured_reflectance" in _props(log) and any(name == "template_icon" for name, _, _ in log)
+    node.inputs["Emission Strength"].default_value = 3.0
+    material.prism.emission_source, material.prism.emission_wavelength_nm = "MONOCHROMATIC", 589.0
+    emission = sources.material_emission_source(material, (1.0, 1.0, 1.0))
+    preview.emission_preview(emission, wait=True)
+    log = _draw(prism_addon.ui.panels_material.PRISM_PT_material_emission_spectrum,
+                _context(fresh_scene, material=material))
+    assert {"emission_source", "emission_wavelength_nm", "emission_line_width_nm"} <= set(_props(log))
+    assert any(text.startswith("CCT") or text.startswith("CCT, CRI: not defined") for text in _labels(log))
+
+
+def test_spectrum_plot_fills_each_wavelength_in_its_colour(prism_addon):
+    import numpy as np
+
+    plot = prism_addon.ui.spectral_plot
+    wavelengths = np.arange(360.0, 831.0)
+    line = np.exp(-0.5 * ((wavelengths - 610.0) / 2.0) ** 2)
+    image = plot.render_spectrum_plot(line)
+    assert image.shape == (plot.PLOT_HEIGHT_PX, plot.PLOT_WIDTH_PX, 4)
+    filled = image[plot.PLOT_HEIGHT_PX // 2, :, :3]  # halfway up: only the line's columns reach it
+    columns = np.flatnonzero(filled.max(axis=1) > 0.5)
+    centres = np.linspace(360.0, 830.0, plot.PLOT_WIDTH_PX + 1)
+    assert abs(0.5 * (centres[columns[0]] + centres[columns[-1] + 1]) - 610.0) < 4.0
+    column = image[2 * plot.PLOT_HEIGHT_PX // 5, columns[len(columns) // 2], :3]
+    assert column[0] > 3 * max(column[1], column[2])  # red under the curve
 
 
 @pytest.mark.parametrize("shading, engine, shown", [("RENDERED", "PRISM", True), ("SOLID", "PRISM", False),

@@ -45,18 +45,17 @@ def test_light_tracing_is_chosen_where_specular_objects_can_focus_a_small_light(
     from engine.tracer.analysis import choose_light_tracing
 
     lamp = ["Lamp"]
-    assert choose_light_tracing("auto", ["Glass"], [], True, lamp, True, False) == (
-        True, "caustics by light tracing (Glass)")
-    assert choose_light_tracing("auto", ["Glass"], [], True, [], True, False) == (
+    assert choose_light_tracing("auto", ["Glass"], [], True, lamp, True) == (True, "caustics by light tracing (Glass)")
+    assert choose_light_tracing("auto", ["Glass"], [], True, [], True) == (
         False, "caustics by path tracing (lights large enough)")
-    assert choose_light_tracing("on", ["Glass"], [], True, [], True, False)[0] is True
-    assert choose_light_tracing("auto", [], ["Soap"], True, lamp, True, False)[0] is False  # films focus little
-    assert choose_light_tracing("on", [], ["Soap"], True, lamp, True, False)[0] is True
-    assert choose_light_tracing("auto", ["Glass"], [], False, lamp, True, False) == (False, "no caustics to light-trace")
-    assert choose_light_tracing("on", ["Glass"], [], True, [], False, False)[0] is False  # only the world emits
-    assert choose_light_tracing("on", ["Glass"], [], True, lamp, True, True) == (
+    assert choose_light_tracing("on", ["Glass"], [], True, [], True)[0] is True
+    assert choose_light_tracing("auto", [], ["Soap"], True, lamp, True)[0] is False  # films focus little
+    assert choose_light_tracing("on", [], ["Soap"], True, lamp, True)[0] is True
+    assert choose_light_tracing("auto", ["Glass"], [], False, lamp, True) == (False, "no caustics to light-trace")
+    assert choose_light_tracing("on", ["Glass"], [], True, [], False)[0] is False  # only the world emits
+    assert choose_light_tracing("on", ["Glass"], [], True, lamp, True, "real lens") == (
         False, "caustics by path tracing (real lens)")
-    assert choose_light_tracing("off", ["Glass"], [], True, lamp, True, False) == (False, "light tracing off")
+    assert choose_light_tracing("off", ["Glass"], [], True, lamp, True) == (False, "light tracing off")
 
 
 def test_lights_small_seen_from_the_specular_objects():
@@ -93,6 +92,9 @@ def test_the_analysis_reads_materials_lights_and_the_camera_for_light_tracing():
     scene.camera.lens_file = str(Path(__file__).parents[2] / "lenses" / "double_gauss_50mm.lens")
     r = Renderer(scene, settings())
     assert not r.analysis.light_tracing and "caustics by path tracing (real lens)" in r.strategy
+    scene.camera.model = "pinhole"
+    r = Renderer(scene, settings(spectral_band_nm=10.0))  # the spectral film takes camera samples only
+    assert not r.analysis.light_tracing and "caustics by path tracing (spectral output)" in r.strategy
 
 
 def test_an_unknown_light_tracing_mode_is_refused():

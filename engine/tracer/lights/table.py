@@ -32,6 +32,8 @@ class LightTable:
     arrays: LightArrays
     names: list  # one per row
     kinds: list  # Blender kinds ("point", "area", "sun", "emissive meshes") per row
+    power: np.ndarray | None = None  # per row, the selection's power (luminance-normalised watts)
+    scene_radius_m: float = 1.0
 
 
 def _emits(light) -> bool:
@@ -43,7 +45,10 @@ def _emits(light) -> bool:
 
 
 def _light_row(light, spectra, offset):
-    spectrum = spectra.emission(light.spectrum)
+    try:
+        spectrum = spectra.emission(light.spectrum)
+    except PrismInputError as error:
+        raise PrismInputError(f"Light '{light.name}': {error}") from None
     if light.kind in ("point", "spot"):
         return point_row(light, spectrum, offset)
     if light.kind == "area":
@@ -110,4 +115,4 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
     world_spectrum = spectra.emission(SpectrumSpec(kind="rgb", rgb=tuple(float(c) for c in world.color)))
     arrays = LightArrays(table if n else np.zeros((1, LIGHT_ROW)), prob, cdf, hittable, mesh, mesh_index,
                          world_spectrum, 0.0 if black else float(world.strength))
-    return LightTable(arrays, names, kinds)
+    return LightTable(arrays, names, kinds, power, radius)
