@@ -3,11 +3,13 @@
     blender -b scene.blend -P render.py -- --samples 64 --output out.png
     python render.py scene.blend --samples 64 --output out.exr      (bpy module)
 
-Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--frames A..B`` (``#``
+Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--noise-threshold T`` and
+``--min-samples N`` (adaptive sampling), ``--time-limit SECONDS``, ``--frames A..B`` (``#``
 in ``--output`` becomes the zero-padded frame number, else ``_NNNN`` is
 appended; without ``--frames``, ``#`` becomes the current frame's number, as in
 Blender), ``--output`` ``.png`` (the scene's view transform) or ``.exr``
-(scene-linear, 32-bit float). ``--lens-diagram out.png`` writes the lens overlay
+(scene-linear, 32-bit float; a multilayer EXR with every pass when the view
+layer has passes besides Combined). ``--lens-diagram out.png`` writes the lens overlay
 drawing (cross-section, wavelength-coloured ray fans, spot diagram) of the
 camera's real lens, with or without a render.
 
@@ -133,6 +135,9 @@ def batch_request(arguments, prism: Prism, signals, spectral_output: Path | None
         samples=arguments.samples,
         seed=arguments.seed,
         threads=arguments.threads,
+        noise_threshold=arguments.noise_threshold,
+        min_samples=arguments.min_samples,
+        time_limit_s=arguments.time_limit,
         sample_offset=arguments.chunk_seed * arguments.samples if chunked else 0,
         quick_first_pass=False,
         keep_film=chunked,
@@ -152,8 +157,11 @@ def render_frame(arguments, output: Path, prism: Prism, signals, frame: int | No
     if chunked:  # what `--output x.png` would write with, for a merge into a PNG
         with output_format(scene, "PNG"):
             png_settings = prism.module("engine.png_output").png_settings(scene)
+    file_format = OUTPUT_FORMATS[output.suffix.lower()]
+    if file_format == "OPEN_EXR" and not chunked and prism.module("engine.passes").enabled_passes(scene):
+        file_format = "OPEN_EXR_MULTILAYER"  # every pass, named as Blender names them
     with (
-        output_format(scene, OUTPUT_FORMATS[output.suffix.lower()]),
+        output_format(scene, file_format),
         prism.output_files.atomic_output(output, signals) as temporary,
     ):
         blender_error = None
@@ -194,7 +202,7 @@ def output_format(scene, file_format: str):
     settings = scene.render.image_settings
     before = settings.file_format, settings.color_depth
     settings.file_format = file_format
-    if file_format == "OPEN_EXR":
+    if file_format.startswith("OPEN_EXR"):
         settings.color_depth = "32"
     try:
         yield settings

@@ -5,19 +5,7 @@ import sys
 
 import bpy
 
-NOISE_PASS = ("Noise", 3, "RGB", "COLOR")
-SAMPLE_COUNT_PASS = ("Sample Count", 1, "X", "VALUE")
-
-
-def enabled_passes(scene) -> list[tuple[str, int, str, str]]:
-    """The optional passes (name, channels, channel ids, type) the scene asks for."""
-    prism = getattr(scene, "prism", None)
-    passes = []
-    if prism is not None and prism.use_pass_variance:
-        passes.append(NOISE_PASS)
-    if prism is not None and prism.use_pass_sample_count:
-        passes.append(SAMPLE_COUNT_PASS)
-    return passes
+from .passes import COMBINED, enabled_passes
 
 
 class PrismRenderEngine(bpy.types.RenderEngine):
@@ -45,8 +33,9 @@ class PrismRenderEngine(bpy.types.RenderEngine):
         session_of(self).view_draw(self, context, depsgraph)
 
     def update_render_passes(self, scene=None, renderlayer=None):
-        self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
-        for name, channels, ids, kind in enabled_passes(scene):
+        name, ids, kind = COMBINED
+        self.register_pass(scene, renderlayer, name, len(ids), ids, kind)
+        for name, channels, ids, kind in enabled_passes(scene, renderlayer):
             self.register_pass(scene, renderlayer, name, channels, ids, kind)
 
 

@@ -37,6 +37,8 @@ class RenderRequest:
     report. ``progress_stream``: where to print one line per pass and the
     warnings (e.g. ``sys.stderr``). ``stop_requested``: polled between chunks;
     returning True stops the render as Esc does (batch renders: Ctrl-C).
+    ``noise_threshold`` (0: adaptive sampling off), ``min_samples`` and
+    ``time_limit_s`` (0: none) override the scene's Sampling settings.
     ``spectral_output``: also write a multispectral EXR there (absolute path;
     None: the scene's Spectral Output setting decides).
     ``show_image``: a finished scene-linear image [H, W, 3] (row 0 at the top) to
@@ -47,6 +49,9 @@ class RenderRequest:
     samples: int | None = None
     seed: int | None = None
     threads: int | None = None
+    noise_threshold: float | None = None
+    min_samples: int | None = None
+    time_limit_s: float | None = None
     sample_offset: int = 0
     quick_first_pass: bool = True
     keep_film: bool = False

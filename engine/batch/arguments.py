@@ -68,6 +68,13 @@ def _parser(in_blender: bool) -> argparse.ArgumentParser:
     parser.add_argument("--samples", type=int, help="samples per pixel (default: the scene's setting)")
     parser.add_argument("--seed", type=int, help=f"random seed, 0..{MAX_SEED} (default: the scene's setting)")
     parser.add_argument("--threads", type=int, help="CPU threads (0 = all cores; default: the scene's setting)")
+    parser.add_argument("--noise-threshold", type=float, metavar="T",
+                        help="adaptive sampling: pixels stop once their relative noise is below T (0 = off, "
+                        "0.01 typical; default: the scene's setting)")
+    parser.add_argument("--min-samples", type=int, metavar="N",
+                        help="adaptive sampling: samples every pixel takes first (0 = automatic)")
+    parser.add_argument("--time-limit", type=float, metavar="SECONDS",
+                        help="stop sampling after this many seconds per frame (0 = no limit)")
     parser.add_argument("--frames", type=frame_range, help="render frames A..B (inclusive) instead of the current one")
     parser.add_argument(
         "--chunk-seed", type=int, help="render sample chunk K (samples K*N..(K+1)*N-1) of one frame to an EXR"
@@ -141,6 +148,12 @@ def _check_numbers(parser, arguments) -> None:
         parser.error(f"--threads must be between 0 (all cores) and {MAX_THREADS} (got {arguments.threads})")
     if arguments.chunk_seed is not None and arguments.chunk_seed < 0:
         parser.error(f"--chunk-seed must be 0 or more (got {arguments.chunk_seed})")
+    if arguments.noise_threshold is not None and not 0 <= arguments.noise_threshold < 1:
+        parser.error(f"--noise-threshold must be between 0 (off) and 1, e.g. 0.01 (got {arguments.noise_threshold})")
+    if arguments.min_samples is not None and arguments.min_samples < 0:
+        parser.error(f"--min-samples must be 0 (automatic) or more (got {arguments.min_samples})")
+    if arguments.time_limit is not None and not arguments.time_limit >= 0:
+        parser.error(f"--time-limit must be 0 (no limit) or a number of seconds (got {arguments.time_limit})")
     if arguments.expect_samples is not None:
         if not arguments.merge:
             parser.error("--expect-samples checks what --merge adds up to: use it with --merge")
@@ -187,6 +200,9 @@ def _check_chunk(parser, arguments) -> None:
                      f"(got {first}..{last})")
     if arguments.keep_partial:
         parser.error("--chunk-seed writes a whole chunk or nothing (a partial chunk cannot merge): leave out --keep-partial")
+    if arguments.noise_threshold or arguments.time_limit:
+        parser.error("--chunk-seed renders every sample of its chunk in every pixel (or the chunks could not merge): "
+                     "leave out --noise-threshold and --time-limit")
     end = (arguments.chunk_seed + 1) * arguments.samples
     if end > SAMPLE_SEQUENCE_LENGTH:
         parser.error(

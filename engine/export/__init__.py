@@ -54,12 +54,14 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         triangle_material=geometry.triangle_material,
         triangle_object=geometry.triangle_object,
         object_names=geometry.object_names,
+        object_light_groups=geometry.object_light_groups,
         corner_normals=geometry.corner_normals,
         materials=geometry.materials,
         camera=camera,
         lights=export_lights(depsgraph, warnings),
         world=export_world(scene, warnings),
     )
+    tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.validate()
     _check_something_to_see(scene.name, tracer_scene)
     return tracer_scene

@@ -7,7 +7,6 @@ Focus distance, focus object and f-stop are Blender's own depth-of-field setting
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 
@@ -56,25 +55,11 @@ def check_camera_scale(camera_object) -> None:
         )
 
 
-#: Bytes a pixel costs while rendering: the film's float64 sums, squares and count, the per-pixel
-#: sample rotations, the pixel list, and the float32 images handed to Blender.
-BYTES_PER_PIXEL = 192
+def check_frame_memory(scene, width: int, height: int) -> None:
+    """Refuse at once a frame whose image and passes cannot fit in memory (``engine.passes.frame_plan``)."""
+    from ..passes import frame_plan
 
-
-def check_film_memory(scene_name: str, width: int, height: int, physical_bytes: int | None = None) -> None:
-    """Refuse a resolution whose film cannot fit in this computer's memory (before allocating it)."""
-    if physical_bytes is None:
-        try:
-            physical_bytes = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-        except (AttributeError, ValueError, OSError):  # not POSIX: no cheap way to ask, so no check
-            return
-    needed = width * height * BYTES_PER_PIXEL
-    if needed > physical_bytes:
-        raise PrismInputError(
-            f"Scene '{scene_name}': rendering {width} x {height} pixels needs about {needed / 2**30:.0f} GB of memory, "
-            f"more than this computer has ({physical_bytes / 2**30:.0f} GB): lower the resolution or its % "
-            "(Output ▸ Format)."
-        )
+    frame_plan(scene, None, width, height)
 
 
 def rigid_matrix(matrix_world) -> np.ndarray:
@@ -150,7 +135,7 @@ def export_camera(scene, depsgraph=None) -> Camera:
         )
     check_camera_scale(camera_object)
     width, height = render_resolution(scene)
-    check_film_memory(scene.name, width, height)
+    check_frame_memory(scene, width, height)
     film_w, film_h = film_size_mm(data, width, height)
     if not (np.isfinite(data.lens) and data.lens > 0):
         raise PrismInputError(f"Camera '{camera_object.name}' has focal length {data.lens} mm: use a positive value.")

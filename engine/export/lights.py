@@ -88,6 +88,7 @@ def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
             )
         # Settings from the original light (see ``export_material``), placement from the instance.
         light = _export_light(obj.name, obj.data.original, instance.matrix_world)
+        light.light_group = obj.lightgroup
         if light.power_w > 0 or light.irradiance_w_m2 > 0:
             lights.append(light)
     return lights

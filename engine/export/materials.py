@@ -14,6 +14,7 @@ from ..properties.material import CONDUCTOR_NAMES
 from ..properties.principled import material_kind, read_principled
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Material, SpectrumSpec
+from .aovs import read_aovs
 from .spectra import material_emission_source, material_reflectance_source
 
 DEFAULT_MATERIAL = Material(name="Default", kind="diffuse", base_color=(0.8, 0.8, 0.8))
@@ -73,6 +74,7 @@ def export_material(material, warnings: list[str] | None = None) -> Material:
             f"Material '{name}': IOR {reading.ior:g} is below 1; Prism's glass needs an IOR of 1 or more."
         )
     exported = Material(name=name, kind=kind, **values)
+    exported.aovs = read_aovs(material, warnings)
     if reading.emission_strength < 0:
         raise PrismInputError(f"Material '{name}': Emission Strength {reading.emission_strength:g} is negative.")
     spectral = settings is not None and settings.emission_source != "COLOR"

@@ -39,6 +39,7 @@ class ExportedGeometry:
     corner_normals: np.ndarray
     object_names: list[str]
     materials: list[Material]
+    object_light_groups: list[str] = field(default_factory=list)
 
 
 @dataclass
@@ -48,6 +49,7 @@ class _Instances:
     name: str
     geometry: LocalMesh | LocalHair
     matrices: list = field(default_factory=list)  # 16 floats each, row-major
+    light_group: str = ""  # Object ▸ Shading ▸ Light Group
 
 
 class _Materials:
@@ -101,7 +103,7 @@ def _gather(depsgraph, warnings, read=read_geometry) -> list[_Instances]:
         key = (kind, obj.original.name, obj.data.as_pointer())
         if key not in pieces:
             geometry = read(key, obj)  # now: the object may be temporary
-            pieces[key] = _Instances(obj.name, geometry) if geometry is not None else None
+            pieces[key] = _Instances(obj.name, geometry, light_group=obj.lightgroup) if geometry is not None else None
         piece = pieces[key]
         if piece is not None:
             matrix = instance.matrix_world
@@ -120,6 +122,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     materials = _Materials(warnings)
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
+    groups: list[str] = []
     camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
     for piece in _gather(depsgraph, warnings, read):
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
@@ -129,13 +132,17 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                 placed, slots = hair_ribbons(piece.geometry, matrix, camera)
                 parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
                 names.append(piece.name)
+                groups.append(piece.light_group)
             continue
         local = piece.geometry
         placed = instance_triangles(local.vertices, local.triangles, local.corner_normals, matrices)
         slots = lookup[np.clip(local.slot_index, 0, len(lookup) - 1)]
         parts.append((placed, np.tile(slots, len(matrices))))
         names.append(piece.name)
-    return _assemble(parts, names, materials.materials)
+        groups.append(piece.light_group)
+    geometry = _assemble(parts, names, materials.materials)
+    geometry.object_light_groups = groups
+    return geometry
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from ..tracer.errors import PrismInputError
+from ..tracer.passes import PassRequest
 from ..tracer.settings import RenderSettings
 
 _MODES = {"CIE": "cie", "GAUSSIAN_RGB": "gaussian_rgb"}
@@ -19,6 +20,7 @@ def export_settings(
     threads: int | None = None,
     preview: bool = False,
     border: tuple[int, int, int, int] | None = None,
+    passes: PassRequest | None = None,
     spectral: bool = False,
 ) -> RenderSettings:
     """Render settings from the scene's Prism settings.
@@ -26,7 +28,8 @@ def export_settings(
     ``samples``/``seed``/``threads`` override the scene's (batch renders);
     ``preview`` (a material or light preview) renders ``PREVIEW_SAMPLES`` with the
     viewport's bounces; ``border`` is the pixel rectangle (x0, y0, x1, y1), rows
-    from the top, half-open; ``spectral`` keeps band radiance for a multispectral
+    from the top, half-open; ``passes`` what besides Combined to render
+    (``engine.passes.pass_request``); ``spectral`` keeps band radiance for a multispectral
     EXR (bands of the scene's Spectral Output width).
     """
     prism = scene.prism
@@ -48,6 +51,10 @@ def export_settings(
         pixel_filter=prism.pixel_filter.lower(),
         filter_width_px=float(prism.filter_width_px),
         light_tracing=prism.light_tracing.lower(),
+        passes=passes if passes is not None else PassRequest(),
+        adaptive_threshold=float(prism.adaptive_threshold) if prism.use_adaptive_sampling else 0.0,
+        adaptive_min_samples=int(prism.adaptive_min_samples),
+        time_limit_s=float(prism.time_limit),
         spectral_band_nm=float(prism.spectral_band_nm) if spectral else 0.0,
     )
     try:

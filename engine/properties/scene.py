@@ -188,6 +188,83 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         default=False,
         update=_update_render_passes,
     )
+    use_pass_denoising_data: BoolProperty(
+        name="Denoising Data",
+        description="Add the Denoising Albedo, Denoising Normal and Denoising Depth passes, the guides of the "
+        "compositor's Denoise node",
+        default=False,
+        update=_update_render_passes,
+    )
+    use_denoising: BoolProperty(
+        name="Denoise",
+        description="Denoise the final frame with OpenImageDenoise (as the compositor's Denoise node does), "
+        "guided by the albedo and normal; the raw image is kept in the Noisy Image pass",
+        default=False,
+        update=_update_render_passes,
+    )
+    denoising_prefilter: EnumProperty(
+        name="Prefilter",
+        description="How the denoiser treats its albedo and normal guides",
+        items=[
+            ("NONE", "None", "The guides are used as they are (for noise-free guides)", 0),
+            ("FAST", "Fast", "The guides are denoised together with the image", 1),
+            ("ACCURATE", "Accurate", "The guides are denoised first (best for noisy guides, takes longer)", 2),
+        ],
+        default="ACCURATE",
+    )
+    denoising_quality: EnumProperty(
+        name="Quality",
+        description="Denoising quality against speed",
+        items=[
+            ("HIGH", "High", "Best quality", 0),
+            ("BALANCED", "Balanced", "Balanced quality and speed", 1),
+            ("FAST", "Fast", "Fastest", 2),
+        ],
+        default="HIGH",
+    )
+    use_adaptive_sampling: BoolProperty(
+        name="Noise Threshold",
+        description="Stop sampling pixels whose noise is below the threshold (adaptive sampling)",
+        default=False,
+    )
+    adaptive_threshold: FloatProperty(
+        name="Noise Threshold",
+        description="Relative noise at which a pixel stops sampling: lower is cleaner and slower (0.01 is typical)",
+        default=0.01,
+        min=0.0001,
+        max=0.9999,
+        soft_max=0.1,
+        precision=4,
+    )
+    adaptive_min_samples: IntProperty(
+        name="Min Samples",
+        description="Samples every pixel takes before it may stop (0 = automatic)",
+        default=0,
+        min=0,
+        soft_max=4096,
+    )
+    time_limit: FloatProperty(
+        name="Time Limit",
+        description="Stop sampling after this time (scene preparation excluded; 0 = no limit)",
+        default=0.0,
+        min=0.0,
+        subtype="TIME_ABSOLUTE",
+        unit="TIME_ABSOLUTE",
+    )
+    use_auto_tile: BoolProperty(
+        name="Use Tiling",
+        description="Render frames larger than the tile size tile by tile, each to all its samples, so Prism "
+        "keeps one tile in memory at a time",
+        default=True,
+    )
+    tile_size: IntProperty(
+        name="Tile Size",
+        description="Side of a tile in pixels",
+        default=2048,
+        min=8,
+        max=16384,
+        subtype="PIXEL",
+    )
     use_spectral_output: BoolProperty(
         name="Spectral Output",
         description="Also write a multispectral EXR (radiance in wavelength bands across 360-830 nm, the "

@@ -1,52 +1,75 @@
-"""The film: per-pixel running sums of RGB samples and their squares (float64), and sample counts.
+"""The film: per-pixel running sums of RGB samples and their squares (float64), sample counts, and the
+sums of the requested passes' values (``aux`` columns, laid out by ``passes.FilmLayout``).
 
 Samples arrive already converted to scene-linear Rec.709 (the spectral-to-RGB map is linear, so the
 mean of converted samples is the converted mean). ``add`` splats them one by one (``stages.film``):
 non-finite samples are counted in ``nan_samples`` and dropped, the pixel's count still advancing.
 
-Light tracing (``stages.light_paths``) adds a pass's splats separately (``add_light``): its estimate
-of a pixel is the sum of its splats over the number of light paths traced, whichever pixel they hit,
-and is added to the camera samples' mean.
+A film covers a rectangle of the frame (``region`` = x0, y0, x1, y1, rows from the top; default the whole
+frame): a frame rendered tile by tile needs one tile's film at a time. Samples name their pixel by its
+index in the frame (y · frame width + x), so a tile's image is the same as that part of a whole frame.
+
+Light tracing (``stages.light_paths``) adds a pass's splats separately (``add_light``): its estimate of
+a pixel is the sum of its splats over the number of light paths traced, whichever pixel they hit (those
+outside the region are dropped), and is added to the camera samples' mean.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .frame_plan import film_bytes_per_pixel
 from .stages.film import splat
 from .stages.light_splat import add_pass_splats
 
 
 class Film:
-    """Accumulates samples for a ``width`` x ``height`` image (row 0 = top)."""
+    """Accumulates samples for a ``width`` x ``height`` frame (row 0 = top), or the ``region`` of it."""
 
-    def __init__(self, width: int, height: int):
-        self.width = int(width)
-        self.height = int(height)
+    def __init__(self, width: int, height: int, layout=None, region=None):
+        x0, y0, x1, y1 = region if region is not None else (0, 0, width, height)
+        self.frame_width = int(width)
+        self.origin = (int(x0), int(y0))
+        self.width = int(x1 - x0)
+        self.height = int(y1 - y0)
+        self.layout = layout
         count = self.width * self.height
         self._sum = np.zeros((count, 3))
         self._sum_sq = np.zeros((count, 3))
         self._count = np.zeros(count, dtype=np.int64)
+        columns = layout.width if layout is not None else 0
+        self._aux = np.zeros((count, columns))
         self.nan_samples = 0
         self.light_paths = 0  # light paths traced so far (the light splats' denominator)
         self._light_sum = self._light_sum_sq = self._light_splats = None
 
-    def add(self, pixel_index: np.ndarray, rgb: np.ndarray) -> None:
-        """Add one sample per entry: ``pixel_index`` [N] (y * width + x), ``rgb`` [N, 3]."""
+    bytes_per_pixel = staticmethod(film_bytes_per_pixel)
+
+    def add(self, pixel_index: np.ndarray, rgb: np.ndarray, aux: np.ndarray | None = None) -> None:
+        """Add one sample per entry: ``pixel_index`` [N] (y * frame width + x), ``rgb`` [N, 3], ``aux``
+        [N, layout width] (the passes' values of each sample)."""
         pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
         rgb = np.ascontiguousarray(rgb, dtype=np.float64).reshape(-1, 3)
-        self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, pixel_index, rgb, len(pixel_index)))
+        if aux is None:
+            aux = np.zeros((len(pixel_index), self._aux.shape[1]))
+        x0, y0 = self.origin
+        self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, self._aux, pixel_index, rgb, aux,
+                                      len(pixel_index), self.frame_width, x0, y0, self.width))
 
     def add_light(self, pixel_index: np.ndarray, rgb: np.ndarray, paths: int) -> None:
-        """Add one pass's splats of ``paths`` light paths, in path order: ``pixel_index`` [N], ``rgb``
-        [N, 3] (N <= paths)."""
+        """Add one pass's splats of ``paths`` light paths, in path order: ``pixel_index`` [N] (frame
+        indices), ``rgb`` [N, 3] (N <= paths)."""
         if self._light_sum is None:
             self._light_sum = np.zeros_like(self._sum)
             self._light_sum_sq = np.zeros_like(self._sum)
             self._light_splats = np.zeros_like(self._count)
         pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
         rgb = np.ascontiguousarray(rgb, dtype=np.float64).reshape(-1, 3)
-        self.nan_samples += add_pass_splats(self._light_sum, self._light_sum_sq, self._light_splats, pixel_index, rgb)
+        x0, y0 = self.origin
+        x, y = pixel_index % self.frame_width - x0, pixel_index // self.frame_width - y0
+        inside = (x >= 0) & (x < self.width) & (y >= 0) & (y < self.height)
+        self.nan_samples += add_pass_splats(self._light_sum, self._light_sum_sq, self._light_splats,
+                                            pixel_index[inside], rgb[inside], self.frame_width, x0, y0, self.width)
         self.light_paths += int(paths)
 
     @property
@@ -61,6 +84,11 @@ class Film:
         if self.light_paths:
             mean = mean + self._light_sum / self.light_paths
         return mean.reshape(self.height, self.width, 3)
+
+    def aux_mean(self) -> np.ndarray:
+        """The pass columns per pixel, float64 [H, W, layout width]: the mean of each over the samples."""
+        n = np.maximum(self._count, 1)[:, None]
+        return (self._aux / n).reshape(self.height, self.width, -1)
 
     def variance_of_mean(self) -> np.ndarray:
         """Per-pixel variance of the mean estimate, float64 [H, W, 3]:

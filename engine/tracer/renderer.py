@@ -7,6 +7,9 @@
     renderer.spectral_film          # SpectralFilm (band radiance) when settings.spectral_band_nm > 0, else None
     renderer.samples_done, renderer.strategy, renderer.stats
     renderer.start_at_sample(n)     # continue the seed's sequence at sample n (chunked renders)
+    renderer.finished               # every pixel has its samples, converged (adaptive) or time is up
+    renderer.pass_images()          # the requested passes of the region: name -> float32 [h, w, C]
+    renderer.set_region(box)        # render another rectangle (a tile) from sample 0, with a new film
     renderer.cancel()               # from any thread: stop the current pass after running chunks
     renderer.close()                # free the thread pool (or use ``with Renderer(...) as r:``)
 
@@ -33,6 +36,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from . import adaptive
 from .accel import Accel
 from .analysis import SceneAnalysis, choose_light_tracing
 from .cameras import make_camera
@@ -44,11 +48,14 @@ from .lights.caustic_targets import build_caustic_targets
 from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
 from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials
+from .passes import FilmLayout
 from .sampler import SAMPLERS
+from .scene import SpectrumSpec
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
 from .spectra.wavelength_guide import build_guide
 from .spectral_film import SpectralFilm
+from .stages.passes import new_pass_data
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
 
@@ -69,6 +76,27 @@ def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int
 
 def worker_threads(requested: int) -> int:
     return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
+
+
+def aov_table(materials, aovs: dict) -> np.ndarray:
+    """[materials, AOVs, 4]: what each material writes into each AOV pass (colour: r, g, b, 1; value:
+    value, 0, 0, 0); 0 where a material has no AOV Output of that name."""
+    table = np.zeros((max(1, len(materials)), len(aovs), 4))
+    for m, material in enumerate(materials):
+        for a, (name, kind) in enumerate(aovs.items()):
+            if name in material.aovs:
+                r, g, b, value = material.aovs[name]
+                table[m, a] = (value, 0.0, 0.0, 0.0) if kind == "VALUE" else (r, g, b, 1.0)
+    return table
+
+
+def _triangle_groups(scene, original_triangle, light_groups):
+    """Light group index [T] of each render triangle's object (None when no group has a pass)."""
+    if not light_groups or scene.triangle_object is None or not scene.object_light_groups:
+        return None
+    index = {name: g for g, name in enumerate(light_groups)}
+    of_object = np.array([index.get(name, -1) for name in scene.object_light_groups], np.int32)
+    return of_object[np.asarray(scene.triangle_object)[original_triangle]]
 
 
 def _kept(triangle_object, original):
@@ -99,7 +127,6 @@ class Renderer:
         self.width, self.height = (int(r) for r in scene.camera.resolution)
         self._build_geometry()
         self._build_shading()
-        self._pixels = self._pixel_list(settings.border)
         self._workers = worker_threads(settings.threads)
         self._pool = ThreadPoolExecutor(self._workers)
         self._local = threading.local()
@@ -124,8 +151,14 @@ class Renderer:
         spectra = SpectrumTable()
         self.material_table = build_materials(scene.materials, set(used), spectra)
         materials = self.material_table.arrays
+        groups = tuple(settings.passes.light_groups)
         self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
-                                        self.geometry.material, materials.emission_strength, self.origin)
+                                        self.geometry.material, materials.emission_strength, self.origin,
+                                        light_groups=groups,
+                                        triangle_group=_triangle_groups(scene, self._original_triangle, groups))
+        white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
+        self.pass_layout = FilmLayout(settings.passes, white)
+        self._aov_table = aov_table(scene.materials, settings.passes.aovs)
         self.spectra = spectra.arrays()
         guide = None
         if settings.wavelength_mode == "cie":
@@ -151,15 +184,14 @@ class Renderer:
     def restart(self, setup_seconds: float = 0.0) -> None:
         """Start the image again: an empty film and no samples, a cancelled renderer rendering again.
         Call it (as the ``set_*`` methods do) only while no pass runs."""
-        self.film = Film(self.width, self.height)
         self.spectral_film = (SpectralFilm(self.width, self.height, self.settings.spectral_band_nm)
                               if self.settings.spectral_band_nm else None)
-        self.samples_done = 0
         self._first_sample = 0
         self._passes = 0
         self._glass_clamps[:] = 0
         self._cancel.clear()
         self.cancelled = False
+        self.set_region(self._frame_region(self.settings.border))
         warnings = [f"{self._dropped} zero-area triangle(s) dropped"] if self._dropped else []
         self.stats = {
             "rays_cast": 0,
@@ -197,7 +229,6 @@ class Renderer:
             self._build_shading()
         else:
             self._describe()
-        self._pixels = self._pixel_list(border)
         self.restart(time.perf_counter() - started)
 
     def set_shading(self, scene) -> None:
@@ -229,7 +260,6 @@ class Renderer:
         self.settings = settings
         self.camera = make_camera(self.scene.camera, settings, self.origin)
         self._build_shading()
-        self._pixels = self._pixel_list(settings.border)
         workers = worker_threads(settings.threads)
         if workers != self._workers:
             self._pool.shutdown(wait=True)
@@ -264,32 +294,88 @@ class Renderer:
                                                          _kept(self.scene.triangle_object, self._original_triangle))
             small = small_lights(lights.rows[:len(self.light_table.names)], self.light_table.names, lights.mesh,
                                  self.caustic_targets)
+        layout = self.pass_layout.kernel
         a.light_tracing, a.light_tracing_note = choose_light_tracing(
             s.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
             lights.select_prob.shape[0] > 0,
-            "real lens" if self.camera.lens is not None else "spectral output" if s.spectral_band_nm else "")
+            "real lens" if self.camera.lens is not None else "spectral output" if s.spectral_band_nm
+            else "light passes" if layout.light >= 0 or layout.groups > 0 else "")
         return a
 
-    def _pixel_list(self, border):
+    def _frame_region(self, border):
+        """The rendered rectangle (x0, y0, x1, y1), rows from the top: the border, else the frame."""
         if border is None:
-            return np.arange(self.width * self.height, dtype=np.int64)
+            return (0, 0, self.width, self.height)
         x0, y0, x1, y1 = (int(b) for b in border)
         x0, x1 = max(0, x0), min(self.width, x1)
         y0, y1 = max(0, y0), min(self.height, y1)
         if x1 <= x0 or y1 <= y0:
             raise PrismInputError("The render border is empty: enlarge it or turn it off.")
-        ys, xs = np.mgrid[y0:y1, x0:x1]
-        return (ys * self.width + xs).ravel().astype(np.int64)
+        return (x0, y0, x1, y1)
+
+    def set_region(self, region, time_limit_s: float | None = None) -> None:
+        """Render the rectangle ``region`` (x0, y0, x1, y1; rows from the top) from the first sample with
+        a film of its own (tiles of a large frame: one tile's film in memory at a time).
+        ``time_limit_s`` overrides the settings' time limit for it."""
+        self.region = tuple(int(v) for v in region)
+        self._film = None  # allocated when first used: a frame that is tiled never holds a whole-frame film
+        self._region_pixels = self._pixels = None
+        self.samples_done = self._first_sample
+        self._passes = self._first_sample // self.settings.samples_per_pass
+        limit = self.settings.time_limit_s if time_limit_s is None else time_limit_s
+        self._time_limit = float(limit) if limit and limit > 0 else None
+        self._sampling_started = None
+        self._sampling_seconds = 0.0
+        self._converged_checked_at = 0
+        self.converged = False
+        self.time_up = False
+
+    @property
+    def film(self) -> Film:
+        """The region's film."""
+        if self._film is None:
+            self._film = Film(self.width, self.height, self.pass_layout, self.region)
+        return self._film
+
+    def _region_pixel_list(self) -> np.ndarray:
+        if self._region_pixels is None:
+            x0, y0, x1, y1 = self.region
+            rows = np.arange(y0, y1, dtype=np.int64)[:, None] * self.width
+            self._region_pixels = (rows + np.arange(x0, x1, dtype=np.int64)[None, :]).ravel()
+            self._pixels = self._region_pixels
+        return self._pixels
+
+    @property
+    def finished(self) -> bool:
+        """True when the region has its samples, every pixel has converged, or the time limit is up."""
+        return (self.samples_done - self._first_sample >= self.settings.samples or self.converged
+                or self.time_up or self.cancelled)
+
+    @property
+    def active_pixels(self) -> int:
+        """Pixels the next pass samples (fewer than the region's once adaptive sampling stops some)."""
+        return len(self._region_pixel_list())
 
     def _buffers(self, paths: int) -> ChunkBuffers:
         buffers = getattr(self._local, "buffers", None)
-        if buffers is None or buffers.capacity < paths:
-            buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count)
+        layout = self.pass_layout.kernel
+        if (buffers is None or buffers.capacity < paths or buffers.k != self.wavelengths.count
+                or buffers.passes.values.shape[1] != layout.columns or buffers.passes.spectral.shape[1] != layout.slots):
+            passes = new_pass_data(paths, self.wavelengths.count, self.pass_layout)
+            buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count, passes)
         return buffers
 
+    def pass_data(self, buffers: ChunkBuffers):
+        """The per-path pass storage of ``buffers`` with this render's camera and AOV tables."""
+        axes = np.asarray(self.scene.camera.camera_to_world, np.float64)[:3, :3]
+        return buffers.passes._replace(camera_axes=np.ascontiguousarray(axes),
+                                       camera_at=np.asarray(self.camera.position - self.origin, np.float64),
+                                       render_origin=np.asarray(self.origin, np.float64), aov_table=self._aov_table)
+
     def _chunk(self, start, stop, spp, light=False):
-        """Trace camera (or, with ``light``, light) paths ``start .. stop`` of the pass; returns
-        (pixel [n], rgb [n, 3], rays, counters): one sample per camera path, the splats of light paths."""
+        """Trace camera (or, with ``light``, light) paths ``start .. stop`` of the pass; returns (pixel [n],
+        rgb [n, 3], pass values [n, C] (None for light paths), rays, counters): one sample per camera path,
+        the splats of light paths."""
         count = stop - start
         buffers = self._buffers(count)
         clamps = np.zeros_like(self._glass_clamps)
@@ -299,14 +385,16 @@ class Renderer:
             extra = light_buffers(self._local, count)
             splats, rays, rejected = trace_light_chunk(self, buffers, extra, start, count, spp, self.samples_done,
                                                        clamps)
-            return extra.pixel[:splats].copy(), buffers.rgb[:splats].copy(), rays, rejected, clamps, None
+            return extra.pixel[:splats].copy(), buffers.rgb[:splats].copy(), None, rays, rejected, clamps, None
         from .stages.trace import trace_chunk
 
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
+        values = buffers.passes.values[:count].copy()
         spectral = None
         if self.spectral_film is not None:
             spectral = self.spectral_film.record(buffers.state, count)
-        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps, spectral
+        return (buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), values, rays, rejected, clamps,
+                spectral)
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
@@ -320,7 +408,7 @@ class Renderer:
                 f"Chunk offset {first_sample} is not a multiple of Samples per Pass ({per_pass}): "
                 "use --samples that is a multiple of the scene's Samples per Pass."
             )
-        if self._passes != self._first_sample // per_pass:
+        if self._passes != self._first_sample // per_pass or self.samples_done != self._first_sample:
             raise RuntimeError("start_at_sample must be called before the first pass")
         self._first_sample = first_sample
         self.samples_done = first_sample
@@ -343,8 +431,14 @@ class Renderer:
             self.cancelled = True
             return
         started = time.perf_counter()
+        if self._sampling_started is None:
+            self._sampling_started = started
         remaining = self.settings.samples - (self.samples_done - self._first_sample)
         spp = min(self.settings.samples_per_pass, remaining) if remaining > 0 else self.settings.samples_per_pass
+        self._region_pixel_list()
+        spp = self._fit_time_limit(spp, started)
+        if spp == 0 or len(self._pixels) == 0:
+            return
         total = len(self._pixels) * spp
         size = chunk_size(total, self._workers, spp)
         bounds = list(range(0, total, size)) + [total]
@@ -365,7 +459,7 @@ class Renderer:
                 if job is None:
                     break
                 try:
-                    pixel, rgb, rays, rejected, clamps, spectral = job.result()
+                    pixel, rgb, values, rays, rejected, clamps, spectral = job.result()
                 except CancelledError:
                     break
                 with self._jobs_lock:
@@ -373,7 +467,7 @@ class Renderer:
                 if chunks[i][2]:
                     light_splats.append((pixel, rgb, chunks[i][1] - chunks[i][0]))
                 else:
-                    self.film.add(pixel, rgb)
+                    self.film.add(pixel, rgb, values)
                     if spectral is not None:
                         self.spectral_film.add(pixel, *spectral)
                 self.stats["rays_cast"] += rays
@@ -387,16 +481,20 @@ class Renderer:
             self._drop_jobs()
             if light_splats:
                 self._add_light_splats(light_splats)
-            self.stats["seconds"] += time.perf_counter() - started
+            elapsed = time.perf_counter() - started
+            self.stats["seconds"] += elapsed
+            self._sampling_seconds += elapsed
         if self._cancel.is_set():
             self.cancelled = True
             return
         self.samples_done += spp
         self._passes += 1
+        self._last_pass = (elapsed, spp * len(self._pixels))
         self._glass_warnings()
         self.stats["paths"] += total
         self.stats["nan_samples"] = self.film.nan_samples
         self.stats["samples"] = self.samples_done
+        self._adapt()
 
     def _add_light_splats(self, chunks):
         """Add a pass's light-traced splats to the film (all at once: see ``stages.light_splat``)."""
@@ -405,6 +503,37 @@ class Renderer:
                             paths)
         self.stats["light_paths"] += paths
         self.stats["light_splats"] += sum(len(p) for p, _, _ in chunks)
+
+    def _fit_time_limit(self, spp: int, now: float) -> int:
+        """Samples of the next pass that fit in the time left (0: the time is up)."""
+        if self._time_limit is None:
+            return spp
+        left = self._time_limit - (now - self._sampling_started)
+        if left <= 0.0:
+            self.time_up = True
+            return 0
+        last = getattr(self, "_last_pass", None)
+        if last is not None and last[1] > 0 and self._passes > 0:
+            per_sample = last[0] / last[1] * len(self._pixels)
+            spp = min(spp, max(1, int(left / per_sample))) if per_sample > 0 else spp
+        return spp
+
+    def _adapt(self) -> None:
+        """Adaptive sampling: after the minimum samples, sample only the pixels that are still noisy."""
+        threshold = self.settings.adaptive_threshold
+        if not threshold > 0.0:
+            return
+        done = self.samples_done - self._first_sample
+        minimum = self.settings.adaptive_min_samples or adaptive.automatic_min_samples(self.settings.samples, threshold)
+        if done < minimum or done - self._converged_checked_at < min(4, minimum):
+            return
+        self._converged_checked_at = done
+        film = self.film
+        active = adaptive.still_sampling(film.mean(), film.variance_of_mean(), threshold).ravel()
+        active &= film.counts.ravel() == done  # pixels stopped earlier stay stopped
+        self._pixels = self._region_pixels[active]
+        if not len(self._pixels):
+            self.converged = True
 
     def _drop_jobs(self):
         """Cancel queued chunks and wait for running ones (after a cancel or an error)."""
@@ -429,13 +558,35 @@ class Renderer:
                 messages = self.stats["warnings"]
                 messages[:] = [m for m in messages if not m.startswith(prefix)] + [text]
 
+    def _frame(self, region_image: np.ndarray) -> np.ndarray:
+        x0, y0, x1, y1 = self.region
+        if (x0, y0, x1, y1) == (0, 0, self.width, self.height):
+            return region_image
+        frame = np.zeros((self.height, self.width) + region_image.shape[2:], region_image.dtype)
+        frame[y0:y1, x0:x1] = region_image
+        return frame
+
+    def frame_mean(self) -> np.ndarray:
+        """The film's float64 mean as a whole frame [H, W, 3] (0 outside the region)."""
+        return self._frame(self.film.mean())
+
+    def sample_counts(self) -> np.ndarray:
+        """Samples per pixel as a whole frame, int64 [H, W] (0 outside the region)."""
+        return self._frame(self.film.counts)
+
     def image_rgb(self) -> np.ndarray:
-        """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top."""
-        return self.film.mean().astype(np.float32)
+        """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top (0 outside the region)."""
+        return self._frame(self.film.mean().astype(np.float32))
 
     def variance_rgb(self) -> np.ndarray:
         """Per-pixel variance of the mean estimate, float32 [H, W, 3]."""
-        return self.film.variance_of_mean().astype(np.float32)
+        return self._frame(self.film.variance_of_mean().astype(np.float32))
+
+    def pass_images(self) -> dict[str, np.ndarray]:
+        """The requested passes of the region (``settings.passes``): Blender pass name → float32 [h, w, C]."""
+        if self.pass_layout.width == 0:
+            return {}
+        return self.pass_layout.images(self.film.aux_mean())
 
     def close(self) -> None:
         """Cancel outstanding work and free the thread pool (idempotent)."""

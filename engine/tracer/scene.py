@@ -96,6 +96,7 @@ class Material:
     film_ior: float = 1.33
     emission: SpectrumSpec | None = None
     emission_strength: float = 0.0
+    aovs: dict = field(default_factory=dict)  # shader AOV name -> (r, g, b, value) on this material
     reflectance: ReflectanceSpec | None = None
 
 
@@ -132,6 +133,7 @@ class Light:
     size_u_m: float = 1.0
     size_v_m: float = 1.0
     sun_angle_rad: float = 0.0
+    light_group: str = ""  # Blender's Object ▸ Shading ▸ Light Group ("" = none)
 
 
 @dataclass
@@ -169,6 +171,7 @@ class World:
 
     color: tuple[float, float, float] = (0.0, 0.0, 0.0)
     strength: float = 1.0
+    light_group: str = ""
 
 
 @dataclass
@@ -181,7 +184,8 @@ class Scene:
     ``triangle_material`` int32 [T] indexes ``materials``, ``triangle_object``
     int32 [T] indexes ``object_names`` (for messages), ``corner_normals`` float32
     [T, 3, 3] (unit shading normals at each triangle corner) or None for flat
-    shading.
+    shading. ``object_light_groups`` (parallel to ``object_names``, may be empty): each object's light
+    group, for the light its emissive triangles give.
     """
 
     vertices: np.ndarray
@@ -194,6 +198,7 @@ class Scene:
     triangle_object: np.ndarray | None = None
     object_names: list[str] = field(default_factory=list)
     corner_normals: np.ndarray | None = None
+    object_light_groups: list[str] = field(default_factory=list)
 
     @property
     def triangle_count(self) -> int:

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from .errors import PrismInputError
+from .passes import PassRequest
 
 WAVELENGTH_MODES = ("cie", "gaussian_rgb")
 LIGHT_TRACING_MODES = ("auto", "off", "on")
@@ -46,6 +47,14 @@ class RenderSettings:
     # Caustics from light tracing (paths from the lights through specular objects, seen by the camera):
     # "auto" (where the scene analysis finds specular objects a light can shine through), "off", "on".
     light_tracing: str = "auto"
+    # Passes besides Combined (``passes.PassRequest``).
+    passes: PassRequest = field(default_factory=PassRequest)
+    # Adaptive sampling (Cycles' Noise Threshold and Min Samples): a pixel stops once its relative
+    # error (``adaptive.pixel_error``) is below the threshold; 0 = off. Min samples 0 = automatic.
+    adaptive_threshold: float = 0.0
+    adaptive_min_samples: int = 0
+    # Stop sampling after this many seconds of rendering (scene preparation excluded); 0 = no limit.
+    time_limit_s: float = 0.0
     # Multispectral output (``spectral_film``): band width in nm, 0 = off (no spectral buffer at all).
     spectral_band_nm: float = 0.0
 
@@ -82,3 +91,12 @@ class RenderSettings:
         for channel, sigma in zip("RGB", self.channel_sigmas_nm):
             if not sigma > 0:
                 raise PrismInputError(f"The {channel} channel's sigma must be positive (got {sigma} nm).")
+        if not 0.0 <= self.adaptive_threshold < 1.0:
+            raise PrismInputError(
+                f"The noise threshold must be between 0 (off) and 1 (got {self.adaptive_threshold}): 0.01 is typical."
+            )
+        if self.adaptive_min_samples < 0:
+            raise PrismInputError(f"Min samples cannot be negative (got {self.adaptive_min_samples}; 0 = automatic).")
+        if not self.time_limit_s >= 0.0:
+            raise PrismInputError(f"The time limit cannot be negative (got {self.time_limit_s} s; 0 = no limit).")
+        self.passes.validate()

@@ -94,7 +94,7 @@ def rgba_bottom_up(renderer) -> np.ndarray:
     rgb = renderer.image_rgb()
     rgba = np.empty((*rgb.shape[:2], 4), np.float32)
     rgba[..., :3] = rgb[::-1]
-    rgba[..., 3] = renderer.film.counts[::-1] > 0
+    rgba[..., 3] = renderer.sample_counts()[::-1] > 0
     return rgba
 
 

@@ -28,6 +28,11 @@ ARGUMENT_CASES = [
     (["--expect-samples", "8"], "--expect-samples checks what --merge adds up to: use it with --merge"),
     (["--output", "out.jpg"], "--output must end in .png or .exr (got 'out.jpg')"),
     (["--lens-diagram", "lens.svg"], "--lens-diagram must end in .png (got 'lens.svg')"),
+    (["--noise-threshold", "1.5"], "--noise-threshold must be between 0 (off) and 1, e.g. 0.01 (got 1.5)"),
+    (["--min-samples", "-3"], "--min-samples must be 0 (automatic) or more (got -3)"),
+    (["--time-limit", "-1"], "--time-limit must be 0 (no limit) or a number of seconds (got -1.0)"),
+    (["--time-limit", "nan"], "--time-limit must be 0 (no limit) or a number of seconds (got nan)"),
+    (["--chunk-seed", "0", "--samples", "4", "--time-limit", "9"], "leave out --noise-threshold and --time-limit"),
     (["--samples", "many"], "argument --samples: invalid int value: 'many'"),
     (["--bogus"], "unrecognized arguments: --bogus"),
 ]

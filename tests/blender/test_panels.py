@@ -75,8 +75,9 @@ def _draw(panel_class, context):
     return log
 
 
-def _context(scene, engine="PRISM", camera=None, light=None, material=None):
-    return SimpleNamespace(engine=engine, scene=scene, camera=camera, light=light, material=material, object=None)
+def _context(scene, engine="PRISM", camera=None, light=None, material=None, obj=None, world=None):
+    return SimpleNamespace(engine=engine, scene=scene, camera=camera, light=light, material=material, object=obj,
+                           world=world, view_layer=scene.view_layers[0])
 
 
 def _labels(log):
@@ -373,3 +374,19 @@ def test_viewport_header_pause_button_in_prisms_rendered_shading(prism_addon, fr
         fresh_scene.prism.preview_pause = paused
         prism_addon.ui.viewport_header.draw_pause(header, context)
         assert log == ([("prop", (fresh_scene.prism, "preview_pause"), {"text": "", "icon": icon})] if shown else [])
+
+
+def test_light_group_panels_poll_and_draw(prism_addon, fresh_scene):
+    import bpy
+
+    obj = bpy.data.objects.new("Lamp", bpy.data.lights.new("Lamp", "POINT"))
+    world = bpy.data.worlds.new("Sky")
+    fresh_scene.view_layers[0].lightgroups.add(name="key")
+    obj.lightgroup = "key"
+    world.lightgroup = "fill"  # not a group of the view layer yet: the + button adds it
+    for panel in prism_addon.ui.panels_lightgroup.CLASSES:
+        assert panel.poll(_context(fresh_scene, obj=obj, world=world))
+        assert not panel.poll(_context(fresh_scene))
+        assert not panel.poll(_context(fresh_scene, engine="CYCLES", obj=obj, world=world))
+        log = _draw(panel, _context(fresh_scene, obj=obj, world=world))
+        assert [name for name, *_ in log].count("prop_search") == 1

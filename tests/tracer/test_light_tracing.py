@@ -240,3 +240,15 @@ def test_a_moved_viewport_camera_connects_light_paths_to_where_it_stands():
         fresh_light = _light_part(r)
     assert fresh_light.sum() > 0
     assert np.abs(moved_light - fresh_light).sum() < 1e-3 * fresh_light.sum()
+
+
+def test_a_border_keeps_the_splats_that_land_in_it():
+    """A render border (or a tile) has a film of its own: light paths land anywhere in the frame, and
+    only the splats inside the border are added."""
+    scene = _ball_on_floor(resolution=(32, 24))
+    with Renderer(scene, settings(samples=16, samples_per_pass=16, light_tracing="on", border=(8, 12, 24, 24))) as r:
+        r.render_pass()
+        assert r.film._light_splats.sum() > 0 and r.film.light_paths == 16 * 12 * 16
+        image = r.image_rgb()
+    assert np.all(image[:12] == 0) and np.all(image[:, :8] == 0) and np.all(np.isfinite(image))
+    assert image[12:, 8:24].max() > 0

@@ -22,8 +22,10 @@ from .point import point_power, point_row
 from .row import L_KIND, LIGHT_ROW, MESH, RECTANGLE, DISK, SPHERE, SUN, SUN_DISK, KIND_NAMES, POINT
 from .sun import sun_power, sun_row
 
+#: ``group`` int32 [rows] and ``world_group``: light group index of each light and of the world (-1: none).
 LightArrays = namedtuple(
-    "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index world_spectrum world_strength"
+    "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index world_spectrum world_strength group "
+    "world_group"
 )
 
 
@@ -74,18 +76,22 @@ def _power(row, scene_radius_m, mesh_total):
 
 
 def build_lights(scene, spectra, vertices, triangles, triangle_material, emission_strength, offset,
-                 use_mesh_lights=True) -> LightTable:
+                 use_mesh_lights=True, light_groups=(), triangle_group=None) -> LightTable:
     """Rows for the scene's lights; ``vertices``/``triangles``/``triangle_material`` are the render's
     camera-relative geometry, ``emission_strength`` [M] the materials' (0 = not emissive), ``offset``
-    the camera position subtracted from every position."""
-    rows, names, kinds = [], [], []
+    the camera position subtracted from every position. ``light_groups``: the names of the light groups
+    with a pass (lights of another group count in none); ``triangle_group`` [T] the group index of each
+    triangle's object (None: none)."""
+    group_index = {name: g for g, name in enumerate(light_groups)}
+    rows, names, kinds, groups = [], [], [], []
     for light in scene.lights:
         if _emits(light):
             rows.append(_light_row(light, spectra, offset))
             names.append(light.name)
             kinds.append(light.kind)
+            groups.append(group_index.get(light.light_group, -1))
     strength = np.asarray(emission_strength, np.float64) if use_mesh_lights else np.zeros(len(emission_strength))
-    mesh, mesh_total = build_mesh_emitters(vertices, triangles, triangle_material, strength)
+    mesh, mesh_total = build_mesh_emitters(vertices, triangles, triangle_material, strength, triangle_group)
     mesh_index = -1
     if mesh_total > 0:
         row = np.zeros(LIGHT_ROW)
@@ -94,6 +100,7 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
         rows.append(row)
         names.append(KIND_NAMES[MESH])
         kinds.append(KIND_NAMES[MESH])
+        groups.append(-1)
     verts = np.asarray(vertices, np.float64)
     radius = 0.5 * float(np.linalg.norm(np.ptp(verts, axis=0))) if len(verts) else 1.0
     power = np.array([_power(r, radius, mesh_total) for r in rows], dtype=np.float64)
@@ -114,5 +121,6 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
     black = not (world.strength > 0 and max(world.color) > 0)
     world_spectrum = spectra.emission(SpectrumSpec(kind="rgb", rgb=tuple(float(c) for c in world.color)))
     arrays = LightArrays(table if n else np.zeros((1, LIGHT_ROW)), prob, cdf, hittable, mesh, mesh_index,
-                         world_spectrum, 0.0 if black else float(world.strength))
+                         world_spectrum, 0.0 if black else float(world.strength),
+                         np.array(groups if n else [-1], np.int32), group_index.get(world.light_group, -1))
     return LightTable(arrays, names, kinds, power, radius)

@@ -12,26 +12,31 @@ from __future__ import annotations
 import math
 
 from ..jit import inlined, kernel
-from ..lights.dispatch import distant_hit, emitter_pdf, intersect_light, is_distant, light_hit, light_spectrum
+from ..lights.dispatch import (distant_hit, emitter_group, emitter_pdf, intersect_light, is_distant, light_hit,
+                               light_spectrum)
 from ..materials.table import MAT_EMISSIVE
 from ..spectra.table import spectrum_value
 from .mis import emitter_weight
+from .passes import camera_slot, deposit, features_done
 
 
 @inlined
-def _add(state, i, factor, sid, spectra, weight):
+def _add(state, i, factor, sid, spectra, weight, passes, layout, group, slot, albedo):
     scale = factor * weight
     if scale == 0.0:
         return
     for k in range(state.radiance.shape[1]):
-        state.radiance[i, k] += state.throughput[i, k] * scale * spectrum_value(spectra, sid, state.wavelength[i, k])
+        value = state.throughput[i, k] * scale * spectrum_value(spectra, sid, state.wavelength[i, k])
+        state.radiance[i, k] += value
+        if layout.columns > 0:
+            deposit(passes, layout, i, k, value, group, slot, albedo)
 
 
 @kernel
 def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, lights, spectra,
-                    settings, depth, surface):
+                    settings, depth, surface, passes, layout):
     """Add emission for the first ``count`` rays of ``rays``; list the paths that hit a surface in
-    ``surface.path`` and return how many."""
+    ``surface.path`` and return how many. ``passes`` / ``layout``: see ``stages.passes``."""
     shade_next = depth <= settings.max_bounces
     listed = 0
     for j in range(count):
@@ -50,25 +55,32 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
         if light >= 0:
             factor, pdf = light_hit(lights, light, mis_origin, d, t_mis)
             _add(state, i, factor, light_spectrum(lights, light), spectra,
-                 emitter_weight(state, i, pdf, settings.use_mis))
+                 emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[light], -1, True)
+            if layout.columns > 0:
+                features_done(passes, layout, i)
             continue
         if triangle < 0:
+            slot = camera_slot(layout, depth, True)
             if lights.world_strength > 0.0:
-                _add(state, i, lights.world_strength, lights.world_spectrum, spectra, 1.0)
+                _add(state, i, lights.world_strength, lights.world_spectrum, spectra, 1.0, passes, layout,
+                     lights.world_group, slot, True)
             if depth > 0:
                 for index in range(lights.rows.shape[0] if lights.select_prob.shape[0] > 0 else 0):
                     if is_distant(lights, index):
                         factor, pdf = distant_hit(lights, index, d)
                         if factor > 0.0:
                             _add(state, i, factor, light_spectrum(lights, index), spectra,
-                                 emitter_weight(state, i, pdf, settings.use_mis))
+                                 emitter_weight(state, i, pdf, settings.use_mis), passes, layout,
+                                 lights.group[index], slot, True)
+            if layout.columns > 0:
+                features_done(passes, layout, i)
             continue
         material = geometry.material[triangle]
         if materials.flags[material] & MAT_EMISSIVE:
             weight = 1.0 if depth == 0 else emitter_weight(state, i, emitter_pdf(lights, triangle, d, t_mis),
                                                           settings.use_mis)
             _add(state, i, materials.emission_strength[material], materials.emission_spectrum[material], spectra,
-                 weight)
+                 weight, passes, layout, emitter_group(lights, triangle), camera_slot(layout, depth, False), False)
         if shade_next:
             state.hit_triangle[i] = triangle
             state.hit_u[i] = hit_u[j]

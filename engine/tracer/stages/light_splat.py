@@ -14,10 +14,13 @@ import numpy as np
 from .film import splat
 
 
-def add_pass_splats(total, total_sq, splats, pixels, rgb) -> int:
-    """Add one pass's splats (``pixels`` int64 [N], ``rgb`` float64 [N, 3], in path order) to the sums
-    ``total`` / ``total_sq`` [P, 3] and the splat counts ``splats`` [P]; returns how many were dropped as
-    non-finite."""
+def add_pass_splats(total, total_sq, splats, pixels, rgb, frame_width, x0, y0, width) -> int:
+    """Add one pass's splats (``pixels`` int64 [N] frame indices inside the film's region, ``rgb`` float64
+    [N, 3], in path order) to the sums ``total`` / ``total_sq`` [P, 3] and the splat counts ``splats``
+    [P] of the region whose top-left pixel is (x0, y0) and which is ``width`` wide; returns how many
+    were dropped as non-finite."""
     order = np.argsort(pixels, kind="stable")
-    return int(splat(total, total_sq, splats, np.ascontiguousarray(pixels[order]), np.ascontiguousarray(rgb[order]),
-                     len(pixels)))
+    no_columns = np.zeros((len(total), 0))
+    return int(splat(total, total_sq, splats, no_columns, np.ascontiguousarray(pixels[order]),
+                     np.ascontiguousarray(rgb[order]), np.zeros((len(pixels), 0)), len(pixels), frame_width, x0, y0,
+                     width))

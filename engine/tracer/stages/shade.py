@@ -21,6 +21,7 @@ from ..state import COLLAPSED, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
 from .caustic_split import classify_vertex
 from .nee import consistent, sample_direct
+from .passes import first_bounce, first_hit, surface_features
 from .queue import push_ray
 from .roulette import survives
 
@@ -53,10 +54,10 @@ def sample_scattering(state, i, depth, settings, rows, spectral, eta, closures, 
 
 @kernel
 def shade_kernel(state, surface, count, geometry, materials, lights, spectra, settings, depth, next_rays, shadows,
-                 scratch, glass_clamps, rejected):
+                 scratch, glass_clamps, rejected, passes, layout):
     """Shade the ``count`` paths listed in ``surface``; returns (rays queued in ``next_rays``, shadow
     rays queued in ``shadows``). ``scratch`` is a ``state.ShadingScratch``; ``glass_clamps`` and
-    ``rejected`` (int64 counters) are incremented."""
+    ``rejected`` (int64 counters) are incremented; ``passes`` / ``layout``: see ``stages.passes``."""
     k = state.wavelength.shape[1]
     rows, spectral, eta, weight, li, f, mix = scratch
     has_lights = lights.select_prob.shape[0] > 0
@@ -79,17 +80,29 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         tangent, bitangent = tangents(n)
         frame = (tangent, bitangent, n)
         wo_l = to_local(wo, tangent, bitangent, n)
+        if depth == 0 and layout.columns > 0:
+            facing = ns if cos_og >= 0.0 else (-ns[0], -ns[1], -ns[2])
+            first_hit(passes, layout, i, p, facing, material)
         lam = state.wavelength[i]
         hero = state.hero[i]
         closures = resolve_material(materials, spectra, material, lam, hero, rows, spectral, eta, glass_clamps)
         if has_lights and not mflags & MAT_DELTA:
             shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                       materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
-                                      mix)
+                                      mix, passes, layout)
         wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
                                                                        closures, wo_l, frame, collapsed, weight, mix)
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
-        if not (largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])):
+        valid = largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])
+        if layout.columns > 0:
+            if not valid:
+                weight[:] = 0.0
+            if not mflags & MAT_DELTA:
+                surface_features(state, passes, layout, i, p, n, weight, spectra)
+            if depth == 0 and layout.light >= 0:
+                first_bounce(state, passes, layout, i, rows, spectral, eta, closures, wo_l, wi_l, lam, hero, collapsed,
+                             sampled, weight, mix[0], spectra)
+        if not valid:
             continue
         for c in range(k):
             state.throughput[i, c] *= weight[c]
