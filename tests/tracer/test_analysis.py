@@ -95,6 +95,13 @@ def test_the_analysis_reads_materials_lights_and_the_camera_for_light_tracing():
     scene.camera.model = "pinhole"
     r = Renderer(scene, settings(spectral_band_nm=10.0))  # the spectral film takes camera samples only
     assert not r.analysis.light_tracing and "caustics by path tracing (spectral output)" in r.strategy
+    from engine.tracer.passes import PassRequest
+
+    for request in (PassRequest(passes=("DiffInd",)), PassRequest(light_groups=("key",))):
+        r = Renderer(scene, settings(passes=request))  # they split Combined by the path tracer's paths
+        assert not r.analysis.light_tracing and "caustics by path tracing (light passes)" in r.strategy
+    r = Renderer(scene, settings(passes=PassRequest(passes=("Depth", "Denoising Albedo"))))
+    assert r.analysis.light_tracing
 
 
 def test_an_unknown_light_tracing_mode_is_refused():
