@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: render test extension bench venv clean inventory
+.PHONY: render rainbow test extension bench venv clean inventory
 
 # Creates .venv with the pinned requirements, once; re-running is a no-op.
 $(STAMP): requirements.txt
@@ -19,6 +19,11 @@ venv: $(STAMP)
 render: $(STAMP)
 	$(PY) demo/build_demo_scene.py renders/demo.blend
 	$(PY) render.py renders/demo.blend --samples 64 --output renders/demo.png
+
+# Builds the rainbow demo (slit lamp, prism, wall; a glass ball's caustic) and renders it to renders/rainbow.png.
+rainbow: $(STAMP)
+	$(PY) demo/build_rainbow_scene.py renders/rainbow.blend
+	$(PY) render.py renders/rainbow.blend --samples 64 --output renders/rainbow.png
 
 # Runs the test suite.
 test: $(STAMP)
