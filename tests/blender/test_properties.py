@@ -30,6 +30,7 @@ EXPECTED_DEFAULTS = {
         "preview_pause": False,
         "pixel_filter": "BOX",
         "filter_width_px": 1.5,
+        "light_tracing": "AUTO",
     },
     "overlay": {
         "enabled": False,
@@ -60,6 +61,7 @@ EXPECTED_DEFAULTS = {
 ENUM_NUMBERS = {
     ("scene", "wavelength_mode"): {"CIE": 0, "GAUSSIAN_RGB": 1},
     ("scene", "pixel_filter"): {"BOX": 0, "GAUSSIAN": 1},
+    ("scene", "light_tracing"): {"AUTO": 0, "OFF": 1, "ON": 2},
     ("overlay", "wavelength_source"): {"CHANNELS": 0, "CUSTOM": 1},
     ("camera", "lens_model"): {"PINHOLE": 0, "THIN_LENS": 1, "REAL_LENS": 2},
     ("camera", "lens_source"): {"BUNDLED": 0, "FILE": 1},

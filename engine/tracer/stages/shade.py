@@ -20,6 +20,7 @@ from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
 from ..state import COLLAPSED, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
+from .caustic_split import classify_vertex
 from .nee import consistent, sample_direct
 from .passes import first_bounce, first_hit, surface_features
 from .queue import push_ray
@@ -34,6 +35,22 @@ def collapse_to_hero(state, i):
     for c in range(k):
         state.throughput[i, c] = state.throughput[i, c] * k if c == hero else 0.0
     state.flags[i] |= COLLAPSED
+
+
+@inlined
+def sample_scattering(state, i, depth, settings, rows, spectral, eta, closures, wo_l, frame, collapsed, weight, mix):
+    """BSDF sampling at path ``i``'s vertex of bounce ``depth`` (its uniforms from that bounce's slots):
+    (wi local, wi world, pdf, sampled flags, eta scale, largest ``weight[k]``)."""
+    ps = state.seed[i]
+    sample = state.sample[i]
+    u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
+    u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
+    wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, state.wavelength[i],
+                                                state.hero[i], collapsed, u_lobe, u1, u2, weight, mix)
+    largest = 0.0
+    for c in range(weight.shape[0]):
+        largest = max(largest, weight[c])
+    return wi_l, to_world(wi_l, frame[0], frame[1], frame[2]), pdf, sampled, eta_scale, largest
 
 
 @kernel
@@ -77,17 +94,9 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                       materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
                                       mix, passes, layout, geometry, scratch)
-        ps = state.seed[i]
-        sample = state.sample[i]
-        u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
-        u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
-        wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, lam, hero, collapsed, u_lobe,
-                                                    u1, u2, weight, mix)
-        wi = to_world(wi_l, tangent, bitangent, n)
+        wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
+                                                                       closures, wo_l, frame, collapsed, weight, mix)
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
-        largest = 0.0
-        for c in range(k):
-            largest = max(largest, weight[c])
         valid = largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])
         if layout.columns > 0:
             if not valid:
@@ -104,7 +113,13 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         state.eta_scale[i] *= eta_scale
         if not survives(state, i, depth, settings, collapsed):
             continue
-        if not ((mflags & MAT_NULL and wo_l[2] * wi_l[2] < 0.0) or sampled & SAMPLED_NULL):
+        # A film crossed straight through, or a cut-out (Transparent BSDF, alpha): a null event for MIS. Light
+        # paths end at cut-outs (they are not specular), so for the caustic split only films are null.
+        film_crossing = (mflags & MAT_NULL) != 0 and wo_l[2] * wi_l[2] < 0.0
+        null_crossing = film_crossing or (sampled & SAMPLED_NULL) != 0
+        if settings.light_tracing:
+            classify_vertex(state, i, mflags, sampled, film_crossing)
+        if not null_crossing:
             state.prev_pdf[i] = pdf
             if sampled & SAMPLED_DELTA:
                 state.flags[i] |= PREV_DELTA
