@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from ..geometry import offset_origin
 from ..jit import inlined
+from ..materials.emitters import emission_at
+from ..materials.table import MAT_EMISSION_VARIES
 from ..spectra.table import spectrum_value
 from . import area, mesh, point, sun
 from .caustic_targets import sample_beam, sample_direction
@@ -19,11 +21,12 @@ from .row import L_KIND, L_SPECTRUM, MESH, POINT, SPHERE, SUN, SUN_DISK
 
 
 @inlined
-def sample_emission(lights, materials, spectra, targets, u_select, u_position, u_target, u_direction, wavelength_nm,
-                    beta):
+def sample_emission(lights, materials, spectra, geometry, targets, u_select, u_position, u_target, u_direction,
+                    wavelength_nm, beta, rows, regs):
     """(origin, unit direction, light index) of a new light path; ``beta[k]`` = its weight at
     ``wavelength_nm[k]`` (0 when the light sends nothing that way). ``u_position`` and ``u_direction``
-    are pairs of uniforms."""
+    are pairs of uniforms; ``rows`` and ``regs`` are scratch memory for emissive materials whose emission
+    varies over the surface (their program runs where the path starts)."""
     index, u_rest = pick_light(lights, u_select)
     row = lights.rows[index]
     kind = int(row[L_KIND])
@@ -34,13 +37,21 @@ def sample_emission(lights, materials, spectra, targets, u_select, u_position, u
         scale = factor / (select * pdf_direction * pdf_beam) if pdf_beam > 0.0 else 0.0
         sid = int(row[L_SPECTRUM])
     elif kind == MESH:
-        p, ng, pdf_area, material = mesh.sample_position(lights.mesh, u_rest, u_position[0], u_position[1])
+        p, ng, pdf_area, material, e, b1, b2 = mesh.sample_position(lights.mesh, u_rest, u_position[0],
+                                                                   u_position[1])
         direction, pdf_direction = sample_direction(targets, p, u_target, u_direction[0], u_direction[1])
         cos_l = abs(direction[0] * ng[0] + direction[1] * ng[1] + direction[2] * ng[2])
+        origin = offset_origin(p, ng, direction)
+        if materials.flags[material] & MAT_EMISSION_VARIES:
+            scale = cos_l / (select * pdf_area * pdf_direction) if pdf_direction > 0.0 else 0.0
+            emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, direction,
+                        wavelength_nm, rows, regs, beta)
+            for k in range(beta.shape[0]):
+                beta[k] = scale * beta[k] if scale > 0.0 else 0.0
+            return origin, direction, index
         strength = materials.emission_strength[material]
         scale = strength * cos_l / (select * pdf_area * pdf_direction) if pdf_direction > 0.0 else 0.0
         sid = materials.emission_spectrum[material]
-        origin = offset_origin(p, ng, direction)
     elif kind == POINT or kind == SPHERE:
         origin, n, pdf_area = point.sample_position(row, u_position[0], u_position[1])
         direction, pdf_direction = sample_direction(targets, origin, u_target, u_direction[0], u_direction[1])

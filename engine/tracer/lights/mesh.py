@@ -109,10 +109,10 @@ def pdf_li(emitters, triangle, d, t):
 
 @inlined
 def sample_position(emitters, u0, u1, u2):
-    """(point, unit geometric normal, area density incl. the triangle's choice, material) of a point on
-    an emissive triangle: where a light path starts."""
+    """(point, unit geometric normal, area density incl. the triangle's choice, material, emitter index,
+    barycentrics b1, b2) of a point on an emissive triangle: where a light path starts."""
     e = pick(emitters, u0)
     g = emitters.geometry[e]
     b1, b2 = uniform_triangle(u1, u2)
     p = (g[0] + b1 * g[3] + b2 * g[6], g[1] + b1 * g[4] + b2 * g[7], g[2] + b1 * g[5] + b2 * g[8])
-    return p, (g[9], g[10], g[11]), emitters.probability[e] / g[12], emitters.material[e]
+    return p, (g[9], g[10], g[11]), emitters.probability[e] / g[12], emitters.material[e], e, b1, b2

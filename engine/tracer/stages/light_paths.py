@@ -33,7 +33,7 @@ from ..jit import inlined, kernel
 from ..lights.emission import sample_emission
 from ..lights.point import spot_falloff
 from ..lights.row import L_KIND, POINT, SPHERE
-from ..materials.resolve import resolve_material
+from ..materials.surface import shade_surface
 from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import pixel_seed, sample_1d, sample_2d
 from ..spectra.wavelength_sampling import radiance_to_rgb
@@ -57,8 +57,8 @@ SLOT_CAMERA_FILTER = SLOT_SELECT + 5  # 2-D: which pixel under the filter
 
 
 @kernel
-def emit_kernel(state, rays, light_of_path, lights, materials, spectra, targets, ws, settings, first, count,
-                samples_per_pixel, first_sample):
+def emit_kernel(state, rays, light_of_path, lights, materials, spectra, geometry, targets, ws, settings, first, count,
+                samples_per_pixel, first_sample, scratch):
     """Start light paths ``first .. first + count`` of the pass in rows 0 .. count-1 and queue their rays;
     returns the number queued (paths whose light sends nothing toward the targets end at once)."""
     queued = 0
@@ -75,10 +75,11 @@ def emit_kernel(state, rays, light_of_path, lights, materials, spectra, targets,
         state.radiance[i, :] = 0.0
         draw_wavelengths(state, i, ws, settings.sampler, ps, sample)
         origin, direction, light = sample_emission(
-            lights, materials, spectra, targets, sample_1d(settings.sampler, ps, sample, SLOT_SELECT),
+            lights, materials, spectra, geometry, targets, sample_1d(settings.sampler, ps, sample, SLOT_SELECT),
             sample_2d(settings.sampler, ps, sample, SLOT_POSITION),
             sample_1d(settings.sampler, ps, sample, SLOT_TARGET),
-            sample_2d(settings.sampler, ps, sample, SLOT_DIRECTION), state.wavelength[i], state.throughput[i])
+            sample_2d(settings.sampler, ps, sample, SLOT_DIRECTION), state.wavelength[i], state.throughput[i],
+            scratch.emitter_rows, scratch.registers)
         light_of_path[i] = light
         largest = 0.0
         for c in range(k):
@@ -91,10 +92,26 @@ def emit_kernel(state, rays, light_of_path, lights, materials, spectra, targets,
 
 
 @inlined
-def connect(state, i, p, ng, ns, toward_light, mflags, rows, spectral, eta, closures, camera, settings, collapsed,
-            f, scratch):
+def _resolve(hit, p, ng, ns, wo, backfacing, mflags, lam, hero, rows, spectral, eta, registers):
+    """The material of ``hit`` (see ``connect``) at ``p`` seen along ``wo``: (closure count, shading normal
+    facing ``wo``, unless the material is one-sided)."""
+    materials, spectra, geometry, material, triangle, u, v, glass_clamps = hit
+    facing_ng = (-ng[0], -ng[1], -ng[2]) if backfacing else ng
+    facing_ns = (-ns[0], -ns[1], -ns[2]) if backfacing else ns
+    closures, n = shade_surface(materials, spectra, geometry, material, triangle, u, v, p, facing_ng, facing_ns, wo,
+                                backfacing, lam, hero, rows, spectral, eta, registers, glass_clamps)
+    if backfacing and mflags & MAT_ONE_SIDED:
+        n = (-n[0], -n[1], -n[2])
+    return closures, n
+
+
+@inlined
+def connect(state, i, p, ng, ns, toward_light, mflags, hit, rows, spectral, eta, registers, camera, settings,
+            collapsed, f, scratch):
     """Connect path ``i``'s vertex ``p`` to the camera: its spectral radiance in the pixel goes to
-    ``state.radiance[i]``, the visibility ray to ``origin``/``direction``/``hit_t`` (``LIGHT_CONNECTED``)."""
+    ``state.radiance[i]``, the visibility ray to ``origin``/``direction``/``hit_t`` (``LIGHT_CONNECTED``).
+    ``hit`` = (materials, spectra, geometry, material, triangle, u, v, glass clamps): the material is
+    resolved seen from the camera, as a camera path would see it."""
     ps = state.seed[i]
     sample = state.sample[i]
     pixel, lens, importance, dist = connect_to_camera(
@@ -107,9 +124,8 @@ def connect(state, i, p, ng, ns, toward_light, mflags, rows, spectral, eta, clos
     cos_ig = toward_light[0] * ng[0] + toward_light[1] * ng[1] + toward_light[2] * ng[2]
     if cos_ig == 0.0:
         return
-    n = ns
-    if cos_og < 0.0 and not mflags & MAT_ONE_SIDED:
-        n = (-ns[0], -ns[1], -ns[2])
+    closures, n = _resolve(hit, p, ng, ns, to_camera, cos_og < 0.0, mflags, state.wavelength[i], state.hero[i],
+                           rows, spectral, eta, registers)
     tangent, bitangent = tangents(n)
     wo_l = to_local(to_camera, tangent, bitangent, n)
     wi_l = to_local(toward_light, tangent, bitangent, n)
@@ -167,22 +183,19 @@ def light_bounce_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, l
         toward_light = (-state.direction[i, 0], -state.direction[i, 1], -state.direction[i, 2])
         lam = state.wavelength[i]
         hero = state.hero[i]
+        hit = (materials, spectra, geometry, material, triangle, float(hit_u[j]), float(hit_v[j]), glass_clamps)
         if not mflags & MAT_DELTA:
             if state.flags[i] & LIGHT_SPECULAR:
-                closures = resolve_material(materials, spectra, material, lam, hero, rows, spectral, eta,
-                                            glass_clamps)
-                connect(state, i, p, ng, ns, toward_light, mflags, rows, spectral, eta, closures, camera, settings,
-                        collapsed, f, mix)
+                connect(state, i, p, ng, ns, toward_light, mflags, hit, rows, spectral, eta, registers, camera,
+                        settings, collapsed, f, mix)
             continue
         if depth >= settings.max_bounces:
             continue
         cos_in_g = toward_light[0] * ng[0] + toward_light[1] * ng[1] + toward_light[2] * ng[2]
-        n = ns
-        if cos_in_g < 0.0 and not mflags & MAT_ONE_SIDED:
-            n = (-ns[0], -ns[1], -ns[2])
+        closures, n = _resolve(hit, p, ng, ns, toward_light, cos_in_g < 0.0, mflags, lam, hero, rows, spectral, eta,
+                               registers)
         tangent, bitangent = tangents(n)
         wo_l = to_local(toward_light, tangent, bitangent, n)
-        closures = resolve_material(materials, spectra, material, lam, hero, rows, spectral, eta, glass_clamps)
         wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
                                                                        closures, wo_l, (tangent, bitangent, n),
                                                                        collapsed, weight, mix)

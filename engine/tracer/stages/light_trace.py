@@ -36,8 +36,9 @@ def trace_light_chunk(renderer, buffers, extra, first, count, samples_per_pixel,
     rejected = buffers.counters
     rejected[0] = 0
     current = buffers.rays[0]
-    queued = emit_kernel(state, current, extra.light, lights, materials, renderer.spectra, renderer.caustic_targets,
-                         renderer.wavelengths, settings, first, count, samples_per_pixel, first_sample)
+    queued = emit_kernel(state, current, extra.light, lights, materials, renderer.spectra, renderer.geometry,
+                         renderer.caustic_targets, renderer.wavelengths, settings, first, count, samples_per_pixel,
+                         first_sample, buffers.scratch)
     rays_cast = 0
     for depth in range(settings.max_bounces + 1):
         if queued == 0:

@@ -15,10 +15,10 @@ from .light_checks import SceneLights
 
 
 @kernel
-def _emit_many(lights, materials, spectra, targets, u, lam, origin, direction, beta, index):
+def _emit_many(lights, materials, spectra, geometry, targets, u, lam, origin, direction, beta, index, rows, registers):
     for i in range(u.shape[0]):
-        o, d, light = sample_emission(lights, materials, spectra, targets, u[i, 0], (u[i, 1], u[i, 2]), u[i, 3],
-                                      (u[i, 4], u[i, 5]), lam[i], beta[i])
+        o, d, light = sample_emission(lights, materials, spectra, geometry, targets, u[i, 0], (u[i, 1], u[i, 2]),
+                                      u[i, 3], (u[i, 4], u[i, 5]), lam[i], beta[i], rows, registers)
         origin[i, 0], origin[i, 1], origin[i, 2] = o
         direction[i, 0], direction[i, 1], direction[i, 2] = d
         index[i] = light
@@ -72,9 +72,10 @@ class Emission:
         n = len(u)
         out = SimpleNamespace(origin=np.empty((n, 3)), direction=np.empty((n, 3)), beta=np.empty((n, 1)),
                               light=np.empty(n, np.int64))
-        _emit_many(self.lights.arrays, self.lights.materials, self.lights.spectra, self.targets,
+        lights = self.lights
+        _emit_many(lights.arrays, lights.materials, lights.spectra, lights.geometry, self.targets,
                    np.ascontiguousarray(u, dtype=np.float64), np.full((n, 1), wavelength_nm), out.origin,
-                   out.direction, out.beta, out.light)
+                   out.direction, out.beta, out.light, lights.scratch.emitter_rows, lights.scratch.registers)
         out.beta = out.beta[:, 0]
         return out
 
