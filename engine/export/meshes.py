@@ -24,6 +24,7 @@ from .hair import LocalHair, hair_ribbons, read_hair
 from .instancing import WorldTriangles, instance_triangles
 from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
+from .object_random import name_random_id
 from .surface_attributes import SurfaceCollector
 from .unrendered import particle_hair_warnings, unrendered_type_warning
 
@@ -132,7 +133,8 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
         if piece is not None:
             matrix = instance.matrix_world
             piece.matrices.append((*matrix[0], *matrix[1], *matrix[2], *matrix[3]))
-            piece.infos.append((tuple(obj.color), obj.pass_index, instance.random_id))
+            random_id = instance.random_id if instance.is_instance else name_random_id(obj.name)
+            piece.infos.append((tuple(obj.color), obj.pass_index, random_id))
     return [piece for piece in pieces.values() if piece is not None]
 
 
