@@ -20,8 +20,9 @@ from helpers.texture_board import build_texture_board
 
 
 def test_shader_nodes_render_as_in_cycles(prism_addon, fresh_scene):
-    """Principled (plastic, textured, metal, coat, specular tint), Glossy, Glass, Diffuse, Translucent, Mix by
-    Layer Weight, Add, Bump, a node group behind a reroute: each sphere's brightness within 2 % of Cycles'."""
+    """Principled (plastic, textured, metal, coat, specular tint), Glossy, Glass, Refraction, Diffuse,
+    Translucent, Transparent, Emission, Mix by Layer Weight and by Fresnel, Add, Bump, a tangent-space Normal
+    Map, a node group behind a reroute: each sphere's brightness within 2 % of Cycles'."""
     names, spheres = build_shader_scene()
     ids = object_ids(fresh_scene, spheres)
     cycles = render_cycles(fresh_scene, 256, max_bounces=12)
@@ -36,8 +37,10 @@ def test_shader_nodes_render_as_in_cycles(prism_addon, fresh_scene):
 
 def test_textures_and_colour_nodes_match_blender_pixel_by_pixel(prism_addon, fresh_scene):
     """Emissive tiles of Checker, Noise (fBM, ridged), Voronoi, Wave, Brick, Magic, Gradient, White Noise,
-    Color Ramp, Map Range, Math, Mix (overlay), Hue/Saturation, Invert, Bright/Contrast and an sRGB image:
-    each tile's colour within 2 % of Cycles' and its pattern in place (per-pixel error at noise level)."""
+    Color Ramp, Map Range, Math, Mix (overlay), Hue/Saturation, Invert, Bright/Contrast, an sRGB image,
+    Separate/Combine Color (HSV), RGB Curves, Object Info (colour, random), a colour Attribute, UV Map,
+    Mapping and Separate/Combine XYZ: each tile's colour within 2 % of Cycles' and its pattern in place
+    (per-pixel error at noise level)."""
     names, tiles = build_texture_board()
     ids = object_ids(fresh_scene, tiles)
     cycles = render_cycles(fresh_scene, 16, max_bounces=1)

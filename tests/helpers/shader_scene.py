@@ -4,6 +4,7 @@ floor under an area light and a dim world: what the closures do, for Prism again
 from __future__ import annotations
 
 import bpy
+import numpy as np
 
 from .node_scenes import camera, node, plane, socket, surface_material, uv_sphere
 
@@ -65,7 +66,7 @@ def _bumped(nodes, link):
 
 
 def _glass(nodes, link):
-    glass = node(nodes, "ShaderNodeBsdfGlass", Color=(0.9, 0.95, 1.0), Roughness=0.25, IOR=1.45)
+    glass = node(nodes, "ShaderNodeBsdfGlass", Color=(0.9, 0.95, 1.0), Roughness=0.45, IOR=1.45)
     glass.distribution = "GGX"
     return glass.outputs[0]
 
@@ -105,6 +106,59 @@ def _group(nodes, link):
     return group.outputs[0]
 
 
+def _ripple_normal_map(size=64, ripples=6, slope=0.6):
+    """A tangent-space normal map (Non-Color, 8-bit) of ripples along U: n ∝ (-dh/du, 0, 1)."""
+    u = (np.arange(size) + 0.5) / size
+    dh = slope * np.cos(2.0 * np.pi * ripples * u)
+    n = np.stack([-dh, np.zeros_like(dh), np.ones_like(dh)], -1) / np.sqrt(1.0 + dh * dh)[:, None]
+    pixels = np.ones((size, size, 4), np.float32)
+    pixels[..., :3] = 0.5 * n[None, :, :] + 0.5
+    image = bpy.data.images.get("ripples") or bpy.data.images.new("ripples", size, size)
+    image.colorspace_settings.name = "Non-Color"
+    image.pixels.foreach_set(pixels.ravel())
+    return image
+
+
+def _normal_mapped(nodes, link):
+    bsdf = node(nodes, "ShaderNodeBsdfPrincipled", Base_Color=(0.7, 0.5, 0.3), Roughness=0.35)
+    bsdf.distribution = "GGX"
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = _ripple_normal_map()
+    normal_map = node(nodes, "ShaderNodeNormalMap", Strength=1.0)
+    normal_map.uv_map = "UVMap"
+    link(texture.outputs["Color"], normal_map.inputs["Color"])
+    link(normal_map.outputs["Normal"], bsdf.inputs["Normal"])
+    return bsdf.outputs[0]
+
+
+def _refraction(nodes, link):
+    refraction = node(nodes, "ShaderNodeBsdfRefraction", Color=(0.95, 0.9, 0.8), Roughness=0.4, IOR=1.45)
+    refraction.distribution = "GGX"
+    return refraction.outputs[0]
+
+
+def _transparent_mix(nodes, link):
+    transparent = node(nodes, "ShaderNodeBsdfTransparent", Color=(0.9, 0.9, 0.9))
+    diffuse = node(nodes, "ShaderNodeBsdfDiffuse", Color=(0.5, 0.6, 0.8))
+    mix = node(nodes, "ShaderNodeMixShader", Fac=0.4)
+    link(diffuse.outputs[0], mix.inputs[1])
+    link(transparent.outputs[0], mix.inputs[2])
+    return mix.outputs[0]
+
+
+def _emission_by_fresnel(nodes, link):
+    """Emission where the view is head-on, a glossy coat at grazing angles (Fresnel node as the factor)."""
+    emission = node(nodes, "ShaderNodeEmission", Color=(1.0, 0.6, 0.3), Strength=1.5)
+    glossy = node(nodes, "ShaderNodeBsdfAnisotropic", Color=(0.8, 0.8, 0.8), Roughness=0.25)
+    glossy.distribution = "GGX"
+    fresnel = node(nodes, "ShaderNodeFresnel", IOR=1.8)
+    mix = nodes.new("ShaderNodeMixShader")
+    link(fresnel.outputs["Fac"], mix.inputs["Fac"])
+    link(emission.outputs[0], mix.inputs[1])
+    link(glossy.outputs[0], mix.inputs[2])
+    return mix.outputs[0]
+
+
 #: (name, material builder) of the spheres, left to right, back row to front row.
 SHADERS = [
     ("principled plastic", _principled(Base_Color=(0.2, 0.4, 0.8), Roughness=0.3)),
@@ -121,11 +175,15 @@ SHADERS = [
     ("group and reroute", _group),
     ("principled specular tint", _principled(Base_Color=(0.3, 0.3, 0.3), Roughness=0.25, Specular_IOR_Level=0.8,
                                              Specular_Tint=(1.0, 0.5, 0.2))),
+    ("normal map (tangent space)", _normal_mapped),
+    ("rough refraction", _refraction),
+    ("transparent + diffuse", _transparent_mix),
+    ("emission by Fresnel + glossy", _emission_by_fresnel),
 ]
 
 
 def build_shader_scene(resolution=(128, 96)):
-    """Twelve spheres in three rows of four seen from above; returns (names, sphere objects)."""
+    """Sixteen spheres in four rows of four seen from above; returns (names, sphere objects)."""
     world = bpy.data.worlds.new("World")
     world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.6, 0.7, 0.9, 1.0)
@@ -142,7 +200,7 @@ def build_shader_scene(resolution=(128, 96)):
     names, spheres = [], []
     for index, (name, build) in enumerate(SHADERS):
         row, column = divmod(index, 4)
-        sphere = uv_sphere(f"sphere {index}", 0.45, ((column - 1.5) * 1.0, 1.0 - row * 1.0, 0.45),
+        sphere = uv_sphere(f"sphere {index}", 0.45, ((column - 1.5) * 1.0, 1.5 - row * 1.0, 0.45),
                            mat=surface_material(name, build))
         sphere.data.uv_layers.active.name = "UVMap"
         names.append(name)

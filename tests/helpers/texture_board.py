@@ -93,21 +93,82 @@ def _tile_materials():
         tex.image, tex.interpolation = image, "Closest"
         return tex.outputs["Color"]
 
+    def curves_of_separated_hsv(nodes, link):
+        """Checker → Separate Color (HSV) → hue shifted by Math → Combine Color (HSV) → RGB Curves."""
+        chk = node(nodes, "ShaderNodeTexChecker", Scale=4.0, Color1=(0.8, 0.3, 0.1), Color2=(0.2, 0.5, 0.3))
+        separate = nodes.new("ShaderNodeSeparateColor")
+        combine = nodes.new("ShaderNodeCombineColor")
+        separate.mode = combine.mode = "HSV"
+        shift = node(nodes, "ShaderNodeMath", Value_001=0.15)
+        shift.operation = "ADD"
+        link(chk.outputs["Color"], separate.inputs["Color"])
+        link(separate.outputs[0], shift.inputs[0])
+        link(shift.outputs[0], combine.inputs[0])
+        link(separate.outputs[1], combine.inputs[1])
+        link(separate.outputs[2], combine.inputs[2])
+        curves = nodes.new("ShaderNodeRGBCurve")
+        curve = curves.mapping.curves[3]  # the combined curve
+        curve.points.new(0.4, 0.6)
+        curves.mapping.update()
+        link(combine.outputs["Color"], curves.inputs["Color"])
+        return curves.outputs["Color"]
+
+    def object_info(nodes, link):
+        """The object's colour, scaled by its random number (Cycles' hash of the object's name)."""
+        info = nodes.new("ShaderNodeObjectInfo")
+        scale = nodes.new("ShaderNodeVectorMath")
+        scale.operation = "SCALE"
+        link(info.outputs["Color"], scale.inputs[0])
+        link(info.outputs["Random"], socket(scale, "Scale"))
+        return scale.outputs["Vector"]
+
+    def colour_attribute(nodes, link):
+        attribute = nodes.new("ShaderNodeAttribute")
+        attribute.attribute_name = "Col"
+        return attribute.outputs["Color"]
+
+    def uv_map_xyz(nodes, link):
+        """The UV map by name through Separate/Combine XYZ (U to red, V to blue) and a Mapping rotation (kept
+        non-negative: Cycles emits negative colours, Prism's spectra cannot be negative)."""
+        uv = nodes.new("ShaderNodeUVMap")
+        uv.uv_map = "UVMap"
+        mapping = node(nodes, "ShaderNodeMapping", Location=(0.3, 0.0, 0.0), Rotation=(0.0, 0.0, 0.3))
+        separate = nodes.new("ShaderNodeSeparateXYZ")
+        combine = node(nodes, "ShaderNodeCombineXYZ", Y=0.2)
+        link(uv.outputs["UV"], mapping.inputs["Vector"])
+        link(mapping.outputs["Vector"], separate.inputs["Vector"])
+        link(separate.outputs["X"], combine.inputs["X"])
+        link(separate.outputs["Y"], combine.inputs["Z"])
+        return combine.outputs["Vector"]
+
     return [("checker", checker), ("noise fBM", noise_fbm), ("noise ridged + ramp", noise_ridged),
             ("voronoi colour", voronoi_colour), ("voronoi smooth distance", voronoi_distance), ("wave", wave),
             ("brick", brick), ("magic", magic), ("gradient + ramp + HSV", gradient_hsv),
             ("white noise", white_noise), ("mix overlay + invert + bright", mix_overlay),
-            ("image sRGB", image_srgb)]
+            ("image sRGB", image_srgb), ("separate/combine HSV + RGB curves", curves_of_separated_hsv),
+            ("object info colour x random", object_info), ("colour attribute", colour_attribute),
+            ("UV map + mapping + separate/combine XYZ", uv_map_xyz)]
+
+
+def _colour_attribute(obj, index):
+    """A corner colour attribute 'Col': a different colour at each corner of the tile."""
+    mesh = obj.data
+    colours = mesh.color_attributes.new("Col", "FLOAT_COLOR", "CORNER")
+    corners = [(0.9, 0.2, 0.1, 1.0), (0.1, 0.8, 0.2, 1.0), (0.2, 0.3, 0.9, 1.0), (0.9, 0.9, 0.2, 1.0)]
+    for i, data in enumerate(colours.data):
+        data.color = corners[(i + index) % 4]
 
 
 def build_texture_board(resolution=(96, 72)):
-    """Tiles in a 4 x 3 grid facing a camera straight on; returns (tile names, tile objects)."""
+    """Tiles in a 4 x 4 grid facing a camera straight on; returns (tile names, tile objects)."""
     black_world()
     names, tiles = [], []
     for index, (name, build) in enumerate(_tile_materials()):
         row, column = divmod(index, 4)
-        obj = plane(f"tile {index}", 0.95, location=(column - 1.5, 0.0, 1.0 - row), rotation=(1.5707963, 0.0, 0.0),
+        obj = plane(f"tile {index}", 0.95, location=(column - 1.5, 0.0, 1.5 - row), rotation=(1.5707963, 0.0, 0.0),
                     mat=emission_material(name, build))
+        obj.color = (0.3 + 0.05 * index, 0.9 - 0.04 * index, 0.5, 1.0)
+        _colour_attribute(obj, index)
         names.append(name)
         tiles.append(obj)
     camera((0.0, -8.0, 0.0), (0.0, 0.0, 0.0), lens_mm=50.0, resolution=resolution)
