@@ -79,11 +79,13 @@ def _principled_material():
     b = ProgramBuilder(fold_evaluator())
     incoming = b.emit(op.INCOMING, [None, None, None, None, None, None, 0], width=3)
     normal = b.emit(op.NORMAL, [None, None, None, None, None, None, 0], width=3)
-    cos = b.emit(op.VECTOR_MATH, [incoming, normal], mode=op.VECTOR_MATH_OPERATIONS.index("DOT_PRODUCT"))
-    s = b.emit(op.LAYER_ALBEDO, [b.constant(0.5), cos, b.constant(1.5)])
+    cos = b.emit(op.VECTOR_MATH, [incoming, normal], mode=op.VECTOR_MATH_OPERATIONS.index("DOT_PRODUCT"),
+                 width=1)
+    s = b.emit(op.LAYER_ALBEDO, [b.constant(0.5), cos, b.constant(1.5)], width=1)
     f0 = 0.04
-    albedo = b.emit(op.MATH, [b.constant(f0), s, b.constant(1.0 - f0)], mode=op.MATH_OPERATIONS.index("MULTIPLY_ADD"))
-    weight = b.emit(op.MATH, [b.constant(1.0), albedo], mode=op.MATH_OPERATIONS.index("SUBTRACT"))
+    albedo = b.emit(op.MATH, [b.constant(f0), s, b.constant(1.0 - f0)], mode=op.MATH_OPERATIONS.index("MULTIPLY_ADD"),
+                    width=1)
+    weight = b.emit(op.MATH, [b.constant(1.0), albedo], mode=op.MATH_OPERATIONS.index("SUBTRACT"), width=1)
     closures = [ClosureSpec(CONDUCTOR, alpha=0.25, eta=1.5, fresnel=FRESNEL_DIELECTRIC, selection=0.1),
                 ClosureSpec(DIFFUSE, tint=Colour(rgb=(0.6, 0.6, 0.6)), bindings=[(C_TINT_SCALE, weight.register, True)])]
     return ShaderProgram(closures, b.instructions(), b.initial_registers(), b.register_count)
