@@ -65,21 +65,33 @@ def _bumped(nodes, link):
     return bsdf.outputs[0]
 
 
-def _glass(nodes, link):
-    glass = node(nodes, "ShaderNodeBsdfGlass", Color=(0.9, 0.95, 1.0), Roughness=0.45, IOR=1.45)
-    glass.distribution = "GGX"
-    return glass.outputs[0]
+def _single_scatter(kind, **inputs):
+    """A builder of one GGX node of ``kind`` (Glass, Refraction, …) set to single scattering."""
+
+    def build(nodes, link):
+        bsdf = node(nodes, kind, **inputs)
+        bsdf.distribution = "GGX"
+        return bsdf.outputs[0]
+    return build
 
 
-def _translucent_mix(nodes, link):
-    # Pale: light crossing a sphere meets the colour twice, and the product of two smooth spectra is less
-    # saturated than the product of two RGB triples (Prism is spectral, Cycles RGB).
-    translucent = node(nodes, "ShaderNodeBsdfTranslucent", Color=(0.6, 0.8, 0.6))
-    diffuse = node(nodes, "ShaderNodeBsdfDiffuse", Color=(0.6, 0.8, 0.6))
-    mix = node(nodes, "ShaderNodeMixShader", Fac=0.5)
-    link(diffuse.outputs[0], mix.inputs[1])
-    link(translucent.outputs[0], mix.inputs[2])
-    return mix.outputs[0]
+def _diffuse_mixed_with(kind, colour, other_colour, fac):
+    """A builder of a Mix Shader: Diffuse of ``colour`` (first) and a ``kind`` node of ``other_colour``."""
+
+    def build(nodes, link):
+        other = node(nodes, kind, Color=other_colour)
+        diffuse = node(nodes, "ShaderNodeBsdfDiffuse", Color=colour)
+        mix = node(nodes, "ShaderNodeMixShader", Fac=fac)
+        link(diffuse.outputs[0], mix.inputs[1])
+        link(other.outputs[0], mix.inputs[2])
+        return mix.outputs[0]
+    return build
+
+
+# Pale: light crossing a sphere meets the colour twice, and the product of two smooth spectra is less
+# saturated than the product of two RGB triples (Prism is spectral, Cycles RGB).
+_translucent_mix = _diffuse_mixed_with("ShaderNodeBsdfTranslucent", (0.6, 0.8, 0.6), (0.6, 0.8, 0.6), 0.5)
+_transparent_mix = _diffuse_mixed_with("ShaderNodeBsdfTransparent", (0.5, 0.6, 0.8), (0.9, 0.9, 0.9), 0.4)
 
 
 def _group(nodes, link):
@@ -131,21 +143,6 @@ def _normal_mapped(nodes, link):
     return bsdf.outputs[0]
 
 
-def _refraction(nodes, link):
-    refraction = node(nodes, "ShaderNodeBsdfRefraction", Color=(0.95, 0.9, 0.8), Roughness=0.4, IOR=1.45)
-    refraction.distribution = "GGX"
-    return refraction.outputs[0]
-
-
-def _transparent_mix(nodes, link):
-    transparent = node(nodes, "ShaderNodeBsdfTransparent", Color=(0.9, 0.9, 0.9))
-    diffuse = node(nodes, "ShaderNodeBsdfDiffuse", Color=(0.5, 0.6, 0.8))
-    mix = node(nodes, "ShaderNodeMixShader", Fac=0.4)
-    link(diffuse.outputs[0], mix.inputs[1])
-    link(transparent.outputs[0], mix.inputs[2])
-    return mix.outputs[0]
-
-
 def _emission_by_fresnel(nodes, link):
     """Emission where the view is head-on, a glossy coat at grazing angles (Fresnel node as the factor)."""
     emission = node(nodes, "ShaderNodeEmission", Color=(1.0, 0.6, 0.3), Strength=1.5)
@@ -170,13 +167,14 @@ SHADERS = [
     ("mix by layer weight", _mix_fresnel),
     ("add diffuse + glossy on noise", _add_noise),
     ("bump from noise", _bumped),
-    ("rough glass", _glass),
+    ("rough glass", _single_scatter("ShaderNodeBsdfGlass", Color=(0.9, 0.95, 1.0), Roughness=0.45, IOR=1.45)),
     ("translucent + diffuse", _translucent_mix),
     ("group and reroute", _group),
     ("principled specular tint", _principled(Base_Color=(0.3, 0.3, 0.3), Roughness=0.25, Specular_IOR_Level=0.8,
                                              Specular_Tint=(1.0, 0.5, 0.2))),
     ("normal map (tangent space)", _normal_mapped),
-    ("rough refraction", _refraction),
+    ("rough refraction", _single_scatter("ShaderNodeBsdfRefraction", Color=(0.95, 0.9, 0.8), Roughness=0.4,
+                                         IOR=1.45)),
     ("transparent + diffuse", _transparent_mix),
     ("emission by Fresnel + glossy", _emission_by_fresnel),
 ]
