@@ -4,6 +4,7 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from ._common import WAVELENGTH_SUBTYPE, register_group, unregister_group
+from .file_path import BLEND_RELATIVE_PATH_OPTIONS
 from .farm import PrismFarmSettings
 from .lens_overlay import PrismLensOverlaySettings
 
@@ -286,6 +287,7 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         "number)",
         default="//spectral_####.exr",
         subtype="FILE_PATH",
+        options=BLEND_RELATIVE_PATH_OPTIONS,
     )
     lens_overlay: PointerProperty(
         type=PrismLensOverlaySettings,
