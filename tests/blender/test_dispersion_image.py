@@ -40,6 +40,7 @@ def _prism_scene(n_design: float):
     principled = glass.node_tree.nodes["Principled BSDF"]
     principled.inputs["Transmission Weight"].default_value = 1.0
     principled.inputs["Roughness"].default_value = 0.0
+    principled.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)  # clear glass (Base Color tints it)
     vertices = [(x, y, z) for z in (-1.0, 1.0) for x, y in triangle]
     _quad_mesh("Prism", vertices, [(0, 2, 1), (3, 4, 5), (0, 1, 4, 3), (1, 2, 5, 4), (2, 0, 3, 5)], glass)
 
@@ -66,10 +67,13 @@ def _prism_scene(n_design: float):
     return glass
 
 
-def _centroids_px(image):
+def _centroids_px(image, half_window_px=8):
+    """Each channel's centroid over the stripe's image: pixels within ``half_window_px`` of the channel's
+    peak (the prism's faint internal-reflection ghosts, far from it, are not the refracted image)."""
     profile = image.sum(axis=0)  # [W, 3]
     xs = np.arange(profile.shape[0]) + 0.5
-    return (profile * xs[:, None]).sum(axis=0) / profile.sum(axis=0)
+    near = np.abs(xs[:, None] - xs[np.argmax(profile, axis=0)][None, :]) <= half_window_px
+    return (profile * near * xs[:, None]).sum(axis=0) / (profile * near).sum(axis=0)
 
 
 def test_prism_splits_the_stripe_as_snell_predicts(prism_addon, fresh_scene):
