@@ -28,7 +28,7 @@ def expected_plane_radiance(camera, light_position, intensity_w_sr, albedo, widt
 
 def test_point_light_on_diffuse_plane_matches_closed_form(fresh_scene):
     albedo, power_w, light_position = 0.5, 1000.0, (0.4, -0.3, 2.0)
-    add_plane("Floor", 20.0, color=(albedo, albedo, albedo))
+    add_plane("Floor", 20.0, color=(albedo, albedo, albedo), specular=0.0)  # Lambertian, as the closed form
     add_point_light("Bulb", power_w, light_position)
     camera = add_camera((0.0, 0.0, 4.0), (0.0, 0.0, 0.0), lens_mm=35.0, resolution=(24, 24))
     fresh_scene.world = None

@@ -9,14 +9,16 @@ import bpy
 import numpy as np
 
 
-def add_plane(name: str, size_m: float, color=(0.5, 0.5, 0.5), location=(0.0, 0.0, 0.0)):
-    """A square plane facing +Z with a Principled material of ``color``."""
+def add_plane(name: str, size_m: float, color=(0.5, 0.5, 0.5), location=(0.0, 0.0, 0.0), specular=0.5):
+    """A square plane facing +Z with a Principled material of ``color``; ``specular`` is its Specular IOR
+    Level (0: no specular layer, a Lambertian surface as closed forms assume)."""
     half = size_m / 2
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata([(-half, -half, 0), (half, -half, 0), (half, half, 0), (-half, half, 0)], [], [(0, 1, 2, 3)])
     material = bpy.data.materials.new(f"{name} material")
     material.use_nodes = True
     material.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (*color, 1.0)
+    material.node_tree.nodes["Principled BSDF"].inputs["Specular IOR Level"].default_value = specular
     mesh.materials.append(material)
     obj = bpy.data.objects.new(name, mesh)
     obj.location = location
