@@ -74,3 +74,24 @@ def test_rough_coated_glass_sampling_chi2_and_weights(theta, below):
     wo = direction(theta, below=below)
     assert chi2_sampling_test(b, wo, n=150_000, bins=12) > 1e-3
     assert weight_matches_eval(b, wo) < 1e-6
+
+
+def test_index_below_one_refracts_away_and_reflects_totally_beyond_the_critical_angle():
+    """An air bubble in water (relative index 1/1.33): Snell and Fresnel with eta < 1 from outside, total
+    internal reflection from outside beyond asin(eta) ≈ 48.8°, and rough sampling still agrees with its pdf."""
+    eta = 1.0 / 1.33
+    b = glass(eta)
+    n = 50_000
+    rng = np.random.default_rng(2)
+    wo = direction(30.0, 10.0)
+    s = b.sample(np.repeat(wo[None], n, 0), np.full((n, 1), 550.0), rng.random((n, 3)), np.zeros(n, int),
+                 np.zeros(n, bool))
+    refl = s.wi[:, 2] > 0
+    assert refl.mean() == pytest.approx(fresnel_dielectric(np.array([wo[2]]), np.array([eta]))[0], abs=0.005)
+    t = s.wi[~refl][0]
+    assert np.hypot(t[0], t[1]) * eta == pytest.approx(np.sin(np.radians(30.0)))  # bends away from the normal
+    beyond = direction(60.0, 10.0)
+    s = b.sample(np.repeat(beyond[None], 1000, 0), np.full((1000, 1), 550.0), rng.random((1000, 3)),
+                 np.zeros(1000, int), np.zeros(1000, bool))
+    assert np.all(s.wi[:, 2] > 0) and np.allclose(s.weight[:, 0], 1.0)
+    assert chi2_sampling_test(glass(eta, 0.2), direction(35.0), n=150_000, bins=12) > 1e-3
