@@ -25,8 +25,7 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:
             f"Scene '{scene_name}' has no visible geometry: add a mesh object, or enable an object for "
             "rendering (Outliner ▸ camera icon), before rendering."
         )
-    world = tracer_scene.world
-    world_lit = world.strength > 0 and max(world.color) > 0
+    world_lit = not tracer_scene.world.is_black()
     used = {int(i) for i in np.unique(tracer_scene.triangle_material)}
     emissive = any(
         tracer_scene.materials[i].emission is not None and tracer_scene.materials[i].emission_strength > 0 for i in used

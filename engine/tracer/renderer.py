@@ -143,7 +143,7 @@ class Renderer:
         a.dispersion = bool(a.dispersive) or a.camera_disperses
         a.light_kinds = [light.kind for light in self.scene.lights]
         a.features = list(self.material_table.features)
-        a.world = self.light_table.arrays.world_strength > 0
+        a.world = self.light_table.world
         return a
 
     def _pixel_list(self, border):

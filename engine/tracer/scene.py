@@ -132,11 +132,56 @@ class Camera:
 
 
 @dataclass
+class Sky:
+    """Blender's Nishita Sky Texture (single scattering in a spherical atmosphere, evaluated per
+    wavelength): the sun at ``sun_elevation_rad`` above the horizon and ``sun_rotation_rad`` about +Z
+    (0 puts it toward +Y, growing toward -X, as Blender's), seen from ``altitude_m``; densities
+    relative to Earth's air, dust (aerosols) and ozone. With ``sun_disc`` the sun is a disc of angular
+    diameter ``sun_size_rad`` whose radiance is multiplied by ``sun_intensity``."""
+
+    sun_elevation_rad: float = 0.2618
+    sun_rotation_rad: float = 0.0
+    sun_disc: bool = True
+    sun_size_rad: float = 0.009512
+    sun_intensity: float = 1.0
+    altitude_m: float = 0.0
+    air_density: float = 1.0
+    dust_density: float = 1.0
+    ozone_density: float = 1.0
+
+
+@dataclass
 class World:
-    """Constant background radiance: ``color`` (linear Rec.709) x ``strength``."""
+    """The background: radiance ``strength`` x (``color``, an equirectangular image or a sky).
+
+    ``kind``: ``"constant"`` (``color``, linear Rec.709), ``"image"`` (``image_rgb`` float32
+    [H, W, 3] linear Rec.709, Blender's equirectangular layout: row 0 is the zenith, column 0 the
+    direction -X, the image centre +X; ``interpolation`` ``"linear"`` or ``"closest"``) or ``"sky"``
+    (``sky``). ``to_texture`` [3, 3] maps a world direction to the direction the texture is looked
+    up with (Blender's Mapping node; identity by default; any invertible matrix). ``sampled``: light
+    sampling of the world (Cycles' World ▸ Settings ▸ Sampling), else it is found by escaping rays
+    only.
+    """
 
     color: tuple[float, float, float] = (0.0, 0.0, 0.0)
     strength: float = 1.0
+    kind: str = "constant"
+    image_rgb: np.ndarray | None = None
+    interpolation: str = "linear"
+    sky: Sky | None = None
+    to_texture: np.ndarray = field(default_factory=lambda: np.eye(3))
+    sampled: bool = True
+    name: str = "World"
+
+    def is_black(self) -> bool:
+        """True when the background emits nothing (no light to sample or to see)."""
+        if not self.strength > 0:
+            return True
+        if self.kind == "constant":
+            return not max(self.color) > 0
+        if self.kind == "image":
+            return self.image_rgb is None or not np.nanmax(self.image_rgb, initial=0.0) > 0
+        return False
 
 
 @dataclass

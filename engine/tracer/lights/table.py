@@ -2,9 +2,10 @@
 
 Light sampling picks one light with probability ∝ its power (spectra are luminance-normalised, so
 powers compare): P for point, spot and area lights, E π R² for a sun (R: the scene's bounding-sphere
-radius), π Σ area × strength for the emissive meshes; every light keeps at least 1/(20 n) so none
-starves. The world (a constant background, ``world_spectrum`` × ``world_strength``) is found by
-escaping rays only.
+radius), π Σ area × strength for the emissive meshes, π R² ∫ L dω for the world's background; every
+light keeps at least 1/(20 n) so none starves. The background (``lights.environment``) is one light
+(``environment_index``, -1 when it is black or its sampling is off: then escaping rays alone find it);
+a sky's Sun disc is a distant light of its own.
 """
 
 from __future__ import annotations
@@ -15,15 +16,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import PrismInputError
-from ..scene import SpectrumSpec
 from .area import area_power, area_row
+from .environment import build_environment
 from .mesh import build_mesh_emitters
 from .point import point_power, point_row
-from .row import L_KIND, LIGHT_ROW, MESH, RECTANGLE, DISK, SPHERE, SUN, SUN_DISK, KIND_NAMES, POINT
+from .row import DISK, ENVIRONMENT, KIND_NAMES, L_KIND, LIGHT_ROW, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
 from .sun import sun_power, sun_row
 
 LightArrays = namedtuple(
-    "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index world_spectrum world_strength"
+    "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index environment environment_index"
 )
 
 
@@ -31,7 +32,8 @@ LightArrays = namedtuple(
 class LightTable:
     arrays: LightArrays
     names: list  # one per row
-    kinds: list  # Blender kinds ("point", "area", "sun", "emissive meshes") per row
+    kinds: list  # Blender kinds ("point", "area", "sun", "emissive meshes", "world") per row
+    world: str = ""  # what the background is, for the render stats ("" when black)
 
 
 def _emits(light) -> bool:
@@ -57,8 +59,10 @@ def _light_row(light, spectra, offset):
     raise PrismInputError(f"Light '{light.name}': unknown light type '{light.kind}'.")
 
 
-def _power(row, scene_radius_m, mesh_total):
+def _power(row, scene_radius_m, mesh_total, environment_total):
     kind = int(row[L_KIND])
+    if kind == ENVIRONMENT:
+        return np.pi * max(scene_radius_m, 1e-3) ** 2 * environment_total
     if kind in (POINT, SPHERE):
         return point_power(row)
     if kind in (RECTANGLE, DISK):
@@ -89,9 +93,22 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
         rows.append(row)
         names.append(KIND_NAMES[MESH])
         kinds.append(KIND_NAMES[MESH])
+    environment, environment_total, sky_rows = build_environment(scene.world, spectra)
+    for row in sky_rows:
+        rows.append(row)
+        names.append(f"{scene.world.name} sun")
+        kinds.append("sun")
+    environment_index = -1
+    if environment_total > 0 and scene.world.sampled:
+        row = np.zeros(LIGHT_ROW)
+        row[L_KIND] = ENVIRONMENT
+        environment_index = len(rows)
+        rows.append(row)
+        names.append(scene.world.name)
+        kinds.append(KIND_NAMES[ENVIRONMENT])
     verts = np.asarray(vertices, np.float64)
     radius = 0.5 * float(np.linalg.norm(np.ptp(verts, axis=0))) if len(verts) else 1.0
-    power = np.array([_power(r, radius, mesh_total) for r in rows], dtype=np.float64)
+    power = np.array([_power(r, radius, mesh_total, environment_total) for r in rows], dtype=np.float64)
     power = np.maximum(np.nan_to_num(power), 0.0)
     n = len(rows)
     if n:
@@ -105,9 +122,15 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
         cdf[-1] = 1.0
     table = np.array(rows, dtype=np.float64).reshape(-1, LIGHT_ROW)
     hittable = np.array([i for i, r in enumerate(rows) if int(r[L_KIND]) in (SPHERE, RECTANGLE, DISK)], np.int32)
-    world = scene.world
-    black = not (world.strength > 0 and max(world.color) > 0)
-    world_spectrum = spectra.emission(SpectrumSpec(kind="rgb", rgb=tuple(float(c) for c in world.color)))
     arrays = LightArrays(table if n else np.zeros((1, LIGHT_ROW)), prob, cdf, hittable, mesh, mesh_index,
-                         world_spectrum, 0.0 if black else float(world.strength))
-    return LightTable(arrays, names, kinds)
+                         environment, environment_index)
+    return LightTable(arrays, names, kinds, _world_description(scene.world, environment_index))
+
+
+def _world_description(world, environment_index) -> str:
+    if world is None or world.is_black():
+        return ""
+    kind = {"constant": "colour", "image": "HDRI", "sky": "Nishita sky"}.get(world.kind, world.kind)
+    if world.kind == "constant":
+        return f"world {kind}"
+    return f"world {kind}" + (" (light-sampled)" if environment_index >= 0 else " (not light-sampled)")
