@@ -173,7 +173,8 @@ class RenderSession:
     def _write(result, renderer, box, wanted) -> None:
         x0, y0, x1, y1 = box
         passes = result.layers[0].passes
-        passes["Combined"].rect = bottom_up(renderer.image_rgb()[y0:y1, x0:x1], alpha=True)
+        rgba = np.concatenate([renderer.image_rgb(), renderer.image_alpha()[..., None]], axis=2)
+        passes["Combined"].rect = bottom_up(rgba[y0:y1, x0:x1])
         if "Noise" in wanted:
             passes["Noise"].rect = bottom_up(renderer.variance_rgb()[y0:y1, x0:x1])
         if "Sample Count" in wanted:

@@ -45,7 +45,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     Inputs Prism ignores are appended to ``warnings`` (one message each).
     """
     scene = depsgraph.scene
-    camera = export_camera(scene)
+    camera = export_camera(scene, warnings)
     geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
     tracer_scene = Scene(
         vertices=geometry.vertices,
@@ -54,6 +54,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         triangle_object=geometry.triangle_object,
         object_names=geometry.object_names,
         corner_normals=geometry.corner_normals,
+        object_flags=geometry.object_flags,
         materials=geometry.materials,
         camera=camera,
         lights=export_lights(depsgraph, warnings),

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 from ..properties.material import CONDUCTOR_NAMES
-from ..properties.principled import material_kind, read_principled
+from ..properties.principled import material_kind, read_principled, surface_node
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Material, SpectrumSpec
 
@@ -50,6 +50,9 @@ def export_material(material, warnings: list[str] | None = None) -> Material:
     # The original data-block: what the user (or a script) set last, even when the depsgraph
     # has not re-copied it (Python edits to settings do not tag the material for evaluation).
     material = material.original
+    node = surface_node(material) if material.use_nodes else None
+    if node is not None and node.bl_idname == "ShaderNodeHoldout":
+        return Material(name=material.name, kind="diffuse", base_color=(0.0, 0.0, 0.0), holdout=True)
     reading = read_principled(material)
     if warnings is not None:
         warnings.extend(reading.ignored)

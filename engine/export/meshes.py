@@ -25,6 +25,7 @@ from .instancing import WorldTriangles, instance_triangles
 from .materials import DEFAULT_MATERIAL, export_material
 from .mesh_data import LocalMesh, read_mesh
 from .unrendered import particle_hair_warnings, unrendered_type_warning
+from .visibility import object_flags
 
 #: Types whose evaluated mesh arrives as a separate MESH instance.
 _EVALUATED_AS_MESH_INSTANCE = {"CURVE", "FONT", "SURFACE", "META"}
@@ -39,6 +40,7 @@ class ExportedGeometry:
     corner_normals: np.ndarray
     object_names: list[str]
     materials: list[Material]
+    object_flags: np.ndarray | None = None  # uint8 per entry of object_names (``tracer.visibility``)
 
 
 @dataclass
@@ -48,6 +50,7 @@ class _Instances:
     name: str
     geometry: LocalMesh | LocalHair
     matrices: list = field(default_factory=list)  # 16 floats each, row-major
+    flags: int = 0
 
 
 class _Materials:
@@ -96,7 +99,8 @@ def _gather(depsgraph, warnings) -> list[_Instances]:
         key = (kind, obj.original.name, obj.data.as_pointer())
         if key not in pieces:
             geometry = read_mesh(obj) if kind == "MESH" else read_hair(obj)  # now: the object may be temporary
-            pieces[key] = _Instances(obj.name, geometry) if geometry is not None else None
+            flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
+            pieces[key] = _Instances(obj.name, geometry, flags=flags) if geometry is not None else None
         piece = pieces[key]
         if piece is not None:
             matrix = instance.matrix_world
@@ -113,6 +117,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     materials = _Materials(warnings)
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
+    flags: list[int] = []
     camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
     for piece in _gather(depsgraph, warnings):
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
@@ -122,13 +127,17 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                 placed, slots = hair_ribbons(piece.geometry, matrix, camera)
                 parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
                 names.append(piece.name)
+                flags.append(piece.flags)
             continue
         local = piece.geometry
         placed = instance_triangles(local.vertices, local.triangles, local.corner_normals, matrices)
         slots = lookup[np.clip(local.slot_index, 0, len(lookup) - 1)]
         parts.append((placed, np.tile(slots, len(matrices))))
         names.append(piece.name)
-    return _assemble(parts, names, materials.materials)
+        flags.append(piece.flags)
+    geometry = _assemble(parts, names, materials.materials)
+    geometry.object_flags = np.asarray(flags, np.uint8)
+    return geometry
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

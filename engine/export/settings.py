@@ -40,7 +40,12 @@ def export_settings(
         border=border,
         pixel_filter=prism.pixel_filter.lower(),
         filter_width_px=float(prism.filter_width_px),
+        film_transparent=bool(scene.render.film_transparent),
     )
+    cycles = getattr(scene, "cycles", None)
+    if cycles is not None:  # Film ▸ Transparent ▸ Transparent Glass lives in Cycles' settings
+        settings.transparent_glass = bool(cycles.film_transparent_glass)
+        settings.transparent_roughness = float(cycles.film_transparent_roughness)
     try:
         settings.validate()
     except PrismInputError as error:  # stored past the UI's limits (a script, an old file): say where

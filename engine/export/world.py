@@ -58,7 +58,9 @@ def _sky(world, node, exported: World, warnings) -> None:
         altitude_m=float(node.altitude), air_density=float(node.air_density),
         dust_density=float(node.dust_density), ozone_density=float(node.ozone_density),
     )
-    exported.to_texture = texture_matrix(node.inputs["Vector"], where, warnings)
+    vector = node.inputs.get("Vector")
+    if vector is not None:
+        exported.to_texture = texture_matrix(vector, where, warnings)
 
 
 def export_world(scene, warnings: list[str] | None = None) -> World:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .stages.film import splat
+from .stages.film import splat, splat_alpha
 
 
 class Film:
@@ -22,6 +22,7 @@ class Film:
         self._sum = np.zeros((count, 3))
         self._sum_sq = np.zeros((count, 3))
         self._count = np.zeros(count, dtype=np.int64)
+        self._alpha = None  # sums of the samples' alpha, once a render has any transparency
         self.nan_samples = 0
 
     def add(self, pixel_index: np.ndarray, rgb: np.ndarray) -> None:
@@ -29,6 +30,20 @@ class Film:
         pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
         rgb = np.ascontiguousarray(rgb, dtype=np.float64).reshape(-1, 3)
         self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, pixel_index, rgb, len(pixel_index)))
+
+    def add_alpha(self, pixel_index: np.ndarray, alpha: np.ndarray) -> None:
+        """Add the alpha (1 - transparency) of the samples ``add`` just took, in the same order."""
+        if self._alpha is None:
+            self._alpha = np.zeros(len(self._count))
+        pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
+        splat_alpha(self._alpha, pixel_index, np.ascontiguousarray(alpha, dtype=np.float64), len(pixel_index))
+
+    def alpha(self) -> np.ndarray:
+        """Per-pixel mean alpha, float64 [H, W] (1 where nothing was see-through)."""
+        if self._alpha is None:
+            return np.ones((self.height, self.width))
+        n = np.maximum(self._count, 1)
+        return np.where(self._count > 0, self._alpha / n, 1.0).reshape(self.height, self.width)
 
     @property
     def counts(self) -> np.ndarray:

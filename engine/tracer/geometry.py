@@ -7,7 +7,8 @@ from the origin renders as it does at the origin. Zero-area and non-finite trian
 
 ``Geometry``: ``vertices`` float32 [V, 3] (camera-relative metres), ``triangles`` int32 [T, 3],
 ``material`` int32 [T], ``normals`` float32 [T, 3, 3] (unit shading normals at the corners) or
-[0, 3, 3] for flat shading.
+[0, 3, 3] for flat shading, ``flags`` uint8 [T] (``visibility``: the rays that see the triangle's
+object, and whether it is a holdout).
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ import numpy as np
 
 from .jit import inlined, kernel
 
-Geometry = namedtuple("Geometry", "vertices triangles material normals")
+Geometry = namedtuple("Geometry", "vertices triangles material normals flags")
 
 # Secondary rays start this far (relative to the largest coordinate of the hit point) off the surface:
 # ~30 float32 ulps, above Embree's float32 error.
@@ -44,8 +45,10 @@ def prepare_geometry(scene, offset):
     normals = np.zeros((0, 3, 3), np.float32)
     if scene.corner_normals is not None and len(scene.corner_normals) == len(triangles):
         normals = np.ascontiguousarray(np.asarray(scene.corner_normals, dtype=np.float32)[original])
+    from .visibility import triangle_flags
+
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
-                        np.ascontiguousarray(material), normals)
+                        np.ascontiguousarray(material), normals, triangle_flags(scene, original))
     return geometry, original, int(len(triangles) - len(original))
 
 

@@ -3,6 +3,7 @@
     renderer = Renderer(scene, settings, progress=None)
     renderer.render_pass()          # + settings.samples_per_pass samples per pixel
     renderer.image_rgb()            # float32 [H, W, 3] scene-linear Rec.709, row 0 = top
+    renderer.image_alpha()          # float32 [H, W] (transparent film, holdouts; 1 otherwise)
     renderer.variance_rgb()         # float32 [H, W, 3] variance of the mean
     renderer.samples_done, renderer.strategy, renderer.stats
     renderer.start_at_sample(n)     # continue the seed's sequence at sample n (chunked renders)
@@ -39,6 +40,7 @@ from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
+from .visibility import HOLDOUT
 
 MAX_CHUNK_PATHS = 1 << 16  # largest chunk one thread traces at once (memory ~0.5 kB per path)
 MIN_CHUNK_PATHS = 4096  # below this, per-bounce Python overhead dominates
@@ -96,8 +98,11 @@ class Renderer:
         self.spectra = spectra.arrays()
         self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
                                               bool(settings.use_mis), SAMPLERS[settings.sampler],
-                                              int(settings.seed) & 0xFFFFFFFF)
+                                              int(settings.seed) & 0xFFFFFFFF, bool(settings.film_transparent),
+                                              bool(settings.film_transparent and settings.transparent_glass),
+                                              float(settings.transparent_roughness) ** 2)
         self.accel = Accel(self.geometry)
+        self._alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.film = Film(self.width, self.height)
         self._pixels = self._pixel_list(settings.border)
         self._workers = worker_threads(settings.threads)
@@ -171,7 +176,8 @@ class Renderer:
         buffers = self._buffers(count)
         clamps = np.zeros_like(self._glass_clamps)
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
-        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps
+        alpha = 1.0 - buffers.state.transparency[:count] if self._alpha else None
+        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps, alpha
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
@@ -226,12 +232,14 @@ class Renderer:
                 if job is None:
                     break
                 try:
-                    pixel, rgb, rays, rejected, clamps = job.result()
+                    pixel, rgb, rays, rejected, clamps, alpha = job.result()
                 except CancelledError:
                     break
                 with self._jobs_lock:
                     del jobs[i]
                 self.film.add(pixel, rgb)
+                if alpha is not None:
+                    self.film.add_alpha(pixel, alpha)
                 self.stats["rays_cast"] += rays
                 self.stats["rejected_rays"] += rejected
                 self._glass_clamps += clamps
@@ -278,6 +286,10 @@ class Renderer:
     def image_rgb(self) -> np.ndarray:
         """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top."""
         return self.film.mean().astype(np.float32)
+
+    def image_alpha(self) -> np.ndarray:
+        """Mean alpha, float32 [H, W], row 0 = top (premultiplied: ``image_rgb`` is already × alpha)."""
+        return self.film.alpha().astype(np.float32)
 
     def variance_rgb(self) -> np.ndarray:
         """Per-pixel variance of the mean estimate, float32 [H, W, 3]."""

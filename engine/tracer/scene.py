@@ -47,7 +47,9 @@ class Material:
     A coating of ``coating_thickness_nm`` > 0 (index ``coating_ior``) puts
     thin-film interference over a dielectric or conductor.
     ``emission_strength`` > 0 makes the surface an emitter (radiance =
-    strength x spectrum, as Cycles' Emission strength).
+    strength x spectrum, as Cycles' Emission strength). ``holdout`` (Blender's Holdout
+    shader): camera rays see a transparent black hole in the image; other rays a black
+    surface.
     """
 
     name: str
@@ -65,6 +67,7 @@ class Material:
     film_ior: float = 1.33
     emission: SpectrumSpec | None = None
     emission_strength: float = 0.0
+    holdout: bool = False
 
 
 @dataclass
@@ -110,10 +113,16 @@ class Camera:
     down local -Z, +Y up, as Blender's. ``film_width_mm`` x ``film_height_mm`` is
     the part of the sensor that maps onto the image (after Blender's sensor fit).
     ``model``: ``"pinhole"``, ``"thin_lens"`` (``fstop`` and
-    ``focus_distance_m``) or ``"real_lens"`` (``lens_file``, traced element by
-    element; ``fstop`` scales its aperture stop, ``sensor_distance_mm`` None means
-    focus at ``focus_distance_m``). ``shift_x``/``shift_y`` are Blender's lens
-    shift in units of the larger film dimension.
+    ``focus_distance_m``; an aperture of ``aperture_blades`` straight blades (below 3: a
+    disc) turned by ``aperture_rotation_rad``, anamorphic ``aperture_ratio``) or
+    ``"real_lens"`` (``lens_file``, traced element by element; ``fstop`` scales its
+    aperture stop, ``sensor_distance_mm`` None means focus at ``focus_distance_m``).
+    ``shift_x``/``shift_y`` are Blender's lens shift in units of the larger film
+    dimension. ``projection``: ``"perspective"``, ``"orthographic"`` (the view is
+    ``ortho_width_m`` x ``ortho_height_m``), ``"equirectangular"`` (longitudes and
+    latitudes in radians), ``"fisheye_equidistant"`` (``fisheye_fov_rad``) or
+    ``"fisheye_equisolid"`` (``fisheye_lens_mm``, ``fisheye_fov_rad``, the film as its
+    sensor), as Cycles defines them (``stages.panorama``).
     """
 
     name: str
@@ -129,6 +138,18 @@ class Camera:
     sensor_distance_mm: float | None = None
     shift_x: float = 0.0
     shift_y: float = 0.0
+    aperture_blades: int = 0
+    aperture_rotation_rad: float = 0.0
+    aperture_ratio: float = 1.0
+    projection: str = "perspective"
+    ortho_width_m: float = 6.0
+    ortho_height_m: float = 4.0
+    fisheye_fov_rad: float = np.pi
+    fisheye_lens_mm: float = 10.5
+    latitude_min_rad: float = -np.pi / 2
+    latitude_max_rad: float = np.pi / 2
+    longitude_min_rad: float = -np.pi
+    longitude_max_rad: float = np.pi
 
 
 @dataclass
@@ -194,7 +215,8 @@ class Scene:
     ``triangle_material`` int32 [T] indexes ``materials``, ``triangle_object``
     int32 [T] indexes ``object_names`` (for messages), ``corner_normals`` float32
     [T, 3, 3] (unit shading normals at each triangle corner) or None for flat
-    shading.
+    shading. ``object_flags`` uint8 [objects] (``visibility.RAY_*`` and ``HOLDOUT`` bits;
+    None: every object seen by every ray, no holdout).
     """
 
     vertices: np.ndarray
@@ -207,6 +229,7 @@ class Scene:
     triangle_object: np.ndarray | None = None
     object_names: list[str] = field(default_factory=list)
     corner_normals: np.ndarray | None = None
+    object_flags: np.ndarray | None = None
 
     @property
     def triangle_count(self) -> int:

@@ -42,6 +42,11 @@ class RenderSettings:
     # Where every path's uniform numbers come from: "sobol" (Owen-scrambled, the default) or
     # "independent" (hashed random numbers, the reference the benchmark measures Sobol against).
     sampler: str = "sobol"
+    # Film ▸ Transparent (Cycles' names): the background the camera sees becomes alpha 0; with
+    # transparent_glass, so does what it sees through glass no rougher than transparent_roughness.
+    film_transparent: bool = False
+    transparent_glass: bool = False
+    transparent_roughness: float = 0.1
 
     def validate(self) -> None:
         """Raise ``PrismInputError`` for settings no render can use."""

@@ -11,14 +11,16 @@ deterministic). Embree reads the queues' float32 rays directly.
 - ``wavelength`` / ``wavelength_pdf`` float64 [n, K] (nm, 1/nm), ``hero`` int32 (the carried wavelength
   kept when the path meets dispersion);
 - ``flags`` int32 (``COLLAPSED``: only the hero is carried, ×K; ``PREV_DELTA``: the last scattering was
-  a delta lobe or the camera);
+  a delta lobe or the camera; ``CAMERA_PATH``: the path still sees what the camera sees — no scattering
+  yet but transparent glass — so the background and holdouts make it transparent);
 - ``throughput`` and ``radiance`` float64 [n, K]; ``eta_scale`` float64 (Π eta'² of refractions, for
   Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample);
 - ``origin``, ``direction`` float64 [n, 3] (the current ray, camera-relative metres),
   ``mis_origin`` float64 [n, 3] (the last vertex that was not a null film crossing: light pdfs of
   emitters hit later are measured from it);
 - ``hit_triangle`` int32, ``hit_u``, ``hit_v``, ``hit_t`` float64 (the hit handed from the emission
-  stage to the shading stage).
+  stage to the shading stage);
+- ``transparency`` float64 (how much of the sample is see-through: 1 - its alpha).
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ import numpy as np
 
 COLLAPSED = 1
 PREV_DELTA = 2
+CAMERA_PATH = 4
 
 _PATH_FIELDS = (
     ("pixel", np.int64, ()), ("sample", np.int64, ()), ("seed", np.int64, ()),
@@ -38,6 +41,7 @@ _PATH_FIELDS = (
     ("eta_scale", np.float64, ()), ("prev_pdf", np.float64, ()),
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
     ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
+    ("transparency", np.float64, ()),
 )
 PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
 
@@ -95,4 +99,5 @@ class ChunkBuffers:
         self.shadows = new_shadow_queue(n, k)
         self.scratch = new_shading_scratch(k)
         self.rgb = np.empty((n, 3))
+        self.alpha = np.empty(n)
         self.counters = np.zeros(1, np.int64)  # rays dropped as non-finite

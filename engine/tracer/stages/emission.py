@@ -7,6 +7,10 @@ weight. Light pdfs are measured from the path's ``mis_origin`` (the last vertex 
 free-standing film it crossed; films do not bend rays). Lights are transparent, as in Cycles: a ray
 that meets one adds its light and goes on to whatever lies behind it. A path that hits a surface is
 listed for shading unless it has used its last bounce.
+
+Film transparency (Cycles'): a camera path (``CAMERA_PATH``: no scattering yet but transparent glass)
+that escapes into a transparent film's background, or meets a holdout, becomes see-through by its
+throughput's mean (``transparency``) and brings no light from there.
 """
 
 from __future__ import annotations
@@ -19,7 +23,8 @@ from ..lights.dispatch import (distant_hit, emitter_pdf, environment_pdf, is_dis
 from ..lights.environment import ENV_NONE, add_escaped
 from ..materials.table import MAT_EMISSIVE
 from ..spectra.table import spectrum_value
-from ..state import PREV_DELTA
+from ..state import CAMERA_PATH, PREV_DELTA
+from ..visibility import HOLDOUT
 from .mis import emitter_weight
 
 
@@ -48,8 +53,21 @@ def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, 
 
 
 @inlined
+def _see_through(state, i):
+    """Path ``i`` is transparent by its throughput's mean from here on."""
+    k = state.throughput.shape[1]
+    total = 0.0
+    for c in range(k):
+        total += state.throughput[i, c]
+    state.transparency[i] += total / k
+
+
+@inlined
 def _add_background(state, i, d, lights, spectra, settings, depth):
     """The world's background and the sun discs seen by an escaping ray."""
+    if settings.film_transparent and state.flags[i] & CAMERA_PATH:
+        _see_through(state, i)
+        return
     env = lights.environment
     if env.kind != ENV_NONE:
         weight = 1.0
@@ -82,6 +100,9 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
             _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth)
         if triangle < 0:
             _add_background(state, i, d, lights, spectra, settings, depth)
+            continue
+        if geometry.flags[triangle] & HOLDOUT and state.flags[i] & CAMERA_PATH:
+            _see_through(state, i)
             continue
         material = geometry.material[triangle]
         if materials.flags[material] & MAT_EMISSIVE:

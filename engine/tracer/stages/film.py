@@ -26,6 +26,20 @@ def film_kernel(state, count, ws, rgb):
 
 
 @kernel
+def splat_alpha(total, pixels, alpha, count):
+    """Add ``alpha[j]`` to pixel ``pixels[j]`` for j < count (consecutive samples of a pixel summed first,
+    as ``splat`` does, so chunked renders merge to the same sums)."""
+    j = 0
+    while j < count:
+        p = pixels[j]
+        run = 0.0
+        while j < count and pixels[j] == p:
+            run += alpha[j]
+            j += 1
+        total[p] += run
+
+
+@kernel
 def splat(total, total_sq, samples, pixels, rgb, count):
     """Add ``rgb[j]`` to pixel ``pixels[j]`` for j < count; returns how many samples were not finite.
 

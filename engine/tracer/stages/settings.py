@@ -5,5 +5,10 @@ from __future__ import annotations
 from collections import namedtuple
 
 #: max_bounces, roulette_depth (first vertex depth where roulette may end a path, minus one),
-#: use_mis, sampler (``sampler.SOBOL`` / ``INDEPENDENT``), seed.
-KernelSettings = namedtuple("KernelSettings", "max_bounces roulette_depth use_mis sampler seed")
+#: use_mis, sampler (``sampler.SOBOL`` / ``INDEPENDENT``), seed; film_transparent (the background seen
+#: by camera paths is see-through), transparent_glass (camera paths stay camera paths through
+#: transmission of roughness² at most ``transparent_alpha``), as Cycles' Film ▸ Transparent.
+KernelSettings = namedtuple(
+    "KernelSettings",
+    "max_bounces roulette_depth use_mis sampler seed film_transparent transparent_glass transparent_alpha",
+)

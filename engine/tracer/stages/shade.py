@@ -5,19 +5,20 @@ one-sided glass); dispersion (a path meeting a dispersive material keeps only it
 — each column stays unbiased because the hero is uniform over columns); the material resolved at the
 hit; light sampling (``nee``) unless every lobe is a delta; BSDF sampling; roulette; and the path's
 next ray, queued. A free-standing film crossed straight through is a null event for MIS: the path
-keeps the pdf and ``mis_origin`` of the vertex before it.
+keeps the pdf and ``mis_origin`` of the vertex before it. A camera path stays one only through
+transparent glass (transmission no rougher than the film's threshold, with Transparent Glass on).
 """
 
 from __future__ import annotations
 
-from ..bsdf.closure import SAMPLED_DELTA
+from ..bsdf.closure import C_ALPHA, SAMPLED_DELTA, SAMPLED_TRANSMISSION
 from ..bsdf.dispatch import bsdf_sample
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..materials.resolve import resolve_material
 from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
-from ..state import COLLAPSED, PREV_DELTA
+from ..state import CAMERA_PATH, COLLAPSED, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
 from .nee import consistent, sample_direct
 from .queue import push_ray
@@ -32,6 +33,17 @@ def collapse_to_hero(state, i):
     for c in range(k):
         state.throughput[i, c] = state.throughput[i, c] * k if c == hero else 0.0
     state.flags[i] |= COLLAPSED
+
+
+@inlined
+def _through_transparent_glass(settings, rows, closures, sampled):
+    """Whether a sampled event keeps a camera path one (Cycles' Transparent Glass)."""
+    if not (settings.transparent_glass and sampled & SAMPLED_TRANSMISSION):
+        return False
+    for c in range(closures):
+        if rows[c, C_ALPHA] > settings.transparent_alpha:
+            return False
+    return True
 
 
 @kernel
@@ -85,6 +97,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         for c in range(k):
             state.throughput[i, c] *= weight[c]
         state.eta_scale[i] *= eta_scale
+        if state.flags[i] & CAMERA_PATH and not _through_transparent_glass(settings, rows, closures, sampled):
+            state.flags[i] &= ~CAMERA_PATH
         if not survives(state, i, depth, settings, collapsed):
             continue
         if not (mflags & MAT_NULL and wo_l[2] * wi_l[2] < 0.0):
