@@ -41,6 +41,7 @@ from .spectra.table import SpectrumTable
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
 from .visibility import HOLDOUT
+from .visibility_accel import RayClassAccel, needs_ray_classes
 
 MAX_CHUNK_PATHS = 1 << 16  # largest chunk one thread traces at once (memory ~0.5 kB per path)
 MIN_CHUNK_PATHS = 4096  # below this, per-bounce Python overhead dominates
@@ -102,6 +103,7 @@ class Renderer:
                                               bool(settings.film_transparent and settings.transparent_glass),
                                               float(settings.transparent_roughness) ** 2)
         self.accel = Accel(self.geometry)
+        self.ray_classes = RayClassAccel(self.geometry, self.accel) if needs_ray_classes(self.geometry) else None
         self._alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.film = Film(self.width, self.height)
         self._pixels = self._pixel_list(settings.border)

@@ -83,8 +83,10 @@ class Light:
     ``radius_m`` is the soft radius of point/spot lights (0 = a true point).
     ``spot_size_rad`` is the full cone angle, ``spot_blend`` Blender's blend.
     ``area_shape``: ``"rectangle"`` or ``"disk"`` with ``size_u_m`` x ``size_v_m``
-    (full extents; a disk uses them as diameters). ``sun_angle_rad`` is the
-    sun's angular diameter.
+    (full extents; a disk uses them as diameters); ``spread_rad`` (Cycles' Spread, π:
+    a Lambertian emitter) narrows an area light's beam like a soft-box grid.
+    ``sun_angle_rad`` is the sun's angular diameter. ``visible_camera``: camera rays see
+    the light (area, sphere and sun discs; Object ▸ Visibility ▸ Camera).
     """
 
     name: str
@@ -103,6 +105,8 @@ class Light:
     size_u_m: float = 1.0
     size_v_m: float = 1.0
     sun_angle_rad: float = 0.0
+    spread_rad: float = np.pi
+    visible_camera: bool = False
 
 
 @dataclass
@@ -155,8 +159,8 @@ class Camera:
 @dataclass
 class Sky:
     """Blender's Nishita Sky Texture (single scattering in a spherical atmosphere, evaluated per
-    wavelength): the sun at ``sun_elevation_rad`` above the horizon and ``sun_rotation_rad`` about +Z
-    (0 puts it toward +Y, growing toward -X, as Blender's), seen from ``altitude_m``; densities
+    wavelength): the sun at ``sun_elevation_rad`` above the horizon and ``sun_rotation_rad`` about -Z
+    (0 puts it toward +Y, growing toward +X, as Blender's), seen from ``altitude_m``; densities
     relative to Earth's air, dust (aerosols) and ozone. With ``sun_disc`` the sun is a disc of angular
     diameter ``sun_size_rad`` whose radiance is multiplied by ``sun_intensity``."""
 

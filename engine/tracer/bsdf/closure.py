@@ -39,6 +39,8 @@ CLOSURE_ROW = 11
 SMOOTH_ALPHA = 1e-3  # below this GGX alpha a lobe is treated as a perfect specular (delta) one
 MAX_CLOSURES = 8  # closures one material may combine
 
-# What a sampled direction was (returned by every ``sample``).
+# What a sampled direction was (returned by every ``sample``; ``SAMPLED_DIFFUSE`` is added by
+# ``dispatch.bsdf_sample`` when the chosen closure is diffuse).
 SAMPLED_DELTA = 1
 SAMPLED_TRANSMISSION = 2
+SAMPLED_DIFFUSE = 4

@@ -12,8 +12,8 @@ import math
 
 from ..jit import kernel
 from . import conductor, dielectric, diffuse, thin_film
-from .closure import (C_ALPHA, C_KIND, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA, SMOOTH_ALPHA,
-                      THIN_FILM)
+from .closure import (C_ALPHA, C_KIND, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA, SAMPLED_DIFFUSE,
+                      SMOOTH_ALPHA, THIN_FILM)
 
 
 @kernel
@@ -55,7 +55,11 @@ def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, 
     """Sample the material of ``count`` resolved closures: (wi, pdf, sampled flags, eta scale) and
     ``weight[k]`` = f |cos wi| / pdf. ``scratch`` is float64 [2, K]."""
     if count == 1:
-        return closure_sample(rows[0], spectral[0], eta[0], wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
+        wi, pdf, flags, eta_scale = closure_sample(rows[0], spectral[0], eta[0], wo, wavelength_nm, hero, collapsed,
+                                                   u0, u1, u2, weight)
+        if int(rows[0, C_KIND]) == DIFFUSE:
+            flags |= SAMPLED_DIFFUSE
+        return wi, pdf, flags, eta_scale
     total = 0.0
     for c in range(count):
         total += rows[c, C_WEIGHT]
@@ -71,6 +75,8 @@ def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, 
     u_lobe = min(max((target - before) / w_chosen, 0.0), 0.9999999999999999) if w_chosen > 0.0 else 0.0
     wi, pdf, flags, eta_scale = closure_sample(rows[chosen], spectral[chosen], eta[chosen], wo, wavelength_nm, hero,
                                                collapsed, u_lobe, u1, u2, weight)
+    if int(rows[chosen, C_KIND]) == DIFFUSE:
+        flags |= SAMPLED_DIFFUSE
     if flags & SAMPLED_DELTA or pdf <= 0.0:
         for k in range(weight.shape[0]):
             weight[k] *= total

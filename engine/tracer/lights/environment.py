@@ -295,7 +295,7 @@ def _sky_environment(world, spectra, strength, mapping):
     tables = sky_tables(sky)
     y_integral = float(cie.CMF_Y_INTEGRAL)
     table = np.ascontiguousarray(tables.radiance * np.float32(y_integral))
-    sun_phi = float(sky.sun_rotation_rad) + 0.5 * math.pi
+    sun_phi = 0.5 * math.pi - float(sky.sun_rotation_rad)
     env = _arrays(ENV_SKY, strength, 0, 0, 0, mapping, np.zeros((1, 1, 4), np.float32), table,
                   math.atan2(math.sin(sun_phi), math.cos(sun_phi)), _empty_distribution())
     ybar = cie.cie_xyz_cmf(SKY_WAVELENGTHS_NM)[:, 1]
@@ -343,7 +343,7 @@ def _sky_sun_rows(world, spectra, strength, tables, mapping):
     sid = spectra.tabulated(("sky sun", tuple(np.round(spectrum / luminance, 12))), float(SKY_WAVELENGTHS_NM[0]),
                             10.0, spectrum / luminance, support_nm=(360.0, 830.0))
     e, rot = float(sky.sun_elevation_rad), float(sky.sun_rotation_rad)
-    toward_sun = np.array([-math.cos(e) * math.sin(rot), math.cos(e) * math.cos(rot), math.sin(e)])
+    toward_sun = np.array([math.cos(e) * math.sin(rot), math.cos(e) * math.cos(rot), math.sin(e)])
     world_dir = mapping[1] @ toward_sun
     world_dir /= np.linalg.norm(world_dir)
     half = 0.5 * float(sky.sun_size_rad)

@@ -12,7 +12,7 @@ import numpy as np
 from ..jit import kernel
 from ..vec3 import tangents, to_world
 from ..warps import uniform_cone
-from .row import (L_COS_MAX, L_KIND, L_LIMB, L_NX, L_NY, L_NZ, L_ONE_MINUS_COS, L_SCALE, L_SPECTRUM, LIGHT_ROW, SUN,
+from .row import (L_CAMERA, L_COS_MAX, L_KIND, L_LIMB, L_NX, L_NY, L_NZ, L_ONE_MINUS_COS, L_SCALE, L_SPECTRUM, LIGHT_ROW, SUN,
                   SUN_DISK)
 
 
@@ -28,6 +28,7 @@ def sun_row(light, spectrum_id):
         row[L_KIND], row[L_SCALE] = SUN, irradiance
         return row
     row[L_KIND] = SUN_DISK
+    row[L_CAMERA] = 1.0 if light.visible_camera else 0.0
     row[L_ONE_MINUS_COS] = 2.0 * math.sin(half / 2.0) ** 2
     row[L_COS_MAX] = 1.0 - row[L_ONE_MINUS_COS]
     row[L_SCALE] = irradiance / (math.pi * math.sin(half) ** 2)

@@ -11,14 +11,14 @@ transparent glass (transmission no rougher than the film's threshold, with Trans
 
 from __future__ import annotations
 
-from ..bsdf.closure import C_ALPHA, SAMPLED_DELTA, SAMPLED_TRANSMISSION
+from ..bsdf.closure import C_ALPHA, SAMPLED_DELTA, SAMPLED_DIFFUSE, SAMPLED_TRANSMISSION
 from ..bsdf.dispatch import bsdf_sample
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..materials.resolve import resolve_material
 from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
-from ..state import CAMERA_PATH, COLLAPSED, PREV_DELTA
+from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
 from .nee import consistent, sample_direct
 from .queue import push_ray
@@ -99,6 +99,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         state.eta_scale[i] *= eta_scale
         if state.flags[i] & CAMERA_PATH and not _through_transparent_glass(settings, rows, closures, sampled):
             state.flags[i] &= ~CAMERA_PATH
+        state.flags[i] = (state.flags[i] & ~(LAST_DIFFUSE | LAST_TRANSMISSION)) | (
+            LAST_TRANSMISSION if sampled & SAMPLED_TRANSMISSION else (LAST_DIFFUSE if sampled & SAMPLED_DIFFUSE else 0))
         if not survives(state, i, depth, settings, collapsed):
             continue
         if not (mflags & MAT_NULL and wo_l[2] * wi_l[2] < 0.0):

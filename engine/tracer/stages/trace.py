@@ -16,7 +16,7 @@ from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
 
 def _trace_shadows(renderer, state, shadows, count):
     """Deliver the light of the first ``count`` shadow rays that reach their lights; returns rays cast."""
-    accel = renderer.accel
+    accel = renderer.accel if renderer.ray_classes is None else renderer.ray_classes
     rays = 0
     if renderer.analysis.see_through_films:
         for _ in range(MAX_FILM_LAYERS):
@@ -56,7 +56,10 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     for depth in range(settings.max_bounces + 2):
         if queued == 0:
             break
-        hit = renderer.accel.intersect(current, queued)
+        if renderer.ray_classes is None:
+            hit = renderer.accel.intersect(current, queued)
+        else:
+            hit = renderer.ray_classes.intersect(current, queued, state, depth)
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, *hit, geometry, materials, lights, spectra, settings,
                                    depth, buffers.surface)

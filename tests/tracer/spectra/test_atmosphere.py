@@ -72,7 +72,7 @@ def test_the_sky_sun_delivers_its_transmitted_irradiance():
     sun = lights.table.names.index("World sun")
     toward = lights.arrays.rows[sun, 6:9]
     e, rot = sky.sun_elevation_rad, sky.sun_rotation_rad
-    assert np.allclose(toward, [-math.cos(e) * math.sin(rot), math.cos(e) * math.cos(rot), math.sin(e)])
+    assert np.allclose(toward, [math.cos(e) * math.sin(rot), math.cos(e) * math.cos(rot), math.sin(e)])
     n = 200_000
     u = np.random.default_rng(2).random((n, 3))
     u[:, 2] = lights.arrays.select_cdf[sun] - 0.5 * lights.arrays.select_prob[sun]  # always the Sun
