@@ -3,28 +3,41 @@
     blender -b scene.blend -P render.py -- --samples 64 --output out.png
     python render.py scene.blend --samples 64 --output out.exr      (bpy module)
 
-Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--frames A..B`` (``#``
+Options: ``--samples N``, ``--seed S``, ``--threads T``, ``--noise-threshold T`` and
+``--min-samples N`` (adaptive sampling), ``--time-limit SECONDS``, ``--frames A..B`` (``#``
 in ``--output`` becomes the zero-padded frame number, else ``_NNNN`` is
-appended), ``--output`` ``.png`` (the scene's view transform) or ``.exr``
-(scene-linear, 32-bit float). ``--lens-diagram out.png`` writes the lens overlay
+appended; without ``--frames``, ``#`` becomes the current frame's number, as in
+Blender), ``--output`` ``.png`` (the scene's view transform) or ``.exr``
+(scene-linear, 32-bit float; a multilayer EXR with every pass when the view
+layer has passes besides Combined). ``--lens-diagram out.png`` writes the lens overlay
 drawing (cross-section, wavelength-coloured ray fans, spot diagram) of the
 camera's real lens, with or without a render.
 
-Chunked renders: ``--chunk-seed K --samples N --output chunk_K.exr`` renders
-samples ``K*N .. (K+1)*N-1`` of the seed's sequence and writes an EXR carrying
-its sample range, seed and a fingerprint of the scene and settings;
-``--merge a.exr b.exr ... --output merged.exr`` checks the chunks belong to one
-render and combines them weighted by their samples. Chunks ``0..K-1`` merge to
-the same image, bit for bit, as one render of ``K*N`` samples written with
-``--chunk-seed 0`` (see ``engine/chunks.py`` for when that holds).
+Chunked renders: ``--chunk-seed K --samples N [--frames F] --output chunk_K.exr``
+renders samples ``K*N .. (K+1)*N-1`` of the seed's sequence of frame F (default:
+the current frame) and writes an EXR carrying its sample range, seed, a
+fingerprint of the frame, scene and settings, and the settings the scene writes
+PNGs with; ``--merge a.exr b.exr ... [--expect-samples TOTAL] --output
+merged.exr|.png`` checks the chunks belong to one render (and, with
+``--expect-samples``, hold samples ``0..TOTAL-1`` with none missing) and combines
+them weighted by their samples. Chunks ``0..K-1`` merge to the same image, bit
+for bit, as one render of ``K*N`` samples written with ``--chunk-seed 0`` (see
+``engine/chunks.py`` for when that holds); a merged PNG has the pixels of that
+render's PNG.
+
+``--spectral-output spectra.exr`` also writes a multispectral EXR (the layout
+of Fichet et al. 2021, read by colour-science): radiance in wavelength bands
+across 360-830 nm, band width from Render ▸ Prism ▸ Spectral Output.
 
 Every output is written whole or not at all (a temporary file, then one rename).
 Ctrl-C (or SIGTERM) stops the render after the current chunk: the file being
 rendered is not written (``--keep-partial`` keeps it as ``NAME.partial.exr``),
 files already finished stay, and the exit status is 130 (143 for SIGTERM).
 
-Progress goes to stderr. Exit status: 0 done, 1 the scene or a file cannot be
-used (one line naming the object and the fix), 2 a wrong argument, 130/143
+Progress goes to stderr: a ``Time: …`` line per pass (Blender's own format, which
+render farms such as Flamenco count as progress steps) and ``Saved: '…'`` naming
+each finished file. Exit status: 0 done, 1 the scene or a file cannot be used
+(one line naming the object and the fix), 2 a wrong argument, 130/143
 interrupted.
 """
 
@@ -34,6 +47,7 @@ import importlib
 import importlib.util
 import os
 import sys
+from contextlib import contextmanager
 from pathlib import Path
 
 ADDON_PACKAGE = "prism_spectral"
@@ -113,13 +127,17 @@ def check_scene(scene, prism: Prism) -> None:
     prism.export.render_border(scene, width, height)  # Blender says only "Image too small"
 
 
-def batch_request(arguments, prism: Prism, signals):
+def batch_request(arguments, prism: Prism, signals, spectral_output: Path | None = None):
     """The RenderRequest of one batch frame: the command line's overrides, no quick first pass."""
     chunked = arguments.chunk_seed is not None
     return prism.requests.RenderRequest(
+        spectral_output=str(spectral_output) if spectral_output else None,
         samples=arguments.samples,
         seed=arguments.seed,
         threads=arguments.threads,
+        noise_threshold=arguments.noise_threshold,
+        min_samples=arguments.min_samples,
+        time_limit_s=arguments.time_limit,
         sample_offset=arguments.chunk_seed * arguments.samples if chunked else 0,
         quick_first_pass=False,
         keep_film=chunked,
@@ -128,42 +146,91 @@ def batch_request(arguments, prism: Prism, signals):
     )
 
 
-def render_frame(arguments, output: Path, prism: Prism, signals) -> Path:
-    """Render the current frame to ``output`` (whole, or not at all)."""
+def render_frame(arguments, output: Path, prism: Prism, signals, frame: int | None = None) -> Path:
+    """Render the current frame to ``output`` (whole, or not at all); frame ``frame`` of a --frames run."""
     import bpy
 
     scene = bpy.context.scene
     check_scene(scene, prism)
     scene.render.engine = "PRISM"
     chunked = arguments.chunk_seed is not None
-    image_settings = scene.render.image_settings
-    image_settings.file_format = OUTPUT_FORMATS[output.suffix.lower()]
-    if image_settings.file_format == "OPEN_EXR":
-        image_settings.color_depth = "32"
-    scene.render.use_file_extension = False
-    with prism.output_files.atomic_output(output, signals) as temporary:
-        scene.render.filepath = str(temporary)
+    if chunked:  # what `--output x.png` would write with, for a merge into a PNG
+        with output_format(scene, "PNG"):
+            png_settings = prism.module("engine.png_output").png_settings(scene)
+    file_format = OUTPUT_FORMATS[output.suffix.lower()]
+    if file_format == "OPEN_EXR" and not chunked and prism.module("engine.passes").enabled_passes(scene):
+        file_format = "OPEN_EXR_MULTILAYER"  # every pass, named as Blender names them
+    with (
+        output_format(scene, file_format),
+        prism.output_files.atomic_output(output, signals) as temporary,
+    ):
         blender_error = None
-        with prism.requests.render_request(batch_request(arguments, prism, signals)) as report:
+        spectral = None
+        if arguments.spectral_output:
+            spectral = Path(arguments.spectral_output).resolve()
+            files = prism.output_files  # '#' becomes the frame number, as in --output
+            spectral = files.numbered_output(spectral, scene.frame_current) if frame is None else files.frame_output(
+                spectral, frame)
+        with prism.requests.render_request(batch_request(arguments, prism, signals, spectral)) as report:
             try:
-                bpy.ops.render.render(write_still=not chunked)
+                # No write_still: Blender would announce the temporary file ("Saved: '.out.prism-…'").
+                bpy.ops.render.render(write_still=False)
             except RuntimeError as error:
                 blender_error = _blender_message(error)
         if report.error or not report.started:
             raise prism.errors.PrismInputError(report.error or blender_error or "Blender did not start the render.")
         if report.cancelled or signals.stop_requested():
+            if arguments.keep_partial:
+                try:
+                    save_render_result(scene, temporary, output, prism)
+                except prism.errors.PrismInputError:
+                    pass  # the message then says the unfinished image could not be kept
             raise _interrupted(arguments, output, temporary, prism, signals)
         if chunked:
             chunks = prism.chunks()
-            chunks.write_chunk(temporary, chunks.chunk_of_film(report.film))
+            chunks.write_chunk(temporary, chunks.chunk_of_film(report.film, png_settings))
+        else:
+            save_render_result(scene, temporary, output, prism)
+    if report.spectral_output:
+        _wrote(Path(report.spectral_output))
     return output
+
+
+@contextmanager
+def output_format(scene, file_format: str):
+    """The scene's output set to ``file_format`` (EXR: 32-bit float) for the block, then as it was."""
+    settings = scene.render.image_settings
+    before = settings.file_format, settings.color_depth
+    settings.file_format = file_format
+    if file_format.startswith("OPEN_EXR"):
+        settings.color_depth = "32"
+    try:
+        yield settings
+    finally:
+        settings.file_format, settings.color_depth = before
+
+
+def save_render_result(scene, path: Path, output: Path, prism: Prism) -> None:
+    """Write Blender's Render Result to ``path`` as ``scene``'s output settings ask, exactly as
+    ``write_still`` does (view transform for PNG, scene-linear EXR), without announcing ``path``."""
+    import bpy
+
+    result = next((image for image in bpy.data.images if image.type == "RENDER_RESULT"), None)
+    if result is None:
+        raise prism.errors.PrismInputError(f"Prism rendered but Blender kept no Render Result to write to '{output}'.")
+    try:
+        result.save_render(filepath=str(path), scene=scene)
+    except RuntimeError as error:
+        raise prism.errors.PrismInputError(
+            f"Cannot write '{output}': {_blender_message(error)}. Choose a folder that exists and that you can write to."
+        ) from None
 
 
 def _interrupted(arguments, output: Path, temporary: Path, prism: Prism, signals):
     """The exception that ends an interrupted frame; the partial image is kept first if asked."""
     cause = signals.signal_name() if signals.stop_requested() else "Esc"
     message = f"interrupted by {cause}: '{output}' was not written"
-    if arguments.keep_partial and temporary.is_file():
+    if arguments.keep_partial:
         partial = prism.output_files.partial_output(output)
         try:
             os.replace(temporary, partial)
@@ -185,7 +252,8 @@ def write_lens_diagram(arguments, prism: Prism, signals) -> Path:
 
 
 def _wrote(path: Path) -> None:
-    print(f"Prism: wrote {path}", file=sys.stderr, flush=True)
+    """Blender's own line for a written file, naming the final file (Flamenco's worker reads it)."""
+    print(f"Saved: '{path}'", file=sys.stderr, flush=True)
 
 
 def render_all(arguments, prism: Prism, signals) -> None:
@@ -196,26 +264,34 @@ def render_all(arguments, prism: Prism, signals) -> None:
     if arguments.output is None:
         return
     output = Path(arguments.output).resolve()
-    if arguments.frames is None:
+    scene = bpy.context.scene
+    if arguments.frames is None:  # the current frame; '#' in the name becomes its number, as in Blender
+        output = prism.output_files.numbered_output(output, scene.frame_current)
         _wrote(render_frame(arguments, output, prism, signals))
         return
-    scene = bpy.context.scene
     first, last = arguments.frames
     for frame in range(first, last + 1):
         signals.raise_if_stopped(f"frame {frame} and the frames after it")
         print(f"Prism: frame {frame} ({frame - first + 1}/{last - first + 1})", file=sys.stderr, flush=True)
         scene.frame_set(frame)
-        _wrote(render_frame(arguments, prism.output_files.frame_output(output, frame), prism, signals))
+        _wrote(render_frame(arguments, prism.output_files.frame_output(output, frame), prism, signals, frame))
 
 
 def merge(arguments, prism: Prism, signals) -> None:
+    """Merge the chunks into one EXR, or a PNG written as their scene writes PNGs."""
     chunks = prism.chunks()
-    output = Path(arguments.output).resolve()
+    merged = chunks.merge_chunks([chunks.read_chunk(path) for path in arguments.merge], arguments.expect_samples)
+    frame = int(float(merged.frame or 0))
+    output = prism.output_files.numbered_output(Path(arguments.output).resolve(), frame)  # '#': the chunks' frame
     with prism.output_files.atomic_output(output, signals) as temporary:
-        merged = chunks.merge_chunks([chunks.read_chunk(path) for path in arguments.merge])
-        chunks.write_chunk(temporary, merged)
+        if output.suffix.lower() == ".png":
+            png = prism.module("engine.png_output")
+            png.write_png(merged.mean, merged.png_settings, temporary, source=arguments.merge[0], frame=frame)
+        else:
+            chunks.write_chunk(temporary, merged)
         signals.raise_if_stopped(f"'{output}'")
-    print(f"Prism: merged {len(arguments.merge)} chunks, {merged.samples} samples per pixel", file=sys.stderr)
+    print(f"Prism: merged {len(arguments.merge)} chunks of frame {merged.frame}, {merged.samples} samples per pixel",
+          file=sys.stderr)
     _wrote(output)
 
 

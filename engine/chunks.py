@@ -9,10 +9,12 @@ works in float64 and its float32 result is bit-identical to the single render
 (see ``merge_chunks`` for when).
 
 Each chunk carries, as EXR string attributes (exact for any 64-bit number): the
-fingerprint of its scene and settings (``engine.fingerprint``), its seed, the
-sample ranges it holds, and a checksum over all of that and the pixels. A merge
-refuses chunks of different renders, overlapping samples, damaged or edited
-files and non-finite pixels, naming the file.
+fingerprint of its frame, scene and settings (``engine.fingerprint``), its seed,
+the sample ranges it holds, the settings its scene writes a PNG with
+(``engine.png_output``: a merge can write the frame's PNG without the .blend
+file), and a checksum over all of that and the pixels. A merge refuses chunks of
+different renders, overlapping samples, damaged or edited files and non-finite
+pixels, naming the file.
 
 EXR I/O uses OpenImageIO, which Blender bundles (``bpy.utils.system_resource``).
 """
@@ -21,45 +23,37 @@ from __future__ import annotations
 
 import hashlib
 import json
-import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from .fingerprint import differing_parts
+from .openimageio import import_openimageio as _oiio
 from .tracer.errors import PrismInputError
 
 FORMAT_ATTRIBUTE = "prism:chunk"
-FORMAT_VERSION = "2"
+FORMAT_VERSION = "3"  # 3: the fingerprint holds the frame; the PNG settings
 FINGERPRINT_ATTRIBUTE = "prism:fingerprint"
 SEED_ATTRIBUTE = "prism:seed"
 RANGES_ATTRIBUTE = "prism:sample_ranges"
 SAMPLES_ATTRIBUTE = "prism:samples"  # the total, for people reading the header
+PNG_SETTINGS_ATTRIBUTE = "prism:png_settings"
 CHECKSUM_ATTRIBUTE = "prism:checksum"
 CHANNELS = ("R", "G", "B", "A", "prism_lo_R", "prism_lo_G", "prism_lo_B")
-
-
-def _oiio():
-    try:
-        import OpenImageIO
-    except ImportError:
-        import bpy
-
-        sys.path.append(str(Path(bpy.utils.system_resource("PYTHON")) / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages"))
-        import OpenImageIO
-    return OpenImageIO
 
 
 @dataclass
 class Chunk:
     """A chunk's float64 mean [H, W, 3] (row 0 = top), seed, the half-open sample
-    ranges ``[(start, end), ...]`` it holds, and the fingerprint of its render."""
+    ranges ``[(start, end), ...]`` it holds, the fingerprint of its render, and the
+    settings its scene writes a PNG with (``engine.png_output.png_settings``)."""
 
     mean: np.ndarray
     seed: int
     sample_ranges: tuple[tuple[int, int], ...]
     fingerprint: dict[str, str]
+    png_settings: dict
     path: str = ""
 
     @property
@@ -70,14 +64,20 @@ class Chunk:
     def sample_offset(self) -> int:
         return self.sample_ranges[0][0]
 
+    @property
+    def frame(self) -> str:
+        """The frame it was rendered at, as written in its fingerprint (``"7"``, ``"7.5"``)."""
+        return self.fingerprint.get("frame", "")
 
-def chunk_of_film(film) -> Chunk:
-    """The chunk of a finished render's ``FilmSnapshot``."""
+
+def chunk_of_film(film, png_settings: dict) -> Chunk:
+    """The chunk of a finished render's ``FilmSnapshot``, whose scene writes PNGs with ``png_settings``."""
     return Chunk(
         mean=film.mean,
         seed=int(film.seed),
         sample_ranges=((int(film.sample_offset), int(film.sample_offset + film.samples)),),
         fingerprint=dict(film.fingerprint),
+        png_settings=dict(png_settings),
     )
 
 
@@ -88,6 +88,7 @@ def _attributes(chunk: Chunk) -> dict[str, str]:
         SEED_ATTRIBUTE: str(int(chunk.seed)),
         RANGES_ATTRIBUTE: json.dumps([[int(a), int(b)] for a, b in chunk.sample_ranges]),
         SAMPLES_ATTRIBUTE: str(chunk.samples),
+        PNG_SETTINGS_ATTRIBUTE: json.dumps(chunk.png_settings, sort_keys=True),
     }
 
 
@@ -163,6 +164,7 @@ def read_chunk(path) -> Chunk:
         seed=int(attributes[SEED_ATTRIBUTE]),
         sample_ranges=tuple(tuple(r) for r in json.loads(attributes[RANGES_ATTRIBUTE])),
         fingerprint=json.loads(attributes[FINGERPRINT_ATTRIBUTE]),
+        png_settings=json.loads(attributes[PNG_SETTINGS_ATTRIBUTE]),
         path=str(path),
     )
 
@@ -178,13 +180,16 @@ def _read_attributes(path, spec) -> dict[str, str]:
     if version != FORMAT_VERSION:
         raise _render_again(path, f"has chunk format {version}, which this Prism does not read (it writes {FORMAT_VERSION})")
     attributes = {name: spec.get_string_attribute(name) for name in (
-        FORMAT_ATTRIBUTE, FINGERPRINT_ATTRIBUTE, SEED_ATTRIBUTE, RANGES_ATTRIBUTE, SAMPLES_ATTRIBUTE)}
+        FORMAT_ATTRIBUTE, FINGERPRINT_ATTRIBUTE, SEED_ATTRIBUTE, RANGES_ATTRIBUTE, SAMPLES_ATTRIBUTE,
+        PNG_SETTINGS_ATTRIBUTE)}
     try:
         int(attributes[SEED_ATTRIBUTE])
         ranges = json.loads(attributes[RANGES_ATTRIBUTE])
         fingerprint = json.loads(attributes[FINGERPRINT_ATTRIBUTE])
+        png_settings = json.loads(attributes[PNG_SETTINGS_ATTRIBUTE])
         valid = (
             isinstance(fingerprint, dict)
+            and isinstance(png_settings, dict)
             and isinstance(ranges, list)
             and ranges
             and all(isinstance(a, int) and isinstance(b, int) and 0 <= a < b for a, b in ranges)
@@ -192,7 +197,7 @@ def _read_attributes(path, spec) -> dict[str, str]:
     except (ValueError, TypeError):
         valid = False
     if not valid:
-        raise _render_again(path, "has damaged Prism attributes (seed, sample ranges or fingerprint)")
+        raise _render_again(path, "has damaged Prism attributes (seed, sample ranges, fingerprint or PNG settings)")
     return attributes
 
 
@@ -203,8 +208,9 @@ def _check_finite(path, pixels: np.ndarray) -> None:
         raise _render_again(path, f"holds {int(bad.sum())} pixel(s) that are NaN or infinite (the first at x={x}, y={y} from the top)")
 
 
-def merge_chunks(chunks: list[Chunk]) -> Chunk:
-    """Sample-weighted mean of ``chunks`` (float64), after checking they belong together.
+def merge_chunks(chunks: list[Chunk], expect_samples: int | None = None) -> Chunk:
+    """Sample-weighted mean of ``chunks`` (float64), after checking they belong together and,
+    given ``expect_samples``, that they hold samples ``0 .. expect_samples - 1``, every one.
 
     Bit-identical (after rounding to float32) to one render of all the samples
     when the chunks are consecutive blocks of the same seed's sequence (offsets
@@ -224,14 +230,67 @@ def merge_chunks(chunks: list[Chunk]) -> Chunk:
                 f"Chunks '{path_a}' and '{path_b}' contain the same samples (from sample {start}): "
                 "give each chunk its own --chunk-seed."
             )
+    joined = _joined([(start, end) for start, end, _ in ranges])
+    if expect_samples is not None:
+        _check_complete(chunks, joined, expect_samples)
     total = sum(c.samples for c in chunks)
     weighted = sum(c.mean * c.samples for c in chunks)
     return Chunk(
         mean=weighted / total,
         seed=first.seed,
-        sample_ranges=_joined([(start, end) for start, end, _ in ranges]),
+        sample_ranges=joined,
         fingerprint=dict(first.fingerprint),
+        png_settings=dict(first.png_settings),
     )
+
+
+def _check_complete(chunks: list[Chunk], joined, expected: int) -> None:
+    """The chunks hold samples ``0 .. expected - 1`` and nothing else; else name what is missing or extra."""
+    if joined == ((0, expected),):
+        return
+    for chunk in chunks:
+        beyond = [(max(start, expected), end) for start, end in chunk.sample_ranges if end > expected]
+        if beyond:
+            raise PrismInputError(
+                f"Chunk '{chunk.path}' holds {_samples_text(beyond)}, past the {expected} samples --expect-samples "
+                "asks for: leave it out, or give the frame's real total to --expect-samples."
+            )
+    missing, cursor = [], 0
+    for start, end in joined:
+        if start > cursor:
+            missing.append((cursor, start))
+        cursor = end
+    if cursor < expected:
+        missing.append((cursor, expected))
+    held = sum(end - start for start, end in joined)
+    holders = "The chunk holds" if len(chunks) == 1 else f"The {len(chunks)} chunks hold"
+    raise PrismInputError(
+        f"{holders} {held} of the {expected} samples --expect-samples asks for: "
+        f"{_samples_text(missing)} {'is' if held == expected - 1 else 'are'} missing{_chunks_to_render(chunks, missing)}."
+    )
+
+
+def _samples_text(ranges) -> str:
+    """``[(2, 4), (6, 7)]`` → ``samples 2..3 and sample 6`` (inclusive, as people count)."""
+    parts = [f"sample {start}" if end - start == 1 else f"samples {start}..{end - 1}" for start, end in ranges[:4]]
+    if len(ranges) > 4:
+        parts.append(f"{len(ranges) - 4} more range(s)")
+    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
+
+
+def _chunks_to_render(chunks: list[Chunk], missing) -> str:
+    """`` (render --chunk-seed 1 and 3 with --samples 2)`` when every chunk is one block of the same size."""
+    sizes = {chunk.samples for chunk in chunks}
+    if len(sizes) != 1 or any(len(chunk.sample_ranges) != 1 for chunk in chunks):
+        return ""
+    size = sizes.pop()
+    if any(start % size or end % size for start, end in missing):
+        return ""
+    seeds = [str(seed) for start, end in missing for seed in range(start // size, end // size)]
+    if len(seeds) > 8:
+        return f" (render the {len(seeds)} chunks from --chunk-seed {seeds[0]} to {seeds[-1]} with --samples {size})"
+    listed = seeds[0] if len(seeds) == 1 else ", ".join(seeds[:-1]) + " and " + seeds[-1]
+    return f" (render --chunk-seed {listed} with --samples {size})"
 
 
 def _check_same_render(first: Chunk, chunk: Chunk) -> None:
@@ -240,11 +299,22 @@ def _check_same_render(first: Chunk, chunk: Chunk) -> None:
             f"Chunk '{chunk.path}' is {chunk.mean.shape[1]}x{chunk.mean.shape[0]} pixels but "
             f"'{first.path}' is {first.mean.shape[1]}x{first.mean.shape[0]}: merge chunks of the same render only."
         )
+    if chunk.frame != first.frame:
+        raise PrismInputError(
+            f"Chunk '{chunk.path}' is frame {chunk.frame} but '{first.path}' is frame {first.frame}: merge the "
+            "chunks of one frame only (--chunk-seed with --frames F renders a chunk of frame F)."
+        )
     differ = differing_parts(first.fingerprint, chunk.fingerprint)
     if differ:
         raise PrismInputError(
             f"Chunks '{first.path}' and '{chunk.path}' come from different renders (their {', '.join(differ)} "
             "differ): merge only chunks rendered from the same .blend file, frame and settings."
+        )
+    if chunk.png_settings != first.png_settings:
+        raise PrismInputError(
+            f"Chunks '{first.path}' and '{chunk.path}' come from scenes with different Color Management or PNG "
+            "output settings (view transform, look, exposure, dither, colour depth, ...): merge only chunks "
+            "rendered from the same .blend file and settings."
         )
     if chunk.seed != first.seed:
         raise PrismInputError(

@@ -1,11 +1,13 @@
 """A fingerprint of what decides a render's image, so chunks of different renders never merge.
 
-Each part (geometry, materials, lights, camera, world, settings) gets a short
-hash, so a mismatch can be named. Names of objects and materials are left out
-(they only label messages), and a lens file counts by its content, not its path
-(farm machines mount the same file at different places). The settings' sample
-count, thread count and seed are left out: samples and seed travel with the chunk
-itself, threads never change the image.
+The frame is a part of its own, written as the frame number (``"7"``, ``"7.5"`` with a
+subframe): two frames of a scene are two renders even where nothing in them moves. The
+scene as exported at that frame (geometry, materials, lights, camera, world) and the
+settings each get a short hash, so a mismatch can be named. Names of objects and
+materials are left out (they only label messages), and a lens file counts by its
+content, not its path (farm machines mount the same file at different places). The
+settings' sample count, thread count and seed are left out: samples and seed travel
+with the chunk itself, threads never change the image.
 """
 
 from __future__ import annotations
@@ -20,17 +22,24 @@ import numpy as np
 _LABELS = {"name", "object_names", "triangle_object"}
 #: Settings fields a chunk carries itself or that do not change the image.
 _PER_CHUNK_SETTINGS = {"samples", "threads", "seed"}
-PARTS = ("geometry", "materials", "lights", "camera", "world", "settings")
+PARTS = ("frame", "geometry", "materials", "lights", "camera", "world", "settings")
 
 
-def render_fingerprint(scene, settings) -> dict[str, str]:
-    """Part name → 16 hex digits, for a ``tracer.Scene`` and ``tracer.RenderSettings``."""
+def render_fingerprint(scene, settings, frame: float) -> dict[str, str]:
+    """Part name → 16 hex digits (the frame: its number), for a ``tracer.Scene`` exported at
+    ``frame`` (Blender's current frame plus subframe) and its ``tracer.RenderSettings``."""
     geometry = (scene.vertices, scene.triangles, scene.triangle_material, scene.corner_normals)
     settings_fields = {
         f.name: getattr(settings, f.name) for f in dataclasses.fields(settings) if f.name not in _PER_CHUNK_SETTINGS
     }
     values = (geometry, scene.materials, scene.lights, scene.camera, scene.world, settings_fields)
-    return {part: _digest(value) for part, value in zip(PARTS, values)}
+    return {"frame": frame_label(frame), **{part: _digest(value) for part, value in zip(PARTS[1:], values)}}
+
+
+def frame_label(frame: float) -> str:
+    """``7.0`` → ``"7"``, ``7.5`` → ``"7.5"``: the frame as people write it."""
+    frame = float(frame)
+    return str(int(frame)) if frame.is_integer() else repr(frame)
 
 
 def differing_parts(first: dict[str, str], second: dict[str, str]) -> list[str]:

@@ -37,16 +37,28 @@ class RenderRequest:
     report. ``progress_stream``: where to print one line per pass and the
     warnings (e.g. ``sys.stderr``). ``stop_requested``: polled between chunks;
     returning True stops the render as Esc does (batch renders: Ctrl-C).
+    ``noise_threshold`` (0: adaptive sampling off), ``min_samples`` and
+    ``time_limit_s`` (0: none) override the scene's Sampling settings.
+    ``spectral_output``: also write a multispectral EXR there (absolute path;
+    None: the scene's Spectral Output setting decides).
+    ``show_image``: a finished scene-linear image [H, W, 3] (row 0 at the top) to
+    put in the Render Result instead of tracing the scene, so Blender's own
+    writers can save it with a scene's output settings (``engine.png_output``).
     """
 
     samples: int | None = None
     seed: int | None = None
     threads: int | None = None
+    noise_threshold: float | None = None
+    min_samples: int | None = None
+    time_limit_s: float | None = None
     sample_offset: int = 0
     quick_first_pass: bool = True
     keep_film: bool = False
     progress_stream: object = None
     stop_requested: Callable[[], bool] | None = None
+    spectral_output: str | None = None
+    show_image: np.ndarray | None = None
 
 
 @dataclass
@@ -71,6 +83,7 @@ class RenderReport:
     the Render Result then holds a partial image. ``warnings``: inputs Prism
     ignored or approximated. ``stats``: the status-bar line of the last pass.
     ``film``: set when the request asked for it and the render finished.
+    ``spectral_output``: the multispectral EXR written, if any.
     """
 
     started: bool = False
@@ -79,6 +92,7 @@ class RenderReport:
     warnings: list[str] = field(default_factory=list)
     stats: str = ""
     film: FilmSnapshot | None = None
+    spectral_output: str | None = None
 
 
 _handover: ContextVar[tuple[RenderRequest, RenderReport] | None] = ContextVar("prism_render_request", default=None)

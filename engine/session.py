@@ -17,12 +17,15 @@ from . import kernel_cache
 
 kernel_cache.configure()  # before anything below imports a tracer kernel module
 
+from . import spectral_exr  # noqa: E402
+from .denoise import denoise as denoise_image  # noqa: E402
 from .export import export_scene  # noqa: E402
 from .export.border import render_border  # noqa: E402
 from .export.settings import export_settings  # noqa: E402
 from .fingerprint import render_fingerprint  # noqa: E402
-from .render_engine import enabled_passes  # noqa: E402
+from .passes import bottom_up, denoising, enabled_passes, frame_plan, pass_request, write_passes  # noqa: E402
 from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
+from .stats import stats_line, timecode  # noqa: E402
 from .tracer.errors import PrismInputError  # noqa: E402
 
 
@@ -60,7 +63,10 @@ class RenderSession:
     def run(self) -> RenderReport:
         self.report.started = True
         try:
-            self._render()
+            if self.request.show_image is not None:
+                self._show(self.request.show_image)
+            else:
+                self._render()
         except PrismInputError as error:
             self.fail(str(error))
         except MemoryError:
@@ -86,124 +92,184 @@ class RenderSession:
         tracer_scene = export_scene(self.depsgraph, warnings)
         width, height = tracer_scene.camera.resolution
         border = render_border(scene, width, height)
+        view_layer = self.depsgraph.view_layer
+        spectral_path = spectral_exr.requested_path(scene, req, engine.is_preview)
         settings = export_settings(
-            scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border
+            scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border,
+            passes=pass_request(scene, view_layer, for_render=True), spectral=spectral_path is not None,
         )
+        self._apply_overrides(settings, warnings)
         self.report.warnings = warnings
-        for message in warnings:
+        for message in warnings if not engine.is_preview else ():  # Blender's preview scene: not the user's to fix
             engine.report({"WARNING"}, message)
             self._print(f"Prism: warning: {message}")
         engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
-        target = settings.samples
         with Renderer(tracer_scene, settings) as renderer:
+            # The spectral film and the spectral EXR's RGB cover the whole frame: no tiles then.
+            plan = self._plan(renderer, scene, view_layer, width, height, whole=spectral_path is not None)
             if req.sample_offset:
                 renderer.start_at_sample(req.sample_offset)
             try:
-                self._passes(renderer, border, width, height, target, warnings)
+                self._passes(renderer, plan, border or (0, 0, width, height), warnings)
             finally:
                 if self.cancelled:
                     renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
             if compiling and not self.cancelled:
                 kernel_cache.mark_compiled()
+            if spectral_path is not None and not self.cancelled:
+                self._write_spectral(renderer, spectral_path)
             if req.keep_film and not self.cancelled:
                 self.report.film = FilmSnapshot(
-                    mean=renderer.film.mean(),
+                    mean=renderer.frame_mean(),
                     samples=renderer.samples_done - req.sample_offset,
                     sample_offset=req.sample_offset,
                     seed=settings.seed,
-                    fingerprint=render_fingerprint(tracer_scene, settings),
+                    fingerprint=render_fingerprint(tracer_scene, settings, scene.frame_current + scene.frame_subframe),
                 )
 
-    def _passes(self, renderer, border, width, height, target, warnings) -> None:
+    def _apply_overrides(self, settings, warnings) -> None:
+        """The request's sampling overrides; a sample chunk samples every pixel alike."""
+        req = self.request
+        if req.noise_threshold is not None:
+            settings.adaptive_threshold = float(req.noise_threshold)
+        if req.min_samples is not None:
+            settings.adaptive_min_samples = int(req.min_samples)
+        if req.time_limit_s is not None:
+            settings.time_limit_s = float(req.time_limit_s)
+        if req.keep_film and (settings.adaptive_threshold > 0 or settings.time_limit_s > 0):
+            warnings.append("A sample chunk renders all its samples in every pixel: the noise threshold and time "
+                            "limit are ignored (chunks could not merge otherwise)")
+            settings.adaptive_threshold = 0.0
+            settings.time_limit_s = 0.0
+        settings.validate()
+
+    def _show(self, image: np.ndarray) -> None:
+        """Fill the Render Result with a finished image (see ``RenderRequest.show_image``)."""
+        height, width = image.shape[:2]
+        result = self.engine.begin_result(0, 0, width, height, layer=self.depsgraph.view_layer.name)
+        try:
+            result.layers[0].passes["Combined"].rect = bottom_up(np.asarray(image, np.float32), alpha=True)
+        finally:
+            self.engine.end_result(result)
+
+    def _plan(self, renderer, scene, view_layer, width, height, whole=False):
+        """Tiles and the memory check (a sample chunk keeps its whole film: never tiled)."""
+        return frame_plan(scene, view_layer, width, height, renderer.region,
+                          whole_film=whole or self.request.keep_film)
+
+    def _passes(self, renderer, plan, border, warnings) -> None:
+        """Every tile to all its samples, written to Blender's result as it finishes."""
+        engine = self.engine
+        scene = self.depsgraph.scene
+        enabled = enabled_passes(scene, self.depsgraph.view_layer)
+        for name, channels, ids, _ in enabled:
+            engine.add_pass(name, channels, ids)
+        wanted = {name for name, *_ in enabled}
+        bx0, by0, bx1, by1 = border
+        layer = self.depsgraph.view_layer.name
+        limit = renderer.settings.time_limit_s
+        started = time.perf_counter()
+        tiles = plan.tiles
+        if plan.tiled and denoising(scene):
+            warnings.append(f"The frame is rendered in {len(tiles)} tiles and denoised tile by tile: enlarge "
+                            "Performance ▸ Tile Size to denoise it whole")
+        for index, tile in enumerate(tiles):
+            if index and self.stop_requested():
+                self.cancelled = True
+                break
+            budget = None
+            if limit > 0:
+                budget = max(0.0, (limit - (time.perf_counter() - started)) / (len(tiles) - index))
+            renderer.set_region(tile, budget)
+            x0, y0, x1, y1 = tile
+            # Blender counts result rows from the bottom of the border.
+            result = engine.begin_result(x0 - bx0, by1 - y1, x1 - x0, y1 - y0, layer=layer)
+            try:
+                self._sample(renderer, result, wanted, warnings, (index, len(tiles)))
+            finally:
+                engine.end_result(result)
+            if self.cancelled:
+                break
+
+    def _sample(self, renderer, result, wanted, warnings, tile) -> None:
+        """Passes of samples until the region is finished, the image shown after each (whole frames)."""
         engine = self.engine
         req = self.request
-        x0, y0, x1, y1 = border or (0, 0, width, height)
-        for name, channels, ids, _ in enabled_passes(self.depsgraph.scene):
-            engine.add_pass(name, channels, ids)
-        layer = self.depsgraph.view_layer.name
-        result = engine.begin_result(0, 0, x1 - x0, y1 - y0, layer=layer)
-        wanted = {name for name, *_ in enabled_passes(self.depsgraph.scene)}
         settings = renderer.settings
         per_pass = settings.samples_per_pass
         start_done = renderer.samples_done
-        end = start_done + target
+        target = settings.samples
         started = time.perf_counter()
         pass_index = 0
-        quick = req.quick_first_pass and per_pass > 1
-        try:
-            while renderer.samples_done < end:
+        index, count = tile
+        quick = req.quick_first_pass and per_pass > 1 and count == 1
+
+        def overall(fraction):
+            return min(1.0, (index + fraction) / count)
+
+        while not renderer.finished:
+            if self.stop_requested():
+                self.cancelled = True
+                break
+            done_before = renderer.samples_done - start_done
+
+            def progress(fraction, done_before=done_before):
+                engine.update_progress(overall((done_before + fraction * per_pass) / target))
                 if self.stop_requested():
-                    self.cancelled = True
-                    break
-                done_before = renderer.samples_done - start_done
+                    renderer.cancel()
+                    raise _Cancelled
 
-                def progress(fraction, done_before=done_before):
-                    engine.update_progress(min(1.0, (done_before + fraction * per_pass) / target))
-                    if self.stop_requested():
-                        renderer.cancel()
-                        raise _Cancelled
-
-                renderer.progress = progress
-                if quick and pass_index == 0:
-                    settings.samples_per_pass = 1
-                try:
-                    renderer.render_pass()
-                except _Cancelled:
-                    self.cancelled = True
-                finally:
-                    settings.samples_per_pass = per_pass
-                pass_index += 1
-                self._write(result, renderer, (x0, y0, x1, y1), wanted)
+            renderer.progress = progress
+            if quick and pass_index == 0:
+                settings.samples_per_pass = 1
+            try:
+                renderer.render_pass()
+            except _Cancelled:
+                self.cancelled = True
+            finally:
+                settings.samples_per_pass = per_pass
+            pass_index += 1
+            final = renderer.finished or self.cancelled
+            if count == 1 or final:
+                self._write(result, renderer, wanted, denoise=final and not self.cancelled)
                 engine.update_result(result)
-                done = renderer.samples_done - start_done
-                engine.update_progress(min(1.0, done / target))
-                line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings)
-                engine.update_stats("", line)
-                self.report.stats = line
-                self._print(line)
-                if self.cancelled:
-                    break
-        finally:
-            engine.end_result(result)
+            done = renderer.samples_done - start_done
+            engine.update_progress(overall(done / target))
+            line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings, tile)
+            engine.update_stats("", line)
+            self.report.stats = line
+            # Blender's "Time: …" line, once per pass: render farms (Flamenco) count these as steps.
+            self._print(f"Time: {timecode(time.perf_counter() - started)} | {line}")
+            if self.cancelled:
+                break
         if self.cancelled:
             engine.update_stats("", f"Prism | Cancelled at {renderer.samples_done - start_done}/{target} spp")
             self._print("Prism: cancelled")
 
-    @staticmethod
-    def _write(result, renderer, box, wanted) -> None:
-        x0, y0, x1, y1 = box
+    def _write_spectral(self, renderer, path) -> None:
+        film = renderer.spectral_film
+        written = spectral_exr.write_spectral_exr(path, film.centres_nm, film.mean(), renderer.image_rgb())
+        self.report.spectral_output = str(written)
+        if self.request.progress_stream is None:  # a batch script names the files it wrote itself
+            self.engine.report({"INFO"}, f"Prism: spectral image ({film.bands} bands of {film.band_nm:.3g} nm) "
+                                         f"written to {written}")
+
+    def _write(self, result, renderer, wanted, denoise: bool) -> None:
+        """The region's Combined (denoised on the final pass when asked) and passes into ``result``."""
         passes = result.layers[0].passes
-        rgba = np.concatenate([renderer.image_rgb(), renderer.image_alpha()[..., None]], axis=2)
-        passes["Combined"].rect = bottom_up(rgba[y0:y1, x0:x1])
+        scene = self.depsgraph.scene
+        image = renderer.film.mean().astype(np.float32)
+        images = renderer.pass_images()
+        if denoising(scene):
+            images["Noisy Image"] = image
+            if denoise:
+                prism = scene.prism
+                image = denoise_image(image, images["Denoising Albedo"], images["Denoising Normal"],
+                                      prefilter=prism.denoising_prefilter, quality=prism.denoising_quality)
+        alpha = renderer.film.alpha().astype(np.float32)[..., None]  # transparent film, holdouts (else 1)
+        passes["Combined"].rect = bottom_up(np.concatenate([image, alpha], axis=2))
         if "Noise" in wanted:
-            passes["Noise"].rect = bottom_up(renderer.variance_rgb()[y0:y1, x0:x1])
+            images["Noise"] = renderer.film.variance_of_mean().astype(np.float32)
         if "Sample Count" in wanted:
-            counts = renderer.film.counts[y0:y1, x0:x1].astype(np.float32)[..., None]
-            passes["Sample Count"].rect = bottom_up(counts)
-
-
-def bottom_up(image: np.ndarray, alpha: bool = False) -> np.ndarray:
-    """[H, W, C] with row 0 at the top → Blender's flat [H*W, C(+1)], first row at the bottom."""
-    height, width, channels = image.shape
-    if alpha:
-        rgba = np.ones((height, width, channels + 1), np.float32)
-        rgba[..., :channels] = image
-        image = rgba
-    return np.ascontiguousarray(image[::-1], dtype=np.float32).reshape(height * width, -1)
-
-
-def stats_line(renderer, pass_index: int, done: int, target: int, seconds: float, warnings) -> str:
-    """``Prism | Pass 3 | 12/64 spp | 1.30 M rays/s | <strategy> | ...`` for Blender's status bar."""
-    stats = renderer.stats
-    rays_per_second = stats.get("rays_cast", 0) / seconds if seconds > 0 else 0.0
-    parts = [
-        f"Prism | Pass {pass_index} | {done}/{target} spp",
-        f"{rays_per_second / 1e6:.2f} M rays/s",
-        renderer.strategy,
-    ]
-    if stats.get("nan_samples"):
-        parts.append(f"{stats['nan_samples']} NaN samples dropped")
-    notes = list(warnings) + list(stats.get("warnings") or [])
-    if notes:
-        parts.append(f"{len(notes)} warning(s): {notes[0]}")
-    return " | ".join(parts)
+            images["Sample Count"] = renderer.film.counts.astype(np.float32)[..., None]
+        write_passes(passes, images, wanted)

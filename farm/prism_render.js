@@ -3,10 +3,14 @@
 // Flamenco job type "prism-render": renders frames with Prism, Blender's spectral path tracer
 // add-on, with every frame's samples split into chunks that separate workers render at once.
 //
-//   frame F, chunk k of K  →  render task: samples k·N … k·N+N−1 (N = samples / K) into a chunk EXR
-//   frame F                →  merge task, after its K chunks: one EXR, bit-identical to one render
-//                             of all the samples on one machine
+//   frame F, chunk k of K  →  render task: samples k·N … k·N+N−1 (N = samples / K) of frame F into
+//                             a chunk EXR
+//   frame F                →  merge task, after its K chunks: one EXR (or PNG), the image one render
+//                             of all the samples writes on one machine, bit for bit
 //   chunks = 1             →  one plain render task per frame, no merge
+//
+// Progress: render.py prints Blender's "Time: …" line after every pass, which Flamenco's worker
+// counts as a step; a render task has as many steps as passes (samples / samples_per_pass).
 //
 // Install: copy this file into the `scripts/` folder next to the flamenco-manager executable and
 // restart the Manager. Workers need Blender with Prism installed, and the Manager variable
@@ -56,6 +60,16 @@ const JOB_TYPE = {
                 "1 renders plain frames without a merge",
         },
         {
+            key: "samples_per_pass",
+            type: "int32",
+            default: 1,
+            eval: "C.scene.prism.samples_per_pass",
+            propargs: { min: 1 },
+            description:
+                "The scene's Samples per Pass: each pass is one step of a task's progress. Chunks merge bit " +
+                "for bit into one render's image when their samples are a multiple of it",
+        },
+        {
             key: "seed",
             type: "int32",
             default: 0,
@@ -69,8 +83,8 @@ const JOB_TYPE = {
             subtype: "file_path",
             required: true,
             description:
-                "Absolute path of the finished frames on shared storage, .exr (or .png when chunks is 1); " +
-                "the last run of # becomes the frame number, e.g. /render/shot/prism_####.exr",
+                "Absolute path of the finished frames on shared storage, .exr (scene-linear) or .png (the " +
+                "scene's view transform); the last run of # becomes the frame number, e.g. /render/shot/prism_####.exr",
         },
         {
             key: "render_script",
@@ -96,15 +110,15 @@ function compileJob(job) {
             job.addTask(plainFrameTask(request, frame));
             continue;
         }
-        const frameDir = path.join(chunkRoot, zeroPadded(frame, 4));
         const chunkTasks = [];
         const chunkPaths = [];
         for (let chunk = 0; chunk < request.chunks; chunk++) {
-            const chunkPath = path.join(frameDir, "chunk_" + zeroPadded(chunk, 4) + ".exr");
-            const task = chunkTask(request, frame, chunk, chunkPath);
+            // render.py puts the frame number in place of the #: frame_0001_chunk_0000.exr
+            const chunkTemplate = path.join(chunkRoot, "frame_####_chunk_" + zeroPadded(chunk, 4) + ".exr");
+            const task = chunkTask(request, frame, chunk, chunkTemplate);
             job.addTask(task);
             chunkTasks.push(task);
-            chunkPaths.push(chunkPath);
+            chunkPaths.push(framePath(chunkTemplate, frame));
         }
         const merge = mergeTask(request, frame, chunkPaths, finalPath);
         for (const task of chunkTasks) {
@@ -119,6 +133,7 @@ function compileJob(job) {
 function readSettings(settings) {
     const samples = wholeNumber(settings, "samples", 1);
     const chunks = wholeNumber(settings, "chunks", 1);
+    const samplesPerPass = settings.samples_per_pass === undefined ? 1 : wholeNumber(settings, "samples_per_pass", 1);
     const seed = settings.seed === undefined ? 0 : wholeNumber(settings, "seed", 0);
     if (samples % chunks !== 0) {
         const lower = samples - (samples % chunks);
@@ -129,10 +144,8 @@ function readSettings(settings) {
     }
     const output = requiredText(settings, "render_output_path");
     const extension = output.slice(output.lastIndexOf(".")).toLowerCase();
-    if (extension !== ".exr" && !(extension === ".png" && chunks === 1)) {
-        throw new Error(
-            `Prism Render: render_output_path '${output}' must end in .exr` +
-            (chunks === 1 ? " or .png." : ` (merged chunks are written as EXR; .png works only with chunks = 1).`));
+    if (extension !== ".exr" && extension !== ".png") {
+        throw new Error(`Prism Render: render_output_path '${output}' must end in .exr or .png.`);
     }
     if (!isAbsolute(output)) {
         throw new Error(
@@ -145,6 +158,7 @@ function readSettings(settings) {
         samples: samples,
         chunks: chunks,
         samplesPerChunk: samples / chunks,
+        samplesPerPass: samplesPerPass,
         seed: seed,
         outputTemplate: withFrameNumber(output),
         renderScript: settings.render_script ? String(settings.render_script) : DEFAULT_RENDER_SCRIPT,
@@ -209,25 +223,26 @@ function zeroPadded(number, width) {
     return sign + String(Math.abs(number)).padStart(Math.max(width - sign.length, 0), "0");
 }
 
-// Blender's own arguments before Prism's: stop with exit status 1 if a Python expression or the
-// script raises, instead of going on (Blender's default) and rendering something else.
-function blenderArguments(request, pythonExpression) {
-    const args = ["--python-exit-code", "1"];
-    if (pythonExpression) {
-        args.push("--python-expr", pythonExpression);
-    }
-    args.push("--python", request.renderScript, "--");
-    return args;
+// Blender's own arguments before Prism's: stop with exit status 1 if the script raises, instead of
+// going on (Blender's default).
+function blenderArguments(request) {
+    return ["--python-exit-code", "1", "--python", request.renderScript, "--"];
 }
 
-function blenderCommand(blendfile, args) {
+// steps: the "Time: …" lines the command prints (one per pass); 0 = one step when it finishes.
+function blenderCommand(blendfile, args, steps) {
     return author.Command("blender-render", {
         exe: "{blender}",
         exeArgs: "{blenderArgs}",
         argsBefore: [],
         blendfile: blendfile,
         args: args,
-    });
+    }, steps || 0);
+}
+
+// Passes of a render of `samples` samples: render.py's progress steps.
+function passes(request, samples) {
+    return Math.ceil(samples / request.samplesPerPass);
 }
 
 function plainFrameTask(request, frame) {
@@ -237,27 +252,27 @@ function plainFrameTask(request, frame) {
         "--samples", String(request.samples),
         "--seed", String(request.seed),
         "--output", request.outputTemplate,
-    ])));
+    ]), passes(request, request.samples)));
     return task;
 }
 
-// render.py's --chunk-seed renders the scene's current frame, so a Python expression sets it first.
-function chunkTask(request, frame, chunk, chunkPath) {
+function chunkTask(request, frame, chunk, chunkTemplate) {
     const task = author.Task(`render frame ${frame} chunk ${chunk + 1}/${request.chunks}`, TASK_TYPE);
-    const setFrame = `import bpy; bpy.context.scene.frame_set(${frame})`;
-    task.addCommand(blenderCommand(request.blendfile, blenderArguments(request, setFrame).concat([
+    task.addCommand(blenderCommand(request.blendfile, blenderArguments(request).concat([
+        "--frames", String(frame),
         "--chunk-seed", String(chunk),
         "--samples", String(request.samplesPerChunk),
         "--seed", String(request.seed),
-        "--output", chunkPath,
-    ])));
+        "--output", chunkTemplate,
+    ]), passes(request, request.samplesPerChunk)));
     return task;
 }
 
-// No .blend file: the merge only reads the chunk EXRs (and refuses missing or mismatched ones).
+// No .blend file: the merge reads the chunk EXRs (they carry what a PNG needs), and refuses a missing,
+// mismatched or left-out chunk (--expect-samples) rather than write an incomplete frame.
 function mergeTask(request, frame, chunkPaths, finalPath) {
     const task = author.Task(`merge frame ${frame}`, TASK_TYPE);
     task.addCommand(blenderCommand("", blenderArguments(request).concat(
-        ["--merge"], chunkPaths, ["--output", finalPath])));
+        ["--merge"], chunkPaths, ["--expect-samples", String(request.samples), "--output", finalPath])));
     return task;
 }

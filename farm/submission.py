@@ -27,7 +27,8 @@ class PrismFarmJob:
     samples: int  # per finished frame
     chunks: int  # sample chunks per frame; 1 = plain frames
     seed: int
-    render_output_path: str  # absolute; the last run of # becomes the frame number
+    render_output_path: str  # absolute, .exr or .png; the last run of # becomes the frame number
+    samples_per_pass: int = 1  # the scene's: one pass is one step of a task's progress
     render_script: str = DEFAULT_RENDER_SCRIPT
     priority: int = 50
 
@@ -38,6 +39,7 @@ class PrismFarmJob:
             "frames": self.frames,
             "samples": self.samples,
             "chunks": self.chunks,
+            "samples_per_pass": self.samples_per_pass,
             "seed": self.seed,
             "render_output_path": self.render_output_path,
             "render_script": self.render_script,

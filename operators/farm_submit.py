@@ -43,6 +43,7 @@ def farm_job(scene, blendfile: str) -> PrismFarmJob:
         chunks=farm.chunks,
         seed=settings.seed,
         render_output_path=output_path(scene),
+        samples_per_pass=settings.samples_per_pass,
         render_script=farm.render_script.strip(),
         priority=farm.priority,
     )

@@ -16,7 +16,9 @@ register, unregister = bpy.utils.register_submodule_factory(
         "panels_camera",
         "panels_light",
         "panels_material",
+        "panels_lightgroup",
         "lens_overlay_draw",
         "lens_overlay_panel",
+        "viewport_header",
     ),
 )

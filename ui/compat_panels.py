@@ -49,6 +49,11 @@ COMPATIBLE_PANELS = frozenset(
         "EEVEE_MATERIAL_PT_context_material",
         "EEVEE_MATERIAL_PT_surface",
         "MATERIAL_PT_custom_props",
+        # View layer: use for rendering, the Passes parent Prism's pass panels sit in, AOVs, light groups
+        "VIEWLAYER_PT_layer",
+        "VIEWLAYER_PT_layer_passes",
+        "VIEWLAYER_PT_layer_passes_aov",
+        "VIEWLAYER_PT_layer_passes_lightgroups",
         # World
         "WORLD_PT_context_world",
         "EEVEE_WORLD_PT_surface",

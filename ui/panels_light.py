@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import bpy
 
-from ..engine.properties.light import TEMPERATURE_RANGE_K
+from ..engine.properties.spectrum_sources import TEMPERATURE_RANGE_K
 from ._panel_base import PrismPanel, error_label
+from .spectrum_display import draw_spectrum
 
 
 class PRISM_PT_light(PrismPanel, bpy.types.Panel):
@@ -35,9 +36,13 @@ class PRISM_PT_light(PrismPanel, bpy.types.Panel):
             low, high = TEMPERATURE_RANGE_K
             if not low <= settings.temperature_k <= high:
                 error_label(column, f"Temperature must be {low:.0f}-{high:.0f} K to render.")
-        else:
+        elif settings.color_source == "MONOCHROMATIC":
             column.prop(settings, "wavelength_nm")
             column.prop(settings, "line_width_nm")
+        elif settings.color_source == "ILLUMINANT":
+            column.prop(settings, "illuminant")
+        else:
+            column.prop(settings, "spectrum_file")
         if settings.color_source != "RGB":
             column.prop(settings, "preview_color", text="Resulting Colour")
 
@@ -62,6 +67,26 @@ class PRISM_PT_light(PrismPanel, bpy.types.Panel):
                 sub.prop(light, "size_y", text="Y")
 
 
+class PRISM_PT_light_spectrum(PrismPanel, bpy.types.Panel):
+    """The light's spectrum over the visible range, its CCT and colour rendering indices."""
+
+    bl_label = "Spectrum"
+    bl_context = "data"
+    bl_parent_id = "PRISM_PT_light"
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine == "PRISM" and context.light is not None
+
+    def draw(self, context):
+        from ..engine.export.spectra import light_emission_source
+        from ..engine.spectrum_preview import emission_preview
+
+        light = context.light
+        preview = emission_preview(light_emission_source(light.name, light))
+        draw_spectrum(self.layout, "light_spectrum", preview, "Relative spectral power, 360-830 nm", metrics=True)
+
+
 class PRISM_PT_light_beam(PrismPanel, bpy.types.Panel):
     """Spot light cone."""
 
@@ -84,7 +109,7 @@ class PRISM_PT_light_beam(PrismPanel, bpy.types.Panel):
         column.prop(light, "show_cone")
 
 
-CLASSES = (PRISM_PT_light, PRISM_PT_light_beam)
+CLASSES = (PRISM_PT_light, PRISM_PT_light_spectrum, PRISM_PT_light_beam)
 
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

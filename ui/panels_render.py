@@ -1,4 +1,5 @@
-"""Render and View Layer properties: sampling, light paths, wavelengths (with their plot), passes."""
+"""Render and View Layer properties: sampling (adaptive, time limit, denoising), light paths, wavelengths
+(with their plot), performance (threads, tiles), passes."""
 
 from __future__ import annotations
 
@@ -23,14 +24,45 @@ class PRISM_PT_sampling(PrismPanel, bpy.types.Panel):
         settings = context.scene.prism
         column = layout.column(align=True)
         column.prop(settings, "samples", text="Render")
-        column.prop(settings, "preview_samples", text="Preview")
+        column.prop(settings, "preview_samples", text="Viewport")
+        heading = layout.column(align=True, heading="Noise Threshold")
+        row = heading.row(align=True)
+        row.prop(settings, "use_adaptive_sampling", text="")
+        sub = row.row()
+        sub.active = settings.use_adaptive_sampling
+        sub.prop(settings, "adaptive_threshold", text="")
+        sub = heading.column(align=True)
+        sub.active = settings.use_adaptive_sampling
+        sub.prop(settings, "adaptive_min_samples", text="Min Samples")
         column = layout.column()
+        column.prop(settings, "time_limit")
         column.prop(settings, "samples_per_pass")
         column.prop(settings, "seed")
         column.prop(settings, "pixel_filter")
         sub = column.column()
         sub.active = settings.pixel_filter == "GAUSSIAN"
         sub.prop(settings, "filter_width_px")
+
+
+class PRISM_PT_denoise(PrismPanel, bpy.types.Panel):
+    """Final-frame denoising (OpenImageDenoise, as the compositor's Denoise node)."""
+
+    bl_label = "Denoise"
+    bl_context = "render"
+    bl_parent_id = "PRISM_PT_sampling"
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.prism, "use_denoising", text="")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.prism
+        column = layout.column()
+        column.active = settings.use_denoising
+        column.prop(settings, "denoising_prefilter")
+        column.prop(settings, "denoising_quality")
 
 
 class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):
@@ -44,8 +76,10 @@ class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.use_property_decorate = False
         settings = context.scene.prism
+        column = layout.column(align=True)
+        column.prop(settings, "max_bounces", text="Max Bounces")
+        column.prop(settings, "preview_max_bounces", text="Viewport")
         column = layout.column()
-        column.prop(settings, "max_bounces")
         column.prop(settings, "russian_roulette_depth")
         column.prop(settings, "use_mis")
 
@@ -93,25 +127,87 @@ class PRISM_PT_performance(PrismPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        layout.prop(context.scene.prism, "threads")
+        settings = context.scene.prism
+        layout.prop(settings, "threads")
+        heading = layout.column(align=True, heading="Tiling")
+        heading.prop(settings, "use_auto_tile", text="")
+        sub = heading.column()
+        sub.active = settings.use_auto_tile
+        sub.prop(settings, "tile_size")
 
 
-class PRISM_PT_passes(PrismPanel, bpy.types.Panel):
-    """Optional render passes (View Layer properties)."""
+class PRISM_PT_spectral_output(PrismPanel, bpy.types.Panel):
+    """The optional multispectral EXR."""
 
-    bl_label = "Prism Passes"
-    bl_context = "view_layer"
+    bl_label = "Spectral Output"
+    bl_context = "render"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.prism, "use_spectral_output", text="")
 
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        column = layout.column(heading="Include", align=True)
-        column.prop(context.scene.prism, "use_pass_variance")
-        column.prop(context.scene.prism, "use_pass_sample_count")
+        settings = context.scene.prism
+        column = layout.column()
+        column.active = settings.use_spectral_output
+        column.prop(settings, "spectral_band_nm")
+        column.prop(settings, "spectral_output_path")
+        column.label(text="Bands as S0.<nm> channels (Fichet et al. 2021), with the render as R, G, B.")
 
 
-CLASSES = (PRISM_PT_sampling, PRISM_PT_light_paths, PRISM_PT_wavelengths, PRISM_PT_performance, PRISM_PT_passes)
+class _PassesPanel(PrismPanel):
+    bl_context = "view_layer"
+    bl_parent_id = "VIEWLAYER_PT_layer_passes"
+
+
+def _pass_column(layout, heading):
+    layout.use_property_split = True
+    layout.use_property_decorate = False
+    return layout.column(heading=heading, align=True)
+
+
+class PRISM_PT_passes_data(_PassesPanel, bpy.types.Panel):
+    """Data passes: Blender's switches, plus Prism's denoising data, noise and sample count."""
+
+    bl_label = "Data"
+
+    def draw(self, context):
+        layer = context.view_layer
+        prism = context.scene.prism
+        column = _pass_column(self.layout, "Include")
+        column.prop(layer, "use_pass_combined")
+        column.prop(layer, "use_pass_z")
+        column.prop(layer, "use_pass_position")
+        column.prop(layer, "use_pass_normal")
+        column = _pass_column(self.layout, "Other")
+        column.prop(prism, "use_pass_denoising_data")
+        column.prop(prism, "use_pass_variance")
+        column.prop(prism, "use_pass_sample_count")
+
+
+class PRISM_PT_passes_light(_PassesPanel, bpy.types.Panel):
+    """Light passes with Cycles' meanings: (Direct + Indirect) x Color of each lobe, + Emission + Environment
+    add up to Combined."""
+
+    bl_label = "Light"
+
+    def draw(self, context):
+        layer = context.view_layer
+        for heading, lobe in (("Diffuse", "diffuse"), ("Glossy", "glossy"), ("Transmission", "transmission")):
+            column = _pass_column(self.layout, heading)
+            column.prop(layer, f"use_pass_{lobe}_direct", text="Direct")
+            column.prop(layer, f"use_pass_{lobe}_indirect", text="Indirect")
+            column.prop(layer, f"use_pass_{lobe}_color", text="Color")
+        column = _pass_column(self.layout, "Other")
+        column.prop(layer, "use_pass_emit", text="Emission")
+        column.prop(layer, "use_pass_environment")
+
+
+CLASSES = (PRISM_PT_sampling, PRISM_PT_denoise, PRISM_PT_light_paths, PRISM_PT_wavelengths, PRISM_PT_spectral_output,
+           PRISM_PT_performance, PRISM_PT_passes_data, PRISM_PT_passes_light)
 
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -1,4 +1,5 @@
-"""The render panel's plot: the three channel Gaussians against the CIE colour-matching functions.
+"""Plots in panels: the render panel's three channel Gaussians against the CIE colour-matching
+functions, and the spectrum of a light or material (Light and Material panels).
 
 Drawn with numpy into a ``bpy.utils.previews`` image and shown with
 ``layout.template_icon``; regenerated only when the values it shows change.
@@ -85,6 +86,55 @@ def render_plot(means_nm, sigmas_nm, cmf_at_edges: np.ndarray, channels_active: 
     return image.astype(np.float32)
 
 
+def wavelength_colours(wavelength_nm) -> np.ndarray:
+    """Display colour [N, 3] of light at each wavelength (brightest channel 1), from the analytic CMF fit."""
+    from ..engine.properties.spectral_colour import XYZ_TO_REC709, cmf_xyz
+
+    rgb = np.clip(cmf_xyz(wavelength_nm) @ XYZ_TO_REC709.T, 0.0, None)
+    return rgb / np.maximum(rgb.max(axis=1, keepdims=True), 1e-12)
+
+
+def render_spectrum_plot(values: np.ndarray) -> np.ndarray:
+    """RGBA float32 image [H, W, 4] (row 0 at the bottom) of a spectrum sampled every nm over 360-830 nm
+    (values 0-1, 1 = the plot's top): the area under the curve in each wavelength's colour."""
+    edges_nm = np.linspace(*PLOT_RANGE_NM, PLOT_WIDTH_PX + 1)
+    centres_nm = 0.5 * (edges_nm[:-1] + edges_nm[1:])
+    grid = np.linspace(*PLOT_RANGE_NM, len(values))
+    # The highest value in each column's span, so a line narrower than a pixel column still shows.
+    column = np.minimum(((grid - PLOT_RANGE_NM[0]) / (PLOT_RANGE_NM[1] - PLOT_RANGE_NM[0]) * PLOT_WIDTH_PX)
+                        .astype(int), PLOT_WIDTH_PX - 1)
+    heights = np.zeros(PLOT_WIDTH_PX)
+    np.maximum.at(heights, column, np.asarray(values, np.float64))
+    image = np.empty((PLOT_HEIGHT_PX, PLOT_WIDTH_PX, 4), dtype=np.float64)
+    image[..., :3] = _BACKGROUND
+    image[..., 3] = 1.0
+    rows = np.arange(PLOT_HEIGHT_PX, dtype=np.float64)[:, None] + 0.5
+    for level in (0.25, 0.5, 0.75, 1.0):
+        _blend(image, np.abs(rows - _rows_for(np.full(PLOT_WIDTH_PX, level))[None, :]) < 0.5, (0.3, 0.3, 0.3), 1.0)
+    under = rows <= _rows_for(heights)[None, :]
+    colours = np.broadcast_to(wavelength_colours(centres_nm)[None], image[..., :3].shape)
+    image[..., :3] = np.where(under[..., None], 0.3 * image[..., :3] + 0.7 * colours, image[..., :3])
+    at_edges = np.concatenate([heights[:1], np.maximum(heights[1:], heights[:-1]), heights[-1:]])
+    _blend(image, _line_mask(at_edges, 0.6), (0.95, 0.95, 0.95), 1.0)
+    return image.astype(np.float32)
+
+
+_spectrum_keys: dict[str, tuple] = {}
+
+
+def spectrum_icon_id(name: str, values) -> int:
+    """Icon id of the plot named ``name`` (one per panel) showing ``values`` (regenerated on change)."""
+    if _previews is None:
+        return 0
+    preview = _previews.get(name) or _previews.new(name)
+    key = tuple(values)
+    if _spectrum_keys.get(name) != key:
+        preview.image_size = (PLOT_WIDTH_PX, PLOT_HEIGHT_PX)
+        preview.image_pixels_float = render_spectrum_plot(np.asarray(values, np.float64)).ravel()
+        _spectrum_keys[name] = key
+    return preview.icon_id
+
+
 def plot_icon_id(scene_settings) -> int:
     """Icon id of the plot for ``Scene.prism`` (regenerated only when its values changed)."""
     global _plot_key
@@ -112,6 +162,7 @@ def register():
 
     _previews = bpy.utils.previews.new()
     _plot_key = None
+    _spectrum_keys.clear()
 
 
 def unregister():
@@ -122,3 +173,4 @@ def unregister():
         bpy.utils.previews.remove(_previews)
     _previews = None
     _plot_key = None
+    _spectrum_keys.clear()

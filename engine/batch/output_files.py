@@ -18,15 +18,23 @@ from ..tracer.errors import PrismInputError
 
 
 def frame_output(output: Path, frame: int) -> Path:
-    """``out_###.png`` → ``out_007.png``; without ``#``, ``out.png`` → ``out_0007.png``."""
+    """An output of a frame range: ``out_###.png`` → ``out_007.png``; without ``#``,
+    ``out.png`` → ``out_0007.png`` (every frame needs its own file)."""
+    if "#" in output.name:
+        return numbered_output(output, frame)
+    return output.with_name(f"{output.stem}_{frame:04d}{output.suffix}")
+
+
+def numbered_output(output: Path, frame: int) -> Path:
+    """The last run of ``#`` in the file name becomes ``frame``, zero-padded to its length (the sign
+    counts), as Blender numbers its outputs: ``out_###.png`` → ``out_007.png``. A name without
+    ``#`` is returned as it is."""
     name = output.name
     runs = list(re.finditer(r"#+", name))
-    if runs:
-        run = runs[-1]
-        name = f"{name[: run.start()]}{frame:0{len(run.group())}d}{name[run.end():]}"
-    else:
-        name = f"{output.stem}_{frame:04d}{output.suffix}"
-    return output.with_name(name)
+    if not runs:
+        return output
+    run = runs[-1]
+    return output.with_name(f"{name[: run.start()]}{frame:0{len(run.group())}d}{name[run.end():]}")
 
 
 def partial_output(output: Path) -> Path:

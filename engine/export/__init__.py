@@ -45,7 +45,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     Inputs Prism ignores are appended to ``warnings`` (one message each).
     """
     scene = depsgraph.scene
-    camera = export_camera(scene, warnings)
+    camera = export_camera(scene, depsgraph, warnings)
     geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
     tracer_scene = Scene(
         vertices=geometry.vertices,
@@ -53,6 +53,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         triangle_material=geometry.triangle_material,
         triangle_object=geometry.triangle_object,
         object_names=geometry.object_names,
+        object_light_groups=geometry.object_light_groups,
         corner_normals=geometry.corner_normals,
         object_flags=geometry.object_flags,
         materials=geometry.materials,
@@ -60,6 +61,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         lights=export_lights(depsgraph, warnings),
         world=export_world(scene, warnings),
     )
+    tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.validate()
     _check_something_to_see(scene.name, tracer_scene)
     return tracer_scene

@@ -10,7 +10,6 @@ settings.
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 
@@ -80,25 +79,11 @@ def check_camera_scale(camera_object) -> None:
         )
 
 
-#: Bytes a pixel costs while rendering: the film's float64 sums, squares and count, the per-pixel
-#: sample rotations, the pixel list, and the float32 images handed to Blender.
-BYTES_PER_PIXEL = 192
+def check_frame_memory(scene, width: int, height: int) -> None:
+    """Refuse at once a frame whose image and passes cannot fit in memory (``engine.passes.frame_plan``)."""
+    from ..passes import frame_plan
 
-
-def check_film_memory(scene_name: str, width: int, height: int, physical_bytes: int | None = None) -> None:
-    """Refuse a resolution whose film cannot fit in this computer's memory (before allocating it)."""
-    if physical_bytes is None:
-        try:
-            physical_bytes = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-        except (AttributeError, ValueError, OSError):  # not POSIX: no cheap way to ask, so no check
-            return
-    needed = width * height * BYTES_PER_PIXEL
-    if needed > physical_bytes:
-        raise PrismInputError(
-            f"Scene '{scene_name}': rendering {width} x {height} pixels needs about {needed / 2**30:.0f} GB of memory, "
-            f"more than this computer has ({physical_bytes / 2**30:.0f} GB): lower the resolution or its % "
-            "(Output ▸ Format)."
-        )
+    frame_plan(scene, None, width, height)
 
 
 def rigid_matrix(matrix_world) -> np.ndarray:
@@ -184,9 +169,13 @@ def _lens_model(camera_object, projection) -> str:
     return model
 
 
-def export_camera(scene, warnings: list[str] | None = None) -> Camera:
-    """The scene's active camera; a clear error when there is none or it is unsupported."""
+def export_camera(scene, depsgraph=None, warnings: list[str] | None = None) -> Camera:
+    """The scene's active camera (as ``depsgraph`` evaluated it, when given: a material preview's
+    scene is not evaluated itself); a clear error when there is none or it is unsupported. Settings
+    Prism ignores are appended to ``warnings``."""
     camera_object = scene.camera
+    if camera_object is not None and depsgraph is not None:
+        camera_object = camera_object.evaluated_get(depsgraph)
     if camera_object is None:
         raise PrismInputError(
             f"Scene '{scene.name}' has no active camera: add a camera and make it active "
@@ -200,7 +189,7 @@ def export_camera(scene, warnings: list[str] | None = None) -> Camera:
     projection = _projection(camera_object, warnings)
     check_camera_scale(camera_object)
     width, height = render_resolution(scene)
-    check_film_memory(scene.name, width, height)
+    check_frame_memory(scene, width, height)
     film_w, film_h = film_size_mm(data, width, height)
     if projection == "perspective" and not (np.isfinite(data.lens) and data.lens > 0):
         raise PrismInputError(f"Camera '{camera_object.name}' has focal length {data.lens} mm: use a positive value.")

@@ -1,10 +1,11 @@
 """Blender lights → ``tracer.scene.Light`` (power in Blender's watts, as Cycles).
 
-The spectrum comes from ``Light.prism``: the light's RGB colour, a blackbody at a
-colour temperature, or a monochromatic line. Strength is Blender's own energy. Spread,
-sun angle, spot size and blend and the Camera ray visibility are Cycles'; portals emit
-nothing (as in Cycles, where they only guide the world's sampling); settings Prism does not
-model get one warning per light (``light_warnings``).
+The spectrum comes from ``Light.prism`` (``export.spectra``): the light's RGB colour, a
+blackbody at a colour temperature, a monochromatic line, a standard illuminant or a
+spectrum file. Strength is Blender's own energy. Spread, sun angle, spot size and blend and
+the Camera ray visibility are Cycles'; portals emit nothing (as in Cycles, where they only
+guide the world's sampling); settings Prism does not model get one warning per light
+(``light_settings``).
 """
 
 from __future__ import annotations
@@ -13,40 +14,17 @@ import math
 
 import numpy as np
 
-from ..properties.light import TEMPERATURE_RANGE_K
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Light, SpectrumSpec
 from .light_settings import is_portal, light_warnings
+from .spectra import light_emission_source
 
 _AREA_SHAPES = {"SQUARE": "rectangle", "RECTANGLE": "rectangle", "DISK": "disk", "ELLIPSE": "disk"}
-VISIBLE_RANGE_NM = (360.0, 830.0)
 
 
 def light_spectrum(name: str, light_data) -> SpectrumSpec:
     """The light's spectrum specification; ``PrismInputError`` naming the light when it is invalid."""
-    settings = getattr(light_data, "prism", None)
-    source = settings.color_source if settings is not None else "RGB"
-    if source == "BLACKBODY":
-        temperature = float(settings.temperature_k)
-        low, high = TEMPERATURE_RANGE_K
-        if not low <= temperature <= high:
-            raise PrismInputError(
-                f"Light '{name}': blackbody temperature {temperature:g} K is outside {low:.0f}-{high:.0f} K; "
-                "set Light ▸ Prism ▸ Temperature within that range."
-            )
-        return SpectrumSpec(kind="blackbody", temperature_k=temperature)
-    if source == "MONOCHROMATIC":
-        wavelength, width = float(settings.wavelength_nm), float(settings.line_width_nm)
-        low, high = VISIBLE_RANGE_NM
-        if not low <= wavelength <= high:
-            raise PrismInputError(f"Light '{name}': wavelength {wavelength:g} nm is outside {low:.0f}-{high:.0f} nm.")
-        if not width > 0:
-            raise PrismInputError(f"Light '{name}': line width must be positive (got {width:g} nm).")
-        return SpectrumSpec(kind="monochromatic", wavelength_nm=wavelength, width_nm=width)
-    rgb = tuple(float(c) for c in light_data.color)
-    if not all(math.isfinite(c) and c >= 0 for c in rgb):
-        raise PrismInputError(f"Light '{name}': its colour {rgb} has negative or non-finite values; pick a colour again.")
-    return SpectrumSpec(kind="rgb", rgb=rgb)
+    return light_emission_source(name, light_data).spec()
 
 
 def _export_light(name: str, light_data, matrix_world) -> Light:
@@ -122,6 +100,7 @@ def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
         # Settings from the original light (see ``export_material``), placement from the instance.
         light = _export_light(obj.name, obj.data.original, instance.matrix_world)
         light.visible_camera = bool(getattr(obj, "visible_camera", False))
+        light.light_group = obj.lightgroup
         if light.power_w > 0 or light.irradiance_w_m2 > 0:
             lights.append(light)
     return lights

@@ -14,6 +14,8 @@ from ..properties.material import CONDUCTOR_NAMES
 from ..properties.principled import material_kind, read_principled, surface_node
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Material, SpectrumSpec
+from .aovs import read_aovs
+from .spectra import material_emission_source, material_reflectance_source
 
 DEFAULT_MATERIAL = Material(name="Default", kind="diffuse", base_color=(0.8, 0.8, 0.8))
 
@@ -75,14 +77,21 @@ def export_material(material, warnings: list[str] | None = None) -> Material:
             f"Material '{name}': IOR {reading.ior:g} is below 1; Prism's glass needs an IOR of 1 or more."
         )
     exported = Material(name=name, kind=kind, **values)
+    exported.aovs = read_aovs(material, warnings)
     if reading.emission_strength < 0:
         raise PrismInputError(f"Material '{name}': Emission Strength {reading.emission_strength:g} is negative.")
-    if reading.emission_strength > 0 and max(reading.emission_color) > 0:
-        exported.emission = SpectrumSpec(kind="rgb", rgb=reading.emission_color)
+    spectral = settings is not None and settings.emission_source != "COLOR"
+    if reading.emission_strength > 0 and (spectral or max(reading.emission_color) > 0):
+        exported.emission = (material_emission_source(material, reading.emission_color).spec() if spectral
+                             else SpectrumSpec(kind="rgb", rgb=reading.emission_color))
     else:
         exported.emission_strength = 0.0
     if settings is None:
         return exported
+    exported.reflectance = material_reflectance_source(material, reading.base_color).spec()
+    if exported.reflectance is not None and kind in {"dielectric", "thin_film"} and warnings is not None:
+        warnings.append(f"Material '{name}': a measured base colour only acts on diffuse and metal surfaces; "
+                        f"it is ignored on {'glass' if kind == 'dielectric' else 'a thin film'}.")
     if kind == "dielectric":
         _glass(material, settings, exported)
     elif kind == "conductor":

@@ -40,6 +40,7 @@ class ExportedGeometry:
     corner_normals: np.ndarray
     object_names: list[str]
     materials: list[Material]
+    object_light_groups: list[str] = field(default_factory=list)
     object_flags: np.ndarray | None = None  # uint8 per entry of object_names (``tracer.visibility``)
 
 
@@ -50,6 +51,7 @@ class _Instances:
     name: str
     geometry: LocalMesh | LocalHair
     matrices: list = field(default_factory=list)  # 16 floats each, row-major
+    light_group: str = ""  # Object ▸ Shading ▸ Light Group
     flags: int = 0
 
 
@@ -72,7 +74,12 @@ class _Materials:
         return self.index[key]
 
 
-def _gather(depsgraph, warnings) -> list[_Instances]:
+def read_geometry(key: tuple, obj) -> LocalMesh | LocalHair | None:
+    """The evaluated geometry of ``obj`` (``key``: (type, original name, data pointer), the piece it is)."""
+    return read_mesh(obj) if key[0] == "MESH" else read_hair(obj)
+
+
+def _gather(depsgraph, warnings, read=read_geometry) -> list[_Instances]:
     """Every rendered piece of geometry with the matrices of its instances."""
     pieces: dict[tuple, _Instances | None] = {}
     warned: set[str] = set()
@@ -98,9 +105,10 @@ def _gather(depsgraph, warnings) -> list[_Instances]:
             continue
         key = (kind, obj.original.name, obj.data.as_pointer())
         if key not in pieces:
-            geometry = read_mesh(obj) if kind == "MESH" else read_hair(obj)  # now: the object may be temporary
+            geometry = read(key, obj)  # now: the object may be temporary
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
-            pieces[key] = _Instances(obj.name, geometry, flags=flags) if geometry is not None else None
+            pieces[key] = (_Instances(obj.name, geometry, light_group=obj.lightgroup, flags=flags)
+                           if geometry is not None else None)
         piece = pieces[key]
         if piece is not None:
             matrix = instance.matrix_world
@@ -108,18 +116,21 @@ def _gather(depsgraph, warnings) -> list[_Instances]:
     return [piece for piece in pieces.values() if piece is not None]
 
 
-def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=None) -> ExportedGeometry:
+def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=None,
+                  read=read_geometry) -> ExportedGeometry:
     """Every visible mesh and hair instance, in world space (metres, float64 vertices).
 
-    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera.
+    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera. ``read(key, obj)``
+    returns a piece's geometry (the viewport passes one that keeps what did not change).
     Material warnings and geometry Prism skips are appended to ``warnings``.
     """
     materials = _Materials(warnings)
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
     flags: list[int] = []
+    groups: list[str] = []
     camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
-    for piece in _gather(depsgraph, warnings):
+    for piece in _gather(depsgraph, warnings, read):
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
         lookup = materials.slot_lookup(piece.geometry.slot_materials)
         if isinstance(piece.geometry, LocalHair):
@@ -127,6 +138,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                 placed, slots = hair_ribbons(piece.geometry, matrix, camera)
                 parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
                 names.append(piece.name)
+                groups.append(piece.light_group)
                 flags.append(piece.flags)
             continue
         local = piece.geometry
@@ -134,8 +146,10 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
         slots = lookup[np.clip(local.slot_index, 0, len(lookup) - 1)]
         parts.append((placed, np.tile(slots, len(matrices))))
         names.append(piece.name)
+        groups.append(piece.light_group)
         flags.append(piece.flags)
     geometry = _assemble(parts, names, materials.materials)
+    geometry.object_light_groups = groups
     geometry.object_flags = np.asarray(flags, np.uint8)
     return geometry
 

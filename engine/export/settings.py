@@ -3,9 +3,14 @@
 from __future__ import annotations
 
 from ..tracer.errors import PrismInputError
+from ..tracer.passes import PassRequest
 from ..tracer.settings import RenderSettings
 
 _MODES = {"CIE": "cie", "GAUSSIAN_RGB": "gaussian_rgb"}
+#: Samples of a material or light preview (``preview=True``): Blender renders them in its own preview
+#: scene, whose Prism settings are the defaults, so the count is fixed here; enough for a dispersive
+#: glass to show its fringes on a thumbnail.
+PREVIEW_SAMPLES = 16
 
 
 def export_settings(
@@ -15,20 +20,25 @@ def export_settings(
     threads: int | None = None,
     preview: bool = False,
     border: tuple[int, int, int, int] | None = None,
+    passes: PassRequest | None = None,
+    spectral: bool = False,
 ) -> RenderSettings:
     """Render settings from the scene's Prism settings.
 
     ``samples``/``seed``/``threads`` override the scene's (batch renders);
-    ``preview`` uses the preview sample count; ``border`` is the pixel rectangle
-    (x0, y0, x1, y1), rows from the top, half-open.
+    ``preview`` (a material or light preview) renders ``PREVIEW_SAMPLES`` with the
+    viewport's bounces; ``border`` is the pixel rectangle (x0, y0, x1, y1), rows
+    from the top, half-open; ``passes`` what besides Combined to render
+    (``engine.passes.pass_request``); ``spectral`` keeps band radiance for a multispectral
+    EXR (bands of the scene's Spectral Output width).
     """
     prism = scene.prism
     if samples is None:
-        samples = prism.preview_samples if preview else prism.samples
+        samples = PREVIEW_SAMPLES if preview else prism.samples
     settings = RenderSettings(
         samples=int(samples),
         samples_per_pass=int(prism.samples_per_pass),
-        max_bounces=int(prism.max_bounces),
+        max_bounces=int(prism.preview_max_bounces if preview else prism.max_bounces),
         seed=int(prism.seed if seed is None else seed),
         wavelength_mode=_MODES[prism.wavelength_mode],
         wavelengths_per_path=int(prism.wavelengths_per_path),
@@ -41,6 +51,11 @@ def export_settings(
         pixel_filter=prism.pixel_filter.lower(),
         filter_width_px=float(prism.filter_width_px),
         film_transparent=bool(scene.render.film_transparent),
+        passes=passes if passes is not None else PassRequest(),
+        adaptive_threshold=float(prism.adaptive_threshold) if prism.use_adaptive_sampling else 0.0,
+        adaptive_min_samples=int(prism.adaptive_min_samples),
+        time_limit_s=float(prism.time_limit),
+        spectral_band_nm=float(prism.spectral_band_nm) if spectral else 0.0,
     )
     cycles = getattr(scene, "cycles", None)
     if cycles is not None:  # Film ▸ Transparent ▸ Transparent Glass lives in Cycles' settings

@@ -39,8 +39,8 @@ class PrismFarmSettings(bpy.types.PropertyGroup):
     )
     output_path: StringProperty(
         name="Output",
-        description="Finished frames (.exr; .png with 1 chunk per frame) on shared storage; the last run of # "
-        "becomes the frame number",
+        description="Finished frames on shared storage, .exr (scene-linear) or .png (the scene's view transform); "
+        "the last run of # becomes the frame number",
         default="//render/prism_####.exr",
         subtype="FILE_PATH",
         options=_BLEND_RELATIVE,

@@ -1,18 +1,22 @@
 """``Light.prism``: how a light's spectrum is defined. Strength is Blender's own light energy."""
 
 import bpy
-from bpy.props import EnumProperty, FloatProperty, FloatVectorProperty
+from bpy.props import EnumProperty, FloatVectorProperty
 
-from ._common import TEMPERATURE_SUBTYPE, WAVELENGTH_SUBTYPE, register_group, unregister_group
+from ._common import register_group, unregister_group
 from .spectral_colour import blackbody_display_rgb, line_display_rgb
+from .spectrum_sources import (TEMPERATURE_RANGE_K, illuminant_property, line_wavelength_property,  # noqa: F401
+                               line_width_property, spectrum_file_property, temperature_property)
+# (TEMPERATURE_RANGE_K stays importable from here, where it used to live.)
 
 COLOR_SOURCE_ITEMS = [
     ("RGB", "RGB", "The light's colour, turned into a smooth spectrum", 0),
     ("BLACKBODY", "Blackbody", "The spectrum of a blackbody at a colour temperature", 1),
     ("MONOCHROMATIC", "Monochromatic", "A narrow emission line at one wavelength (e.g. a laser or sodium lamp)", 2),
+    ("ILLUMINANT", "Illuminant", "A measured standard illuminant: CIE A and D, fluorescent FL1-FL12, high-pressure "
+     "lamps HP1-HP5, LEDs (colour-science's SDS_ILLUMINANTS)", 3),
+    ("FILE", "Spectrum File", "A measured spectrum read from a file (CSV, IES TM-27-14, Sekonic, UPRTek)", 4),
 ]
-
-TEMPERATURE_RANGE_K = (1000.0, 40000.0)
 
 
 def _preview_color(self):
@@ -20,6 +24,12 @@ def _preview_color(self):
         return blackbody_display_rgb(self.temperature_k)
     if self.color_source == "MONOCHROMATIC":
         return line_display_rgb(self.wavelength_nm, self.line_width_nm)
+    if self.color_source in ("ILLUMINANT", "FILE"):
+        from ..export.spectra import light_emission_source
+        from ..spectrum_preview import emission_preview
+
+        preview = emission_preview(light_emission_source(self.id_data.name, self.id_data))
+        return preview.display_rgb if preview is not None and preview.error is None else (0.0, 0.0, 0.0)
     return tuple(self.id_data.color)
 
 
@@ -32,32 +42,11 @@ class PrismLightSettings(bpy.types.PropertyGroup):
         items=COLOR_SOURCE_ITEMS,
         default="RGB",
     )
-    temperature_k: FloatProperty(
-        name="Temperature",
-        description="Colour temperature of the blackbody in kelvin (1000-40000 K render)",
-        default=6500.0,
-        min=1.0,
-        soft_min=TEMPERATURE_RANGE_K[0],
-        soft_max=TEMPERATURE_RANGE_K[1],
-        subtype=TEMPERATURE_SUBTYPE,
-    )
-    wavelength_nm: FloatProperty(
-        name="Wavelength",
-        description="Centre wavelength of the emission line in nm",
-        default=550.0,
-        min=360.0,
-        max=830.0,
-        subtype=WAVELENGTH_SUBTYPE,
-    )
-    line_width_nm: FloatProperty(
-        name="Line Width",
-        description="Full width at half maximum of the emission line in nm",
-        default=10.0,
-        min=0.1,
-        soft_max=100.0,
-        max=470.0,
-        subtype=WAVELENGTH_SUBTYPE,
-    )
+    temperature_k: temperature_property("Colour temperature of the blackbody in kelvin")
+    wavelength_nm: line_wavelength_property()
+    line_width_nm: line_width_property()
+    illuminant: illuminant_property("colour-science's key of the standard illuminant (e.g. D65, FL2, HP1, LED-B3)")
+    spectrum_file: spectrum_file_property("Spectrum File", "Measured emission spectrum of the light")
     preview_color: FloatVectorProperty(
         name="Colour",
         description="Colour of the light's spectrum on screen (brightest channel 1; read-only)",

@@ -3,9 +3,11 @@
 import importlib
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
 
 from ._common import DynamicEnumCache, register_group, stable_enum_number, unregister_group
+from .spectrum_sources import (DEFAULT_PATCH, illuminant_property, line_wavelength_property, line_width_property,
+                               reflectance_search, spectrum_file_property, temperature_property)
 
 DEFAULT_GLASS = "N-BK7"
 
@@ -21,6 +23,20 @@ CONDUCTOR_ITEMS = [
     ("AG", "Silver", "Measured complex refractive index of silver", 2),
     ("CU", "Copper", "Measured complex refractive index of copper", 3),
     ("AL", "Aluminium", "Measured complex refractive index of aluminium", 4),
+]
+
+EMISSION_SOURCE_ITEMS = [
+    ("COLOR", "Emission Colour", "The Principled BSDF's emission colour, turned into a smooth spectrum", 0),
+    ("BLACKBODY", "Blackbody", "The spectrum of a blackbody at a colour temperature", 1),
+    ("MONOCHROMATIC", "Monochromatic", "A narrow emission line at one wavelength", 2),
+    ("ILLUMINANT", "Illuminant", "A measured standard illuminant (colour-science's SDS_ILLUMINANTS)", 3),
+    ("FILE", "Spectrum File", "A measured emission spectrum read from a file", 4),
+]
+
+REFLECTANCE_SOURCE_ITEMS = [
+    ("COLOR", "Base Colour", "The Principled BSDF's base colour, turned into a smooth reflectance spectrum", 0),
+    ("MEASURED", "Measured", "A measured colour-checker patch (colour-science's SDS_COLOURCHECKERS)", 1),
+    ("FILE", "Reflectance File", "A measured reflectance (values 0-1) read from a file", 2),
 ]
 
 # Enum identifier → name used by ``engine.tracer.scene.Material.conductor``.
@@ -119,6 +135,33 @@ class PrismMaterialSettings(bpy.types.PropertyGroup):
         soft_max=3.0,
         max=5.0,
     )
+
+    emission_source: EnumProperty(
+        name="Emission Spectrum",
+        description="How the spectrum of the material's emission is defined (its strength is the Principled "
+        "BSDF's Emission Strength)",
+        items=EMISSION_SOURCE_ITEMS,
+        default="COLOR",
+    )
+    emission_temperature_k: temperature_property("Colour temperature of the blackbody emission in kelvin")
+    emission_wavelength_nm: line_wavelength_property()
+    emission_line_width_nm: line_width_property()
+    emission_illuminant: illuminant_property("colour-science's key of the standard illuminant the surface emits")
+    emission_file: spectrum_file_property("Spectrum File", "Measured emission spectrum of the surface")
+    reflectance_source: EnumProperty(
+        name="Base Colour Spectrum",
+        description="Where the reflectance spectrum used as base colour (diffuse albedo, metal tint) comes from",
+        items=REFLECTANCE_SOURCE_ITEMS,
+        default="COLOR",
+    )
+    measured_reflectance: StringProperty(
+        name="Measured Reflectance",
+        description="A colour-checker patch as '<checker>: <patch>', e.g. 'ColorChecker N Ohta: dark skin'",
+        default=DEFAULT_PATCH,
+        search=reflectance_search,
+        search_options=set(),
+    )
+    reflectance_file: spectrum_file_property("Reflectance File", "Measured reflectance (0-1) of the surface")
 
 
 def register():

@@ -1,7 +1,7 @@
 """``Scene.prism``: render settings stored in the .blend (the session turns them into ``RenderSettings``)."""
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from ._common import WAVELENGTH_SUBTYPE, register_group, unregister_group
 from .farm import PrismFarmSettings
@@ -72,11 +72,25 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         soft_max=64,
     )
     preview_samples: IntProperty(
-        name="Preview Samples",
-        description="Samples per pixel of viewport and material previews",
+        name="Viewport Samples",
+        description="Samples per pixel of the rendered viewport (0: refine until stopped)",
+        default=1024,
+        min=0,
+        soft_max=4096,
+    )
+    preview_max_bounces: IntProperty(
+        name="Viewport Max Bounces",
+        description="Maximum number of times a path scatters in the rendered viewport and in material "
+        "previews (lower than a final render's: a faster first image)",
         default=4,
-        min=1,
-        soft_max=256,
+        min=0,
+        max=1024,
+        soft_max=64,
+    )
+    preview_pause: BoolProperty(
+        name="Pause Preview",
+        description="Pause the rendered viewport (changes are applied when it resumes)",
+        default=False,
     )
     max_bounces: IntProperty(
         name="Max Bounces",
@@ -160,6 +174,105 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         description="Add a Sample Count pass: samples accumulated in each pixel",
         default=False,
         update=_update_render_passes,
+    )
+    use_pass_denoising_data: BoolProperty(
+        name="Denoising Data",
+        description="Add the Denoising Albedo, Denoising Normal and Denoising Depth passes, the guides of the "
+        "compositor's Denoise node",
+        default=False,
+        update=_update_render_passes,
+    )
+    use_denoising: BoolProperty(
+        name="Denoise",
+        description="Denoise the final frame with OpenImageDenoise (as the compositor's Denoise node does), "
+        "guided by the albedo and normal; the raw image is kept in the Noisy Image pass",
+        default=False,
+        update=_update_render_passes,
+    )
+    denoising_prefilter: EnumProperty(
+        name="Prefilter",
+        description="How the denoiser treats its albedo and normal guides",
+        items=[
+            ("NONE", "None", "The guides are used as they are (for noise-free guides)", 0),
+            ("FAST", "Fast", "The guides are denoised together with the image", 1),
+            ("ACCURATE", "Accurate", "The guides are denoised first (best for noisy guides, takes longer)", 2),
+        ],
+        default="ACCURATE",
+    )
+    denoising_quality: EnumProperty(
+        name="Quality",
+        description="Denoising quality against speed",
+        items=[
+            ("HIGH", "High", "Best quality", 0),
+            ("BALANCED", "Balanced", "Balanced quality and speed", 1),
+            ("FAST", "Fast", "Fastest", 2),
+        ],
+        default="HIGH",
+    )
+    use_adaptive_sampling: BoolProperty(
+        name="Noise Threshold",
+        description="Stop sampling pixels whose noise is below the threshold (adaptive sampling)",
+        default=False,
+    )
+    adaptive_threshold: FloatProperty(
+        name="Noise Threshold",
+        description="Relative noise at which a pixel stops sampling: lower is cleaner and slower (0.01 is typical)",
+        default=0.01,
+        min=0.0001,
+        max=0.9999,
+        soft_max=0.1,
+        precision=4,
+    )
+    adaptive_min_samples: IntProperty(
+        name="Min Samples",
+        description="Samples every pixel takes before it may stop (0 = automatic)",
+        default=0,
+        min=0,
+        soft_max=4096,
+    )
+    time_limit: FloatProperty(
+        name="Time Limit",
+        description="Stop sampling after this time (scene preparation excluded; 0 = no limit)",
+        default=0.0,
+        min=0.0,
+        subtype="TIME_ABSOLUTE",
+        unit="TIME_ABSOLUTE",
+    )
+    use_auto_tile: BoolProperty(
+        name="Use Tiling",
+        description="Render frames larger than the tile size tile by tile, each to all its samples, so Prism "
+        "keeps one tile in memory at a time",
+        default=True,
+    )
+    tile_size: IntProperty(
+        name="Tile Size",
+        description="Side of a tile in pixels",
+        default=2048,
+        min=8,
+        max=16384,
+        subtype="PIXEL",
+    )
+    use_spectral_output: BoolProperty(
+        name="Spectral Output",
+        description="Also write a multispectral EXR (radiance in wavelength bands across 360-830 nm, the "
+        "layout of Fichet et al. 2021) when a render finishes",
+        default=False,
+    )
+    spectral_band_nm: FloatProperty(
+        name="Band Width",
+        description="Width of the spectral EXR's wavelength bands in nm (adjusted to tile 360-830 nm evenly: "
+        "10 nm gives 47 bands)",
+        default=10.0,
+        min=1.0,
+        max=100.0,
+        subtype=WAVELENGTH_SUBTYPE,
+    )
+    spectral_output_path: StringProperty(
+        name="File",
+        description="Where the spectral EXR is written (// is the .blend file's folder; # becomes the frame "
+        "number)",
+        default="//spectral_####.exr",
+        subtype="FILE_PATH",
     )
     lens_overlay: PointerProperty(
         type=PrismLensOverlaySettings,

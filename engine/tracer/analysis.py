@@ -4,7 +4,8 @@
   otherwise every path carries all its wavelengths to the end.
 - Emissive meshes are light-sampled only if some used material emits.
 - Shadow rays cross free-standing films only if the scene has one (else one occlusion query each).
-- Wavelength sampling is guided toward emission lines only if an emitter has one.
+- Wavelength sampling (cie mode) follows the scene's emission spectra; the visible density only when
+  nothing emits.
 """
 
 from __future__ import annotations
@@ -25,6 +26,8 @@ class SceneAnalysis:
     features: list[str] = field(default_factory=list)
     world: str = ""
     guided_lines: int = 0
+    guided_measured: int = 0
+    guided_smooth: int = 0
     camera_strategy: str = ""
     see_through_films: bool = False
     sampler: str = "sobol"
@@ -32,8 +35,11 @@ class SceneAnalysis:
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
         """One line for the render stats."""
         parts = [f"{self.wavelength_mode} x{self.wavelengths_per_path}"]
-        if self.guided_lines:
-            parts[0] += f" guided by {self.guided_lines} emission line(s)"
+        counts = ((self.guided_lines, "emission line(s)"), (self.guided_measured, "measured spectrum(s)"),
+                  (self.guided_smooth, "smooth spectrum(s)"))
+        guides = [f"{count} {what}" for count, what in counts if count]
+        if guides:
+            parts[0] += " guided by " + " + ".join(guides)
         if self.dispersion:
             what = ", ".join(self.dispersive + (["lens"] if self.camera_disperses else []))
             parts.append(f"hero-wavelength termination ({what})")

@@ -4,7 +4,9 @@
 pinhole or thin lens, and for every camera the pixel filter and orientation), ``lens`` and
 ``lens_tables`` (the ``lens.camera.RealLensCamera`` of a real lens and its kernel tables, else None),
 ``disperses`` (a real lens refracts per wavelength: paths keep only their hero), ``strategy`` (for the
-render stats) and ``position`` (world metres: the origin of the render's camera-relative space).
+render stats), ``position`` (the camera's world position, m) and ``origin`` (world metres: the origin of
+the render's space, which every position the kernels see is relative to; the camera position unless the
+caller keeps another one, as the viewport does while the view moves).
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ class CameraSetup:
     disperses: bool = False
     strategy: str = ""
     position: np.ndarray = None
+    origin: np.ndarray = None
 
 
 def _check_common(camera):
@@ -60,11 +63,14 @@ def _check_projection(camera):
             raise PrismInputError(f"Camera '{name}': the panorama's latitude and longitude limits must be finite.")
 
 
-def make_camera(camera, settings) -> CameraSetup:
-    """The camera for ``camera.model``: "pinhole", "thin_lens" or "real_lens"."""
+def make_camera(camera, settings, origin=None) -> CameraSetup:
+    """The camera for ``camera.model``: "pinhole", "thin_lens" or "real_lens", in a render space whose
+    origin is ``origin`` (world, m; default: the camera's position)."""
     _check_common(camera)
     _check_projection(camera)
     position = np.asarray(camera.camera_to_world, dtype=np.float64)[:3, 3].copy()
+    origin = position.copy() if origin is None else np.asarray(origin, dtype=np.float64).copy()
+    relative = position - origin
     if camera.model in ("pinhole", "thin_lens"):
         if camera.model == "thin_lens":
             if not (camera.fstop > 0 and math.isfinite(camera.fstop)):
@@ -75,7 +81,8 @@ def make_camera(camera, settings) -> CameraSetup:
                 raise PrismInputError(f"Camera '{camera.name}': the aperture ratio must be positive (Depth of Field ▸ Ratio).")
         kind = THIN_LENS if camera.model == "thin_lens" else PINHOLE
         strategy = "" if camera.projection == "perspective" else camera.projection.replace("_", " ") + " camera"
-        return CameraSetup(camera_data(camera, settings, kind), position=position, strategy=strategy)
+        return CameraSetup(camera_data(camera, settings, kind, relative), position=position, origin=origin,
+                           strategy=strategy)
     if camera.model == "real_lens":
         from .lens.camera import RealLensCamera
 
@@ -85,8 +92,9 @@ def make_camera(camera, settings) -> CameraSetup:
                 "Perspective, or choose Blender's camera (Prism Lens ▸ Lens Model)."
             )
         lens = RealLensCamera(camera, settings)
-        return CameraSetup(camera_data(camera, settings, PINHOLE), lens=lens, lens_tables=lens.kernel_tables(),
-                           disperses=True, strategy=lens.strategy, position=position)
+        return CameraSetup(camera_data(camera, settings, PINHOLE, relative), lens=lens,
+                           lens_tables=lens.kernel_tables(), disperses=True, strategy=lens.strategy,
+                           position=position, origin=origin)
     raise PrismInputError(
         f"Camera '{camera.name}': unknown camera model '{camera.model}'; use pinhole, thin_lens or real_lens."
     )

@@ -1,42 +1,63 @@
-"""The film: per-pixel running sums of RGB samples and their squares (float64), and sample counts.
+"""The film: per-pixel running sums of RGB samples and their squares (float64), sample counts, and the
+sums of the requested passes' values (``aux`` columns, laid out by ``passes.FilmLayout``).
 
 Samples arrive already converted to scene-linear Rec.709 (the spectral-to-RGB map is linear, so the
 mean of converted samples is the converted mean). ``add`` splats them one by one (``stages.film``):
 non-finite samples are counted in ``nan_samples`` and dropped, the pixel's count still advancing.
+
+A film covers a rectangle of the frame (``region`` = x0, y0, x1, y1, rows from the top; default the whole
+frame): a frame rendered tile by tile needs one tile's film at a time. Samples name their pixel by its
+index in the frame (y · frame width + x), so a tile's image is the same as that part of a whole frame.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .frame_plan import film_bytes_per_pixel
 from .stages.film import splat, splat_alpha
 
 
 class Film:
-    """Accumulates samples for a ``width`` x ``height`` image (row 0 = top)."""
+    """Accumulates samples for a ``width`` x ``height`` frame (row 0 = top), or the ``region`` of it."""
 
-    def __init__(self, width: int, height: int):
-        self.width = int(width)
-        self.height = int(height)
+    def __init__(self, width: int, height: int, layout=None, region=None):
+        x0, y0, x1, y1 = region if region is not None else (0, 0, width, height)
+        self.frame_width = int(width)
+        self.origin = (int(x0), int(y0))
+        self.width = int(x1 - x0)
+        self.height = int(y1 - y0)
+        self.layout = layout
         count = self.width * self.height
         self._sum = np.zeros((count, 3))
         self._sum_sq = np.zeros((count, 3))
         self._count = np.zeros(count, dtype=np.int64)
+        columns = layout.width if layout is not None else 0
+        self._aux = np.zeros((count, columns))
         self._alpha = None  # sums of the samples' alpha, once a render has any transparency
         self.nan_samples = 0
 
-    def add(self, pixel_index: np.ndarray, rgb: np.ndarray) -> None:
-        """Add one sample per entry: ``pixel_index`` [N] (y * width + x), ``rgb`` [N, 3]."""
+    bytes_per_pixel = staticmethod(film_bytes_per_pixel)
+
+    def add(self, pixel_index: np.ndarray, rgb: np.ndarray, aux: np.ndarray | None = None) -> None:
+        """Add one sample per entry: ``pixel_index`` [N] (y * frame width + x), ``rgb`` [N, 3], ``aux``
+        [N, layout width] (the passes' values of each sample)."""
         pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
         rgb = np.ascontiguousarray(rgb, dtype=np.float64).reshape(-1, 3)
-        self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, pixel_index, rgb, len(pixel_index)))
+        if aux is None:
+            aux = np.zeros((len(pixel_index), self._aux.shape[1]))
+        x0, y0 = self.origin
+        self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, self._aux, pixel_index, rgb, aux,
+                                      len(pixel_index), self.frame_width, x0, y0, self.width))
 
     def add_alpha(self, pixel_index: np.ndarray, alpha: np.ndarray) -> None:
         """Add the alpha (1 - transparency) of the samples ``add`` just took, in the same order."""
         if self._alpha is None:
             self._alpha = np.zeros(len(self._count))
         pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
-        splat_alpha(self._alpha, pixel_index, np.ascontiguousarray(alpha, dtype=np.float64), len(pixel_index))
+        x0, y0 = self.origin
+        splat_alpha(self._alpha, pixel_index, np.ascontiguousarray(alpha, dtype=np.float64), len(pixel_index),
+                    self.frame_width, x0, y0, self.width)
 
     def alpha(self) -> np.ndarray:
         """Per-pixel mean alpha, float64 [H, W] (1 where nothing was see-through)."""
@@ -54,6 +75,11 @@ class Film:
         """Per-pixel mean, float64 [H, W, 3] (0 where no sample yet)."""
         n = np.maximum(self._count, 1)[:, None]
         return (self._sum / n).reshape(self.height, self.width, 3)
+
+    def aux_mean(self) -> np.ndarray:
+        """The pass columns per pixel, float64 [H, W, layout width]: the mean of each over the samples."""
+        n = np.maximum(self._count, 1)[:, None]
+        return (self._aux / n).reshape(self.height, self.width, -1)
 
     def variance_of_mean(self) -> np.ndarray:
         """Per-pixel variance of the mean estimate, float64 [H, W, 3]:

@@ -1,8 +1,8 @@
-"""The render's triangles, relative to the camera, and the hit-point maths the kernels share.
+"""The render's triangles, relative to the render's origin, and the hit-point maths the kernels share.
 
-World positions are float64 (``scene.Scene``); the camera position is subtracted in float64 before
-anything becomes float32, so Embree's float32 precision is spent near the camera: a scene moved 1e7 m
-from the origin renders as it does at the origin. Zero-area and non-finite triangles are dropped here
+World positions are float64 (``scene.Scene``); the origin (the camera position, see ``cameras``) is
+subtracted in float64 before anything becomes float32, so Embree's float32 precision is spent near the
+camera: a scene moved 1e7 m from the origin renders as it does at the origin. Zero-area and non-finite triangles are dropped here
 (Embree ids are then this table's rows; ``original`` maps them back for messages).
 
 ``Geometry``: ``vertices`` float32 [V, 3] (camera-relative metres), ``triangles`` int32 [T, 3],
@@ -34,12 +34,8 @@ def prepare_geometry(scene, offset):
     vertices = np.asarray(scene.vertices, dtype=np.float64) - np.asarray(offset, dtype=np.float64)
     triangles = np.asarray(scene.triangles, dtype=np.int64).reshape(-1, 3)
     relative32 = vertices.astype(np.float32)
-    if len(triangles):
-        corners = relative32[triangles].astype(np.float64)
-        double_area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
-        keep = np.isfinite(double_area) & (double_area > 0.0)
-    else:
-        keep = np.zeros(0, dtype=bool)
+    keep = np.empty(len(triangles), dtype=np.bool_)
+    _non_degenerate(relative32, triangles, keep)
     original = np.flatnonzero(keep)
     material = np.asarray(scene.triangle_material, dtype=np.int32)[original]
     normals = np.zeros((0, 3, 3), np.float32)
@@ -50,6 +46,24 @@ def prepare_geometry(scene, offset):
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
                         np.ascontiguousarray(material), normals, triangle_flags(scene, original))
     return geometry, original, int(len(triangles) - len(original))
+
+
+@kernel
+def _non_degenerate(vertices, triangles, keep):
+    """``keep[t]``: triangle t has a finite, non-zero area in the float32 vertices Embree will see."""
+    for t in range(triangles.shape[0]):
+        a, b, c = triangles[t, 0], triangles[t, 1], triangles[t, 2]
+        e1x = float(vertices[b, 0]) - float(vertices[a, 0])
+        e1y = float(vertices[b, 1]) - float(vertices[a, 1])
+        e1z = float(vertices[b, 2]) - float(vertices[a, 2])
+        e2x = float(vertices[c, 0]) - float(vertices[a, 0])
+        e2y = float(vertices[c, 1]) - float(vertices[a, 1])
+        e2z = float(vertices[c, 2]) - float(vertices[a, 2])
+        nx = e1y * e2z - e1z * e2y
+        ny = e1z * e2x - e1x * e2z
+        nz = e1x * e2y - e1y * e2x
+        area2 = nx * nx + ny * ny + nz * nz
+        keep[t] = math.isfinite(area2) and area2 > 0.0
 
 
 @inlined

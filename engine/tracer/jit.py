@@ -71,15 +71,18 @@ _PACKAGE = __name__[: -len("engine.tracer.jit")].rstrip(".") if __name__.endswit
 
 
 def kernel_directory() -> Path:
-    """The folder this copy of the tracer caches its kernels in: ``cache_directory()`` / package name /
-    source fingerprint. numba checks a cached function against its own file only, while kernels inline
+    """The folder this copy of the tracer caches its kernels in: ``cache_directory()`` / package name and
+    install location / source fingerprint. numba checks a cached function against its own file only, while kernels inline
     functions from other files: one folder per version of the whole tracer keeps a change anywhere from
     reusing stale machine code (older versions' folders are removed by ``mark_cache_warm``)."""
     return _package_directory() / source_fingerprint()
 
 
 def _package_directory() -> Path:
-    return cache_directory() / (_PACKAGE or "engine")
+    # One folder per package name and per install location: cleaning up one checkout's old versions
+    # (``mark_cache_warm``) never removes another checkout's kernels.
+    location = hashlib.sha256(str(_TRACER_ROOT).encode()).hexdigest()[:8]
+    return cache_directory() / f"{_PACKAGE or 'engine'}-{location}"
 
 
 # No NRT (numba's reference-counted memory): every array belongs to the Python caller, kernels

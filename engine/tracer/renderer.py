@@ -5,13 +5,22 @@
     renderer.image_rgb()            # float32 [H, W, 3] scene-linear Rec.709, row 0 = top
     renderer.image_alpha()          # float32 [H, W] (transparent film, holdouts; 1 otherwise)
     renderer.variance_rgb()         # float32 [H, W, 3] variance of the mean
+    renderer.spectral_film          # SpectralFilm (band radiance) when settings.spectral_band_nm > 0, else None
     renderer.samples_done, renderer.strategy, renderer.stats
     renderer.start_at_sample(n)     # continue the seed's sequence at sample n (chunked renders)
+    renderer.finished               # every pixel has its samples, converged (adaptive) or time is up
+    renderer.pass_images()          # the requested passes of the region: name -> float32 [h, w, C]
+    renderer.set_region(box)        # render another rectangle (a tile) from sample 0, with a new film
     renderer.cancel()               # from any thread: stop the current pass after running chunks
     renderer.close()                # free the thread pool (or use ``with Renderer(...) as r:``)
 
+    # between passes (the viewport): rebuild only what changed, then the image starts again
+    renderer.set_camera(camera, border)   renderer.set_shading(scene)
+    renderer.set_geometry(scene)          renderer.set_settings(settings)   renderer.restart()
+
 Set-up turns the scene into tables once (``geometry``, ``spectra.table``, ``materials``, ``lights``,
-``spectra.wavelength_sampling``, the camera) with every position relative to the camera. A pass is cut
+``spectra.wavelength_sampling``, the camera) with every position relative to the render's origin (the
+camera's position; the viewport keeps the first one while the view moves). A pass is cut
 into chunks of paths that run on Prism's thread pool; a chunk runs the stages of ``stages`` bounce by
 bounce, Embree queries in between (kernels and Embree release the GIL). Every random number comes from
 the sampler indexed by (pixel, sample, dimension) and the film adds samples in path order, so the image
@@ -24,20 +33,28 @@ import os
 import threading
 import time
 from concurrent.futures import CancelledError, ThreadPoolExecutor
+from dataclasses import replace
 
 import numpy as np
 
+from . import adaptive
 from .accel import Accel
 from .analysis import SceneAnalysis
 from .cameras import make_camera
 from .errors import PrismInputError
 from .film import Film
 from .geometry import prepare_geometry
+from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
-from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials, is_emissive
+from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials
+from .passes import FilmLayout
 from .sampler import SAMPLERS
+from .scene import SpectrumSpec
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
+from .spectra.wavelength_guide import build_guide
+from .spectral_film import SpectralFilm
+from .stages.passes import new_pass_data
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
 from .visibility import HOLDOUT
@@ -45,12 +62,16 @@ from .visibility_accel import RayClassAccel, needs_ray_classes
 
 MAX_CHUNK_PATHS = 1 << 16  # largest chunk one thread traces at once (memory ~0.5 kB per path)
 MIN_CHUNK_PATHS = 4096  # below this, per-bounce Python overhead dominates
+#: A camera this far (m) from the render's origin gets the geometry rebuilt around it (``set_camera``):
+#: float32 positions keep ~0.1 mm there.
+REBASE_DISTANCE_M = 1000.0
 
 
 def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int:
-    """Paths per chunk: about two chunks per thread (load balance), within the bounds above, and a
-    multiple of ``samples_per_pixel`` (a chunk never splits a pixel's samples of a pass: see ``film``)."""
-    size = max(MIN_CHUNK_PATHS, min(MAX_CHUNK_PATHS, -(-path_count // (2 * max(threads, 1)))))
+    """Paths per chunk: one chunk per thread (fewer kernel launches: each holds the GIL for ~10 µs),
+    within the bounds above, and a multiple of ``samples_per_pixel`` (a chunk never splits a pixel's
+    samples of a pass: see ``film``)."""
+    size = max(MIN_CHUNK_PATHS, min(MAX_CHUNK_PATHS, -(-path_count // max(threads, 1))))
     return int(max(samples_per_pixel, size - size % samples_per_pixel))
 
 
@@ -58,81 +79,185 @@ def worker_threads(requested: int) -> int:
     return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
 
 
-def _monochromatic_lines(scene, used):
-    from .spectra.emission_spectrum import emission_spectrum
+def aov_table(materials, aovs: dict) -> np.ndarray:
+    """[materials, AOVs, 4]: what each material writes into each AOV pass (colour: r, g, b, 1; value:
+    value, 0, 0, 0); 0 where a material has no AOV Output of that name."""
+    table = np.zeros((max(1, len(materials)), len(aovs), 4))
+    for m, material in enumerate(materials):
+        for a, (name, kind) in enumerate(aovs.items()):
+            if name in material.aovs:
+                r, g, b, value = material.aovs[name]
+                table[m, a] = (value, 0.0, 0.0, 0.0) if kind == "VALUE" else (r, g, b, 1.0)
+    return table
 
-    specs = [light.spectrum for light in scene.lights if light.spectrum.kind == "monochromatic"]
-    for m in used:
-        material = scene.materials[m]
-        if is_emissive(material) and material.emission is not None and material.emission.kind == "monochromatic":
-            specs.append(material.emission)
-    return [emission_spectrum(spec) for spec in dict.fromkeys(specs)]
+
+def _triangle_groups(scene, original_triangle, light_groups):
+    """Light group index [T] of each render triangle's object (None when no group has a pass)."""
+    if not light_groups or scene.triangle_object is None or not scene.object_light_groups:
+        return None
+    index = {name: g for g, name in enumerate(light_groups)}
+    of_object = np.array([index.get(name, -1) for name in scene.object_light_groups], np.int32)
+    return of_object[np.asarray(scene.triangle_object)[original_triangle]]
+
+
+def _check_settings(settings) -> None:
+    settings.validate()
+    if settings.pixel_filter not in ("box", "gaussian") or not settings.filter_width_px > 0:
+        raise PrismInputError(f"Pixel filter '{settings.pixel_filter}' is not supported: use box or gaussian.")
+    if settings.sampler not in SAMPLERS:
+        raise PrismInputError(f"Sampler '{settings.sampler}' is unknown: use one of {', '.join(SAMPLERS)}.")
 
 
 class Renderer:
-    def __init__(self, scene, settings, progress=None):
+    def __init__(self, scene, settings, progress=None, origin=None):
         started = time.perf_counter()
-        settings.validate()
+        _check_settings(settings)
         scene.validate()
-        if settings.pixel_filter not in ("box", "gaussian") or not settings.filter_width_px > 0:
-            raise PrismInputError(f"Pixel filter '{settings.pixel_filter}' is not supported: use box or gaussian.")
-        if settings.sampler not in SAMPLERS:
-            raise PrismInputError(f"Sampler '{settings.sampler}' is unknown: use one of {', '.join(SAMPLERS)}.")
         self.scene = scene
         self.settings = settings
         self.progress = progress
-        self.camera = make_camera(scene.camera, settings)
+        self.camera = make_camera(scene.camera, settings, origin)
+        self.origin = self.camera.origin
         self.width, self.height = (int(r) for r in scene.camera.resolution)
-        self.geometry, self._original_triangle, dropped = prepare_geometry(scene, self.camera.position)
-        used = sorted(set(np.unique(self.geometry.material).tolist()))
-        if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
-            raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
-        spectra = SpectrumTable()
-        self.material_table = build_materials(scene.materials, set(used), spectra)
-        materials = self.material_table.arrays
-        self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
-                                        self.geometry.material, materials.emission_strength, self.camera.position)
-        self.analysis = self._analyse(used)
-        lines = _monochromatic_lines(scene, used) if settings.wavelength_mode == "cie" else []
-        self.wavelengths = wavelength_sampling.build(settings, lines)
-        self.analysis.guided_lines = len(lines)
-        self.spectra = spectra.arrays()
-        self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
-                                              bool(settings.use_mis), SAMPLERS[settings.sampler],
-                                              int(settings.seed) & 0xFFFFFFFF, bool(settings.film_transparent),
-                                              bool(settings.film_transparent and settings.transparent_glass),
-                                              float(settings.transparent_roughness) ** 2)
-        self.accel = Accel(self.geometry)
-        self.ray_classes = RayClassAccel(self.geometry, self.accel) if needs_ray_classes(self.geometry) else None
-        self._alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
-        self.film = Film(self.width, self.height)
-        self._pixels = self._pixel_list(settings.border)
+        self._build_geometry()
+        self._build_shading()
         self._workers = worker_threads(settings.threads)
         self._pool = ThreadPoolExecutor(self._workers)
         self._local = threading.local()
         self._cancel = threading.Event()
         self._jobs_lock = threading.Lock()
         self._jobs = {}
+        self.restart(time.perf_counter() - started)
+
+    def _build_geometry(self):
+        """Triangles relative to ``origin`` and their Embree scene."""
+        self.geometry = self.accel = self.ray_classes = None  # the old tables go first: one BVH in memory at a time
+        self.geometry, self._original_triangle, self._dropped = prepare_geometry(self.scene, self.origin)
+        self._used = sorted(set(np.unique(self.geometry.material).tolist()))
+        self.accel = Accel(self.geometry)
+        self.ray_classes = RayClassAccel(self.geometry, self.accel) if needs_ray_classes(self.geometry) else None
+
+    def _build_shading(self):
+        """Everything the paths read besides the triangles and the camera: spectra, materials, lights,
+        wavelength sampling, kernel settings."""
+        scene, settings, used = self.scene, self.settings, self._used
+        if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
+            raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
+        spectra = SpectrumTable()
+        self.material_table = build_materials(scene.materials, set(used), spectra)
+        materials = self.material_table.arrays
+        groups = tuple(settings.passes.light_groups)
+        self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
+                                        self.geometry.material, materials.emission_strength, self.origin,
+                                        light_groups=groups,
+                                        triangle_group=_triangle_groups(scene, self._original_triangle, groups))
+        white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
+        self.pass_layout = FilmLayout(settings.passes, white)
+        self._aov_table = aov_table(scene.materials, settings.passes.aovs)
+        self.spectra = spectra.arrays()
+        guide = None
+        if settings.wavelength_mode == "cie":
+            guide = build_guide(self.spectra, emitter_spectra(self.light_table, materials))
+        self.wavelengths = wavelength_sampling.build(settings, guide)
+        self._guide = guide
+        self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
+                                              bool(settings.use_mis), SAMPLERS[settings.sampler],
+                                              int(settings.seed) & 0xFFFFFFFF, bool(settings.film_transparent),
+                                              bool(settings.film_transparent and settings.transparent_glass),
+                                              float(settings.transparent_roughness) ** 2)
+        self._alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self._glass_clamps = np.zeros(len(materials.glasses), np.int64)
-        self.samples_done = 0
+        self._describe()
+
+    def _describe(self):
+        self.analysis = self._analyse(self._used)
+        if self._guide is not None:
+            a, guide = self.analysis, self._guide
+            a.guided_lines, a.guided_measured, a.guided_smooth = guide.lines, guide.measured, guide.smooth
+        self.strategy = self.analysis.strategy(self.settings.use_mis, self.settings.pixel_filter)
+
+    def restart(self, setup_seconds: float = 0.0) -> None:
+        """Start the image again: an empty film and no samples, a cancelled renderer rendering again.
+        Call it (as the ``set_*`` methods do) only while no pass runs."""
+        self.spectral_film = (SpectralFilm(self.width, self.height, self.settings.spectral_band_nm)
+                              if self.settings.spectral_band_nm else None)
         self._first_sample = 0
         self._passes = 0
+        self._glass_clamps[:] = 0
+        self._cancel.clear()
         self.cancelled = False
-        self.strategy = self.analysis.strategy(settings.use_mis, settings.pixel_filter)
-        warnings = []
-        if dropped:
-            warnings.append(f"{dropped} zero-area triangle(s) dropped")
+        self.set_region(self._frame_region(self.settings.border))
+        warnings = [f"{self._dropped} zero-area triangle(s) dropped"] if self._dropped else []
         self.stats = {
             "rays_cast": 0,
             "seconds": 0.0,
-            "setup_seconds": time.perf_counter() - started,
+            "setup_seconds": setup_seconds,
             "nan_samples": 0,
             "rejected_rays": 0,
-            "dropped_triangles": dropped,
+            "dropped_triangles": self._dropped,
             "paths": 0,
             "warnings": warnings,
             "strategy": self.strategy,
         }
+
+    # ---- changes between passes (the viewport): each rebuilds only the tables it touches ----------
+    def set_camera(self, camera, border=None) -> None:
+        """Render from ``camera`` (a ``scene.Camera``: placement, lens, resolution) with ``border``
+        (a pixel rectangle of its resolution, see ``RenderSettings``; None: the whole frame), keeping
+        the triangles, their Embree scene and the shading tables; the image restarts. The render's
+        origin stays put unless the camera went further than ``REBASE_DISTANCE_M`` from it, when the
+        geometry is rebuilt around the camera (float32 precision is kept near the viewer)."""
+        started = time.perf_counter()
+        scene = replace(self.scene, camera=camera)
+        scene._validate_camera()
+        self.scene = scene
+        self.settings = replace(self.settings, border=border)
+        position = np.asarray(camera.camera_to_world, dtype=np.float64)[:3, 3]
+        rebase = np.abs(position - self.origin).max() > REBASE_DISTANCE_M
+        self.camera = make_camera(camera, self.settings, position if rebase else self.origin)
+        self.origin = self.camera.origin
+        self.width, self.height = (int(r) for r in camera.resolution)
+        if rebase:
+            self._build_geometry()
+            self._build_shading()
+        else:
+            self._describe()
+        self.restart(time.perf_counter() - started)
+
+    def set_shading(self, scene) -> None:
+        """Materials, lights and world of ``scene``, whose triangles (and their material indices) are
+        the ones being rendered (its camera is ignored); the image restarts."""
+        started = time.perf_counter()
+        scene = replace(scene, camera=self.scene.camera)
+        scene.validate(triangles=False)
+        self.scene = scene
+        self._build_shading()
+        self.restart(time.perf_counter() - started)
+
+    def set_geometry(self, scene) -> None:
+        """Everything of ``scene`` but its camera: new triangles (and their Embree scene), materials,
+        lights and world; the image restarts."""
+        started = time.perf_counter()
+        scene = replace(scene, camera=self.scene.camera)
+        scene.validate()
+        self.scene = scene
+        self._build_geometry()
+        self._build_shading()
+        self.restart(time.perf_counter() - started)
+
+    def set_settings(self, settings) -> None:
+        """Render with ``settings`` (bounces, wavelengths, filter, seed, threads, border) from now on;
+        the image restarts."""
+        started = time.perf_counter()
+        _check_settings(settings)
+        self.settings = settings
+        self.camera = make_camera(self.scene.camera, settings, self.origin)
+        self._build_shading()
+        workers = worker_threads(settings.threads)
+        if workers != self._workers:
+            self._pool.shutdown(wait=True)
+            self._workers, self._pool = workers, ThreadPoolExecutor(workers)
+        self.restart(time.perf_counter() - started)
 
     def _analyse(self, used) -> SceneAnalysis:
         s = self.settings
@@ -153,33 +278,92 @@ class Renderer:
         a.world = self.light_table.world
         return a
 
-    def _pixel_list(self, border):
+    def _frame_region(self, border):
+        """The rendered rectangle (x0, y0, x1, y1), rows from the top: the border, else the frame."""
         if border is None:
-            return np.arange(self.width * self.height, dtype=np.int64)
+            return (0, 0, self.width, self.height)
         x0, y0, x1, y1 = (int(b) for b in border)
         x0, x1 = max(0, x0), min(self.width, x1)
         y0, y1 = max(0, y0), min(self.height, y1)
         if x1 <= x0 or y1 <= y0:
             raise PrismInputError("The render border is empty: enlarge it or turn it off.")
-        ys, xs = np.mgrid[y0:y1, x0:x1]
-        return (ys * self.width + xs).ravel().astype(np.int64)
+        return (x0, y0, x1, y1)
+
+    def set_region(self, region, time_limit_s: float | None = None) -> None:
+        """Render the rectangle ``region`` (x0, y0, x1, y1; rows from the top) from the first sample with
+        a film of its own (tiles of a large frame: one tile's film in memory at a time).
+        ``time_limit_s`` overrides the settings' time limit for it."""
+        self.region = tuple(int(v) for v in region)
+        self._film = None  # allocated when first used: a frame that is tiled never holds a whole-frame film
+        self._region_pixels = self._pixels = None
+        self.samples_done = self._first_sample
+        self._passes = self._first_sample // self.settings.samples_per_pass
+        limit = self.settings.time_limit_s if time_limit_s is None else time_limit_s
+        self._time_limit = float(limit) if limit and limit > 0 else None
+        self._sampling_started = None
+        self._sampling_seconds = 0.0
+        self._converged_checked_at = 0
+        self.converged = False
+        self.time_up = False
+
+    @property
+    def film(self) -> Film:
+        """The region's film."""
+        if self._film is None:
+            self._film = Film(self.width, self.height, self.pass_layout, self.region)
+        return self._film
+
+    def _region_pixel_list(self) -> np.ndarray:
+        if self._region_pixels is None:
+            x0, y0, x1, y1 = self.region
+            rows = np.arange(y0, y1, dtype=np.int64)[:, None] * self.width
+            self._region_pixels = (rows + np.arange(x0, x1, dtype=np.int64)[None, :]).ravel()
+            self._pixels = self._region_pixels
+        return self._pixels
+
+    @property
+    def finished(self) -> bool:
+        """True when the region has its samples, every pixel has converged, or the time limit is up."""
+        return (self.samples_done - self._first_sample >= self.settings.samples or self.converged
+                or self.time_up or self.cancelled)
+
+    @property
+    def active_pixels(self) -> int:
+        """Pixels the next pass samples (fewer than the region's once adaptive sampling stops some)."""
+        return len(self._region_pixel_list())
 
     def _buffers(self, paths: int) -> ChunkBuffers:
         buffers = getattr(self._local, "buffers", None)
-        if buffers is None or buffers.capacity < paths:
-            buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count)
+        layout = self.pass_layout.kernel
+        if (buffers is None or buffers.capacity < paths or buffers.k != self.wavelengths.count
+                or buffers.passes.values.shape[1] != layout.columns or buffers.passes.spectral.shape[1] != layout.slots):
+            passes = new_pass_data(paths, self.wavelengths.count, self.pass_layout)
+            buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count, passes)
         return buffers
 
+    def pass_data(self, buffers: ChunkBuffers):
+        """The per-path pass storage of ``buffers`` with this render's camera and AOV tables."""
+        axes = np.asarray(self.scene.camera.camera_to_world, np.float64)[:3, :3]
+        return buffers.passes._replace(camera_axes=np.ascontiguousarray(axes),
+                                       camera_at=np.asarray(self.camera.position - self.origin, np.float64),
+                                       render_origin=np.asarray(self.origin, np.float64), aov_table=self._aov_table)
+
     def _chunk(self, start, stop, spp):
-        """Trace paths ``start .. stop`` of the pass; returns (pixel [n], rgb [n, 3], rays, counters)."""
+        """Trace paths ``start .. stop`` of the pass; returns (pixel [n], rgb [n, 3], pass values [n, C],
+        rays, counters)."""
         from .stages.trace import trace_chunk
 
         count = stop - start
         buffers = self._buffers(count)
         clamps = np.zeros_like(self._glass_clamps)
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
+        values = buffers.passes.values[:count].copy()
+        spectral = None
+        if self.spectral_film is not None:
+            spectral = self.spectral_film.record(buffers.state, count)
         alpha = 1.0 - buffers.state.transparency[:count] if self._alpha else None
-        return buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), rays, rejected, clamps, alpha
+        return (buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), values, rays, rejected, clamps,
+                spectral, alpha)
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
@@ -193,7 +377,7 @@ class Renderer:
                 f"Chunk offset {first_sample} is not a multiple of Samples per Pass ({per_pass}): "
                 "use --samples that is a multiple of the scene's Samples per Pass."
             )
-        if self._passes != self._first_sample // per_pass:
+        if self._passes != self._first_sample // per_pass or self.samples_done != self._first_sample:
             raise RuntimeError("start_at_sample must be called before the first pass")
         self._first_sample = first_sample
         self.samples_done = first_sample
@@ -202,8 +386,8 @@ class Renderer:
     def cancel(self) -> None:
         """Stop the pass in progress (thread-safe, returns at once): queued chunks are
         dropped, running ones finish; ``render_pass`` then returns early without
-        counting the pass (and later passes do nothing). The film keeps the chunks
-        already added."""
+        counting the pass (and later passes do nothing until ``restart``). The film
+        keeps the chunks already added."""
         self._cancel.set()
         with self._jobs_lock:
             jobs = list(self._jobs.values())
@@ -216,8 +400,14 @@ class Renderer:
             self.cancelled = True
             return
         started = time.perf_counter()
+        if self._sampling_started is None:
+            self._sampling_started = started
         remaining = self.settings.samples - (self.samples_done - self._first_sample)
         spp = min(self.settings.samples_per_pass, remaining) if remaining > 0 else self.settings.samples_per_pass
+        self._region_pixel_list()
+        spp = self._fit_time_limit(spp, started)
+        if spp == 0 or len(self._pixels) == 0:
+            return
         total = len(self._pixels) * spp
         size = chunk_size(total, self._workers, spp)
         bounds = list(range(0, total, size)) + [total]
@@ -234,14 +424,16 @@ class Renderer:
                 if job is None:
                     break
                 try:
-                    pixel, rgb, rays, rejected, clamps, alpha = job.result()
+                    pixel, rgb, values, rays, rejected, clamps, spectral, alpha = job.result()
                 except CancelledError:
                     break
                 with self._jobs_lock:
                     del jobs[i]
-                self.film.add(pixel, rgb)
+                self.film.add(pixel, rgb, values)
                 if alpha is not None:
                     self.film.add_alpha(pixel, alpha)
+                if spectral is not None:
+                    self.spectral_film.add(pixel, *spectral)
                 self.stats["rays_cast"] += rays
                 self.stats["rejected_rays"] += rejected
                 self._glass_clamps += clamps
@@ -251,16 +443,51 @@ class Renderer:
                     break
         finally:
             self._drop_jobs()
-            self.stats["seconds"] += time.perf_counter() - started
+            elapsed = time.perf_counter() - started
+            self.stats["seconds"] += elapsed
+            self._sampling_seconds += elapsed
         if self._cancel.is_set():
             self.cancelled = True
             return
         self.samples_done += spp
         self._passes += 1
+        self._last_pass = (elapsed, spp * len(self._pixels))
         self._glass_warnings()
         self.stats["paths"] += total
         self.stats["nan_samples"] = self.film.nan_samples
         self.stats["samples"] = self.samples_done
+        self._adapt()
+
+    def _fit_time_limit(self, spp: int, now: float) -> int:
+        """Samples of the next pass that fit in the time left (0: the time is up)."""
+        if self._time_limit is None:
+            return spp
+        left = self._time_limit - (now - self._sampling_started)
+        if left <= 0.0:
+            self.time_up = True
+            return 0
+        last = getattr(self, "_last_pass", None)
+        if last is not None and last[1] > 0 and self._passes > 0:
+            per_sample = last[0] / last[1] * len(self._pixels)
+            spp = min(spp, max(1, int(left / per_sample))) if per_sample > 0 else spp
+        return spp
+
+    def _adapt(self) -> None:
+        """Adaptive sampling: after the minimum samples, sample only the pixels that are still noisy."""
+        threshold = self.settings.adaptive_threshold
+        if not threshold > 0.0:
+            return
+        done = self.samples_done - self._first_sample
+        minimum = self.settings.adaptive_min_samples or adaptive.automatic_min_samples(self.settings.samples, threshold)
+        if done < minimum or done - self._converged_checked_at < min(4, minimum):
+            return
+        self._converged_checked_at = done
+        film = self.film
+        active = adaptive.still_sampling(film.mean(), film.variance_of_mean(), threshold).ravel()
+        active &= film.counts.ravel() == done  # pixels stopped earlier stay stopped
+        self._pixels = self._region_pixels[active]
+        if not len(self._pixels):
+            self.converged = True
 
     def _drop_jobs(self):
         """Cancel queued chunks and wait for running ones (after a cancel or an error)."""
@@ -285,17 +512,46 @@ class Renderer:
                 messages = self.stats["warnings"]
                 messages[:] = [m for m in messages if not m.startswith(prefix)] + [text]
 
+    def _frame(self, region_image: np.ndarray) -> np.ndarray:
+        x0, y0, x1, y1 = self.region
+        if (x0, y0, x1, y1) == (0, 0, self.width, self.height):
+            return region_image
+        frame = np.zeros((self.height, self.width) + region_image.shape[2:], region_image.dtype)
+        frame[y0:y1, x0:x1] = region_image
+        return frame
+
+    def frame_mean(self) -> np.ndarray:
+        """The film's float64 mean as a whole frame [H, W, 3] (0 outside the region)."""
+        return self._frame(self.film.mean())
+
+    def sample_counts(self) -> np.ndarray:
+        """Samples per pixel as a whole frame, int64 [H, W] (0 outside the region)."""
+        return self._frame(self.film.counts)
+
     def image_rgb(self) -> np.ndarray:
-        """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top."""
-        return self.film.mean().astype(np.float32)
+        """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top (0 outside the region)."""
+        return self._frame(self.film.mean().astype(np.float32))
 
     def image_alpha(self) -> np.ndarray:
-        """Mean alpha, float32 [H, W], row 0 = top (premultiplied: ``image_rgb`` is already × alpha)."""
-        return self.film.alpha().astype(np.float32)
+        """Mean alpha, float32 [H, W], row 0 = top (``image_rgb`` is premultiplied by it; 1 outside the
+        region)."""
+        region = self.film.alpha().astype(np.float32)
+        x0, y0, x1, y1 = self.region
+        if (x0, y0, x1, y1) == (0, 0, self.width, self.height):
+            return region
+        frame = np.ones((self.height, self.width), np.float32)
+        frame[y0:y1, x0:x1] = region
+        return frame
 
     def variance_rgb(self) -> np.ndarray:
         """Per-pixel variance of the mean estimate, float32 [H, W, 3]."""
-        return self.film.variance_of_mean().astype(np.float32)
+        return self._frame(self.film.variance_of_mean().astype(np.float32))
+
+    def pass_images(self) -> dict[str, np.ndarray]:
+        """The requested passes of the region (``settings.passes``): Blender pass name → float32 [h, w, C]."""
+        if self.pass_layout.width == 0:
+            return {}
+        return self.pass_layout.images(self.film.aux_mean())
 
     def close(self) -> None:
         """Cancel outstanding work and free the thread pool (idempotent)."""

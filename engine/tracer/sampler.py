@@ -116,7 +116,13 @@ def pixel_seed(pixel, seed):
 
 @kernel
 def _slot_seed(pixel_seed_value, slot):
-    return hash32(pixel_seed_value ^ hash32((slot + 1) * 0x68E31DA4))
+    return hash32(pixel_seed_value + (slot + 1) * 0x9E3779B9)
+
+
+@kernel
+def _combine(seed, value):
+    """A second seed from ``seed`` for another coordinate (Boost's hash_combine, as Burley uses)."""
+    return (seed ^ (value + 0x9E3779B9 + ((seed << 6) & _MASK) + (seed >> 2))) & _MASK
 
 
 @kernel
@@ -129,8 +135,8 @@ def sample_2d(kind, pixel_seed_value, sample_index, slot):
         return a * _INV_2_32, b * _INV_2_32
     index = nested_uniform_scramble(sample_index & _MASK, seed)
     # Sobol dimension 0 is the bit reversal: its scramble reverse(LK(reverse(reverse(i)))) simplifies.
-    x = reverse_bits32(laine_karras_permutation(index, hash32(seed ^ 0xA511E9B3)))
-    y = nested_uniform_scramble(sobol_dimension_1(index), hash32(seed ^ 0x63D83595))
+    x = reverse_bits32(laine_karras_permutation(index, _combine(seed, 1)))
+    y = nested_uniform_scramble(sobol_dimension_1(index), _combine(seed, 2))
     return x * _INV_2_32, y * _INV_2_32
 
 
@@ -141,7 +147,7 @@ def sample_1d(kind, pixel_seed_value, sample_index, slot):
     if kind == INDEPENDENT:
         return hash32(seed ^ hash32(sample_index * 2 + 0x2545F491)) * _INV_2_32
     index = nested_uniform_scramble(sample_index & _MASK, seed)
-    return reverse_bits32(laine_karras_permutation(index, hash32(seed ^ 0xA511E9B3))) * _INV_2_32
+    return reverse_bits32(laine_karras_permutation(index, _combine(seed, 1))) * _INV_2_32
 
 
 @kernel

@@ -16,12 +16,25 @@ from .errors import PrismInputError
 
 
 @dataclass(frozen=True)
+class SampledSpectrum:
+    """Values measured or tabulated at increasing ``wavelength_nm`` (e.g. read from a spectrum file);
+    ``source`` says where they came from, for messages (not part of the physics)."""
+
+    wavelength_nm: tuple[float, ...]
+    values: tuple[float, ...]
+    source: str = ""
+
+
+@dataclass(frozen=True)
 class SpectrumSpec:
     """How an emitter's spectrum is defined.
 
     kind: ``"rgb"`` (linear Rec.709 triple, upsampled against D65),
-    ``"blackbody"`` (``temperature_k``, 1000-40000 K) or ``"monochromatic"``
-    (a narrow line at ``wavelength_nm`` with full width ``width_nm``).
+    ``"blackbody"`` (``temperature_k``, 1000-40000 K), ``"monochromatic"``
+    (a narrow line at ``wavelength_nm`` with full width ``width_nm``),
+    ``"illuminant"`` (``illuminant``: a key of colour-science's ``SDS_ILLUMINANTS``,
+    e.g. ``"FL2"``, ``"LED-B3"``, ``"HP1"``) or ``"tabulated"`` (``table``, a
+    ``SampledSpectrum``, e.g. from a spectrum file).
     The spectrum is normalised so its luminance is that of the RGB white of the
     same strength; strength/power lives on the light, not here.
     """
@@ -31,6 +44,22 @@ class SpectrumSpec:
     temperature_k: float = 6500.0
     wavelength_nm: float = 550.0
     width_nm: float = 10.0
+    illuminant: str = ""
+    table: SampledSpectrum | None = None
+
+
+@dataclass(frozen=True)
+class ReflectanceSpec:
+    """A measured reflectance used instead of an RGB base colour.
+
+    kind: ``"measured"`` (``name`` = ``"<colour checker>: <patch>"`` from colour-science's
+    ``SDS_COLOURCHECKERS``, e.g. ``"ColorChecker N Ohta: dark skin"``) or ``"tabulated"``
+    (``table``: values 0-1, e.g. from a spectrum file).
+    """
+
+    kind: str = "measured"
+    name: str = ""
+    table: SampledSpectrum | None = None
 
 
 @dataclass
@@ -47,9 +76,11 @@ class Material:
     A coating of ``coating_thickness_nm`` > 0 (index ``coating_ior``) puts
     thin-film interference over a dielectric or conductor.
     ``emission_strength`` > 0 makes the surface an emitter (radiance =
-    strength x spectrum, as Cycles' Emission strength). ``holdout`` (Blender's Holdout
-    shader): camera rays see a transparent black hole in the image; other rays a black
-    surface.
+    strength x spectrum, as Cycles' Emission strength).
+    ``reflectance``, when set, replaces ``base_color`` wherever a base colour is
+    used (diffuse albedo, a conductor's normal-incidence reflectance). ``holdout``
+    (Blender's Holdout shader): camera rays see a transparent black hole in the
+    image; other rays a black surface.
     """
 
     name: str
@@ -67,6 +98,8 @@ class Material:
     film_ior: float = 1.33
     emission: SpectrumSpec | None = None
     emission_strength: float = 0.0
+    aovs: dict = field(default_factory=dict)  # shader AOV name -> (r, g, b, value) on this material
+    reflectance: ReflectanceSpec | None = None
     holdout: bool = False
 
 
@@ -107,6 +140,7 @@ class Light:
     sun_angle_rad: float = 0.0
     spread_rad: float = np.pi
     visible_camera: bool = False
+    light_group: str = ""  # Blender's Object ▸ Shading ▸ Light Group ("" = none)
 
 
 @dataclass
@@ -190,6 +224,7 @@ class World:
 
     color: tuple[float, float, float] = (0.0, 0.0, 0.0)
     strength: float = 1.0
+    light_group: str = ""
     kind: str = "constant"
     image_rgb: np.ndarray | None = None
     interpolation: str = "linear"
@@ -219,8 +254,10 @@ class Scene:
     ``triangle_material`` int32 [T] indexes ``materials``, ``triangle_object``
     int32 [T] indexes ``object_names`` (for messages), ``corner_normals`` float32
     [T, 3, 3] (unit shading normals at each triangle corner) or None for flat
-    shading. ``object_flags`` uint8 [objects] (``visibility.RAY_*`` and ``HOLDOUT`` bits;
-    None: every object seen by every ray, no holdout).
+    shading. ``object_light_groups`` (parallel to ``object_names``, may be empty): each object's light
+    group, for the light its emissive triangles give. ``object_flags`` uint8 [objects] (parallel to
+    ``object_names``: ``visibility.RAY_*`` and ``HOLDOUT`` bits; None: every object seen by every ray,
+    no holdout).
     """
 
     vertices: np.ndarray
@@ -234,6 +271,7 @@ class Scene:
     object_names: list[str] = field(default_factory=list)
     corner_normals: np.ndarray | None = None
     object_flags: np.ndarray | None = None
+    object_light_groups: list[str] = field(default_factory=list)
 
     @property
     def triangle_count(self) -> int:
@@ -244,14 +282,15 @@ class Scene:
             return f"triangle {index}"
         return self.object_names[int(self.triangle_object[index])]
 
-    def validate(self) -> None:
+    def validate(self, triangles: bool = True) -> None:
         """Raise ``PrismInputError`` naming the object if the scene cannot render (or would
         render wrong without a word): malformed arrays, non-finite or absurdly distant
-        positions, indices that point nowhere."""
+        positions, indices that point nowhere. ``triangles=False`` skips the geometry (already
+        checked: the viewport changed only materials or lights)."""
         if self.vertices.ndim != 2 or self.vertices.shape[1:] != (3,):
             raise PrismInputError("Scene vertices must be an array of shape [V, 3].")
         self._validate_camera()
-        if len(self.triangles):
+        if triangles and len(self.triangles):
             self._validate_triangles()
         for light in self.lights:
             _check_position(f"Light '{light.name}'", light.position)

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from .errors import PrismInputError
+from .passes import PassRequest
 
 WAVELENGTH_MODES = ("cie", "gaussian_rgb")
 
@@ -42,6 +43,16 @@ class RenderSettings:
     # Where every path's uniform numbers come from: "sobol" (Owen-scrambled, the default) or
     # "independent" (hashed random numbers, the reference the benchmark measures Sobol against).
     sampler: str = "sobol"
+    # Passes besides Combined (``passes.PassRequest``).
+    passes: PassRequest = field(default_factory=PassRequest)
+    # Adaptive sampling (Cycles' Noise Threshold and Min Samples): a pixel stops once its relative
+    # error (``adaptive.pixel_error``) is below the threshold; 0 = off. Min samples 0 = automatic.
+    adaptive_threshold: float = 0.0
+    adaptive_min_samples: int = 0
+    # Stop sampling after this many seconds of rendering (scene preparation excluded); 0 = no limit.
+    time_limit_s: float = 0.0
+    # Multispectral output (``spectral_film``): band width in nm, 0 = off (no spectral buffer at all).
+    spectral_band_nm: float = 0.0
     # Film ▸ Transparent (Cycles' names): the background the camera sees becomes alpha 0; with
     # transparent_glass, so does what it sees through glass no rougher than transparent_roughness.
     film_transparent: bool = False
@@ -64,6 +75,25 @@ class RenderSettings:
             raise PrismInputError(
                 f"Wavelengths per path must be between 1 and 16 (got {self.wavelengths_per_path})."
             )
+        if self.spectral_band_nm:
+            from .spectral_film import band_edges_nm
+
+            band_edges_nm(self.spectral_band_nm)
+            if self.wavelength_mode != "cie":
+                raise PrismInputError(
+                    "Spectral output needs CIE hero wavelengths: Gaussian RGB mode samples only around its three "
+                    "channels, so most bands would stay empty. Set Render ▸ Prism ▸ Wavelengths to CIE, or turn "
+                    "Spectral Output off."
+                )
         for channel, sigma in zip("RGB", self.channel_sigmas_nm):
             if not sigma > 0:
                 raise PrismInputError(f"The {channel} channel's sigma must be positive (got {sigma} nm).")
+        if not 0.0 <= self.adaptive_threshold < 1.0:
+            raise PrismInputError(
+                f"The noise threshold must be between 0 (off) and 1 (got {self.adaptive_threshold}): 0.01 is typical."
+            )
+        if self.adaptive_min_samples < 0:
+            raise PrismInputError(f"Min samples cannot be negative (got {self.adaptive_min_samples}; 0 = automatic).")
+        if not self.time_limit_s >= 0.0:
+            raise PrismInputError(f"The time limit cannot be negative (got {self.time_limit_s} s; 0 = no limit).")
+        self.passes.validate()

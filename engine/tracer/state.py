@@ -53,8 +53,9 @@ PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
 RayQueue = namedtuple("RayQueue", "path origin direction tmax")
 
 #: Shadow rays and what each brings if it reaches its light: ``contribution`` float64 [n, K]; the
-#: float64 ``origin`` / ``direction`` / ``distance`` let rays continue through free-standing films.
-ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance")
+#: float64 ``origin`` / ``direction`` / ``distance`` let rays continue through free-standing films;
+#: ``group`` int32 [n] the light group of the light sampled (for its pass).
+ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance group")
 
 #: A list of paths (e.g. those that hit a surface this bounce).
 PathList = namedtuple("PathList", "path")
@@ -80,7 +81,8 @@ def new_ray_queue(n: int) -> RayQueue:
 
 
 def new_shadow_queue(n: int, k: int) -> ShadowQueue:
-    return ShadowQueue(new_ray_queue(n), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n))
+    return ShadowQueue(new_ray_queue(n), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n),
+                       np.empty(n, np.int32))
 
 
 def new_shading_scratch(k: int) -> ShadingScratch:
@@ -93,9 +95,10 @@ def new_shading_scratch(k: int) -> ShadingScratch:
 class ChunkBuffers:
     """Everything one worker thread needs to trace a chunk of up to ``n`` paths (reused chunk after chunk)."""
 
-    def __init__(self, n: int, k: int):
+    def __init__(self, n: int, k: int, passes=None):
         self.capacity = n
         self.k = k
+        self.passes = passes  # stages.passes.PassData
         self.state = new_path_state(n, k)
         self.rays = (new_ray_queue(n), new_ray_queue(n))  # this bounce's and the next
         self.surface = PathList(np.empty(n, np.int32))

@@ -76,7 +76,7 @@ def test_ctrl_c_keeps_finished_frames_and_never_replaces_an_output_with_a_partia
         (out / f"shot_{frame}.exr").write_bytes(b"finished frame %d from an earlier run" % frame)
     status, stderr = _signal_when(
         [blend, "--frames", "1..3", "--output", out / "shot_#.exr"],
-        ["wrote", "Prism: frame 2 (2/3)", "| Pass 2 |"],
+        ["Saved: ", "Prism: frame 2 (2/3)", "| Pass 2 |"],
         signal.SIGINT,
     )
     assert status == 130, stderr

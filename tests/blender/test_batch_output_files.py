@@ -7,7 +7,7 @@ import signal
 
 import pytest
 
-from engine.batch.output_files import atomic_output, frame_output, partial_output
+from engine.batch.output_files import atomic_output, frame_output, numbered_output, partial_output
 from engine.batch.stop_signals import StopSignals
 from engine.tracer.errors import PrismInputError
 
@@ -35,6 +35,10 @@ def test_frame_and_partial_names(tmp_path):
     assert frame_output(tmp_path / "shot_###.png", 7).name == "shot_007.png"
     assert frame_output(tmp_path / "shot.png", -3).name == "shot_-003.png"
     assert partial_output(tmp_path / "shot_007.exr").name == "shot_007.partial.exr"
+    # One frame (no --frames): '#' becomes its number, a name without '#' stays as given.
+    assert numbered_output(tmp_path / "v2_##_shot_###.png", 7).name == "v2_##_shot_007.png"
+    assert numbered_output(tmp_path / "shot_#.exr", -12).name == "shot_-12.exr"
+    assert numbered_output(tmp_path / "shot.exr", 7) == tmp_path / "shot.exr"
 
 
 def test_the_first_signal_asks_to_stop_and_handlers_are_restored():

@@ -37,10 +37,24 @@ def test_renders_png_with_light_and_shadow(lit_scene_file, tmp_path):
     assert completed.returncode == 0, completed.stderr
     # Prism is registered before the file opens: loading it reports no missing engine.
     assert "not available" not in completed.stdout + completed.stderr
-    assert completed.stderr.strip().splitlines()[-1] == f"Prism: wrote {output}"
+    assert completed.stderr.strip().splitlines()[-1] == f"Saved: '{output}'"
     image = bpy.data.images.load(str(output))
     pixels = np.array(image.pixels[:]).reshape(16, 24, 4)[..., :3]
     assert pixels.std() > 0.05, "the render is a flat colour"
+
+
+def test_numbered_output_takes_the_current_frame_and_only_the_final_file_is_announced(fresh_scene, tmp_path):
+    build_lit_card_scene(resolution=(8, 6))
+    bpy.context.scene.frame_current = 7
+    blend = tmp_path / "at_frame_7.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    completed = run_render_script(blend, "--samples", 1, "--output", tmp_path / "out_###.png")
+    assert completed.returncode == 0, completed.stderr
+    final = tmp_path / "out_007.png"  # as Blender numbers a still: '#' without --frames is the current frame
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["at_frame_7.blend", "out_007.png"]
+    printed = completed.stdout + completed.stderr
+    assert printed.count("Saved: ") == 1 and f"Saved: '{final}'" in completed.stderr
+    assert ".prism-" not in printed, "the temporary file's name reached the console"
 
 
 def test_missing_file_fails_clearly(tmp_path):

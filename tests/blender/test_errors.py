@@ -328,7 +328,7 @@ CASES = {
     ),
     "world strength NaN": (_world_strength_nan, "World 'Sky': background colour and strength must be finite"),
     "resolution larger than memory": (
-        _huge_resolution, "Scene 'Scene': rendering 65536 x 65536 pixels needs about 768 GB of memory"
+        _huge_resolution, "Scene 'Scene': a 65536 x 65536 frame needs about 81.4 GB (80.0 GB for the image Blender"
     ),
 }
 _NEEDS_TMP = {"no lens chosen", "missing lens file", "invalid lens file", "unknown glass in lens",

@@ -212,7 +212,7 @@ def test_real_lens_camera_exports_its_prescription_and_renders(prism_addon, basi
 def test_scene_settings_become_render_settings(prism_addon, fresh_scene):
     settings_module = importlib.import_module(f"{prism_addon.__name__}.engine.export.settings")
     prism = fresh_scene.prism
-    prism.samples, prism.preview_samples, prism.samples_per_pass = 32, 3, 2
+    prism.samples, prism.preview_max_bounces, prism.samples_per_pass = 32, 3, 2
     prism.max_bounces, prism.seed, prism.threads = 5, 9, 1
     prism.wavelength_mode, prism.wavelengths_per_path = "GAUSSIAN_RGB", 2
     prism.mean_r_nm, prism.sigma_b_nm = 610.0, 12.0
@@ -225,6 +225,7 @@ def test_scene_settings_become_render_settings(prism_addon, fresh_scene):
     assert exported.channel_sigmas_nm == pytest.approx((25.0, 25.0, 12.0))
     assert (exported.use_mis, exported.russian_roulette_depth, exported.border) == (False, 4, (1, 2, 3, 4))
     assert (exported.pixel_filter, exported.filter_width_px) == ("gaussian", pytest.approx(2.0))
-    assert settings_module.export_settings(fresh_scene, preview=True).samples == 3
+    preview = settings_module.export_settings(fresh_scene, preview=True)  # a material or light preview
+    assert (preview.samples, preview.max_bounces) == (settings_module.PREVIEW_SAMPLES, 3)
     overridden = settings_module.export_settings(fresh_scene, samples=7, seed=1, threads=2)
     assert (overridden.samples, overridden.seed, overridden.threads) == (7, 1, 2)

@@ -116,7 +116,7 @@ def test_hair_curves_render_as_camera_facing_ribbons(prism_addon, lit, capsys):
     towards_camera = camera - corners.mean(axis=1)
     assert (np.einsum("tj,tj->t", scene.corner_normals[rows][:, 0], towards_camera) > 0).all()
     status, line = run_batch(capsys, "--samples", 1, "--output", bpy.app.tempdir + "fur.png")
-    assert (status, line) == (0, f"Prism: wrote {bpy.app.tempdir}fur.png")
+    assert (status, line) == (0, f"Saved: '{bpy.app.tempdir}fur.png'")
 
     curves.attributes.remove(curves.attributes["radius"])  # no radius attribute: 5 mm, as Cycles
     scene = _export(prism_addon)

@@ -33,12 +33,12 @@ def test_names_threads_samples_and_seed_leave_it_unchanged():
     renamed = copy.deepcopy(scene)
     renamed.materials[0].name, renamed.lights[0].name, renamed.object_names = "Other", "Lamp", ["Renamed"]
     other_run = dataclasses.replace(settings, samples=64, seed=9, threads=8)
-    assert render_fingerprint(renamed, other_run) == render_fingerprint(scene, settings)
+    assert render_fingerprint(renamed, other_run, 1) == render_fingerprint(scene, settings, 1.0)
 
 
 def test_each_part_changes_with_what_it_holds():
     scene, settings = _scene(), RenderSettings()
-    base = render_fingerprint(scene, settings)
+    base = render_fingerprint(scene, settings, 3)
     changes = {
         "geometry": lambda s, r: s.vertices.__setitem__((1, 0), 1.0 + 1e-12),
         "materials": lambda s, r: setattr(s.materials[0], "roughness", 0.5),
@@ -50,7 +50,15 @@ def test_each_part_changes_with_what_it_holds():
     for part, change in changes.items():
         changed_scene, changed_settings = copy.deepcopy(scene), copy.deepcopy(settings)
         change(changed_scene, changed_settings)
-        assert differing_parts(base, render_fingerprint(changed_scene, changed_settings)) == [part]
+        assert differing_parts(base, render_fingerprint(changed_scene, changed_settings, 3)) == [part]
+
+
+def test_the_frame_is_a_part_of_its_own_written_as_its_number():
+    scene, settings = _scene(), RenderSettings()
+    frame_1, frame_2 = render_fingerprint(scene, settings, 1), render_fingerprint(scene, settings, 2)
+    assert differing_parts(frame_1, frame_2) == ["frame"]  # the same scene state, another frame
+    assert (frame_1["frame"], frame_2["frame"]) == ("1", "2")
+    assert render_fingerprint(scene, settings, -7.5)["frame"] == "-7.5"  # with a subframe
 
 
 def test_a_lens_file_counts_by_its_content_not_its_path(tmp_path):
@@ -58,7 +66,7 @@ def test_a_lens_file_counts_by_its_content_not_its_path(tmp_path):
     mounted = tmp_path / "elsewhere.lens"
     mounted.write_bytes(original.read_bytes())
     settings = RenderSettings()
-    assert render_fingerprint(_scene(str(original)), settings) == render_fingerprint(_scene(str(mounted)), settings)
+    assert render_fingerprint(_scene(str(original)), settings, 1) == render_fingerprint(_scene(str(mounted)), settings, 1)
     mounted.write_bytes(original.read_bytes().replace(b"thickness_mm = 3.76", b"thickness_mm = 3.80"))
-    assert differing_parts(render_fingerprint(_scene(str(original)), settings),
-                           render_fingerprint(_scene(str(mounted)), settings)) == ["camera"]
+    assert differing_parts(render_fingerprint(_scene(str(original)), settings, 1),
+                           render_fingerprint(_scene(str(mounted)), settings, 1)) == ["camera"]

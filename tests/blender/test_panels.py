@@ -9,6 +9,7 @@ fails the test just as it would print an error in Blender.
 
 from __future__ import annotations
 
+import importlib
 from types import SimpleNamespace
 
 import pytest
@@ -74,8 +75,9 @@ def _draw(panel_class, context):
     return log
 
 
-def _context(scene, engine="PRISM", camera=None, light=None, material=None):
-    return SimpleNamespace(engine=engine, scene=scene, camera=camera, light=light, material=material, object=None)
+def _context(scene, engine="PRISM", camera=None, light=None, material=None, obj=None, world=None):
+    return SimpleNamespace(engine=engine, scene=scene, camera=camera, light=light, material=material, object=obj,
+                           world=world, view_layer=scene.view_layers[0])
 
 
 def _labels(log):
@@ -123,7 +125,7 @@ def test_render_panels_draw_in_both_wavelength_modes(prism_addon, fresh_scene):
             drawn += _props(_draw(panel, _context(fresh_scene)))
         for name in ("samples", "max_bounces", "seed", "wavelength_mode", "wavelengths_per_path", "threads",
                      "mean_r_nm", "sigma_r_nm", "mean_g_nm", "sigma_g_nm", "mean_b_nm", "sigma_b_nm",
-                     "use_pass_variance", "use_pass_sample_count", "preview_samples", "use_mis",
+                     "use_pass_variance", "use_pass_sample_count", "preview_samples", "preview_max_bounces", "use_mis",
                      "pixel_filter", "filter_width_px"):
             assert name in drawn
     log = _draw(prism_addon.ui.panels_render.PRISM_PT_wavelengths, _context(fresh_scene))
@@ -199,7 +201,7 @@ def test_light_panels_draw_for_every_type_and_colour_source(prism_addon, fresh_s
     import bpy
 
     light = bpy.data.lights.new("Lamp", light_type)
-    for source in ("RGB", "BLACKBODY", "MONOCHROMATIC"):
+    for source in ("RGB", "BLACKBODY", "MONOCHROMATIC", "ILLUMINANT", "FILE"):
         light.prism.color_source = source
         shapes = ("SQUARE", "RECTANGLE", "DISK", "ELLIPSE") if light_type == "AREA" else (None,)
         for shape in shapes:
@@ -313,3 +315,86 @@ def test_wavelength_plot_follows_the_gaussians(prism_addon, fresh_scene):
     fresh_scene.prism.mean_r_nm = 610.0
     plot.plot_icon_id(fresh_scene.prism)
     assert plot._plot_key != key
+
+
+def test_spectrum_panels_plot_the_spectrum_and_the_lights_colour_rendering(prism_addon, fresh_scene, tmp_path):
+    import bpy
+
+    preview = importlib.import_module(f"{prism_addon.__name__}.engine.spectrum_preview")
+    sources = importlib.import_module(f"{prism_addon.__name__}.engine.export.spectra")
+    light = bpy.data.lights.new("Lamp", "AREA")
+    light.prism.color_source, light.prism.illuminant = "ILLUMINANT", "FL2"
+    preview.emission_preview(sources.light_emission_source("Lamp", light), wait=True)
+    log = _draw(prism_addon.ui.panels_light.PRISM_PT_light_spectrum, _context(fresh_scene, light=light))
+    labels = _labels(log)
+    assert any(name == "template_icon" for name, _, _ in log)
+    assert "CCT 4225 K, Duv +0.0019" in labels and "CRI Ra 64" in labels and "TM-30 Rf 70, Rg 86" in labels
+    assert light.prism.preview_color[0] == 1.0 and 0.6 < light.prism.preview_color[1] < 0.8  # warm white
+
+    light.prism.color_source, light.prism.spectrum_file = "FILE", str(tmp_path / "nowhere.csv")
+    preview.emission_preview(sources.light_emission_source("Lamp", light), wait=True)
+    labels = _labels(_draw(prism_addon.ui.panels_light.PRISM_PT_light_spectrum, _context(fresh_scene, light=light)))
+    assert any("nowhere.csv' does not exist" in text for text in labels)
+
+    material = bpy.data.materials.new("Patch")
+    material.use_nodes = True
+    material.prism.reflectance_source = "MEASURED"
+    material.prism.measured_reflectance = "ColorChecker N Ohta: blue"
+    node = material.node_tree.nodes["Principled BSDF"]
+    preview.reflectance_preview(sources.material_reflectance_source(material, (0.8, 0.8, 0.8)), wait=True)
+    log = _draw(prism_addon.ui.panels_material.PRISM_PT_material_base_spectrum, _context(fresh_scene, material=material))
+    assert "measured_reflectance" in _props(log) and any(name == "template_icon" for name, _, _ in log)
+    node.inputs["Emission Strength"].default_value = 3.0
+    material.prism.emission_source, material.prism.emission_wavelength_nm = "MONOCHROMATIC", 589.0
+    emission = sources.material_emission_source(material, (1.0, 1.0, 1.0))
+    preview.emission_preview(emission, wait=True)
+    log = _draw(prism_addon.ui.panels_material.PRISM_PT_material_emission_spectrum,
+                _context(fresh_scene, material=material))
+    assert {"emission_source", "emission_wavelength_nm", "emission_line_width_nm"} <= set(_props(log))
+    assert any(text.startswith("CCT") or text.startswith("CCT, CRI: not defined") for text in _labels(log))
+
+
+def test_spectrum_plot_fills_each_wavelength_in_its_colour(prism_addon):
+    import numpy as np
+
+    plot = prism_addon.ui.spectral_plot
+    wavelengths = np.arange(360.0, 831.0)
+    line = np.exp(-0.5 * ((wavelengths - 610.0) / 2.0) ** 2)
+    image = plot.render_spectrum_plot(line)
+    assert image.shape == (plot.PLOT_HEIGHT_PX, plot.PLOT_WIDTH_PX, 4)
+    filled = image[plot.PLOT_HEIGHT_PX // 2, :, :3]  # halfway up: only the line's columns reach it
+    columns = np.flatnonzero(filled.max(axis=1) > 0.5)
+    centres = np.linspace(360.0, 830.0, plot.PLOT_WIDTH_PX + 1)
+    assert abs(0.5 * (centres[columns[0]] + centres[columns[-1] + 1]) - 610.0) < 4.0
+    column = image[2 * plot.PLOT_HEIGHT_PX // 5, columns[len(columns) // 2], :3]
+    assert column[0] > 3 * max(column[1], column[2])  # red under the curve
+
+
+@pytest.mark.parametrize("shading, engine, shown", [("RENDERED", "PRISM", True), ("SOLID", "PRISM", False),
+                                                     ("RENDERED", "CYCLES", False)])
+def test_viewport_header_pause_button_in_prisms_rendered_shading(prism_addon, fresh_scene, shading, engine, shown):
+    log = []
+    header = SimpleNamespace(layout=RecordingLayout(log))
+    space = SimpleNamespace(shading=SimpleNamespace(type=shading))
+    context = SimpleNamespace(engine=engine, scene=fresh_scene, space_data=space)
+    for paused, icon in ((False, "PAUSE"), (True, "PLAY")):
+        log.clear()
+        fresh_scene.prism.preview_pause = paused
+        prism_addon.ui.viewport_header.draw_pause(header, context)
+        assert log == ([("prop", (fresh_scene.prism, "preview_pause"), {"text": "", "icon": icon})] if shown else [])
+
+
+def test_light_group_panels_poll_and_draw(prism_addon, fresh_scene):
+    import bpy
+
+    obj = bpy.data.objects.new("Lamp", bpy.data.lights.new("Lamp", "POINT"))
+    world = bpy.data.worlds.new("Sky")
+    fresh_scene.view_layers[0].lightgroups.add(name="key")
+    obj.lightgroup = "key"
+    world.lightgroup = "fill"  # not a group of the view layer yet: the + button adds it
+    for panel in prism_addon.ui.panels_lightgroup.CLASSES:
+        assert panel.poll(_context(fresh_scene, obj=obj, world=world))
+        assert not panel.poll(_context(fresh_scene))
+        assert not panel.poll(_context(fresh_scene, engine="CYCLES", obj=obj, world=world))
+        log = _draw(panel, _context(fresh_scene, obj=obj, world=world))
+        assert [name for name, *_ in log].count("prop_search") == 1

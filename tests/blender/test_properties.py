@@ -25,7 +25,9 @@ EXPECTED_DEFAULTS = {
         "threads": 0,
         "use_pass_variance": False,
         "use_pass_sample_count": False,
-        "preview_samples": 4,
+        "preview_samples": 1024,
+        "preview_max_bounces": 4,
+        "preview_pause": False,
         "pixel_filter": "BOX",
         "filter_width_px": 1.5,
     },
@@ -61,8 +63,10 @@ ENUM_NUMBERS = {
     ("overlay", "wavelength_source"): {"CHANNELS": 0, "CUSTOM": 1},
     ("camera", "lens_model"): {"PINHOLE": 0, "THIN_LENS": 1, "REAL_LENS": 2},
     ("camera", "lens_source"): {"BUNDLED": 0, "FILE": 1},
-    ("light", "color_source"): {"RGB": 0, "BLACKBODY": 1, "MONOCHROMATIC": 2},
+    ("light", "color_source"): {"RGB": 0, "BLACKBODY": 1, "MONOCHROMATIC": 2, "ILLUMINANT": 3, "FILE": 4},
     ("material", "glass_source"): {"PRINCIPLED_IOR": 0, "CATALOGUE": 1, "ABBE": 2},
+    ("material", "emission_source"): {"COLOR": 0, "BLACKBODY": 1, "MONOCHROMATIC": 2, "ILLUMINANT": 3, "FILE": 4},
+    ("material", "reflectance_source"): {"COLOR": 0, "MEASURED": 1, "FILE": 2},
     ("material", "conductor"): {"FROM_COLOR": 0, "AU": 1, "AG": 2, "CU": 3, "AL": 4},
 }
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shlex
 import shutil
 import signal
@@ -38,6 +39,9 @@ FARM_ENV = "PRISM_FLAMENCO_FARM"
 BINARIES = ("flamenco-manager", "flamenco-worker")
 WORKER_COUNT = 3
 START_TIMEOUT_S = 60.0
+#: What a worker logs when a command's output has a line it counts as a step ("Time: …").
+STEP_LOG_LINE = "blender-render: frame rendered"
+_COLOURS = re.compile(r"\x1b\[[0-9;]*m")
 
 
 def find_farm_folder() -> Path | None:
@@ -161,6 +165,21 @@ class LocalFarm:
             lines.append(f"--- {summary['name']}: {summary['status']}")
             lines.append(self._get(f"/tasks/{summary['id']}/logtail").decode("utf-8", "replace"))
         return "\n".join(lines)
+
+    def steps_logged(self, task_id: str) -> int:
+        """How many progress steps the workers counted for a task (from their logs): one per "Time: …"
+        line the task's command printed, each sent to the Manager as it came."""
+        count = 0
+        for log in (self.root / "logs").glob("worker-*.log"):
+            for line in _COLOURS.sub("", log.read_text(errors="replace")).splitlines():
+                count += STEP_LOG_LINE in line and f"task={task_id}" in line
+        return count
+
+    def last_rendered(self, job_id: str) -> dict | None:
+        """The job's last-rendered image as the Manager has it (a worker uploads the PNG of a
+        "Saved: '…'" line), or None."""
+        payload = self._get(f"/jobs/{job_id}/last-rendered")
+        return json.loads(payload) if payload else None
 
     def stop(self) -> None:
         """Interrupt every process started here (workers first, with the renders they run), wait,

@@ -23,11 +23,11 @@ def _submit():
 def test_job_follows_the_scene(submit_module, fresh_scene, tmp_path):
     scene = fresh_scene
     scene.frame_start, scene.frame_end, scene.frame_step = 3, 9, 2
-    scene.prism.samples, scene.prism.seed = 48, 5
+    scene.prism.samples, scene.prism.seed, scene.prism.samples_per_pass = 48, 5, 4
     scene.prism.farm.chunks = 4
     scene.prism.farm.output_path = str(tmp_path / "out" / "f_###.exr")
     job = submit_module.farm_job(scene, blendfile="/render/x.blend")
-    assert (job.frames, job.samples, job.chunks, job.seed) == ("3,5,7,9", 48, 4, 5)
+    assert (job.frames, job.samples, job.chunks, job.seed, job.samples_per_pass) == ("3,5,7,9", 48, 4, 5, 4)
     assert job.render_output_path == str(tmp_path / "out" / "f_###.exr")
     assert job.name == scene.name  # untitled file, no job name
     assert submit_module.job_summary(scene) == "4 frames × 4 chunks of 12 samples: 16 render tasks + 4 merges"

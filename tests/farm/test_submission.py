@@ -30,6 +30,7 @@ def test_submitted_job_is_flamencos_document():
             "frames": "1..24",
             "samples": 64,
             "chunks": 4,
+            "samples_per_pass": 1,
             "seed": 3,
             "render_output_path": "/render/shot/prism_####.exr",
             "render_script": "{prism}/render.py",
@@ -89,8 +90,9 @@ def test_submit_sends_the_job_type_etag():
 
 
 def test_submit_names_an_outdated_job_type_on_the_manager():
-    manager = _ManagerWithJobType(["blendfile", "frames", "samples", "seed", "render_output_path"])
-    with pytest.raises(FlamencoError, match="older than this Prism \\(no chunks, render_script setting\\): copy"):
+    manager = _ManagerWithJobType(["blendfile", "frames", "samples", "chunks", "seed", "render_output_path",
+                                   "render_script"])  # the job type of Prism before samples_per_pass
+    with pytest.raises(FlamencoError, match="older than this Prism \\(no samples_per_pass setting\\): copy"):
         submit(manager, _job())
     assert manager.submitted == []
 

@@ -45,6 +45,16 @@ def add_camera(location, rotation_euler, lens_mm: float = 50.0, resolution=(32, 
     return camera
 
 
+def image_pixels(path) -> np.ndarray:
+    """The pixels of the image file at ``path`` as Blender loads them: float32 [H, W, 4], bottom row first."""
+    image = bpy.data.images.load(str(path))
+    width, height = image.size
+    pixels = np.empty(width * height * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    return pixels.reshape(height, width, 4)
+
+
 def render_linear_rgb(scene, samples: int, seed: int = 0) -> np.ndarray:
     """Render ``scene`` with Prism through ``bpy.ops.render.render``; scene-linear [H, W, 3], row 0 on top."""
     scene.render.engine = "PRISM"

@@ -47,3 +47,12 @@ def test_frames_and_mis():
         assert np.allclose(vec3.to_world(vec3.to_local(v, s, t, tuple(normal)), s, t, tuple(normal)), v)
     got = [warps.power_heuristic(a, b) for a, b in ((1.0, 1.0), (2.0, 1.0), (np.inf, 3.0), (0.0, 0.0), (1.0, np.inf))]
     assert np.allclose(got, [0.5, 0.8, 1.0, 0.0, 0.0])
+
+
+def test_polynomial_sin_cos_match_libm():
+    for x in np.linspace(-np.pi / 4, np.pi / 4, 2001):
+        s, c = warps.sincos_quarter(x)
+        assert abs(s - np.sin(x)) < 1e-11 and abs(c - np.cos(x)) < 1e-11
+    for u in np.linspace(0.0, 1.0, 4001, endpoint=False):
+        s, c = warps.sincos_turn(u)
+        assert abs(s - np.sin(2 * np.pi * u)) < 1e-11 and abs(c - np.cos(2 * np.pi * u)) < 1e-11

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from ..jit import kernel
+from ..warps import sincos_turn
 
 
 @kernel
@@ -72,9 +73,9 @@ def sample_visible_normal(w, alpha, u1, u2):
         t1 = (1.0, 0.0, 0.0)
     t2 = (vy * t1[2] - vz * t1[1], vz * t1[0] - vx * t1[2], vx * t1[1] - vy * t1[0])
     r = math.sqrt(u1)
-    phi = 2.0 * math.pi * u2
-    p1 = r * math.cos(phi)
-    p2 = r * math.sin(phi)
+    sin_phi, cos_phi = sincos_turn(u2)
+    p1 = r * cos_phi
+    p2 = r * sin_phi
     s = 0.5 * (1.0 + vz)
     p2 = (1.0 - s) * math.sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2
     p3 = math.sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2))

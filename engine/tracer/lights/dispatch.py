@@ -29,21 +29,23 @@ def pick_light(lights, u):
 @inlined
 def sample_light(lights, materials, spectra, p, u_select, u1, u2, wavelength_nm, li):
     """Sample one light for the point ``p``: (wi, distance (inf: distant), pdf including the light's
-    selection probability, delta); ``li[k]`` = incident radiance (irradiance for delta lights)."""
+    selection probability, delta, light group or -1); ``li[k]`` = incident radiance (irradiance for
+    delta lights)."""
     index, u_rest = pick_light(lights, u_select)
     row = lights.rows[index]
     kind = int(row[L_KIND])
     if kind == MESH:
-        wi, dist, pdf, material = mesh.sample_li(lights.mesh, p, u_rest, u1, u2)
+        wi, dist, pdf, e = mesh.sample_li(lights.mesh, p, u_rest, u1, u2)
+        material = lights.mesh.material[e]
         strength = materials.emission_strength[material]
         sid = materials.emission_spectrum[material]
         for k in range(li.shape[0]):
             li[k] = strength * spectrum_value(spectra, sid, wavelength_nm[k])
-        return wi, dist, pdf * lights.select_prob[index], False
+        return wi, dist, pdf * lights.select_prob[index], False, lights.mesh.group[e]
     if kind == ENVIRONMENT:
         wi, pdf = environment.sample_li(lights.environment, u1, u2)
         environment.radiance(lights.environment, spectra, wi, wavelength_nm, li)
-        return wi, math.inf, pdf * lights.select_prob[index], False
+        return wi, math.inf, pdf * lights.select_prob[index], False, lights.group[index]
     if kind == POINT or kind == SPHERE:
         wi, dist, pdf, factor = point.sample_li(row, p, u1, u2)
     elif kind == RECTANGLE or kind == DISK:
@@ -53,7 +55,7 @@ def sample_light(lights, materials, spectra, p, u_select, u1, u2, wavelength_nm,
     sid = int(row[L_SPECTRUM])
     for k in range(li.shape[0]):
         li[k] = factor * spectrum_value(spectra, sid, wavelength_nm[k])
-    return wi, dist, pdf * lights.select_prob[index], kind == POINT or kind == SUN
+    return wi, dist, pdf * lights.select_prob[index], kind == POINT or kind == SUN, lights.group[index]
 
 
 @inlined
@@ -127,6 +129,13 @@ def distant_hit(lights, index, d):
     """(radiance factor, pdf incl. selection) of sun disc ``index`` along an escaping ray ``d``."""
     row = lights.rows[index]
     return sun.le_escaped(row, d), sun.pdf_escaped(row, d) * lights.select_prob[index]
+
+
+@inlined
+def emitter_group(lights, triangle):
+    """Light group of an emissive triangle (-1: none)."""
+    e = lights.mesh.of_triangle[triangle]
+    return lights.mesh.group[e] if e >= 0 else -1
 
 
 @inlined

@@ -1,6 +1,7 @@
 """The world's background as a light: a constant colour, an equirectangular image or a Nishita sky.
 
-Escaping rays see it (``add_escaped``) and light sampling draws directions from it (``sample_li``,
+Escaping rays see it (``footprint`` once per ray, then ``value`` per wavelength) and light sampling
+draws directions from it (``sample_li``,
 density ``pdf_li``; MIS against BSDF sampling on escapes). Radiance is spectral:
 
 - constant: the RGB emitter spectrum of the colour (``spectra.table``); not light-sampled: for a
@@ -45,6 +46,11 @@ ENV_SKY = 3
 
 SKY_GRID = (128, 256)  # rows x columns of the sky's sampling grid
 SKY_SUN_LIMB_DARKENING = 0.6  # Blender's: radiance × (1 - 0.6 (1 - μ))
+
+#: What ``build_environment`` makes: ``arrays`` (``EnvironmentArrays``), ``integral`` (∫ luminance dω for
+#: light selection; 0 when not light-sampled), ``sun_rows`` (the sky's Sun disc as light rows) and
+#: ``guide_spectrum`` (a spectrum id of the background's mean spectrum for the wavelength guide; -1: none).
+EnvironmentBuild = namedtuple("EnvironmentBuild", "arrays integral sun_rows guide_spectrum")
 
 EnvironmentArrays = namedtuple(
     "EnvironmentArrays",
@@ -113,74 +119,52 @@ def _texel_value(env, r, c, wavelength_nm):
     return texel[3] * texel_reflectance(texel[0], texel[1], texel[2], wavelength_nm)
 
 
-@inlined
-def _image_value(env, spectra, fp, wavelength_nm):
-    r0, r1, c0, c1, fr, fc = fp
-    s = ((1.0 - fr) * ((1.0 - fc) * _texel_value(env, r0, c0, wavelength_nm) + fc * _texel_value(env, r0, c1, wavelength_nm))
-         + fr * ((1.0 - fc) * _texel_value(env, r1, c0, wavelength_nm) + fc * _texel_value(env, r1, c1, wavelength_nm)))
-    return env.strength * s * spectrum_value(spectra, env.d65, wavelength_nm)
-
-
 @kernel
-def _sky_value(env, fp, wavelength_nm):
+def footprint(env, d):
+    """Where world direction ``d`` looks up the background, computed once for all wavelengths:
+    (r0, r1, c0, c1, fr, fc, fade) — rows, columns and weights in the image or the sky table."""
+    t, _ = texture_direction(env, d)
+    if env.kind == ENV_IMAGE:
+        r0, r1, c0, c1, fr, fc = _image_footprint(env, t)
+        return r0, r1, c0, c1, fr, fc, 1.0
+    if env.kind == ENV_SKY:
+        return _sky_footprint(env, t)
+    return 0, 0, 0, 0, 0.0, 0.0, 1.0
+
+
+@inlined
+def value(env, spectra, fp, wavelength_nm):
+    """The background's spectral radiance at ``wavelength_nm`` along the direction of footprint ``fp``."""
+    if env.kind == ENV_CONSTANT:
+        return env.strength * spectrum_value(spectra, env.spectrum, wavelength_nm)
     r0, r1, c0, c1, fr, fc, fade = fp
-    count = env.sky.shape[2]
-    x = min(max((wavelength_nm - 360.0) / 10.0, 0.0), count - 1.0)
-    l0 = min(int(x), count - 2)
-    fl = x - l0
-    sky = env.sky
-    total = 0.0
-    for l, wl in ((l0, 1.0 - fl), (l0 + 1, fl)):
-        total += wl * ((1.0 - fr) * ((1.0 - fc) * sky[r0, c0, l] + fc * sky[r0, c1, l])
-                       + fr * ((1.0 - fc) * sky[r1, c0, l] + fc * sky[r1, c1, l]))
-    return env.strength * fade * total
+    if env.kind == ENV_IMAGE:
+        s = ((1.0 - fr) * ((1.0 - fc) * _texel_value(env, r0, c0, wavelength_nm)
+                           + fc * _texel_value(env, r0, c1, wavelength_nm))
+             + fr * ((1.0 - fc) * _texel_value(env, r1, c0, wavelength_nm)
+                     + fc * _texel_value(env, r1, c1, wavelength_nm)))
+        return env.strength * s * spectrum_value(spectra, env.d65, wavelength_nm)
+    if env.kind == ENV_SKY:
+        count = env.sky.shape[2]
+        x = min(max((wavelength_nm - 360.0) / 10.0, 0.0), count - 1.0)
+        l0 = min(int(x), count - 2)
+        fl = x - l0
+        sky = env.sky
+        total = 0.0
+        for ll, wl in ((l0, 1.0 - fl), (l0 + 1, fl)):
+            total += wl * ((1.0 - fr) * ((1.0 - fc) * sky[r0, c0, ll] + fc * sky[r0, c1, ll])
+                           + fr * ((1.0 - fc) * sky[r1, c0, ll] + fc * sky[r1, c1, ll]))
+        return env.strength * fade * total
+    return 0.0
 
 
 @inlined
 def radiance(env, spectra, d, wavelength_nm, out):
     """``out[k]`` = the background's spectral radiance along world direction ``d`` at
     ``wavelength_nm[k]``."""
-    count = wavelength_nm.shape[0]
-    if env.kind == ENV_CONSTANT:
-        for k in range(count):
-            out[k] = env.strength * spectrum_value(spectra, env.spectrum, wavelength_nm[k])
-        return
-    t, _ = texture_direction(env, d)
-    if env.kind == ENV_IMAGE:
-        fp = _image_footprint(env, t)
-        for k in range(count):
-            out[k] = _image_value(env, spectra, fp, wavelength_nm[k])
-        return
-    if env.kind == ENV_SKY:
-        fs = _sky_footprint(env, t)
-        for k in range(count):
-            out[k] = _sky_value(env, fs, wavelength_nm[k])
-        return
-    for k in range(count):
-        out[k] = 0.0
-
-
-@inlined
-def add_escaped(state, i, env, spectra, d, weight):
-    """Add the background seen along ``d`` × throughput × ``weight`` to path ``i``'s radiance."""
-    if weight == 0.0:
-        return
-    k_count = state.radiance.shape[1]
-    if env.kind == ENV_CONSTANT:
-        for k in range(k_count):
-            state.radiance[i, k] += state.throughput[i, k] * weight * env.strength * spectrum_value(
-                spectra, env.spectrum, state.wavelength[i, k])
-        return
-    t, _ = texture_direction(env, d)
-    if env.kind == ENV_IMAGE:
-        fp = _image_footprint(env, t)
-        for k in range(k_count):
-            state.radiance[i, k] += state.throughput[i, k] * weight * _image_value(env, spectra, fp,
-                                                                                   state.wavelength[i, k])
-    elif env.kind == ENV_SKY:
-        fs = _sky_footprint(env, t)
-        for k in range(k_count):
-            state.radiance[i, k] += state.throughput[i, k] * weight * _sky_value(env, fs, state.wavelength[i, k])
+    fp = footprint(env, d)
+    for k in range(wavelength_nm.shape[0]):
+        out[k] = value(env, spectra, fp, wavelength_nm[k])
 
 
 @kernel
@@ -245,21 +229,19 @@ def no_environment() -> EnvironmentArrays:
                    np.zeros((1, 1, 2), np.float32), 0.0, _empty_distribution())
 
 
-def build_environment(world, spectra):
-    """(``EnvironmentArrays``, ∫ luminance dω over the sphere (for light selection; 0 for a background
-    that is not light-sampled), extra light rows (the sky's Sun disc)) of a ``scene.World``; ``spectra``
-    is the render's ``SpectrumTable``."""
+def build_environment(world, spectra) -> EnvironmentBuild:
+    """The background of a ``scene.World``; ``spectra`` is the render's ``SpectrumTable``."""
     from ..scene import SpectrumSpec
 
     if world is None or world.is_black():
-        return no_environment(), 0.0, []
+        return EnvironmentBuild(no_environment(), 0.0, [], -1)
     strength = float(world.strength)
     if world.kind == "constant":
         color = tuple(float(c) for c in world.color)
         spectrum = spectra.emission(SpectrumSpec(kind="rgb", rgb=color))
         env = _arrays(ENV_CONSTANT, strength, spectrum, 0, 0, (np.eye(3), np.eye(3), 1.0),
                       np.zeros((1, 1, 4), np.float32), np.zeros((1, 1, 2), np.float32), 0.0, _empty_distribution())
-        return env, 0.0, []
+        return EnvironmentBuild(env, 0.0, [], spectrum)
     mapping = _mapping(world)
     if world.kind == "image":
         return _image_environment(world, spectra, strength, mapping)
@@ -269,6 +251,7 @@ def build_environment(world, spectra):
 
 
 def _image_environment(world, spectra, strength, mapping):
+    from ..scene import SpectrumSpec
     from ..spectra.illuminant_texels import illuminant_texels
     from .sphere_distribution import cell_solid_angles
 
@@ -283,7 +266,11 @@ def _image_environment(world, spectra, strength, mapping):
     integral = float((mean * cell_solid_angles(*mean.shape)[:, None]).sum())
     env = _arrays(ENV_IMAGE, strength, 0, spectra.d65(), closest, mapping, texels, np.zeros((1, 1, 2), np.float32),
                   0.0, distribution)
-    return env, integral, []
+    # The wavelength guide follows the image's mean colour (weighted by solid angle), as an RGB emitter.
+    weights = cell_solid_angles(*rgb.shape[:2])[:, None, None]
+    mean_rgb = tuple(float(c) for c in (rgb * weights).sum(axis=(0, 1)) / weights.sum() / rgb.shape[1])
+    guide = spectra.emission(SpectrumSpec(kind="rgb", rgb=mean_rgb)) if max(mean_rgb) > 0 else -1
+    return EnvironmentBuild(env, integral, [], guide)
 
 
 def _sky_environment(world, spectra, strength, mapping):
@@ -306,7 +293,12 @@ def _sky_environment(world, spectra, strength, mapping):
     grid *= strength
     env = env._replace(distribution=build_sphere_distribution(grid))
     integral = float((grid * cell_solid_angles(rows, columns)[:, None]).sum())
-    return env, integral, _sky_sun_rows(world, spectra, strength, tables, mapping)
+    # The wavelength guide follows the sky's spectrum averaged over the upper hemisphere (luminance 1).
+    mean = table.astype(np.float64).mean(axis=(0, 1))
+    mean_luminance = float((mean * ybar).sum() * 10.0 / y_integral)
+    guide = spectra.tabulated(("sky mean", tuple(np.round(mean / mean_luminance, 12))), float(SKY_WAVELENGTHS_NM[0]),
+                              10.0, mean / mean_luminance, support_nm=(360.0, 830.0)) if mean_luminance > 0 else -1
+    return EnvironmentBuild(env, integral, _sky_sun_rows(world, spectra, strength, tables, mapping), guide)
 
 
 @kernel

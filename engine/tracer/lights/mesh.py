@@ -6,8 +6,8 @@ converted to solid angle so BSDF-sampled hits on the same triangles are weighted
 
 ``MeshEmitters``: ``triangle`` int32 [E] (geometry triangle ids), ``material`` int32 [E], ``geometry`` float64 [E, 13] (v0, e1,
 e2, unit normal, area; camera-relative metres), ``cdf`` / ``probability`` float64 [E], ``of_triangle``
-int32 [T] (emitter row of each geometry triangle, -1 if it does not emit), ``total`` (Σ area ×
-strength, for light selection).
+int32 [T] (emitter row of each geometry triangle, -1 if it does not emit), ``group`` int32 [E] (light
+group, -1: none), ``total`` (Σ area × strength, for light selection).
 """
 
 from __future__ import annotations
@@ -20,12 +20,12 @@ import numpy as np
 from ..jit import inlined
 from ..warps import uniform_triangle
 
-MeshEmitters = namedtuple("MeshEmitters", "triangle material geometry cdf probability of_triangle")
+MeshEmitters = namedtuple("MeshEmitters", "triangle material geometry cdf probability of_triangle group")
 
 
-def build_mesh_emitters(vertices, triangles, triangle_material, strength_of_material):
-    """Emitters of the triangles whose material has strength > 0 (``strength_of_material`` [M]).
-    Returns (``MeshEmitters``, total area × strength) — (empty tables, 0) when nothing emits."""
+def build_mesh_emitters(vertices, triangles, triangle_material, strength_of_material, triangle_group=None):
+    """Emitters of the triangles whose material has strength > 0 (``strength_of_material`` [M]);
+    ``triangle_group`` [T] their light groups (None: none). Returns (``MeshEmitters``, total area × strength) — (empty tables, 0) when nothing emits."""
     strength = strength_of_material[triangle_material] if len(triangle_material) else np.zeros(0)
     emitting = np.flatnonzero(strength > 0)
     corners = np.asarray(vertices, np.float64)[np.asarray(triangles)[emitting]]
@@ -38,7 +38,7 @@ def build_mesh_emitters(vertices, triangles, triangle_material, strength_of_mate
     of_triangle = np.full(len(triangles), -1, np.int32)
     if len(emitting) == 0:
         empty = MeshEmitters(np.zeros(0, np.int32), np.zeros(0, np.int32), np.zeros((0, 13)), np.zeros(0),
-                             np.zeros(0), of_triangle)
+                             np.zeros(0), of_triangle, np.zeros(0, np.int32))
         return empty, 0.0
     area = 0.5 * double_area
     geometry = np.concatenate([corners[:, 0], e1, e2, cross / double_area[:, None], area[:, None]], axis=1)
@@ -49,7 +49,9 @@ def build_mesh_emitters(vertices, triangles, triangle_material, strength_of_mate
     cdf[-1] = 1.0
     of_triangle[emitting] = np.arange(len(emitting), dtype=np.int32)
     material = np.asarray(triangle_material)[emitting].astype(np.int32)
-    return MeshEmitters(emitting.astype(np.int32), material, geometry, cdf, probability, of_triangle), total
+    group = (np.asarray(triangle_group, np.int32)[emitting] if triangle_group is not None
+             else np.full(len(emitting), -1, np.int32))
+    return MeshEmitters(emitting.astype(np.int32), material, geometry, cdf, probability, of_triangle, group), total
 
 
 @inlined
@@ -68,7 +70,7 @@ def pick(emitters, u):
 
 @inlined
 def sample_li(emitters, p, u0, u1, u2):
-    """(wi, distance, solid-angle pdf, material) of a point on an emissive triangle."""
+    """(wi, distance, solid-angle pdf, emitter row) of a point on an emissive triangle."""
     e = pick(emitters, u0)
     g = emitters.geometry[e]
     b1, b2 = uniform_triangle(u1, u2)
@@ -76,14 +78,13 @@ def sample_li(emitters, p, u0, u1, u2):
     wy = g[1] + b1 * g[4] + b2 * g[7] - p[1]
     wz = g[2] + b1 * g[5] + b2 * g[8] - p[2]
     dist = math.sqrt(wx * wx + wy * wy + wz * wz)
-    material = emitters.material[e]
     if dist <= 0.0:
-        return (0.0, 0.0, 1.0), 0.0, 0.0, material
+        return (0.0, 0.0, 1.0), 0.0, 0.0, e
     wi = (wx / dist, wy / dist, wz / dist)
     cos_l = abs(wi[0] * g[9] + wi[1] * g[10] + wi[2] * g[11])
     if cos_l <= 0.0:
-        return wi, dist, 0.0, material
-    return wi, dist, emitters.probability[e] / g[12] * dist * dist / cos_l, material
+        return wi, dist, 0.0, e
+    return wi, dist, emitters.probability[e] / g[12] * dist * dist / cos_l, e
 
 
 @inlined

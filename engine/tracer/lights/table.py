@@ -4,8 +4,8 @@ Light sampling picks one light with probability ∝ its power (spectra are lumin
 powers compare): P for point, spot and area lights, E π R² for a sun (R: the scene's bounding-sphere
 radius), π Σ area × strength for the emissive meshes, π R² ∫ L dω for the world's background; every
 light keeps at least 1/(20 n) so none starves. The background (``lights.environment``) is one light
-(``environment_index``, -1 when it is black or its sampling is off: then escaping rays alone find it);
-a sky's Sun disc is a distant light of its own.
+(``environment_index``, -1 when it is black, a constant colour, or its sampling is off: then escaping
+rays alone find it); a sky's Sun disc is a distant light of its own.
 """
 
 from __future__ import annotations
@@ -23,8 +23,12 @@ from .point import point_power, point_row
 from .row import DISK, ENVIRONMENT, KIND_NAMES, L_KIND, LIGHT_ROW, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
 from .sun import sun_power, sun_row
 
+#: ``environment`` (``lights.environment.EnvironmentArrays``) and ``environment_index`` (its row, -1:
+#: not light-sampled); ``group`` int32 [rows] and ``world_group``: light group index of each light and of
+#: the world (-1: none).
 LightArrays = namedtuple(
-    "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index environment environment_index"
+    "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index environment environment_index group "
+    "world_group"
 )
 
 
@@ -33,7 +37,10 @@ class LightTable:
     arrays: LightArrays
     names: list  # one per row
     kinds: list  # Blender kinds ("point", "area", "sun", "emissive meshes", "world") per row
+    power: np.ndarray | None = None  # per row, the selection's power (luminance-normalised watts)
+    scene_radius_m: float = 1.0
     world: str = ""  # what the background is, for the render stats ("" when black)
+    world_emission: tuple | None = None  # (spectrum id, power) of the background, for the wavelength guide
 
 
 def _emits(light) -> bool:
@@ -45,7 +52,10 @@ def _emits(light) -> bool:
 
 
 def _light_row(light, spectra, offset):
-    spectrum = spectra.emission(light.spectrum)
+    try:
+        spectrum = spectra.emission(light.spectrum)
+    except PrismInputError as error:
+        raise PrismInputError(f"Light '{light.name}': {error}") from None
     if light.kind in ("point", "spot"):
         return point_row(light, spectrum, offset)
     if light.kind == "area":
@@ -73,18 +83,22 @@ def _power(row, scene_radius_m, mesh_total, environment_total):
 
 
 def build_lights(scene, spectra, vertices, triangles, triangle_material, emission_strength, offset,
-                 use_mesh_lights=True) -> LightTable:
+                 use_mesh_lights=True, light_groups=(), triangle_group=None) -> LightTable:
     """Rows for the scene's lights; ``vertices``/``triangles``/``triangle_material`` are the render's
     camera-relative geometry, ``emission_strength`` [M] the materials' (0 = not emissive), ``offset``
-    the camera position subtracted from every position."""
-    rows, names, kinds = [], [], []
+    the camera position subtracted from every position. ``light_groups``: the names of the light groups
+    with a pass (lights of another group count in none); ``triangle_group`` [T] the group index of each
+    triangle's object (None: none)."""
+    group_index = {name: g for g, name in enumerate(light_groups)}
+    rows, names, kinds, groups = [], [], [], []
     for light in scene.lights:
         if _emits(light):
             rows.append(_light_row(light, spectra, offset))
             names.append(light.name)
             kinds.append(light.kind)
+            groups.append(group_index.get(light.light_group, -1))
     strength = np.asarray(emission_strength, np.float64) if use_mesh_lights else np.zeros(len(emission_strength))
-    mesh, mesh_total = build_mesh_emitters(vertices, triangles, triangle_material, strength)
+    mesh, mesh_total = build_mesh_emitters(vertices, triangles, triangle_material, strength, triangle_group)
     mesh_index = -1
     if mesh_total > 0:
         row = np.zeros(LIGHT_ROW)
@@ -93,19 +107,24 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
         rows.append(row)
         names.append(KIND_NAMES[MESH])
         kinds.append(KIND_NAMES[MESH])
-    environment, environment_total, sky_rows = build_environment(scene.world, spectra)
+        groups.append(-1)
+    world = scene.world
+    world_group = group_index.get(getattr(world, "light_group", ""), -1) if world is not None else -1
+    environment, environment_total, sky_rows, guide_spectrum = build_environment(world, spectra)
     for row in sky_rows:
         rows.append(row)
-        names.append(f"{scene.world.name} sun")
+        names.append(f"{world.name} sun")
         kinds.append("sun")
+        groups.append(world_group)
     environment_index = -1
-    if environment_total > 0 and scene.world.sampled:
+    if environment_total > 0 and world.sampled:
         row = np.zeros(LIGHT_ROW)
         row[L_KIND] = ENVIRONMENT
         environment_index = len(rows)
         rows.append(row)
-        names.append(scene.world.name)
+        names.append(world.name)
         kinds.append(KIND_NAMES[ENVIRONMENT])
+        groups.append(world_group)
     verts = np.asarray(vertices, np.float64)
     radius = 0.5 * float(np.linalg.norm(np.ptp(verts, axis=0))) if len(verts) else 1.0
     power = np.array([_power(r, radius, mesh_total, environment_total) for r in rows], dtype=np.float64)
@@ -123,8 +142,18 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
     table = np.array(rows, dtype=np.float64).reshape(-1, LIGHT_ROW)
     hittable = np.array([i for i, r in enumerate(rows) if int(r[L_KIND]) in (SPHERE, RECTANGLE, DISK)], np.int32)
     arrays = LightArrays(table if n else np.zeros((1, LIGHT_ROW)), prob, cdf, hittable, mesh, mesh_index,
-                         environment, environment_index)
-    return LightTable(arrays, names, kinds, _world_description(scene.world, environment_index))
+                         environment, environment_index, np.array(groups if n else [-1], np.int32), world_group)
+    return LightTable(arrays, names, kinds, power, radius, _world_description(world, environment_index),
+                      _world_emission(world, environment_total, guide_spectrum, radius))
+
+
+def _world_emission(world, environment_total, guide_spectrum, radius):
+    """(spectrum id, power through the scene's bounding sphere) of the background, or None."""
+    if world is None or world.is_black() or guide_spectrum < 0:
+        return None
+    if world.kind == "constant":
+        return guide_spectrum, np.pi * float(world.strength) * np.pi * radius * radius
+    return guide_spectrum, np.pi * radius * radius * environment_total
 
 
 def _world_description(world, environment_index) -> str:

@@ -77,13 +77,20 @@ class MaterialTable:
     features: list = field(default_factory=list)  # e.g. "smooth dielectric", for the render stats
 
 
+def _base_reflectance(material, spectra) -> int:
+    """Spectrum id of what the material uses as base colour: a measured reflectance or the RGB one."""
+    if material.reflectance is not None:
+        return spectra.measured_reflectance(material.reflectance, f"Material '{material.name}'")
+    return spectra.reflectance(material.base_color)
+
+
 def _closure(material, spectra, glasses, glass_index):
     row = np.full(CLOSURE_ROW, -1.0)
     row[[C_WEIGHT, C_ALPHA, C_COAT_NM, C_COAT_IOR, C_FILM_NM, C_FILM_IOR]] = (1.0, 0.0, 0.0, 1.0, 0.0, 1.0)
     kind = material.kind
     if kind == "diffuse":
         row[C_KIND] = DIFFUSE
-        row[C_SPECTRUM] = spectra.reflectance(material.base_color)
+        row[C_SPECTRUM] = _base_reflectance(material, spectra)
         return row, "diffuse"
     if kind in ("conductor", "dielectric"):
         row[C_ALPHA] = _alpha(material)
@@ -104,7 +111,7 @@ def _closure(material, spectra, glasses, glass_index):
             row[C_N] = spectra.resampled(("n", material.conductor), table_nm, n)
             row[C_K] = spectra.resampled(("k", material.conductor), table_nm, k)
         else:
-            row[C_SPECTRUM] = spectra.reflectance(material.base_color)
+            row[C_SPECTRUM] = _base_reflectance(material, spectra)
         return row, ("mirror conductor" if smooth else "rough conductor")
     if kind == "dielectric":
         row[C_KIND] = DIELECTRIC
@@ -156,7 +163,10 @@ def build_materials(materials, used, spectra) -> MaterialTable:
                 flags[m] |= MAT_DISPERSIVE
         if is_emissive(material):
             flags[m] |= MAT_EMISSIVE
-            emission_spectrum[m] = spectra.emission(material.emission or SpectrumSpec())
+            try:
+                emission_spectrum[m] = spectra.emission(material.emission or SpectrumSpec())
+            except PrismInputError as error:
+                raise PrismInputError(f"Material '{material.name}': {error}") from None
             emission_strength[m] = float(material.emission_strength)
     closures = np.array(rows, dtype=np.float64).reshape(-1, CLOSURE_ROW)
     glass_rows = np.array([glass_row(g) for g in glasses] or [glass_row(None)]).reshape(-1, GLASS_ROW)

@@ -7,12 +7,11 @@ like Cycles' light colour). The light's strength/power multiplies it; nothing
 else does. So a blackbody's temperature changes its colour, not its brightness,
 and a monochromatic line is as bright (in luminance) as a white light.
 
-Sampling note for the tracer: a monochromatic line is a narrow feature that the
-``cie`` wavelength sampler hits rarely (noise). ``.support_nm`` gives the
-interval (lo, hi) outside which ``evaluate`` is exactly 0, so the tracer can
-importance-sample it if it wants (monochromatic spectra also offer
-``sample_wavelengths(u)`` / ``pdf``, proportional to the line); it is the visible
-range for the broad kinds.
+Sampling note: ``.support_nm`` gives the interval (lo, hi) outside which
+``evaluate`` is exactly 0 (the visible range for all but lines); monochromatic
+spectra also offer ``sample_wavelengths(u)`` / ``pdf``, proportional to the line.
+The tracer's ``cie`` sampler follows the scene's emission from the spectrum table
+itself (``wavelength_guide``).
 """
 
 from __future__ import annotations
@@ -25,9 +24,10 @@ from . import cie
 from .blackbody import blackbody_luminance, check_temperature, planck_spectral_radiance
 from ..errors import PrismInputError
 from .rgb_to_spectrum import RGBEmission
+from .sampled import check_sampled, resample_1nm
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
-SPECTRUM_KINDS = ("rgb", "blackbody", "monochromatic")
+SPECTRUM_KINDS = ("rgb", "blackbody", "monochromatic", "illuminant", "tabulated")
 _LINE_HALF_SUPPORT_FWHM = 3.0  # the Gaussian line is cut at ±3 FWHM (±7 sigma, mass lost < 1e-11)
 
 
@@ -133,6 +133,33 @@ class MonochromaticEmissionSpectrum:
         return wavelength_nm, self.pdf(wavelength_nm)
 
 
+class TabulatedEmissionSpectrum:
+    """A measured spectrum (a standard illuminant, a spectrum file), resampled once at every nanometre
+    of 360-830 nm and linearly interpolated in between, scaled to Y = 1. Beyond the data the end values
+    continue, as CIE 15 recommends for missing data and colour-science does (so chromaticities match)."""
+
+    def __init__(self, wavelength_nm, values, what, kind="tabulated"):
+        self.kind = kind
+        wavelength_nm, values = check_sampled(wavelength_nm, values, what)
+        first_nm, values = resample_1nm(wavelength_nm, values)
+        grid = np.arange(VISIBLE_MIN_NM, VISIBLE_MAX_NM + 0.5)
+        self.first_nm = VISIBLE_MIN_NM
+        self.values = np.interp(grid, first_nm + np.arange(len(values)), values)
+        self.support_nm = (VISIBLE_MIN_NM, VISIBLE_MAX_NM)
+        luminance = np.trapz(self.values * cie.cie_xyz_cmf(grid)[:, 1], grid) / cie.CMF_Y_INTEGRAL
+        if not luminance > 0.0:
+            raise PrismInputError(f"{what} has no visible luminance (it emits only where the eye sees nothing): "
+                                  "use a spectrum that emits within 380-780 nm.")
+        self._scale = 1.0 / luminance
+
+    def evaluate(self, wavelength_nm):
+        """Relative spectral radiance at ``wavelength_nm`` (any shape); 0 outside 360-830 nm."""
+        wavelength_nm = np.asarray(wavelength_nm, dtype=np.float64)
+        grid = self.first_nm + np.arange(len(self.values))
+        inside = (wavelength_nm >= self.support_nm[0]) & (wavelength_nm <= self.support_nm[1])
+        return np.where(inside, self._scale * np.interp(wavelength_nm, grid, self.values), 0.0)
+
+
 def emission_spectrum(spec):
     """The emission spectrum object (``.evaluate(wavelength_nm)``, ``.support_nm``) for a ``SpectrumSpec``."""
     kind = getattr(spec, "kind", None)
@@ -142,4 +169,12 @@ def emission_spectrum(spec):
         return BlackbodyEmissionSpectrum(spec.temperature_k)
     if kind == "monochromatic":
         return MonochromaticEmissionSpectrum(spec.wavelength_nm, spec.width_nm)
+    if kind == "illuminant":
+        from .illuminants import canonical_illuminant, illuminant_table
+
+        key = canonical_illuminant(spec.illuminant)
+        return TabulatedEmissionSpectrum(*illuminant_table(key), f"Illuminant {key}", kind="illuminant")
+    if kind == "tabulated" and spec.table is not None:
+        table = spec.table
+        return TabulatedEmissionSpectrum(table.wavelength_nm, table.values, table.source or "Tabulated spectrum")
     raise PrismInputError(f"Unknown emission spectrum kind {kind!r}: use one of {', '.join(SPECTRUM_KINDS)}.")

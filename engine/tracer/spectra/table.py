@@ -180,6 +180,17 @@ class SpectrumTable:
             return self._row(key, SIGMOID, list(c))
         return self._rows[key]
 
+    def measured_reflectance(self, spec, what="Reflectance") -> int:
+        """A measured reflectance (0-1) for a ``scene.ReflectanceSpec`` (colour-checker patch or file);
+        ``what`` names its owner in messages."""
+        from .reflectance_spectrum import ReflectanceSpectrum
+
+        key = ("measured reflectance", spec)
+        if key not in self._rows:
+            source = ReflectanceSpectrum(spec, what)
+            self._rows[key] = self.tabulated(key, source.first_nm, 1.0, source.values)
+        return self._rows[key]
+
     def tabulated(self, key, start_nm: float, step_nm: float, values, scale=1.0, support_nm=(-math.inf, math.inf)) -> int:
         """Values sampled every ``step_nm`` from ``start_nm`` (identified by ``key`` for sharing)."""
         full_key = ("tabulated", key, float(scale))
@@ -223,6 +234,10 @@ class SpectrumTable:
                              [c[0], c[1], c[2], emission.scale / emission._d65_norm, self.d65()])
         if spec.kind == "blackbody":
             return self._row(key, BLACKBODY, [source.temperature_k, source._scale])
+        if spec.kind in ("illuminant", "tabulated"):
+            sid = self.tabulated(key, source.first_nm, 1.0, source.values, source._scale, source.support_nm)
+            self._rows[key] = sid
+            return sid
         lo, hi = source.support_nm
         return self._row(key, LINE, [source.wavelength_nm, source.sigma_nm, lo, hi, source._scale])
 

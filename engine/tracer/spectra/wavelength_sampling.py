@@ -2,10 +2,15 @@
 
 Two modes (see ``wavelengths.py``, the reference implementation and test oracle):
 
-- ``cie``: K hero wavelengths, the inverse-CDF images of one uniform number rotated by j/K, from the
-  visible-light density ∝ 1/cosh²(0.0072 (λ − 538)) on 360–830 nm, or — when the scene has emission
-  lines — from a tabulated density that puts half its mass on the lines (0.1 nm cells). Radiance is
-  integrated against the CIE 1931 functions into XYZ, then converted to scene-linear Rec.709.
+- ``cie``: K wavelengths, the inverse-CDF images of (u + j) / K for one uniform u, from the density
+  that follows the scene's emission (``wavelength_guide``, 0.1 nm cells; the visible-light density
+  ∝ 1/cosh²(0.0072 (λ − 538)) on 360–830 nm when nothing emits). Column j covers the j-th of K
+  equal-probability strata, so the sampler's stratification of u across a pixel's samples stratifies
+  every stratum (rotating u by j/K instead, as hero-wavelength sampling usually does, keeps only the
+  offsets modulo 1/K, which the sampler does not stratify). Each estimate divides by the full density
+  p(λ) and the hero column is drawn uniformly, so the mixture over columns is p: unbiased whether a
+  path carries all K or, after dispersion, only its hero. Radiance is integrated against the CIE 1931
+  functions into XYZ, then converted to scene-linear Rec.709.
 - ``gaussian_rgb``: one wavelength per R, G, B channel from that channel's truncated normal density,
   which is also the channel's response, so the channel value is radiance × response / pdf.
 
@@ -20,18 +25,18 @@ from collections import namedtuple
 import numpy as np
 
 from ..jit import inlined, kernel
+from .wavelength_guide import GUIDED_CELL_NM
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM, _TANH_HI, _TANH_LO, _VISIBLE_A_PER_NM, _VISIBLE_CENTRE_NM
 
 MODE_CIE = 0
 MODE_GAUSSIAN_RGB = 1
-GUIDED_CELL_NM = 0.1
-GUIDED_LINE_FRACTION = 0.5
 
-#: mode, count (K), guided_cdf [C+1] (empty: unguided), guided_mass [C], gaussian [3, 4] (mean nm,
+#: mode, count (K), guided_cdf [C+1] (empty: unguided), guided_mass [C], guided_start [4C] (the guide's
+#: cut points, see ``wavelength_guide``), gaussian [3, 4] (mean nm,
 #: sigma nm, cdf at 360 nm, cdf mass on 360-830 nm), cmf [471, 3] (1 nm from 360 nm),
 #: xyz_to_rgb [3, 3], cmf_y_integral.
 WavelengthSampling = namedtuple(
-    "WavelengthSampling", "mode count guided_cdf guided_mass gaussian cmf xyz_to_rgb cmf_y_integral"
+    "WavelengthSampling", "mode count guided_cdf guided_mass guided_start gaussian cmf xyz_to_rgb cmf_y_integral"
 )
 
 _VISIBLE_NORMALISATION = _TANH_HI - _TANH_LO
@@ -106,15 +111,11 @@ def gaussian_pdf(ws, channel, wavelength_nm):
 @inlined
 def _guided_sample(ws, u):
     cdf = ws.guided_cdf
-    lo = 0
-    hi = cdf.shape[0] - 1
-    while hi - lo > 1:  # cdf[lo] <= u < cdf[hi]
-        mid = (lo + hi) >> 1
-        if cdf[mid] <= u:
-            lo = mid
-        else:
-            hi = mid
-    cell = min(lo, ws.guided_mass.shape[0] - 1)
+    slots = ws.guided_start.shape[0]
+    last = ws.guided_mass.shape[0] - 1
+    cell = ws.guided_start[min(int(u * slots), slots - 1)]
+    while cell < last and cdf[cell + 1] <= u:  # the last cell with cdf <= u
+        cell += 1
     mass = ws.guided_mass[cell]
     frac = min(max((u - cdf[cell]) / mass, 0.0), 1.0) if mass > 0.0 else 0.5
     return VISIBLE_MIN_NM + (cell + frac) * GUIDED_CELL_NM, mass / GUIDED_CELL_NM
@@ -135,9 +136,7 @@ def sample_wavelengths(ws, u0, u1, u2, wavelength_nm, pdf):
             pdf[c] = gaussian_pdf(ws, c, lam)
         return
     for j in range(count):
-        u = u0 + j / count
-        if u >= 1.0:
-            u -= 1.0
+        u = (u0 + j) / count
         if ws.guided_cdf.shape[0] > 0:
             wavelength_nm[j], pdf[j] = _guided_sample(ws, u)
         else:
@@ -182,26 +181,9 @@ def radiance_to_rgb(ws, radiance, wavelength_nm, pdf):
             m[2, 0] * x + m[2, 1] * y + m[2, 2] * z)
 
 
-def _guided_table(lines):
-    """(cdf [C+1], mass [C]) of half the visible density and half the lines, on 0.1 nm cells."""
-    from .wavelengths import visible_wavelength_pdf
-
-    cells = int(round((VISIBLE_MAX_NM - VISIBLE_MIN_NM) / GUIDED_CELL_NM))
-    edges = np.linspace(VISIBLE_MIN_NM, VISIBLE_MAX_NM, cells + 1)
-    centres = 0.5 * (edges[1:] + edges[:-1])
-    density = (1.0 - GUIDED_LINE_FRACTION) * visible_wavelength_pdf(centres)
-    for line in lines:
-        shape = np.asarray(line.evaluate(centres), dtype=np.float64)
-        density += GUIDED_LINE_FRACTION / len(lines) * shape / (shape.sum() * GUIDED_CELL_NM)
-    mass = density / density.sum()
-    cdf = np.concatenate([[0.0], np.cumsum(mass)])
-    cdf[-1] = 1.0
-    return cdf, mass
-
-
-def build(settings, lines=()) -> WavelengthSampling:
-    """The sampling tables for ``settings`` (``RenderSettings``); ``lines``: emission spectra of the
-    scene's monochromatic emitters (``emission_spectrum.MonochromaticEmissionSpectrum``), cie mode only."""
+def build(settings, guide=None) -> WavelengthSampling:
+    """The sampling tables for ``settings`` (``RenderSettings``); ``guide``: the density that follows the
+    scene's emission (``wavelength_guide.build_guide``; cie mode only, None: the visible density)."""
     from . import cie
 
     table_nm, cmf = cie._cmf_table()
@@ -211,7 +193,8 @@ def build(settings, lines=()) -> WavelengthSampling:
     gaussian = np.zeros((3, 4))
     if settings.wavelength_mode == "cie":
         mode, count = MODE_CIE, int(settings.wavelengths_per_path)
-        guided_cdf, guided_mass = _guided_table(list(lines)) if lines else (empty, empty)
+        guided_cdf, guided_mass, guided_start = (guide.cdf, guide.mass, guide.start) if guide is not None else (
+            empty, empty, np.zeros(0, np.int32))
     else:
         from scipy.special import ndtr
 
@@ -219,10 +202,10 @@ def build(settings, lines=()) -> WavelengthSampling:
 
         channels = GaussianChannels(settings.channel_means_nm, settings.channel_sigmas_nm)  # validates
         mode, count = MODE_GAUSSIAN_RGB, 3
-        guided_cdf, guided_mass = empty, empty
+        guided_cdf, guided_mass, guided_start = empty, empty, np.zeros(0, np.int32)
         gaussian[:, 0] = channels.means_nm
         gaussian[:, 1] = channels.sigmas_nm
         gaussian[:, 2] = ndtr((VISIBLE_MIN_NM - channels.means_nm) / channels.sigmas_nm)
         gaussian[:, 3] = channels._mass
-    return WavelengthSampling(mode, count, guided_cdf, guided_mass, gaussian, np.ascontiguousarray(cmf),
+    return WavelengthSampling(mode, count, guided_cdf, guided_mass, guided_start, gaussian, np.ascontiguousarray(cmf),
                               np.ascontiguousarray(cie.XYZ_TO_LINEAR_REC709), float(cie.CMF_Y_INTEGRAL))

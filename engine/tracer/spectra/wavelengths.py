@@ -4,9 +4,12 @@
 ``p(lambda) ∝ 1 / cosh^2(0.0072 (lambda - 538))`` on 360-830 nm, which follows
 the overall shape of the colour-matching functions and has a closed-form inverse
 CDF: with ``a = 0.0072 /nm`` and ``c = 538 nm`` the CDF is proportional to
-``tanh(a (lambda - c))``. One stratified sample is drawn per path and the others
-are rotated copies of it (``u_j = (u + j / count) mod 1``), so every column is
-distributed by the same pdf and the set covers the spectrum evenly.
+``tanh(a (lambda - c))``. One uniform number u is drawn per path and column j is
+the image of ``(u + j) / count``: the columns cover the ``count`` equal-probability
+strata of the distribution, so the set covers the spectrum evenly and the
+stratification of u across a pixel's samples carries into every stratum. Each
+column is weighted by the full density; with the hero column drawn uniformly the
+columns' mixture is that density, which keeps hero-wavelength termination unbiased.
 
 ``gaussian_rgb`` mode draws one wavelength per R, G, B channel from that
 channel's normal distribution truncated to 360-830 nm (the truncation is in the
@@ -58,19 +61,18 @@ def _check_uniform(u, name):
 
 
 def sample_visible_wavelengths(u, count):
-    """Hero-wavelength sampling of the visible range.
+    """Stratified hero-wavelength sampling of the visible range.
 
-    ``u``: uniform samples in [0, 1), shape [N]. ``count``: wavelengths per path
-    (the first column is the hero). Returns ``(wavelength_nm [N, count],
-    pdf [N, count])``; the pdf is the marginal density of each column, which is
-    ``visible_wavelength_pdf`` for every column.
+    ``u``: uniform samples in [0, 1), shape [N]. ``count``: wavelengths per path.
+    Returns ``(wavelength_nm [N, count], pdf [N, count])``: column j lies in the
+    j-th of ``count`` equal-probability strata; ``pdf`` is the full density
+    ``visible_wavelength_pdf`` at each wavelength (the estimators divide by it).
     """
     if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
         raise PrismInputError(f"Wavelengths per path must be a positive integer (got {count!r}).")
     u = _check_uniform(u, "sample_visible_wavelengths").reshape(-1)
-    offsets = np.arange(count, dtype=np.float64) / count
-    rotated = np.mod(u[:, None] + offsets[None, :], 1.0)
-    wavelength_nm = _visible_inverse_cdf(rotated)
+    strata = (u[:, None] + np.arange(count, dtype=np.float64)[None, :]) / count
+    wavelength_nm = _visible_inverse_cdf(strata)
     return wavelength_nm, visible_wavelength_pdf(wavelength_nm)
 
 

@@ -5,13 +5,14 @@ paths each; path p is sample ``first_sample + p % spp`` of pixel ``pixels[p // s
 come from the sampler's pixel slot: uniform in the pixel ("box"), or filter importance sampling of a
 Gaussian of standard deviation width/3 truncated at ``width`` ("gaussian", weight 1).
 
-Cameras (``CameraData``, camera-relative: the camera sits at the origin): a projection (``projection``:
-Blender's perspective and orthographic cameras, Cycles' equirectangular and fisheye panoramas, see
-``panorama``) and an aperture (``kind``: ``PINHOLE`` or ``THIN_LENS``, radius focal/(2 f-stop) (1/(2
-f-stop) m orthographic, as Cycles), sharp at ``focus_distance_m`` along the view axis — along the ray
-for panoramas —, a disc or a regular polygon of ``blades`` corners turned by ``blade_rotation``,
-squeezed horizontally by 1/``aperture_ratio``). Blender's conventions: the camera looks down its local
--Z, +Y up; lens shift in units of the larger film side (of the orthographic extent).
+Cameras (``CameraData``, in the render's space: world positions minus the render's origin, where the
+camera sits at ``origin``: 0 for a final render, anywhere near it in the viewport): a projection
+(``projection``: Blender's perspective and orthographic cameras, Cycles' equirectangular and fisheye
+panoramas, see ``panorama``) and an aperture (``kind``: ``PINHOLE`` or ``THIN_LENS``, radius focal/(2
+f-stop) (1/(2 f-stop) m orthographic, as Cycles), sharp at ``focus_distance_m`` along the view axis —
+along the ray for panoramas —, a disc or a regular polygon of ``blades`` corners turned by
+``blade_rotation``, squeezed horizontally by 1/``aperture_ratio``). Blender's conventions: the camera
+looks down its local -Z, +Y up; lens shift in units of the larger film side (of the orthographic extent).
 """
 
 from __future__ import annotations
@@ -43,16 +44,17 @@ PROJECTIONS = {"perspective": PERSPECTIVE, "orthographic": ORTHOGRAPHIC, "equire
 #: orthographic: the view's extent in metres), shift_x / shift_y (in the same units), aperture_radius_m,
 #: focus_distance_m, blades (0: a disc), blade_rotation (rad), aperture_ratio, panorama float64 [4]
 #: (``stages.panorama``), width, height (pixels), filter_kind, filter_width_px, filter_cdf_lo (Gaussian
-#: mass below -width).
+#: mass below -width), origin float64 [3] (the camera's position in the render's space, m).
 CameraData = namedtuple(
     "CameraData",
     "kind projection rotation tan_w tan_h shift_x shift_y aperture_radius_m focus_distance_m blades blade_rotation "
-    "aperture_ratio panorama width height filter_kind filter_width_px filter_cdf_lo",
+    "aperture_ratio panorama width height filter_kind filter_width_px filter_cdf_lo origin",
 )
 
 
-def camera_data(camera, settings, kind) -> CameraData:
-    """``CameraData`` of a ``scene.Camera`` for ``kind`` (``PINHOLE`` or ``THIN_LENS``)."""
+def camera_data(camera, settings, kind, origin_m=(0.0, 0.0, 0.0)) -> CameraData:
+    """``CameraData`` of a ``scene.Camera`` for ``kind`` (``PINHOLE`` or ``THIN_LENS``), the camera at
+    ``origin_m`` in the render's space."""
     from scipy.special import ndtr
 
     from .panorama import panorama_parameters
@@ -74,7 +76,8 @@ def camera_data(camera, settings, kind) -> CameraData:
                       float(camera.focus_distance_m), blades, float(camera.aperture_rotation_rad),
                       float(camera.aperture_ratio), panorama_parameters(camera), width, height,
                       FILTER_GAUSSIAN if settings.pixel_filter == "gaussian" else FILTER_BOX,
-                      float(settings.filter_width_px), float(ndtr(-settings.filter_width_px / sigma)))
+                      float(settings.filter_width_px), float(ndtr(-settings.filter_width_px / sigma)),
+                      np.ascontiguousarray(origin_m, dtype=np.float64))
 
 
 @inlined
@@ -169,15 +172,16 @@ def camera_space_ray(camera, x, y, lens_u, lens_v):
 @inlined
 def camera_ray(camera, x, y, lens_u, lens_v):
     """(origin, unit direction) of the camera ray through raster position (x, y) (pixels from the
-    top-left corner) and lens sample (lens_u, lens_v), camera-relative world space; the direction is
+    top-left corner) and lens sample (lens_u, lens_v), in the render's space; the direction is
     (0, 0, 0) where the camera sees nothing (outside a fisheye's circle)."""
     o, d = camera_space_ray(camera, x, y, lens_u, lens_v)
     if d[0] == 0.0 and d[1] == 0.0 and d[2] == 0.0:
         return o, d
     r = camera.rotation
-    wo = (r[0, 0] * o[0] + r[0, 1] * o[1] + r[0, 2] * o[2],
-          r[1, 0] * o[0] + r[1, 1] * o[1] + r[1, 2] * o[2],
-          r[2, 0] * o[0] + r[2, 1] * o[1] + r[2, 2] * o[2])
+    c = camera.origin
+    wo = (c[0] + r[0, 0] * o[0] + r[0, 1] * o[1] + r[0, 2] * o[2],
+          c[1] + r[1, 0] * o[0] + r[1, 1] * o[1] + r[1, 2] * o[2],
+          c[2] + r[2, 0] * o[0] + r[2, 1] * o[1] + r[2, 2] * o[2])
     wd = (r[0, 0] * d[0] + r[0, 1] * d[1] + r[0, 2] * d[2],
           r[1, 0] * d[0] + r[1, 1] * d[1] + r[1, 2] * d[2],
           r[2, 0] * d[0] + r[2, 1] * d[1] + r[2, 2] * d[2])

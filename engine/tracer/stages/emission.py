@@ -18,27 +18,31 @@ from __future__ import annotations
 import math
 
 from ..jit import inlined, kernel
-from ..lights.dispatch import (distant_hit, emitter_pdf, environment_pdf, is_distant, light_distance, light_hit,
-                               light_spectrum, seen_by_camera)
-from ..lights.environment import ENV_NONE, add_escaped
+from ..lights import environment
+from ..lights.dispatch import (distant_hit, emitter_group, emitter_pdf, environment_pdf, is_distant, light_distance,
+                               light_hit, light_spectrum, seen_by_camera)
 from ..materials.table import MAT_EMISSIVE
 from ..spectra.table import spectrum_value
 from ..state import CAMERA_PATH, PREV_DELTA
 from ..visibility import HOLDOUT
 from .mis import emitter_weight
+from .passes import camera_slot, deposit, features_done
 
 
 @inlined
-def _add(state, i, factor, sid, spectra, weight):
+def _add(state, i, factor, sid, spectra, weight, passes, layout, group, slot, albedo):
     scale = factor * weight
     if scale == 0.0:
         return
     for k in range(state.radiance.shape[1]):
-        state.radiance[i, k] += state.throughput[i, k] * scale * spectrum_value(spectra, sid, state.wavelength[i, k])
+        value = state.throughput[i, k] * scale * spectrum_value(spectra, sid, state.wavelength[i, k])
+        state.radiance[i, k] += value
+        if layout.columns > 0:
+            deposit(passes, layout, i, k, value, group, slot, albedo)
 
 
 @inlined
-def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth):
+def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout):
     """Every hittable light between the ray's origin and distance ``t`` adds its emission."""
     offset = (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
     for h in range(lights.hittable.shape[0]):
@@ -49,7 +53,8 @@ def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, 
         if t_light < t:
             factor, pdf = light_hit(lights, index, mis_origin, d, t_light + offset)
             _add(state, i, factor, light_spectrum(lights, index), spectra,
-                 emitter_weight(state, i, pdf, settings.use_mis))
+                 emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index],
+                 camera_slot(layout, depth, False), True)
 
 
 @inlined
@@ -63,30 +68,38 @@ def _see_through(state, i):
 
 
 @inlined
-def _add_background(state, i, d, lights, spectra, settings, depth):
+def _add_background(state, i, d, lights, spectra, settings, depth, passes, layout):
     """The world's background and the sun discs seen by an escaping ray."""
     if settings.film_transparent and state.flags[i] & CAMERA_PATH:
         _see_through(state, i)
         return
+    slot = camera_slot(layout, depth, True)
     env = lights.environment
-    if env.kind != ENV_NONE:
+    if env.kind != environment.ENV_NONE:
         weight = 1.0
         if lights.environment_index >= 0 and not state.flags[i] & PREV_DELTA:
             weight = emitter_weight(state, i, environment_pdf(lights, d), settings.use_mis)
-        add_escaped(state, i, env, spectra, d, weight)
+        if weight > 0.0:
+            fp = environment.footprint(env, d)
+            for k in range(state.radiance.shape[1]):
+                value = state.throughput[i, k] * weight * environment.value(env, spectra, fp, state.wavelength[i, k])
+                state.radiance[i, k] += value
+                if layout.columns > 0:
+                    deposit(passes, layout, i, k, value, lights.world_group, slot, True)
     for index in range(lights.rows.shape[0] if lights.select_prob.shape[0] > 0 else 0):
         if is_distant(lights, index) and (depth > 0 or seen_by_camera(lights, index)):
             factor, pdf = distant_hit(lights, index, d)
             if factor > 0.0:
                 _add(state, i, factor, light_spectrum(lights, index), spectra,
-                     emitter_weight(state, i, pdf, settings.use_mis))
+                     emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index], slot,
+                     True)
 
 
 @kernel
 def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, lights, spectra,
-                    settings, depth, surface):
+                    settings, depth, surface, passes, layout):
     """Add emission for the first ``count`` rays of ``rays``; list the paths that hit a surface in
-    ``surface.path`` and return how many."""
+    ``surface.path`` and return how many. ``passes`` / ``layout``: see ``stages.passes``."""
     shade_next = depth <= settings.max_bounces
     listed = 0
     for j in range(count):
@@ -97,12 +110,16 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
         t = float(hit_t[j]) if triangle >= 0 else math.inf
         mis_origin = (state.mis_origin[i, 0], state.mis_origin[i, 1], state.mis_origin[i, 2])
         if lights.hittable.shape[0] > 0:
-            _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth)
+            _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout)
         if triangle < 0:
-            _add_background(state, i, d, lights, spectra, settings, depth)
+            _add_background(state, i, d, lights, spectra, settings, depth, passes, layout)
+            if layout.columns > 0:
+                features_done(passes, layout, i)
             continue
         if geometry.flags[triangle] & HOLDOUT and state.flags[i] & CAMERA_PATH:
             _see_through(state, i)
+            if layout.columns > 0:
+                features_done(passes, layout, i)
             continue
         material = geometry.material[triangle]
         if materials.flags[material] & MAT_EMISSIVE:
@@ -110,7 +127,7 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
             weight = 1.0 if depth == 0 else emitter_weight(state, i, emitter_pdf(lights, triangle, d, t_mis),
                                                           settings.use_mis)
             _add(state, i, materials.emission_strength[material], materials.emission_spectrum[material], spectra,
-                 weight)
+                 weight, passes, layout, emitter_group(lights, triangle), camera_slot(layout, depth, False), False)
         if shade_next:
             state.hit_triangle[i] = triangle
             state.hit_u[i] = hit_u[j]

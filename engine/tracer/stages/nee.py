@@ -17,6 +17,7 @@ from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..vec3 import to_local
 from ..warps import power_heuristic
+from .passes import lobe_shares
 
 SHADOW_SHORTEN = 1e-4  # shadow rays stop this fraction short of the light sample
 FAR = 1e30  # tmax of shadow rays toward distant lights (float32-representable)
@@ -30,7 +31,7 @@ def consistent(cos_og, cos_ig, wo_z, wi_z):
 
 @inlined
 def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, count, lights, materials, spectra,
-                  settings, depth, collapsed, shadows, slot, li, f, scratch):
+                  settings, depth, collapsed, shadows, slot, li, f, scratch, passes, layout):
     """Queue the light-sampled contribution of vertex ``p`` of path ``i`` at ``slot`` of ``shadows``;
     returns 1 if queued, else 0."""
     ps = state.seed[i]
@@ -38,7 +39,7 @@ def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, cou
     u_select = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT))
     u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT_POINT))
     lam = state.wavelength[i]
-    wi, dist, pdf_light, delta = sample_light(lights, materials, spectra, p, u_select, u1, u2, lam, li)
+    wi, dist, pdf_light, delta, group = sample_light(lights, materials, spectra, p, u_select, u1, u2, lam, li)
     if not pdf_light > 0.0:
         return 0
     wi_l = to_local(wi, frame[0], frame[1], frame[2])
@@ -68,5 +69,9 @@ def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, cou
         shadows.direction[slot, c] = wi[c]
     rays.tmax[slot] = distance
     shadows.distance[slot] = distance
+    shadows.group[slot] = group
     rays.path[slot] = i
+    if depth == 0 and layout.light >= 0:
+        lobe_shares(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, scratch[0],
+                    passes.split[i, 0])
     return 1

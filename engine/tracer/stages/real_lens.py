@@ -19,10 +19,11 @@ from .queue import push_ray
 @kernel
 def real_lens_kernel(state, rays, camera, lens, ws, settings, pixels, first, count, samples_per_pixel, first_sample):
     """Start paths ``first .. first + count`` of the pass through the lens ``lens`` (``RealLensTables``);
-    ``camera`` (``CameraData``) gives the filter and the camera's rotation. Returns the rays queued."""
+    ``camera`` (``CameraData``) gives the filter and the camera's rotation and position. Returns the rays queued."""
     queued = 0
     k = state.throughput.shape[1]
     r = camera.rotation
+    at = camera.origin
     for i in range(count):
         p = first + i
         pixel = pixels[p // samples_per_pixel]
@@ -40,8 +41,9 @@ def real_lens_kernel(state, rays, camera, lens, ws, settings, pixels, first, cou
         state.flags[i] |= COLLAPSED
         if not weight > 0.0:
             continue
-        origin = (r[0, 0] * ox + r[0, 1] * oy + r[0, 2] * oz, r[1, 0] * ox + r[1, 1] * oy + r[1, 2] * oz,
-                  r[2, 0] * ox + r[2, 1] * oy + r[2, 2] * oz)
+        origin = (at[0] + r[0, 0] * ox + r[0, 1] * oy + r[0, 2] * oz,
+                  at[1] + r[1, 0] * ox + r[1, 1] * oy + r[1, 2] * oz,
+                  at[2] + r[2, 0] * ox + r[2, 1] * oy + r[2, 2] * oz)
         direction = (r[0, 0] * dx + r[0, 1] * dy + r[0, 2] * dz, r[1, 0] * dx + r[1, 1] * dy + r[1, 2] * dz,
                      r[2, 0] * dx + r[2, 1] * dy + r[2, 2] * dz)
         for c in range(3):

@@ -21,6 +21,7 @@ from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sam
 from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
 from .nee import consistent, sample_direct
+from .passes import first_bounce, first_hit, surface_features
 from .queue import push_ray
 from .roulette import survives
 
@@ -48,10 +49,10 @@ def _through_transparent_glass(settings, rows, closures, sampled):
 
 @kernel
 def shade_kernel(state, surface, count, geometry, materials, lights, spectra, settings, depth, next_rays, shadows,
-                 scratch, glass_clamps, rejected):
+                 scratch, glass_clamps, rejected, passes, layout):
     """Shade the ``count`` paths listed in ``surface``; returns (rays queued in ``next_rays``, shadow
     rays queued in ``shadows``). ``scratch`` is a ``state.ShadingScratch``; ``glass_clamps`` and
-    ``rejected`` (int64 counters) are incremented."""
+    ``rejected`` (int64 counters) are incremented; ``passes`` / ``layout``: see ``stages.passes``."""
     k = state.wavelength.shape[1]
     rows, spectral, eta, weight, li, f, mix = scratch
     has_lights = lights.select_prob.shape[0] > 0
@@ -74,13 +75,16 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         tangent, bitangent = tangents(n)
         frame = (tangent, bitangent, n)
         wo_l = to_local(wo, tangent, bitangent, n)
+        if depth == 0 and layout.columns > 0:
+            facing = ns if cos_og >= 0.0 else (-ns[0], -ns[1], -ns[2])
+            first_hit(passes, layout, i, p, facing, material)
         lam = state.wavelength[i]
         hero = state.hero[i]
         closures = resolve_material(materials, spectra, material, lam, hero, rows, spectral, eta, glass_clamps)
         if has_lights and not mflags & MAT_DELTA:
             shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                       materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
-                                      mix)
+                                      mix, passes, layout)
         ps = state.seed[i]
         sample = state.sample[i]
         u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
@@ -92,7 +96,16 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         largest = 0.0
         for c in range(k):
             largest = max(largest, weight[c])
-        if not (largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])):
+        valid = largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])
+        if layout.columns > 0:
+            if not valid:
+                weight[:] = 0.0
+            if not mflags & MAT_DELTA:
+                surface_features(state, passes, layout, i, p, n, weight, spectra)
+            if depth == 0 and layout.light >= 0:
+                first_bounce(state, passes, layout, i, rows, spectral, eta, closures, wo_l, wi_l, lam, hero, collapsed,
+                             sampled, weight, mix[0], spectra)
+        if not valid:
             continue
         for c in range(k):
             state.throughput[i, c] *= weight[c]

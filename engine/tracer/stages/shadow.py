@@ -15,22 +15,25 @@ from ..bsdf.thin_film import film_reflectance
 from ..geometry import offset_origin, surface_at
 from ..jit import kernel
 from ..materials.table import MAT_NULL
+from .passes import deposit
 
 MAX_FILM_LAYERS = 8
 
 
 @kernel
-def shadow_kernel(state, shadows, count, occluded):
+def shadow_kernel(state, shadows, count, occluded, passes, layout):
     """Add the contribution of every queued shadow ray whose occlusion result is -1 (nothing in the way)."""
     for j in range(count):
         if occluded[j] != 0:
             i = shadows.rays.path[j]
             for k in range(state.radiance.shape[1]):
                 state.radiance[i, k] += shadows.contribution[j, k]
+                if layout.groups > 0:
+                    deposit(passes, layout, i, k, shadows.contribution[j, k], shadows.group[j], -1, False)
 
 
 @kernel
-def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials):
+def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, passes, layout):
     """One layer of closest hits (before each ray's ``tmax``): rays that hit nothing deliver their
     contribution; rays that hit a film are attenuated, moved past it and kept (compacted to the front);
     others are blocked. Returns the number kept."""
@@ -41,6 +44,8 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
         if triangle < 0:
             for k in range(state.radiance.shape[1]):
                 state.radiance[i, k] += shadows.contribution[j, k]
+                if layout.groups > 0:
+                    deposit(passes, layout, i, k, shadows.contribution[j, k], shadows.group[j], -1, False)
             continue
         material = geometry.material[triangle]
         if not materials.flags[material] & MAT_NULL:
@@ -66,5 +71,6 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
         shadows.distance[kept] = remaining
         shadows.rays.tmax[kept] = remaining
         shadows.rays.path[kept] = i
+        shadows.group[kept] = shadows.group[j]
         kept += 1
     return kept

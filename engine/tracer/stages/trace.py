@@ -9,12 +9,17 @@ from __future__ import annotations
 from .camera import camera_kernel
 from .emission import emission_kernel
 from .film import film_kernel
+from .passes import convert_kernel, reset_kernel, route_kernel
 from .real_lens import real_lens_kernel
 from .shade import shade_kernel
 from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
 
+#: When ``route_kernel`` splits the light: after the first vertex's shadows, after the second ray's
+#: emission, at the end.
+_ROUTE_FIRST_SHADOWS, _ROUTE_SECOND_EMISSION, _ROUTE_END = 0, 1, 2
 
-def _trace_shadows(renderer, state, shadows, count):
+
+def _trace_shadows(renderer, state, shadows, count, passes, layout):
     """Deliver the light of the first ``count`` shadow rays that reach their lights; returns rays cast."""
     accel = renderer.accel if renderer.ray_classes is None else renderer.ray_classes
     rays = 0
@@ -24,11 +29,12 @@ def _trace_shadows(renderer, state, shadows, count):
                 return rays
             hit = accel.intersect_before(shadows.rays, count)
             rays += count
-            count = film_layer_kernel(state, shadows, count, *hit, renderer.geometry, renderer.material_table.arrays)
+            count = film_layer_kernel(state, shadows, count, *hit, renderer.geometry, renderer.material_table.arrays,
+                                      passes, layout)
     if count:
         occluded = accel.occluded(shadows.rays, count)
         rays += count
-        shadow_kernel(state, shadows, count, occluded)
+        shadow_kernel(state, shadows, count, occluded, passes, layout)
     return rays
 
 
@@ -52,6 +58,11 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
                                   renderer.wavelengths, settings, renderer._pixels, first, count, samples_per_pixel,
                                   first_sample)
     rejected[0] += count - queued
+    passes = renderer.pass_data(buffers)
+    layout = renderer.pass_layout.kernel
+    if layout.columns:
+        reset_kernel(passes, layout, count)
+    routed = 0 if layout.light >= 0 else _ROUTE_END + 1
     rays_cast = 0
     for depth in range(settings.max_bounces + 2):
         if queued == 0:
@@ -62,15 +73,26 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
             hit = renderer.ray_classes.intersect(current, queued, state, depth)
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, *hit, geometry, materials, lights, spectra, settings,
-                                   depth, buffers.surface)
+                                   depth, buffers.surface, passes, layout)
+        if depth == 1 and routed == _ROUTE_SECOND_EMISSION:
+            route_kernel(state, passes, layout, count, routed)
+            routed += 1
         if surfaces == 0:
             break
         following = buffers.rays[1] if current is buffers.rays[0] else buffers.rays[0]
         queued, shadowed = shade_kernel(state, buffers.surface, surfaces, geometry, materials, lights, spectra,
                                         settings, depth, following, buffers.shadows, buffers.scratch, glass_clamps,
-                                        rejected)
+                                        rejected, passes, layout)
         if shadowed:
-            rays_cast += _trace_shadows(renderer, state, buffers.shadows, shadowed)
+            rays_cast += _trace_shadows(renderer, state, buffers.shadows, shadowed, passes, layout)
+        if depth == 0 and routed == _ROUTE_FIRST_SHADOWS:
+            route_kernel(state, passes, layout, count, routed)
+            routed += 1
         current = following
+    while routed <= _ROUTE_END:
+        route_kernel(state, passes, layout, count, routed)
+        routed += 1
     film_kernel(state, count, renderer.wavelengths, buffers.rgb)
+    if layout.slots:
+        convert_kernel(state, passes, layout, renderer.wavelengths, count)
     return rays_cast, int(rejected[0])

@@ -14,7 +14,7 @@ from engine.tracer.spectra.table import SpectrumTable, spectrum_value
 @kernel
 def _sample_many(lights, materials, spectra, p, u, lam, wi, dist, li, pdf, delta):
     for i in range(p.shape[0]):
-        w, d, q, is_delta = sample_light(lights, materials, spectra, (p[i, 0], p[i, 1], p[i, 2]), u[i, 2], u[i, 0],
+        w, d, q, is_delta, _ = sample_light(lights, materials, spectra, (p[i, 0], p[i, 1], p[i, 2]), u[i, 2], u[i, 0],
                                          u[i, 1], lam[i], li[i])
         wi[i, 0], wi[i, 1], wi[i, 2] = w
         dist[i] = d

@@ -122,7 +122,7 @@ def test_environment_sampling_with_a_mapping_matches_its_density(interpolation):
     rng = np.random.default_rng(7)
     world = World(kind="image", image_rgb=_random_image(), strength=2.0, to_texture=_mapping(),
                   interpolation=interpolation)
-    env, integral, _ = env_module.build_environment(world, SpectrumTable())
+    env, integral, _, _ = env_module.build_environment(world, SpectrumTable())
     assert integral > 0
     d, pdf, again = np.empty((n, 3)), np.empty(n), np.empty(n)
     _env_sample_many(env, rng.random((n, 2)), d, pdf, again)
@@ -133,7 +133,7 @@ def test_environment_sampling_with_a_mapping_matches_its_density(interpolation):
     assert np.mean(p_uniform) * 4 * np.pi == pytest.approx(1.0, rel=0.02)
     assert np.mean(1.0 / pdf) / (4 * np.pi) == pytest.approx(1.0, rel=0.02)
     world.image_rgb = _random_image(hot=False)
-    env, _, _ = env_module.build_environment(world, SpectrumTable())
+    env = env_module.build_environment(world, SpectrumTable()).arrays
     _env_sample_many(env, rng.random((n, 2)), d, pdf, again)
     rows, columns, fine = 12, 24, 16
     zs = 1 - (np.arange(rows * fine) + 0.5) / (rows * fine) * 2
@@ -170,7 +170,7 @@ def test_texels_keep_their_colour_and_blenders_layout():
     image[:] = rng.random((height, width, 3)) * np.array([3.0, 1.0, 0.5]) + 0.01
     spectra = SpectrumTable()
     world = World(kind="image", image_rgb=image, strength=1.5, interpolation="closest")
-    env, _, _ = env_module.build_environment(world, spectra)
+    env = env_module.build_environment(world, spectra).arrays
     arrays = spectra.arrays()
     wavelengths = np.arange(360.0, 830.5, 1.0)
     texels = [(0, 0), (3, 7), (7, 15), (4, 8), (2, 11)]
@@ -186,7 +186,7 @@ def test_texels_keep_their_colour_and_blenders_layout():
     probe[height // 2 - 1:height // 2 + 1, width // 2 - 1:width // 2 + 1] = 1.0  # around +X
     probe[0, :] = 2.0  # the zenith row
     probe[height // 2 - 1:height // 2 + 1, width // 4 - 1:width // 4 + 1] = 3.0  # around +Y
-    env, _, _ = env_module.build_environment(World(kind="image", image_rgb=probe), spectra)
+    env = env_module.build_environment(World(kind="image", image_rgb=probe), spectra).arrays
     arrays = spectra.arrays()
     out = np.empty((3, 1))
     _env_radiance_many(env, arrays, np.array([[1.0, 0, 0], [0, 0, 1.0], [0, 1.0, 0]]), np.array([560.0]), out)
@@ -198,7 +198,7 @@ def test_linear_lookup_interpolates_between_texel_centres():
     image[1, 2] = 1.0
     image[1, 3] = 3.0
     spectra = SpectrumTable()
-    env, _, _ = env_module.build_environment(World(kind="image", image_rgb=image), spectra)
+    env = env_module.build_environment(World(kind="image", image_rgb=image), spectra).arrays
     arrays = spectra.arrays()
     a, b, half = (_texel_direction(1, c, 4, 8) for c in (2, 3, 2.5))
     out = np.empty((3, 1))

@@ -29,25 +29,31 @@ def test_visible_pdf_is_normalised_and_zero_outside():
     assert np.allclose(ratio, ratio[0], rtol=1e-12)
 
 
-def test_hero_and_rotated_wavelengths_follow_the_pdf():
+def test_stratified_wavelengths_follow_the_pdf():
+    """Each column follows the density restricted to its stratum; a uniformly chosen column (the
+    hero) follows the whole density."""
     rng = np.random.default_rng(1)
     n = 20000
     wavelength_nm, pdf = sample_visible_wavelengths(rng.random(n), 4)
     assert wavelength_nm.shape == pdf.shape == (n, 4)
     assert np.allclose(pdf, visible_wavelength_pdf(wavelength_nm))
-    expected = _expected_counts(visible_wavelength_pdf, n)
-    for column in range(4):
-        observed, _ = np.histogram(wavelength_nm[:, column], EDGES_NM)
-        assert stats.chisquare(observed, expected).pvalue > 1e-3, column
+    hero = wavelength_nm[np.arange(n), rng.integers(0, 4, n)]
+    observed, _ = np.histogram(hero, EDGES_NM)
+    assert stats.chisquare(observed, _expected_counts(visible_wavelength_pdf, n)).pvalue > 1e-3
+    def cdf(wl):  # the closed form: tanh(a (lambda - c)), normalised over 360-830 nm
+        lo, hi = np.tanh(0.0072 * (np.array([VISIBLE_MIN_NM, VISIBLE_MAX_NM]) - 538.0))
+        return (np.tanh(0.0072 * (wl - 538.0)) - lo) / (hi - lo)
+
+    for column in range(4):  # column j stays in the j-th quarter of the distribution
+        quantile = cdf(wavelength_nm[:, column])
+        assert np.all((quantile >= column / 4 - 1e-9) & (quantile <= (column + 1) / 4 + 1e-9)), column
 
 
-def test_rotated_copies_are_evenly_spaced_in_u():
+def test_columns_are_the_strata_of_one_number():
     wavelength_nm, _ = sample_visible_wavelengths(np.array([0.1, 0.9]), 4)
-    # u = 0.1 -> 0.1, 0.35, 0.6, 0.85: strictly increasing along the row
-    assert np.all(np.diff(wavelength_nm[0]) > 0)
-    # u = 0.9 -> 0.9, 0.15, 0.4, 0.65: the same set as u = 0.15 rotated
-    other, _ = sample_visible_wavelengths(np.array([0.15]), 4)
-    assert np.allclose(np.sort(wavelength_nm[1]), np.sort(other[0]))
+    # u = 0.1 -> 0.025, 0.275, 0.525, 0.775: one point in each quarter of the distribution
+    assert np.all(np.diff(wavelength_nm[0]) > 0) and np.all(np.diff(wavelength_nm[1]) > 0)
+    assert np.all(wavelength_nm[0] < wavelength_nm[1])
 
 
 def test_wavelength_sampling_rejects_bad_input():

@@ -1,0 +1,230 @@
+"""What the stages write for the render passes (``passes.py`` declares them; ``layout`` says which are on).
+
+Per path (``PassData``): ``values`` [n, columns] (data passes and AOVs, written directly), ``spectral``
+[n, slots, K] (light, albedo and colour buffers, per wavelength, turned into Rec.709 by
+``convert_kernel``), and for the light split ``snapshot`` [n, K] and ``split`` [n, 2, 3, K]; ``feature``
+[n] (1 once the denoising features are written). Render constants (``Renderer.pass_data``):
+``camera_axes`` [3, 3] (camera to world: right, up, back columns), ``camera_at`` [3] (the camera in the
+render's space, m), ``render_origin`` [3] (world position of the render space's origin, m) and
+``aov_table`` [materials, AOVs, 4] (what each material's AOV Outputs write).
+
+The light split (Cycles' meaning): light that reaches the camera straight from an emitter or the world
+is Emission or Environment; any other light is attributed to the lobes of the first surface it met,
+in proportion to each lobe category's share of the BSDF in the direction it arrived from (per
+wavelength), Direct when that surface was its last scattering, Indirect otherwise. The stages do not
+route light by category: ``route_kernel`` takes the growth of each path's radiance at three points
+(after the first vertex's light sampling, after the second ray's emission, at the end) and splits it
+with the shares recorded at the first vertex: ``split[i, 0]`` for light sampling, ``split[i, 1]`` for
+the sampled direction. Colour = the BSDF sample weight × share, whose mean is each category's albedo.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+
+from ..bsdf.closure import C_KIND, CONDUCTOR, DIFFUSE, SAMPLED_DELTA, SAMPLED_TRANSMISSION
+from ..bsdf.dispatch import closure_evaluate
+from ..jit import inlined, kernel
+from ..spectra.table import spectrum_value
+from ..spectra.wavelength_sampling import radiance_to_rgb
+
+PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table")
+
+EMISSION = 0  # offsets from layout.light, in passes.LIGHT_SLOTS order
+ENVIRONMENT = 1
+DIRECT = 2  # + 2 * category
+INDIRECT = 3
+COLOUR = 8  # + category
+GLOSSY = 1
+TRANSMISSION = 2
+
+
+def new_pass_data(n: int, k: int, film_layout) -> PassData:
+    """Per-path pass storage for ``n`` paths of ``k`` wavelengths (empty arrays for what is off); the
+    render constants are filled by ``Renderer.pass_data``."""
+    layout = film_layout.kernel
+    light = n if layout.light >= 0 else 0
+    features = n if layout.denoising_albedo >= 0 or layout.denoising_normal >= 0 else 0
+    return PassData(np.empty((n, layout.columns)), np.zeros((n, layout.slots, k)), np.zeros((light, k)),
+                    np.zeros((light, 2, 3, k)), np.zeros(features, np.int8),
+                    np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)))
+
+
+def pass_work(layout) -> bool:
+    """Whether the stages have anything to write (False: a Combined-only render skips every pass kernel)."""
+    return layout.columns > 0
+
+
+@kernel
+def reset_kernel(passes, layout, count):
+    """Paths 0 .. count-1 start with no pass data."""
+    for i in range(count):
+        for c in range(layout.columns):
+            passes.values[i, c] = 0.0
+        for s in range(layout.slots):
+            passes.spectral[i, s, :] = 0.0
+        if passes.feature.shape[0] > 0:
+            passes.feature[i] = 0
+        if passes.split.shape[0] > 0:
+            passes.split[i, :, :, :] = 0.0
+
+
+@inlined
+def deposit(passes, layout, i, k, value, group, slot, albedo):
+    """Light ``value`` of wavelength column ``k`` reached path ``i``: to light group ``group`` and slot
+    ``slot`` (-1: neither), and to the denoising albedo when ``albedo`` and no surface wrote it yet."""
+    if group >= 0 and layout.groups > 0:
+        passes.spectral[i, layout.group + group, k] += value
+    if slot >= 0:
+        passes.spectral[i, slot, k] += value
+    if albedo and layout.denoising_albedo >= 0 and passes.feature[i] == 0:
+        passes.spectral[i, layout.denoising_albedo, k] += value
+
+
+@inlined
+def camera_slot(layout, depth, escaped):
+    """The slot of light found by the camera ray itself (Environment or Emission), else -1."""
+    if depth != 0 or layout.light < 0:
+        return -1
+    return layout.light + (ENVIRONMENT if escaped else EMISSION)
+
+
+@inlined
+def features_done(passes, layout, i):
+    if passes.feature.shape[0] > 0:
+        passes.feature[i] = 1
+
+
+@inlined
+def _camera_depth(passes, p):
+    a, c = passes.camera_axes, passes.camera_at
+    return -((p[0] - c[0]) * a[0, 2] + (p[1] - c[1]) * a[1, 2] + (p[2] - c[2]) * a[2, 2])
+
+
+@inlined
+def first_hit(passes, layout, i, p, n, material):
+    """Depth, Position, Normal and AOVs of the surface the camera ray hit at ``p`` (in the render's space)
+    with normal ``n`` (facing the camera)."""
+    for a in range(layout.aovs):
+        for c in range(4):
+            passes.values[i, layout.aov + 4 * a + c] = passes.aov_table[material, a, c]
+    if layout.depth >= 0:
+        passes.values[i, layout.depth] = _camera_depth(passes, p)
+        passes.values[i, layout.depth + 1] = 1.0
+    if layout.position >= 0:
+        for c in range(3):
+            passes.values[i, layout.position + c] = p[c] + passes.render_origin[c]
+    if layout.normal >= 0:
+        for c in range(3):
+            passes.values[i, layout.normal + c] = n[c]
+
+
+@kernel
+def surface_features(state, passes, layout, i, p, n, weight, spectra):
+    """Denoising features of the first surface that is not all mirror or glass: its camera-space
+    normal and depth, and its albedo (the BSDF sample's weight, whose mean is the albedo) seen through
+    what the path crossed before."""
+    if passes.feature.shape[0] == 0 or passes.feature[i] != 0:
+        return
+    passes.feature[i] = 1
+    if layout.denoising_normal >= 0:
+        v = passes.camera_axes
+        right = n[0] * v[0, 0] + n[1] * v[1, 0] + n[2] * v[2, 0]
+        up = n[0] * v[0, 1] + n[1] * v[1, 1] + n[2] * v[2, 1]
+        forward = -(n[0] * v[0, 2] + n[1] * v[1, 2] + n[2] * v[2, 2])
+        passes.values[i, layout.denoising_normal] = right
+        passes.values[i, layout.denoising_normal + 1] = up
+        passes.values[i, layout.denoising_normal + 2] = forward
+    if layout.denoising_depth >= 0:
+        passes.values[i, layout.denoising_depth] = _camera_depth(passes, p)
+        passes.values[i, layout.denoising_depth + 1] = 1.0
+    if layout.denoising_albedo >= 0:
+        for k in range(weight.shape[0]):
+            value = state.throughput[i, k] * weight[k] * spectrum_value(spectra, layout.white, state.wavelength[i, k])
+            if value == value:
+                passes.spectral[i, layout.denoising_albedo, k] += value
+
+
+@inlined
+def _category(row, wo_z, wi_z):
+    kind = int(row[C_KIND])
+    if kind == DIFFUSE:
+        return 0
+    if kind == CONDUCTOR or wo_z * wi_z > 0.0:
+        return GLOSSY
+    return TRANSMISSION
+
+
+@kernel
+def lobe_shares(rows, spectral, eta, count, wo, wi, wavelength_nm, hero, collapsed, scratch, out):
+    """``out[c, k]``: the share of lobe category c (diffuse, glossy, transmission) in the material's f
+    for light arriving from ``wi`` (local frame), per wavelength column k."""
+    out[:, :] = 0.0
+    if count == 1:
+        out[_category(rows[0], wo[2], wi[2]), :] = 1.0
+        return
+    for c in range(count):
+        closure_evaluate(rows[c], spectral[c], eta[c], wo, wi, wavelength_nm, hero, collapsed, scratch)
+        category = _category(rows[c], wo[2], wi[2])
+        for k in range(out.shape[1]):
+            out[category, k] += rows[c, 1] * scratch[k]
+    for k in range(out.shape[1]):
+        total = out[0, k] + out[1, k] + out[2, k]
+        for c in range(3):
+            out[c, k] = out[c, k] / total if total > 0.0 else (1.0 / 3.0)
+
+
+@kernel
+def first_bounce(state, passes, layout, i, rows, spectral, eta, count, wo, wi, lam, hero, collapsed, sampled,
+                 weight, scratch, spectra):
+    """At the first surface: the lobe shares of the sampled direction (delta lobes by what they did)
+    and the colour passes (sample weight × share, reflectance carried on a white spectrum)."""
+    shares = passes.split[i, 1]
+    if sampled & SAMPLED_DELTA:
+        shares[:, :] = 0.0
+        shares[TRANSMISSION if sampled & SAMPLED_TRANSMISSION else GLOSSY, :] = 1.0
+    else:
+        lobe_shares(rows, spectral, eta, count, wo, wi, lam, hero, collapsed, scratch, shares)
+    for k in range(weight.shape[0]):
+        white = weight[k] * spectrum_value(spectra, layout.white, lam[k])
+        if white == white:
+            for c in range(3):
+                passes.spectral[i, layout.light + COLOUR + c, k] += white * shares[c, k]
+
+
+@kernel
+def route_kernel(state, passes, layout, count, step):
+    """Split each path's new radiance since the last step: ``step`` 0 after the first vertex's light
+    sampling (Direct, shares of the light's direction), 1 after the second ray's emission (Direct,
+    shares of the sampled direction), 2 at the end (Indirect)."""
+    k_count = state.radiance.shape[1]
+    base = layout.light
+    for i in range(count):
+        for k in range(k_count):
+            now = state.radiance[i, k]
+            if step == 0:
+                before = passes.spectral[i, base + EMISSION, k] + passes.spectral[i, base + ENVIRONMENT, k]
+            else:
+                before = passes.snapshot[i, k]
+            passes.snapshot[i, k] = now
+            grown = now - before
+            if grown == 0.0:
+                continue
+            shares = passes.split[i, 0] if step == 0 else passes.split[i, 1]
+            offset = INDIRECT if step == 2 else DIRECT
+            for c in range(3):
+                passes.spectral[i, base + offset + 2 * c, k] += grown * shares[c, k]
+
+
+@kernel
+def convert_kernel(state, passes, layout, ws, count):
+    """Each spectral slot of paths 0 .. count-1 as Rec.709 in its three value columns."""
+    for i in range(count):
+        for s in range(layout.slots):
+            r, g, b = radiance_to_rgb(ws, passes.spectral[i, s], state.wavelength[i], state.wavelength_pdf[i])
+            column = layout.rgb_column + 3 * s
+            passes.values[i, column] = r
+            passes.values[i, column + 1] = g
+            passes.values[i, column + 2] = b
