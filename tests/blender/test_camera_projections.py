@@ -89,8 +89,16 @@ def test_every_pixel_sees_the_tile_cycles_sees(prism_addon, fresh_scene, case):
     black = np.zeros((1, 3))
     palette = np.concatenate([palette, black])  # outside a fisheye's circle
     nearest = lambda image: np.argmin(((image[..., None, :] - palette) ** 2).sum(-1), axis=-1)  # noqa: E731
-    same = nearest(prism) == nearest(cycles)
-    # Pixels on tile edges mix two colours and may round either way.
-    assert same.mean() > 0.95, f"{case}: {100 * same.mean():.1f} % of pixels see the same tile"
-    distance = np.abs(prism - cycles).max(-1)
-    assert np.median(distance) < 0.02
+    tiles, reference = nearest(prism), nearest(cycles)
+    # Pixels on a tile's edge mix two colours and may round either way: judge the others (a pixel whose
+    # four neighbours see its tile in Cycles' image), which must all agree.
+    edge = np.zeros(reference.shape, bool)
+    for axis in (0, 1):
+        for step in (1, -1):
+            edge |= np.roll(reference, step, axis) != reference
+    interior = ~edge
+    assert interior.mean() > 0.2
+    same = (tiles == reference)[interior].mean()
+    assert same > 0.99, f"{case}: {100 * same:.1f} % of the interior pixels see the same tile"
+    assert (tiles == reference).mean() > 0.8
+    assert np.median(np.abs(prism - cycles).max(-1)) < 0.03

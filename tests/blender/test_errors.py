@@ -52,27 +52,31 @@ def _panorama(kind):
 
 
 def _real_lens_ortho(tmp):
-    _real_lens(REPO_ROOT / "lenses" / "double_gauss_50mm.lens")()
-    bpy.context.scene.camera.data.type = "ORTHO"
+    def mutate():
+        _real_lens(REPO_ROOT / "lenses" / "double_gauss_50mm.lens")()
+        bpy.context.scene.camera.data.type = "ORTHO"
+
+    return mutate
 
 
 def _world_texture(kind, **settings):
-    def mutate(tmp=None):
-        world = bpy.data.worlds.new("Sky")
-        world.use_nodes = True
-        nodes = world.node_tree.nodes
-        node = nodes.new(kind)
-        for key, value in settings.items():
-            if key == "image_path":
-                image = bpy.data.images.new("hdri", 4, 2, float_buffer=True)
-                image.source, image.filepath = "FILE", str(Path(tmp) / value)
-                node.image = image
-            else:
-                setattr(node, key, value)
-        world.node_tree.links.new(node.outputs["Color"], nodes["Background"].inputs["Color"])
-        bpy.context.scene.world = world
+    return lambda tmp: lambda: _add_world_texture(tmp, kind, settings)
 
-    return mutate
+
+def _add_world_texture(tmp, kind, settings):
+    world = bpy.data.worlds.new("Sky")
+    world.use_nodes = True
+    nodes = world.node_tree.nodes
+    node = nodes.new(kind)
+    for key, value in settings.items():
+        if key == "image_path":
+            image = bpy.data.images.new("hdri", 4, 2, float_buffer=True)
+            image.source, image.filepath = "FILE", str(Path(tmp) / value)
+            node.image = image
+        else:
+            setattr(node, key, value)
+    world.node_tree.links.new(node.outputs["Color"], nodes["Background"].inputs["Color"])
+    bpy.context.scene.world = world
 
 
 def _real_lens(path):
