@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: render test extension bench venv clean inventory
+.PHONY: render rainbow test extension bench venv clean inventory
 
 # Creates .venv with the pinned requirements, once; re-running is a no-op.
 $(STAMP): requirements.txt
@@ -20,6 +20,11 @@ render: $(STAMP)
 	$(PY) demo/build_demo_scene.py renders/demo.blend
 	$(PY) render.py renders/demo.blend --samples 64 --output renders/demo.png
 
+# Builds the rainbow demo (slit lamp, prism, wall; a glass ball's caustic) and renders it to renders/rainbow.png.
+rainbow: $(STAMP)
+	$(PY) demo/build_rainbow_scene.py renders/rainbow.blend
+	$(PY) render.py renders/rainbow.blend --samples 64 --output renders/rainbow.png
+
 # Runs the test suite.
 test: $(STAMP)
 	$(PY) -m pytest
@@ -33,13 +38,17 @@ extension: $(STAMP)
 	$(PY) tools/build_extension.py
 
 # Speed-against-error benchmarks; writes benchmarks/results/ and docs/performance.md.
-# Mitsuba's fast variant needs libLLVM >= 19 (Debian: libllvm19); without it the slower scalar one runs.
+# `make bench BENCH_ARGS=--quick` is the two-minute plumbing check (results in benchmarks/results/quick/).
+# Mitsuba's fast variant needs libLLVM >= 19 (Debian: libllvm19; a fresh machine has no package lists
+# yet, hence the update); without it the slower scalar one runs.
+BENCH_ARGS ?=
 bench: $(STAMP)
 	@dpkg-query -W -f='$${Status}' libllvm19 2>/dev/null | grep -q "install ok installed" || \
-	  (test "$$(id -u)" = 0 && apt-get install -y -qq libllvm19) || \
+	  (test "$$(id -u)" = 0 && (apt-get install -y -qq libllvm19 >/dev/null 2>&1 || \
+	    (apt-get update -qq && apt-get install -y -qq libllvm19))) || \
 	  echo "note: install libllvm19 for Mitsuba's llvm variant (apt-get install libllvm19)"
 	$(PY) -m pip install --quiet -r benchmarks/requirements.txt
-	$(PY) -m benchmarks.run
+	$(PY) -m benchmarks.run $(BENCH_ARGS)
 
 clean:
 	rm -rf renders dist build .pytest_cache

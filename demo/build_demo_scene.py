@@ -109,23 +109,35 @@ def build(path: Path) -> None:
     scene.collection.objects.link(camera)
     scene.camera = camera
 
+    save_with_world(scene, (0.02, 0.025, 0.03), path)
+
+
+def save_with_world(scene, background, path: Path) -> None:
+    """Give ``scene`` a plain ``background`` (linear RGB) world and save the file as ``path``."""
     world = bpy.data.worlds.new("World")
     world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.02, 0.025, 0.03, 1)
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (*background, 1)
     scene.world = world
     path.parent.mkdir(parents=True, exist_ok=True)
     bpy.ops.wm.save_as_mainfile(filepath=str(path.resolve()))
 
 
-if __name__ == "__main__":
-    target = Path(sys.argv[1] if len(sys.argv) > 1 else "renders/demo.blend")
+def run(build, default_path: str, what: str, **options) -> None:
+    """A builder's command line: ``build(path, **options)`` to argv's first path (else ``default_path``),
+    one line on stderr, and an exit status (``os._exit``: the bpy module may hang at exit)."""
+    arguments = [a for a in sys.argv[1:] if not a.startswith("--")]
+    target = Path(arguments[0] if arguments else default_path)
     status = 0
     try:
-        build(target)
-        print(f"Demo scene written to {target}", file=sys.stderr)
+        build(target, **options)
+        print(f"{what} written to {target}", file=sys.stderr)
     except Exception as error:  # noqa: BLE001 - report and exit non-zero
-        print(f"Could not build the demo scene: {error}", file=sys.stderr)
+        print(f"Could not build the {what.lower()}: {error}", file=sys.stderr)
         status = 1
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(status)
+
+
+if __name__ == "__main__":
+    run(build, "renders/demo.blend", "Demo scene")

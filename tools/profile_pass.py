@@ -1,60 +1,32 @@
-"""Profile one render pass of a benchmark scene against the embreex ceiling.
+"""One benchmark scene's pass against the embreex ceiling, and where its time goes, stage by stage.
 
-    .venv/bin/python tools/profile_pass.py cornell_glass [--size 64] [--spp 16] [--threads 1]
-        [--passes 3] [--profile] [--top 25] [--seed 0]
+    .venv/bin/python tools/profile_pass.py cornell_glass [--size 64] [--spp 16] [--threads 2]
+        [--passes 5] [--seed 0] [--no-ceiling] [--no-stages]
+    .venv/bin/python tools/profile_pass.py --blend renders/demo.blend [--spp 4] ...   (bpy module)
 
-Prints paths/s, rays/s, rays per CPU-second of the renderer (best of ``--passes``
-timed passes after a warm-up pass), the time bare embreex needs for exactly the
-rays one pass casts (``benchmarks.ceiling``: recorded on a separate, untimed pass
-and replayed on the same number of threads), their ratio (the project's
-"fraction of the ceiling"), and with ``--profile`` the top of a cProfile of one
-pass's chunks traced serially in the main thread (own and cumulative time).
+The first form renders a benchmark scene (``benchmarks/scenes.py``); ``--blend`` exports a .blend
+file's scene and render settings through the add-on, as ``render.py`` does (``--size`` is then the
+file's resolution).
+
+Prints the best of ``--passes`` timed passes after a warm-up pass (wall and process CPU time, paths/s,
+rays/s), the time bare embreex needs for exactly the rays of one pass (recorded on another, untimed
+pass with ``benchmarks.ceiling`` and replayed on the renderer's triangles with the same thread count),
+their ratio (the project's "fraction of the ceiling", in wall and in CPU time), and the pass split by
+stage kernel and Embree query in CPU time (``benchmarks.stage_split``, on passes of its own). On a
+shared machine the CPU-time figures are the stable ones; wall-clock ratios need a quiet moment.
 """
 
 from __future__ import annotations
 
 import argparse
-import contextlib
-import cProfile
-import io
-import pstats
+import importlib
+import json
+import os
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-import numpy as np  # noqa: E402
-
-
-def _settings(args):
-    from engine.tracer.settings import RenderSettings
-
-    return RenderSettings(samples=10**6, samples_per_pass=args.spp, max_bounces=args.bounces, seed=args.seed,
-                          wavelength_mode="cie", wavelengths_per_path=4, threads=args.threads)
-
-
-def replay_cpu_seconds(vertices, triangles, batches, repeats: int = 3) -> float:
-    """Best CPU time of one thread of bare embreex casting ``batches`` (the CPU-time
-    twin of ``benchmarks.ceiling.replay_seconds``, robust on a shared machine)."""
-    from embreex import rtcore_scene
-    from embreex.mesh_construction import TriangleMesh
-
-    from benchmarks.ceiling import _clean
-
-    scene = rtcore_scene.EmbreeScene()
-    TriangleMesh(scene, np.ascontiguousarray(vertices, np.float32), np.ascontiguousarray(triangles, np.int32))
-    batches = [_clean(b) for b in batches]
-    times = []
-    for _ in range(repeats + 1):
-        start = time.process_time()
-        for kind, o, d, tmax in batches:
-            if len(o) and kind == "closest":
-                scene.run(o, d, output=1)
-            elif len(o):
-                scene.run(o, d, dists=tmax, query="OCCLUDED")
-        times.append(time.process_time() - start)
-    return float(np.min(times[1:]))
 
 
 def _timed_pass(renderer):
@@ -64,64 +36,92 @@ def _timed_pass(renderer):
     return time.perf_counter() - wall, time.process_time() - cpu, renderer.stats["rays_cast"] - rays
 
 
+def _blend(path, args):
+    """(scene, settings) of a .blend file, exported by the add-on as ``render.py`` does."""
+    import bpy
+    from dataclasses import replace
+
+    from render import load_addon_package
+
+    package = load_addon_package()
+    package.register()
+    bpy.ops.wm.open_mainfile(filepath=str(Path(path).resolve()))
+    export = importlib.import_module(package.__name__ + ".engine.export")
+    export_settings = importlib.import_module(package.__name__ + ".engine.export.settings").export_settings
+    scene = export.export_scene(bpy.context.evaluated_depsgraph_get(), [])
+    settings = export_settings(bpy.context.scene, samples=10**6, seed=args.seed, threads=args.threads, preview=False,
+                               border=None)
+    return scene, replace(settings, samples_per_pass=args.spp)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("scene", nargs="?", default="cornell_glass")
     parser.add_argument("--size", type=int, default=64)
     parser.add_argument("--spp", type=int, default=16)
-    parser.add_argument("--bounces", type=int, default=8)
-    parser.add_argument("--threads", type=int, default=1)
-    parser.add_argument("--passes", type=int, default=3)
+    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--passes", type=int, default=5)
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--profile", action="store_true")
-    parser.add_argument("--top", type=int, default=25)
     parser.add_argument("--no-ceiling", action="store_true")
+    parser.add_argument("--no-stages", action="store_true")
+    parser.add_argument("--blend", help="a .blend file to export and profile instead of a benchmark scene")
+    parser.add_argument("--json", help="also write the figures to this file (JSON)")
     args = parser.parse_args(argv)
+    report = dict(scene=args.scene, threads=args.threads, spp=args.spp)
 
-    from benchmarks import ceiling, scenes
-    from engine.tracer.renderer import Renderer
+    from dataclasses import replace
 
-    scene = scenes.build(args.scene, (args.size, args.size))
-    with contextlib.closing(Renderer(scene, _settings(args))) as renderer:
-        renderer.render_pass()  # warm-up: caches, BVH pages
+    from benchmarks import ceiling, prism_runs, scenes, stage_split
+
+    if args.blend:
+        scene, settings = _blend(args.blend, args)
+        args.scene = Path(args.blend).name
+    else:
+        scene = scenes.build(args.scene, (args.size, args.size))
+        settings = replace(prism_runs.settings_for({}, samples=10**6, seed=args.seed, threads=args.threads),
+                           samples_per_pass=args.spp)
+    Renderer = importlib.import_module(stage_split._tracer(scene) + ".renderer").Renderer
+    width, height = (int(r) for r in scene.camera.resolution)
+    paths = width * height * args.spp
+    with Renderer(scene, settings) as renderer:
+        renderer.render_pass()  # warm-up: kernels loaded, buffers allocated
         runs = [_timed_pass(renderer) for _ in range(args.passes)]
-        # best of the passes: on a shared machine the fastest pass is the least disturbed one
-        wall, cpu, rays = (float(np.min([r[i] for r in runs])) for i in range(3))
-        paths = args.size * args.size * args.spp
-        print(f"scene {args.scene} {args.size}x{args.size}, {args.spp} spp/pass, {args.bounces} bounces, "
-              f"cie x4, {args.threads} thread(s); best of {args.passes} passes")
-        print(f"  pass wall {wall:.3f} s, cpu {cpu:.3f} s, rays {rays:.0f} ({rays / paths:.2f} per path)")
+        wall, cpu, rays = min(runs)  # the least disturbed pass on a shared machine
+        print(f"scene {args.scene} {width}x{height}, {args.spp} spp/pass ({paths:,} paths), "
+              f"{args.threads} thread(s); best of {args.passes} passes")
+        print(f"  pass wall {wall:.4f} s, cpu {cpu:.4f} s, {rays:,} rays ({rays / paths:.2f} per path)")
         print(f"  paths/s {paths / wall:,.0f}   rays/s {rays / wall:,.0f}   rays per CPU-s {rays / cpu:,.0f}")
+        report.update(scene=args.scene, width=width, height=height, paths=paths, pass_seconds=wall, pass_cpu=cpu,
+                      rays=rays, triangles=int(len(renderer.geometry.triangles)))
         if not args.no_ceiling:
-            recorder = ceiling.RayRecorder(renderer.accel)
-            recorder.active = True
-            renderer.render_pass()
-            recorder.active = False
-            recorder.uninstall()
-            embree = ceiling.replay_seconds(scene.vertices, scene.triangles, recorder.batches, args.threads)
+            recorder = ceiling.record_pass(renderer)
+            replayer = ceiling.Replayer(renderer.geometry, recorder.batches, args.threads)
+            embree = min(replayer.seconds() for _ in range(args.passes))
+            embree_cpu = min(replayer.cpu_seconds() for _ in range(args.passes))
+            replayer.close()
             n = recorder.ray_count
-            print(f"  embreex ceiling: {n} rays in {embree:.3f} s = {n / embree:,.0f} rays/s "
-                  f"({args.threads} thread(s))")
-            print(f"  ratio (embreex time / pass time, same rays) {embree * rays / n / wall:.1%} (wall)")
-            if args.threads == 1:
-                embree_cpu = replay_cpu_seconds(scene.vertices, scene.triangles, recorder.batches)
-                print(f"  embreex CPU: {n / embree_cpu:,.0f} rays per CPU-s; "
-                      f"ratio {embree_cpu * rays / n / cpu:.1%} (CPU)")
-        if args.profile:
-            from engine.tracer.renderer import chunk_size
-
-            total = len(renderer._pixels) * args.spp
-            bounds = list(range(0, total, chunk_size(total))) + [total]
-            profiler = cProfile.Profile()
-            profiler.enable()  # chunks in this thread, so that cProfile sees them
-            for j, (a, b) in enumerate(zip(bounds[:-1], bounds[1:])):
-                renderer._chunk(a, b, args.spp, j)
-            profiler.disable()
-            for key in ("tottime", "cumulative"):
-                out = io.StringIO()
-                pstats.Stats(profiler, stream=out).sort_stats(key).print_stats(args.top)
-                text = out.getvalue()
-                print(text[text.find("   ncalls"):])
+            print(f"  embreex ceiling: {n:,} rays ({recorder.count(ceiling.CLOSEST):,} closest, "
+                  f"{recorder.count(ceiling.OCCLUDED):,} shadow, {recorder.count(ceiling.BEFORE):,} through films) "
+                  f"in {embree:.4f} s = {n / embree:,.0f} rays/s, cpu {embree_cpu:.4f} s")
+            # the recorded pass and the timed passes cast about as many rays: scale to the timed pass's
+            print(f"  fraction of the ceiling: {embree * rays / n / wall:.1%} (wall), "
+                  f"{embree_cpu * rays / n / cpu:.1%} (CPU time)")
+            report.update(fraction=embree * rays / n / wall, cpu_fraction=embree_cpu * rays / n / cpu)
+    if not args.no_stages:
+        split = stage_split.stage_split(scene, {}, args.threads, passes=args.passes, seed=args.seed, settings=settings)
+        print(f"  stages, CPU ms per pass of {split['paths']:,} paths (mean of {args.passes} wrapped passes; "
+              f"pass wall {1000 * split['pass_seconds']:.1f} ms, chunks' CPU {1000 * split['chunk_cpu']:.1f} ms):")
+        for row in split["rows"]:
+            share = "" if row["share"] != row["share"] else f"{100 * row['share']:5.1f} %"
+            print(f"    {row['stage']:48s} {1000 * row['cpu']:8.2f}  {share:>7s}  {row['calls']:6.0f} calls")
+        print(f"    {'threads x wall - chunks CPU (idle, waits)':48s} {1000 * split['unexplained']:8.2f}")
+        report["stages"] = split
+    if args.json:
+        Path(args.json).write_text(json.dumps(report, indent=1))
+    if args.blend:  # the bpy module can hang at exit after a render (../shared/ENVIRONMENT.md)
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(0)
     return 0
 
 

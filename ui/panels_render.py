@@ -66,7 +66,7 @@ class PRISM_PT_denoise(PrismPanel, bpy.types.Panel):
 
 
 class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):
-    """Bounces, Russian roulette, MIS."""
+    """Bounces, Russian roulette, MIS, caustics by light tracing."""
 
     bl_label = "Light Paths"
     bl_context = "render"
@@ -82,6 +82,8 @@ class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):
         column = layout.column()
         column.prop(settings, "russian_roulette_depth")
         column.prop(settings, "use_mis")
+        column = layout.column(heading="Caustics")
+        column.prop(settings, "light_tracing")
 
 
 class PRISM_PT_wavelengths(PrismPanel, bpy.types.Panel):

@@ -22,6 +22,8 @@ def parse_args(description: str):
     parser.add_argument("--resolution", type=int, default=64)
     parser.add_argument("--spp", type=int, nargs="*", default=[])
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--first-repeat", type=int, default=0,
+                        help="number of the first repeat (its seeds): a harness can interleave single repeats")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--max-bounces", type=int, default=8)
     parser.add_argument("--reference-spp", type=int, default=0, help="total spp of a reference (0: none)")
@@ -30,13 +32,14 @@ def parse_args(description: str):
     return parser.parse_args()
 
 
-def sweep(render, spp_list, repeats):
-    """Fresh renders at each spp, ``repeats`` times with distinct seeds.
+def sweep(render, spp_list, repeats, first_repeat=0):
+    """Fresh renders at each spp, ``repeats`` times with distinct seeds (repeat ``r`` has the same
+    seeds whichever process renders it).
 
     ``render(spp, seed) -> (image [H, W, 3], seconds)``: the renderer times only
     its own work. Returns (seconds [R, S], images [R, S, H, W, 3])."""
     seconds, images = [], []
-    for r in range(repeats):
+    for r in range(first_repeat, first_repeat + repeats):
         row_t, row_i = [], []
         for k, spp in enumerate(spp_list):
             image, t = render(spp, 1000 * (r + 1) + k)

@@ -149,7 +149,7 @@ def main():
         return pixels.reshape(h, w, 4)[::-1, :, :3].copy(), elapsed
 
     render(1, 1)  # warm-up (kernel and scene sync), untimed
-    seconds, images = common.sweep(render, args.spp, args.repeats)
+    seconds, images = common.sweep(render, args.spp, args.repeats, args.first_repeat)
     ref = common.reference(render, args.reference_spp, args.reference_chunks) if args.reference_spp else None
     info = {"renderer": f"Cycles (bpy {bpy.app.version_string})", "threads": args.threads,
             "filter": "Blackman-Harris 1.5 px"}

@@ -169,7 +169,7 @@ def main():
 
     for spp in args.spp:  # compile and cache every kernel once, untimed
         render(spp, 1)
-    seconds, images = common.sweep(render, args.spp, args.repeats)
+    seconds, images = common.sweep(render, args.spp, args.repeats, args.first_repeat)
     ref = common.reference(render, args.reference_spp, args.reference_chunks) if args.reference_spp else None
     info = {"renderer": f"Mitsuba {mi.__version__}", "variant": variant, "threads": args.threads,
             "load_seconds": load_seconds, "llvm": os.environ.get("DRJIT_LIBLLVM_PATH", "")}

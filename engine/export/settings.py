@@ -51,6 +51,7 @@ def export_settings(
         pixel_filter=prism.pixel_filter.lower(),
         filter_width_px=float(prism.filter_width_px),
         film_transparent=bool(scene.render.film_transparent),
+        light_tracing=prism.light_tracing.lower(),
         passes=passes if passes is not None else PassRequest(),
         adaptive_threshold=float(prism.adaptive_threshold) if prism.use_adaptive_sampling else 0.0,
         adaptive_min_samples=int(prism.adaptive_min_samples),

@@ -11,6 +11,7 @@ import bpy
 from bpy.props import EnumProperty, StringProperty
 
 from ._common import DynamicEnumCache, register_group, stable_enum_number, unregister_group
+from .file_path import BLEND_RELATIVE_PATH_OPTIONS
 
 LENS_DIRECTORY = Path(__file__).resolve().parents[2] / "lenses"
 DEFAULT_BUNDLED_LENS = "double_gauss_50mm"
@@ -36,9 +37,6 @@ LENS_SOURCE_ITEMS = [
     ("BUNDLED", "Bundled", "A lens prescription shipped with Prism", 0),
     ("FILE", "File", "A lens prescription file (.lens) on disk", 1),
 ]
-
-# Blender 4.5 warns about "//" paths unless a path property says it accepts them.
-_PATH_OPTIONS = {"PATH_SUPPORTS_BLEND_RELATIVE"} if bpy.app.version >= (4, 5, 0) else set()
 
 _bundled_cache = DynamicEnumCache("NONE", "No bundled lenses", "No lens prescriptions were found in Prism's lenses folder")
 
@@ -99,7 +97,7 @@ class PrismCameraSettings(bpy.types.PropertyGroup):
         description="Path of a lens prescription file (.lens)",
         default="",
         subtype="FILE_PATH",
-        options=_PATH_OPTIONS,
+        options=BLEND_RELATIVE_PATH_OPTIONS,
     )
 
     def lens_path(self) -> str | None:

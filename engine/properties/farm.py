@@ -4,8 +4,7 @@
 import bpy
 from bpy.props import IntProperty, StringProperty
 
-# Blender 4.5 warns about a "//" path unless the property says it takes blend-relative paths (4.5+ only).
-_BLEND_RELATIVE = {"PATH_SUPPORTS_BLEND_RELATIVE"} if bpy.app.version >= (4, 5, 0) else set()
+from .file_path import BLEND_RELATIVE_PATH_OPTIONS
 
 
 class PrismFarmSettings(bpy.types.PropertyGroup):
@@ -43,7 +42,7 @@ class PrismFarmSettings(bpy.types.PropertyGroup):
         "the last run of # becomes the frame number",
         default="//render/prism_####.exr",
         subtype="FILE_PATH",
-        options=_BLEND_RELATIVE,
+        options=BLEND_RELATIVE_PATH_OPTIONS,
     )
     render_script: StringProperty(
         name="Render Script",

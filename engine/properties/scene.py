@@ -4,6 +4,7 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from ._common import WAVELENGTH_SUBTYPE, register_group, unregister_group
+from .file_path import BLEND_RELATIVE_PATH_OPTIONS
 from .farm import PrismFarmSettings
 from .lens_overlay import PrismLensOverlaySettings
 
@@ -137,6 +138,19 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         min=0,
         soft_max=64,
         max=1024,
+    )
+    light_tracing: EnumProperty(
+        name="Light Tracing",
+        description="Caustics (light focused by glass or mirrors onto other surfaces) traced from the lights "
+        "and connected to the camera, where path tracing alone stays speckled",
+        items=[
+            ("AUTO", "Auto", "Trace caustics from the lights where a smooth glass or mirror can focus a light onto "
+             "another surface (the render stats say what was chosen)", 0),
+            ("OFF", "Off", "Path tracing only", 1),
+            ("ON", "On", "Trace caustics from the lights whenever the scene has a specular surface, soap films "
+             "included (not through a real lens)", 2),
+        ],
+        default="AUTO",
     )
     pixel_filter: EnumProperty(
         name="Pixel Filter",
@@ -273,6 +287,7 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         "number)",
         default="//spectral_####.exr",
         subtype="FILE_PATH",
+        options=BLEND_RELATIVE_PATH_OPTIONS,
     )
     lens_overlay: PointerProperty(
         type=PrismLensOverlaySettings,

@@ -7,6 +7,7 @@ from __future__ import annotations
 from bpy.props import FloatProperty, StringProperty
 
 from ._common import TEMPERATURE_SUBTYPE, WAVELENGTH_SUBTYPE
+from .file_path import BLEND_RELATIVE_PATH_OPTIONS
 
 TEMPERATURE_RANGE_K = (1000.0, 40000.0)
 DEFAULT_ILLUMINANT = "D65"
@@ -45,7 +46,8 @@ def illuminant_property(description: str):
 
 
 def spectrum_file_property(name: str, description: str):
-    return StringProperty(name=name, description=f"{description}: {FILE_FORMATS}", default="", subtype="FILE_PATH")
+    return StringProperty(name=name, description=f"{description}: {FILE_FORMATS}", default="", subtype="FILE_PATH",
+                          options=BLEND_RELATIVE_PATH_OPTIONS)
 
 
 def temperature_property(description: str):

@@ -6,6 +6,9 @@
 - Shadow rays cross free-standing films only if the scene has one (else one occlusion query each).
 - Wavelength sampling (cie mode) follows the scene's emission spectra; the visible density only when
   nothing emits.
+- Caustics come from light tracing (``choose_light_tracing``) only if a smooth glass or mirror can
+  focus a small light (``lights.apparent_size``) onto a surface that is not purely specular, seen
+  through a pinhole or thin lens.
 """
 
 from __future__ import annotations
@@ -31,6 +34,8 @@ class SceneAnalysis:
     camera_strategy: str = ""
     see_through_films: bool = False
     sampler: str = "sobol"
+    light_tracing: bool = False
+    light_tracing_note: str = ""  # what the stats line says about light tracing
 
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
         """One line for the render stats."""
@@ -58,4 +63,29 @@ class SceneAnalysis:
         parts.append(f"{self.sampler} sampler")
         if self.camera_strategy:
             parts.append(self.camera_strategy)
+        if self.light_tracing_note:
+            parts.append(self.light_tracing_note)
         return " | ".join(parts)
+
+
+def choose_light_tracing(mode: str, specular: list[str], films: list[str], receivers: bool, small_lights: list[str],
+                         lights: bool, path_tracing_only: str = "") -> tuple[bool, str]:
+    """(trace caustics from the lights?, the stats line's words) for the setting ``mode`` ("auto", "off",
+    "on"). ``specular``: names of the purely specular materials that can focus light (smooth glass,
+    mirrors); ``films``: free-standing films (they count only when forced on); ``receivers``: some
+    surface is not purely specular; ``small_lights``: lights that look small from the specular objects
+    (``lights.apparent_size``: path tracing alone would not find their caustics); ``lights``: some
+    light other than the world emits; ``path_tracing_only``: why this render cannot light-trace
+    ("real lens": connections do not go through lens systems; "spectral output": the spectral film
+    takes camera samples only), "" if it can. Auto needs a small light: a large one's caustics path
+    tracing finds by itself, and light paths would only take time from the rest of the image."""
+    if mode == "off":
+        return False, "light tracing off"
+    focusing = specular + (films if mode == "on" else [])
+    if path_tracing_only:
+        return False, f"caustics by path tracing ({path_tracing_only})"
+    if not (focusing and receivers and lights):
+        return False, "no caustics to light-trace" if mode == "auto" else "light tracing on, but nothing to trace"
+    if mode == "auto" and not small_lights:
+        return False, "caustics by path tracing (lights large enough)"
+    return True, f"caustics by light tracing ({', '.join(focusing)})"

@@ -8,6 +8,10 @@ non-finite samples are counted in ``nan_samples`` and dropped, the pixel's count
 A film covers a rectangle of the frame (``region`` = x0, y0, x1, y1, rows from the top; default the whole
 frame): a frame rendered tile by tile needs one tile's film at a time. Samples name their pixel by its
 index in the frame (y · frame width + x), so a tile's image is the same as that part of a whole frame.
+
+Light tracing (``stages.light_paths``) adds a pass's splats separately (``add_light``): its estimate of
+a pixel is the sum of its splats over the number of light paths traced, whichever pixel they hit (those
+outside the region are dropped), and is added to the camera samples' mean.
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ import numpy as np
 
 from .frame_plan import film_bytes_per_pixel
 from .stages.film import splat, splat_alpha
+from .stages.light_splat import add_pass_splats
 
 
 class Film:
@@ -36,6 +41,8 @@ class Film:
         self._aux = np.zeros((count, columns))
         self._alpha = None  # sums of the samples' alpha, once a render has any transparency
         self.nan_samples = 0
+        self.light_paths = 0  # light paths traced so far (the light splats' denominator)
+        self._light_sum = self._light_sum_sq = self._light_splats = None
 
     bytes_per_pixel = staticmethod(film_bytes_per_pixel)
 
@@ -66,6 +73,22 @@ class Film:
         n = np.maximum(self._count, 1)
         return np.where(self._count > 0, self._alpha / n, 1.0).reshape(self.height, self.width)
 
+    def add_light(self, pixel_index: np.ndarray, rgb: np.ndarray, paths: int) -> None:
+        """Add one pass's splats of ``paths`` light paths, in path order: ``pixel_index`` [N] (frame
+        indices), ``rgb`` [N, 3] (N <= paths)."""
+        if self._light_sum is None:
+            self._light_sum = np.zeros_like(self._sum)
+            self._light_sum_sq = np.zeros_like(self._sum)
+            self._light_splats = np.zeros_like(self._count)
+        pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
+        rgb = np.ascontiguousarray(rgb, dtype=np.float64).reshape(-1, 3)
+        x0, y0 = self.origin
+        x, y = pixel_index % self.frame_width - x0, pixel_index // self.frame_width - y0
+        inside = (x >= 0) & (x < self.width) & (y >= 0) & (y < self.height)
+        self.nan_samples += add_pass_splats(self._light_sum, self._light_sum_sq, self._light_splats,
+                                            pixel_index[inside], rgb[inside], self.frame_width, x0, y0, self.width)
+        self.light_paths += int(paths)
+
     @property
     def counts(self) -> np.ndarray:
         """Samples per pixel, int64 [H, W]."""
@@ -74,7 +97,10 @@ class Film:
     def mean(self) -> np.ndarray:
         """Per-pixel mean, float64 [H, W, 3] (0 where no sample yet)."""
         n = np.maximum(self._count, 1)[:, None]
-        return (self._sum / n).reshape(self.height, self.width, 3)
+        mean = self._sum / n
+        if self.light_paths:
+            mean = mean + self._light_sum / self.light_paths
+        return mean.reshape(self.height, self.width, 3)
 
     def aux_mean(self) -> np.ndarray:
         """The pass columns per pixel, float64 [H, W, layout width]: the mean of each over the samples."""
@@ -89,4 +115,7 @@ class Film:
         mean = self._sum / np.maximum(n, 1.0)
         var = np.maximum(self._sum_sq - n * mean * mean, 0.0) / (safe - 1.0)
         var = np.where(n >= 2, var / safe, 0.0)
+        if self.light_paths > 1:
+            m = float(self.light_paths)
+            var = var + np.maximum(self._light_sum_sq - self._light_sum ** 2 / m, 0.0) / (m * (m - 1.0))
         return var.reshape(self.height, self.width, 3)

@@ -39,14 +39,16 @@ import numpy as np
 
 from . import adaptive
 from .accel import Accel
-from .analysis import SceneAnalysis
+from .analysis import SceneAnalysis, choose_light_tracing
 from .cameras import make_camera
 from .errors import PrismInputError
 from .film import Film
 from .geometry import prepare_geometry
+from .lights.apparent_size import small_lights
+from .lights.caustic_targets import build_caustic_targets
 from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
-from .materials.table import MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials
+from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, build_materials
 from .passes import FilmLayout
 from .sampler import SAMPLERS
 from .scene import SpectrumSpec
@@ -54,6 +56,7 @@ from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
 from .spectra.wavelength_guide import build_guide
 from .spectral_film import SpectralFilm
+from .stages.camera import ORTHOGRAPHIC, PERSPECTIVE
 from .stages.passes import new_pass_data
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
@@ -98,6 +101,13 @@ def _triangle_groups(scene, original_triangle, light_groups):
     index = {name: g for g, name in enumerate(light_groups)}
     of_object = np.array([index.get(name, -1) for name in scene.object_light_groups], np.int32)
     return of_object[np.asarray(scene.triangle_object)[original_triangle]]
+
+
+def _kept(triangle_object, original):
+    """The object of each kept triangle (``original``: their indices before dropping), or None."""
+    if triangle_object is None:
+        return None
+    return np.asarray(triangle_object)[original]
 
 
 def _check_settings(settings) -> None:
@@ -162,7 +172,7 @@ class Renderer:
         self._guide = guide
         self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
                                               bool(settings.use_mis), SAMPLERS[settings.sampler],
-                                              int(settings.seed) & 0xFFFFFFFF, bool(settings.film_transparent),
+                                              int(settings.seed) & 0xFFFFFFFF, False, bool(settings.film_transparent),
                                               bool(settings.film_transparent and settings.transparent_glass),
                                               float(settings.transparent_roughness) ** 2)
         self._alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
@@ -174,6 +184,9 @@ class Renderer:
         if self._guide is not None:
             a, guide = self.analysis, self._guide
             a.guided_lines, a.guided_measured, a.guided_smooth = guide.lines, guide.measured, guide.smooth
+        self.kernel_settings = self.kernel_settings._replace(light_tracing=bool(self.analysis.light_tracing))
+        if not self.analysis.light_tracing:
+            self.caustic_targets = None
         self.strategy = self.analysis.strategy(self.settings.use_mis, self.settings.pixel_filter)
 
     def restart(self, setup_seconds: float = 0.0) -> None:
@@ -198,6 +211,8 @@ class Renderer:
             "paths": 0,
             "warnings": warnings,
             "strategy": self.strategy,
+            "light_paths": 0,
+            "light_splats": 0,
         }
 
     # ---- changes between passes (the viewport): each rebuilds only the tables it touches ----------
@@ -276,6 +291,37 @@ class Renderer:
         a.light_kinds = [light.kind for light in self.scene.lights]
         a.features = list(self.material_table.features)
         a.world = self.light_table.world
+        specular, films = [], []
+        for m in used:
+            if flags[m] & MAT_DELTA:
+                (films if flags[m] & MAT_NULL else specular).append(self.scene.materials[m].name)
+        lights = self.light_table.arrays
+        small = []
+        if specular or films:
+            self.caustic_targets = build_caustic_targets(self.geometry, flags, MAT_DELTA,
+                                                         _kept(self.scene.triangle_object, self._original_triangle))
+            small = small_lights(lights.rows[:len(self.light_table.names)], self.light_table.names, lights.mesh,
+                                 self.caustic_targets)
+        a.light_tracing, a.light_tracing_note = choose_light_tracing(
+            s.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
+            any(kind != "world" for kind in self.light_table.kinds), self._path_tracing_only())
+        return a
+
+    def _path_tracing_only(self) -> str:
+        """Why this render cannot trace light paths to the camera ("" if it can): connections reach a
+        perspective camera's pinhole or lens only, and see every object as the camera does."""
+        layout = self.pass_layout.kernel
+        if self.camera.lens is not None:
+            return "real lens"
+        if self.camera.data.projection != PERSPECTIVE:
+            return "orthographic camera" if self.camera.data.projection == ORTHOGRAPHIC else "panoramic camera"
+        if self.settings.spectral_band_nm:
+            return "spectral output"
+        if layout.light >= 0 or layout.groups > 0:
+            return "light passes"
+        if self.ray_classes is not None or (self.geometry.flags & HOLDOUT).any():
+            return "ray visibility or holdouts"
+        return ""
         return a
 
     def _frame_region(self, border):
@@ -348,14 +394,23 @@ class Renderer:
                                        camera_at=np.asarray(self.camera.position - self.origin, np.float64),
                                        render_origin=np.asarray(self.origin, np.float64), aov_table=self._aov_table)
 
-    def _chunk(self, start, stop, spp):
-        """Trace paths ``start .. stop`` of the pass; returns (pixel [n], rgb [n, 3], pass values [n, C],
-        rays, counters)."""
-        from .stages.trace import trace_chunk
-
+    def _chunk(self, start, stop, spp, light=False):
+        """Trace camera (or, with ``light``, light) paths ``start .. stop`` of the pass; returns (pixel [n],
+        rgb [n, 3], pass values [n, C] (None for light paths), rays, counters): one sample per camera path,
+        the splats of light paths."""
         count = stop - start
         buffers = self._buffers(count)
         clamps = np.zeros_like(self._glass_clamps)
+        if light:
+            from .stages.light_trace import light_buffers, trace_light_chunk
+
+            extra = light_buffers(self._local, count)
+            splats, rays, rejected = trace_light_chunk(self, buffers, extra, start, count, spp, self.samples_done,
+                                                       clamps)
+            return (extra.pixel[:splats].copy(), buffers.rgb[:splats].copy(), None, rays, rejected, clamps, None,
+                    None)
+        from .stages.trace import trace_chunk
+
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
         values = buffers.passes.values[:count].copy()
         spectral = None
@@ -411,15 +466,19 @@ class Renderer:
         total = len(self._pixels) * spp
         size = chunk_size(total, self._workers, spp)
         bounds = list(range(0, total, size)) + [total]
-        chunks = list(zip(bounds[:-1], bounds[1:]))
+        chunks = [(a, b, False) for a, b in zip(bounds[:-1], bounds[1:])]
+        if self.analysis.light_tracing:  # as many light paths as camera paths, numbered the same way
+            chunks += [(a, b, True) for a, b, _ in chunks]
         window = 2 * self._workers  # chunks in flight: bounded memory for huge frames
         jobs = self._jobs
+        light_splats = []  # (pixel, rgb, paths) of the pass's light chunks, in chunk order
         try:
             for i in range(len(chunks)):
                 with self._jobs_lock:
                     for j in range(i, min(i + window, len(chunks))):
                         if j not in jobs and not self._cancel.is_set():
-                            jobs[j] = self._pool.submit(self._chunk, *chunks[j], spp)
+                            start, stop, light = chunks[j]
+                            jobs[j] = self._pool.submit(self._chunk, start, stop, spp, light)
                 job = jobs.get(i)
                 if job is None:
                     break
@@ -429,11 +488,14 @@ class Renderer:
                     break
                 with self._jobs_lock:
                     del jobs[i]
-                self.film.add(pixel, rgb, values)
-                if alpha is not None:
-                    self.film.add_alpha(pixel, alpha)
-                if spectral is not None:
-                    self.spectral_film.add(pixel, *spectral)
+                if chunks[i][2]:
+                    light_splats.append((pixel, rgb, chunks[i][1] - chunks[i][0]))
+                else:
+                    self.film.add(pixel, rgb, values)
+                    if alpha is not None:
+                        self.film.add_alpha(pixel, alpha)
+                    if spectral is not None:
+                        self.spectral_film.add(pixel, *spectral)
                 self.stats["rays_cast"] += rays
                 self.stats["rejected_rays"] += rejected
                 self._glass_clamps += clamps
@@ -443,6 +505,8 @@ class Renderer:
                     break
         finally:
             self._drop_jobs()
+            if light_splats:
+                self._add_light_splats(light_splats)
             elapsed = time.perf_counter() - started
             self.stats["seconds"] += elapsed
             self._sampling_seconds += elapsed
@@ -457,6 +521,14 @@ class Renderer:
         self.stats["nan_samples"] = self.film.nan_samples
         self.stats["samples"] = self.samples_done
         self._adapt()
+
+    def _add_light_splats(self, chunks):
+        """Add a pass's light-traced splats to the film (all at once: see ``stages.light_splat``)."""
+        paths = sum(count for _, _, count in chunks)
+        self.film.add_light(np.concatenate([p for p, _, _ in chunks]), np.concatenate([c for _, c, _ in chunks]),
+                            paths)
+        self.stats["light_paths"] += paths
+        self.stats["light_splats"] += sum(len(p) for p, _, _ in chunks)
 
     def _fit_time_limit(self, spp: int, now: float) -> int:
         """Samples of the next pass that fit in the time left (0: the time is up)."""

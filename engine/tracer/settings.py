@@ -8,6 +8,7 @@ from .errors import PrismInputError
 from .passes import PassRequest
 
 WAVELENGTH_MODES = ("cie", "gaussian_rgb")
+LIGHT_TRACING_MODES = ("auto", "off", "on")
 
 
 @dataclass
@@ -43,6 +44,9 @@ class RenderSettings:
     # Where every path's uniform numbers come from: "sobol" (Owen-scrambled, the default) or
     # "independent" (hashed random numbers, the reference the benchmark measures Sobol against).
     sampler: str = "sobol"
+    # Caustics from light tracing (paths from the lights through specular objects, seen by the camera):
+    # "auto" (where the scene analysis finds specular objects a light can shine through), "off", "on".
+    light_tracing: str = "auto"
     # Passes besides Combined (``passes.PassRequest``).
     passes: PassRequest = field(default_factory=PassRequest)
     # Adaptive sampling (Cycles' Noise Threshold and Min Samples): a pixel stops once its relative
@@ -64,6 +68,10 @@ class RenderSettings:
         if self.wavelength_mode not in WAVELENGTH_MODES:
             raise PrismInputError(
                 f"Unknown wavelength mode '{self.wavelength_mode}': use one of {', '.join(WAVELENGTH_MODES)}."
+            )
+        if self.light_tracing not in LIGHT_TRACING_MODES:
+            raise PrismInputError(
+                f"Unknown light tracing mode '{self.light_tracing}': use one of {', '.join(LIGHT_TRACING_MODES)}."
             )
         if self.samples < 1:
             raise PrismInputError(f"Samples must be at least 1 (got {self.samples}).")

@@ -11,9 +11,12 @@ deterministic). Embree reads the queues' float32 rays directly.
 - ``wavelength`` / ``wavelength_pdf`` float64 [n, K] (nm, 1/nm), ``hero`` int32 (the carried wavelength
   kept when the path meets dispersion);
 - ``flags`` int32 (``COLLAPSED``: only the hero is carried, ×K; ``PREV_DELTA``: the last scattering was
-  a delta lobe or the camera; ``CAMERA_PATH``: the path still sees what the camera sees — no scattering
-  yet but transparent glass — so the background and holdouts make it transparent; ``LAST_DIFFUSE``,
-  ``LAST_TRANSMISSION``: what the last scattering was (neither: glossy), for ray visibility);
+  a delta lobe or the camera; ``SEEN_DIFFUSE`` / ``CAUSTIC`` / ``NOT_CAUSTIC``: where a camera path stands
+  in the split with light tracing, ``stages.caustic_split``; ``LIGHT_SPECULAR`` / ``LIGHT_CONNECTED``:
+  a light path's, ``stages.light_paths``; ``CAMERA_PATH``: the path still sees what the camera sees — no
+  scattering yet but transparent glass — so the background and holdouts make it transparent;
+  ``LAST_DIFFUSE``, ``LAST_TRANSMISSION``: what the last scattering was (neither: glossy), for ray
+  visibility);
 - ``throughput`` and ``radiance`` float64 [n, K]; ``eta_scale`` float64 (Π eta'² of refractions, for
   Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample);
 - ``origin``, ``direction`` float64 [n, 3] (the current ray, camera-relative metres),
@@ -32,9 +35,14 @@ import numpy as np
 
 COLLAPSED = 1
 PREV_DELTA = 2
-CAMERA_PATH = 4
-LAST_DIFFUSE = 8
-LAST_TRANSMISSION = 16
+SEEN_DIFFUSE = 4
+CAUSTIC = 8
+NOT_CAUSTIC = 16
+LIGHT_SPECULAR = 32
+LIGHT_CONNECTED = 64
+CAMERA_PATH = 128
+LAST_DIFFUSE = 256
+LAST_TRANSMISSION = 512
 
 _PATH_FIELDS = (
     ("pixel", np.int64, ()), ("sample", np.int64, ()), ("seed", np.int64, ()),

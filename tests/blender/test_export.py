@@ -218,6 +218,7 @@ def test_scene_settings_become_render_settings(prism_addon, fresh_scene):
     prism.mean_r_nm, prism.sigma_b_nm = 610.0, 12.0
     prism.use_mis, prism.russian_roulette_depth = False, 4
     prism.pixel_filter, prism.filter_width_px = "GAUSSIAN", 2.0
+    prism.light_tracing = "ON"
     exported = settings_module.export_settings(fresh_scene, border=(1, 2, 3, 4))
     assert (exported.samples, exported.samples_per_pass, exported.max_bounces, exported.seed) == (32, 2, 5, 9)
     assert (exported.wavelength_mode, exported.wavelengths_per_path, exported.threads) == ("gaussian_rgb", 2, 1)
@@ -225,6 +226,7 @@ def test_scene_settings_become_render_settings(prism_addon, fresh_scene):
     assert exported.channel_sigmas_nm == pytest.approx((25.0, 25.0, 12.0))
     assert (exported.use_mis, exported.russian_roulette_depth, exported.border) == (False, 4, (1, 2, 3, 4))
     assert (exported.pixel_filter, exported.filter_width_px) == ("gaussian", pytest.approx(2.0))
+    assert exported.light_tracing == "on"
     preview = settings_module.export_settings(fresh_scene, preview=True)  # a material or light preview
     assert (preview.samples, preview.max_bounces) == (settings_module.PREVIEW_SAMPLES, 3)
     overridden = settings_module.export_settings(fresh_scene, samples=7, seed=1, threads=2)

@@ -30,6 +30,7 @@ EXPECTED_DEFAULTS = {
         "preview_pause": False,
         "pixel_filter": "BOX",
         "filter_width_px": 1.5,
+        "light_tracing": "AUTO",
     },
     "overlay": {
         "enabled": False,
@@ -60,6 +61,7 @@ EXPECTED_DEFAULTS = {
 ENUM_NUMBERS = {
     ("scene", "wavelength_mode"): {"CIE": 0, "GAUSSIAN_RGB": 1},
     ("scene", "pixel_filter"): {"BOX": 0, "GAUSSIAN": 1},
+    ("scene", "light_tracing"): {"AUTO": 0, "OFF": 1, "ON": 2},
     ("overlay", "wavelength_source"): {"CHANNELS": 0, "CUSTOM": 1},
     ("camera", "lens_model"): {"PINHOLE": 0, "THIN_LENS": 1, "REAL_LENS": 2},
     ("camera", "lens_source"): {"BUNDLED": 0, "FILE": 1},
@@ -274,3 +276,24 @@ def test_unregister_removes_the_pointer_properties(prism_addon):
         properties.register()
         ui.register()
     assert bpy.context.scene.prism.lens_overlay.rays_per_fan == 9
+
+
+def _file_path_settings(group, path):
+    for prop in _user_properties(group):
+        if prop.type == "POINTER":
+            yield from _file_path_settings(getattr(group, prop.identifier), f"{path}.{prop.identifier}")
+        elif prop.type == "STRING" and prop.subtype == "FILE_PATH":
+            yield group, prop.identifier, f"{path}.{prop.identifier}"
+
+
+def test_every_file_path_setting_takes_blend_relative_paths_without_a_warning(groups):
+    import warnings
+
+    settings = [s for kind, group in groups.items() for s in _file_path_settings(group, kind)]
+    assert len(settings) >= 4, [path for _, _, path in settings]
+    for group, identifier, path in settings:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            setattr(group, identifier, "//textures/file.exr")
+        assert getattr(group, identifier) == "//textures/file.exr", path
+        assert not [str(w.message) for w in caught], path

@@ -118,3 +118,22 @@ def pdf_li(row, o, d, t):
 @kernel
 def le(row, o, d, t):
     return row[L_SCALE] * spread_factor(row, -(d[0] * row[L_NX] + d[1] * row[L_NY] + d[2] * row[L_NZ]))
+
+
+@kernel
+def sample_position(row, u1, u2):
+    """(uniform point on the light, area density 1/m²): where a light path starts."""
+    if row[L_KIND] == DISK:
+        x, y = concentric_disk(u1, u2)
+    else:
+        x, y = 2.0 * u1 - 1.0, 2.0 * u2 - 1.0
+    su, sv = x * row[L_HALF_U], y * row[L_HALF_V]
+    return ((row[L_PX] + su * row[L_UX] + sv * row[L_VX], row[L_PY] + su * row[L_UY] + sv * row[L_VY],
+             row[L_PZ] + su * row[L_UZ] + sv * row[L_VZ]), 1.0 / row[L_AREA])
+
+
+@kernel
+def emitted(row, d):
+    """Radiance factor × cos to the normal leaving the light along ``d`` (front face only)."""
+    cos_l = d[0] * row[L_NX] + d[1] * row[L_NY] + d[2] * row[L_NZ]
+    return row[L_SCALE] * spread_factor(row, cos_l) * cos_l if cos_l > 0.0 else 0.0

@@ -98,3 +98,14 @@ def pdf_li(emitters, triangle, d, t):
     if cos_l <= 0.0:
         return 0.0
     return emitters.probability[e] / g[12] * t * t / cos_l
+
+
+@inlined
+def sample_position(emitters, u0, u1, u2):
+    """(point, unit geometric normal, area density incl. the triangle's choice, material) of a point on
+    an emissive triangle: where a light path starts."""
+    e = pick(emitters, u0)
+    g = emitters.geometry[e]
+    b1, b2 = uniform_triangle(u1, u2)
+    p = (g[0] + b1 * g[3] + b2 * g[6], g[1] + b1 * g[4] + b2 * g[7], g[2] + b1 * g[5] + b2 * g[8])
+    return p, (g[9], g[10], g[11]), emitters.probability[e] / g[12], emitters.material[e]

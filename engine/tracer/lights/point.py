@@ -13,7 +13,7 @@ import numpy as np
 
 from ..jit import kernel
 from ..vec3 import tangents, to_world
-from ..warps import uniform_cone
+from ..warps import uniform_cone, uniform_sphere
 from .row import (L_CAMERA, L_COS_HALF, L_KIND, L_NX, L_NY, L_NZ, L_PX, L_PY, L_PZ, L_RADIUS, L_SCALE, L_SMOOTH,
                   L_SPECTRUM, L_SPOT, LIGHT_ROW, POINT, SPHERE)
 
@@ -115,3 +115,25 @@ def pdf_li(row, o, d, t):
 def le(row, o, d, t):
     """Radiance factor seen along a ray from ``o`` that hits the sphere."""
     return row[L_SCALE] * spot_falloff(row, o[0], o[1], o[2])
+
+
+@kernel
+def sample_position(row, u1, u2):
+    """(start of a light path, its outward normal ((0, 0, 0) for a point), area density (1 for the
+    point's delta position)): a uniform point on a sphere light."""
+    if row[L_KIND] == POINT:
+        return (row[L_PX], row[L_PY], row[L_PZ]), (0.0, 0.0, 0.0), 1.0
+    n = uniform_sphere(u1, u2)
+    r = row[L_RADIUS]
+    return ((row[L_PX] + r * n[0], row[L_PY] + r * n[1], row[L_PZ] + r * n[2]), n,
+            1.0 / (4.0 * math.pi * r * r))
+
+
+@kernel
+def emitted(row, n, d):
+    """Intensity of a point (W/sr), or radiance × cos of a sphere's surface with normal ``n``, along
+    ``d``; without the spot falloff, which depends on the receiving point (``spot_falloff``)."""
+    if row[L_KIND] == POINT:
+        return row[L_SCALE]
+    cos_l = d[0] * n[0] + d[1] * n[1] + d[2] * n[2]
+    return row[L_SCALE] * cos_l if cos_l > 0.0 else 0.0

@@ -76,3 +76,15 @@ def le_escaped(row, d):
     if cos_gamma >= row[L_COS_MAX]:
         return row[L_SCALE] * _limb(row, cos_gamma)
     return 0.0
+
+
+@kernel
+def sample_emission_direction(row, u1, u2):
+    """(unit direction the sunlight travels, solid-angle pdf (1 for the delta sun), radiance (disc) or
+    irradiance (delta) factor across the beam)."""
+    to_sun = (row[L_NX], row[L_NY], row[L_NZ])
+    if row[L_KIND] == SUN:
+        return (-to_sun[0], -to_sun[1], -to_sun[2]), 1.0, row[L_SCALE]
+    s, t = tangents(to_sun)
+    w = to_world(uniform_cone(u1, u2, row[L_COS_MAX]), s, t, to_sun)
+    return (-w[0], -w[1], -w[2]), 1.0 / (2.0 * math.pi * row[L_ONE_MINUS_COS]), row[L_SCALE]

@@ -20,6 +20,7 @@ from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
 from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
+from .caustic_split import classify_vertex
 from .nee import consistent, sample_direct
 from .passes import first_bounce, first_hit, surface_features
 from .queue import push_ray
@@ -45,6 +46,22 @@ def _through_transparent_glass(settings, rows, closures, sampled):
         if rows[c, C_ALPHA] > settings.transparent_alpha:
             return False
     return True
+
+
+@inlined
+def sample_scattering(state, i, depth, settings, rows, spectral, eta, closures, wo_l, frame, collapsed, weight, mix):
+    """BSDF sampling at path ``i``'s vertex of bounce ``depth`` (its uniforms from that bounce's slots):
+    (wi local, wi world, pdf, sampled flags, eta scale, largest ``weight[k]``)."""
+    ps = state.seed[i]
+    sample = state.sample[i]
+    u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
+    u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
+    wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, state.wavelength[i],
+                                                state.hero[i], collapsed, u_lobe, u1, u2, weight, mix)
+    largest = 0.0
+    for c in range(weight.shape[0]):
+        largest = max(largest, weight[c])
+    return wi_l, to_world(wi_l, frame[0], frame[1], frame[2]), pdf, sampled, eta_scale, largest
 
 
 @kernel
@@ -85,17 +102,9 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                       materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
                                       mix, passes, layout)
-        ps = state.seed[i]
-        sample = state.sample[i]
-        u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
-        u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
-        wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, lam, hero, collapsed, u_lobe,
-                                                    u1, u2, weight, mix)
-        wi = to_world(wi_l, tangent, bitangent, n)
+        wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
+                                                                       closures, wo_l, frame, collapsed, weight, mix)
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
-        largest = 0.0
-        for c in range(k):
-            largest = max(largest, weight[c])
         valid = largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])
         if layout.columns > 0:
             if not valid:
@@ -116,7 +125,10 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             LAST_TRANSMISSION if sampled & SAMPLED_TRANSMISSION else (LAST_DIFFUSE if sampled & SAMPLED_DIFFUSE else 0))
         if not survives(state, i, depth, settings, collapsed):
             continue
-        if not (mflags & MAT_NULL and wo_l[2] * wi_l[2] < 0.0):
+        null_crossing = (mflags & MAT_NULL) != 0 and wo_l[2] * wi_l[2] < 0.0
+        if settings.light_tracing:
+            classify_vertex(state, i, mflags, sampled, null_crossing)
+        if not null_crossing:
             state.prev_pdf[i] = pdf
             if sampled & SAMPLED_DELTA:
                 state.flags[i] |= PREV_DELTA

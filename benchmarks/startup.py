@@ -1,0 +1,88 @@
+"""Cold-compile and warm-start seconds of the compiled tracer.
+
+``measure()`` runs ``python -m benchmarks.startup --child`` twice in fresh processes with
+``PRISM_KERNEL_CACHE`` pointing at a new empty folder: the first run (cold) imports the tracer,
+compiles every kernel a small render needs and renders it; the second (warm) does the same with the
+kernels now on disk. Each child reports its phases (import of the tracer, import of colour-science
+(which the first ``Renderer`` of a process needs for its spectral tables; matplotlib hidden from it,
+as in Blender), scene set-up, first pass, second pass)
+and whether ``jit.cache_is_warm()`` said so (the flag behind "Compiling Prism kernels (first render
+only)"); the parent adds the whole process's wall time (interpreter start-up included).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+from .references import REPO_ROOT
+
+SCENE = "cornell_glass"  # diffuse + dielectric, area light: the kernels of most renders
+RESOLUTION = 16
+
+
+def _child() -> int:
+    # As inside Blender, which ships no matplotlib: colour-science imports matplotlib.pyplot (about a
+    # second) whenever it is installed, as it is in the benchmark's environment.
+    sys.modules["matplotlib"] = None
+    start = time.perf_counter()
+    from engine.tracer import jit
+    from engine.tracer.renderer import Renderer
+    from engine.tracer.stages import trace  # noqa: F401 - every stage kernel module
+    from engine.tracer.settings import RenderSettings
+
+    imported = time.perf_counter()
+    warm = jit.cache_is_warm()
+    import colour  # noqa: F401 - imported by the first Renderer (spectral tables); timed on its own
+
+    coloured = time.perf_counter()
+    from benchmarks import scenes
+
+    scene = scenes.build(SCENE, (RESOLUTION, RESOLUTION))
+    built = time.perf_counter()
+    with Renderer(scene, RenderSettings(samples=2, samples_per_pass=1, seed=0, threads=2)) as renderer:
+        constructed = time.perf_counter()
+        renderer.render_pass()
+        first = time.perf_counter()
+        renderer.render_pass()
+        second = time.perf_counter()
+    jit.mark_cache_warm()
+    print(json.dumps(dict(import_seconds=imported - start, colour_import_seconds=coloured - imported,
+                          scene_seconds=built - coloured,
+                          setup_seconds=constructed - built, first_pass_seconds=first - constructed,
+                          second_pass_seconds=second - first, render_seconds=second - start,
+                          cache_was_warm=warm)))
+    return 0
+
+
+def _run_child(cache: str) -> dict:
+    env = dict(os.environ, PRISM_KERNEL_CACHE=cache)
+    env.pop("NUMBA_CACHE_DIR", None)
+    start = time.perf_counter()
+    proc = subprocess.run([sys.executable, "-m", "benchmarks.startup", "--child"], cwd=REPO_ROOT, env=env,
+                          capture_output=True, text=True, timeout=900)
+    wall = time.perf_counter() - start
+    if proc.returncode != 0:
+        raise RuntimeError(f"startup child failed ({proc.returncode}): {proc.stderr[-2000:]}")
+    out = json.loads(proc.stdout.strip().splitlines()[-1])
+    out["process_seconds"] = wall
+    return out
+
+
+def measure() -> dict:
+    """{"cold": {...}, "warm": {...}, "scene", "resolution"}: phases in seconds of a fresh process
+    rendering ``SCENE`` at ``RESOLUTION``^2 (2 passes of 1 spp) with an empty, then a filled cache."""
+    with tempfile.TemporaryDirectory(prefix="prism-kernels-") as cache:
+        cold = _run_child(cache)
+        warm = _run_child(cache)
+    return dict(scene=SCENE, resolution=RESOLUTION, cold=cold, warm=warm)
+
+
+if __name__ == "__main__":
+    if "--child" in sys.argv:
+        sys.exit(_child())
+    print(json.dumps(measure(), indent=1))
