@@ -28,16 +28,14 @@ def render_resolution(scene) -> tuple[int, int]:
     return max(1, render.resolution_x * percent // 100), max(1, render.resolution_y * percent // 100)
 
 
-def _fits_horizontally(camera_data, width_px: int, height_px: int) -> bool:
+def _fits_horizontally(camera_data, width_px: float, height_px: float) -> bool:
     fit = camera_data.sensor_fit
     return width_px >= height_px if fit == "AUTO" else fit == "HORIZONTAL"
 
 
-def film_size_mm(camera_data, width_px: int, height_px: int) -> tuple[float, float]:
-    """The part of the sensor that maps onto the image, after Blender's sensor fit.
-
-    Pixel aspect is taken as square.
-    """
+def film_size_mm(camera_data, width_px: float, height_px: float) -> tuple[float, float]:
+    """The part of the sensor that maps onto the image, after Blender's sensor fit, for an image
+    ``width_px`` x ``height_px`` as displayed (pixel counts times the pixel aspect)."""
     horizontal = _fits_horizontally(camera_data, width_px, height_px)
     if camera_data.sensor_fit == "AUTO":
         sensor = camera_data.sensor_width
@@ -48,7 +46,7 @@ def film_size_mm(camera_data, width_px: int, height_px: int) -> tuple[float, flo
     return sensor * width_px / height_px, sensor
 
 
-def ortho_size_m(camera_data, width_px: int, height_px: int) -> tuple[float, float]:
+def ortho_size_m(camera_data, width_px: float, height_px: float) -> tuple[float, float]:
     """The orthographic view's width and height (m): Orthographic Scale along the fitted side."""
     scale = float(camera_data.ortho_scale)
     if _fits_horizontally(camera_data, width_px, height_px):
@@ -56,7 +54,7 @@ def ortho_size_m(camera_data, width_px: int, height_px: int) -> tuple[float, flo
     return scale * width_px / height_px, scale
 
 
-def shift_in_larger_side(camera_data, width_px: int, height_px: int) -> tuple[float, float]:
+def shift_in_larger_side(camera_data, width_px: float, height_px: float) -> tuple[float, float]:
     """Blender's shift is in units of the fitted side; the tracer's in units of the larger one."""
     horizontal = _fits_horizontally(camera_data, width_px, height_px)
     fitted = width_px if horizontal else height_px
@@ -190,12 +188,14 @@ def export_camera(scene, depsgraph=None, warnings: list[str] | None = None) -> C
     check_camera_scale(camera_object)
     width, height = render_resolution(scene)
     check_frame_memory(scene, width, height)
-    film_w, film_h = film_size_mm(data, width, height)
+    # Blender fits the sensor to the image as displayed: non-square pixels (Format ▸ Aspect X/Y) stretch it.
+    shape = (width * float(scene.render.pixel_aspect_x), height * float(scene.render.pixel_aspect_y))
+    film_w, film_h = film_size_mm(data, *shape)
     if projection == "perspective" and not (np.isfinite(data.lens) and data.lens > 0):
         raise PrismInputError(f"Camera '{camera_object.name}' has focal length {data.lens} mm: use a positive value.")
     model = _lens_model(camera_object, projection)
-    shift_x, shift_y = shift_in_larger_side(data, width, height)
-    ortho_w, ortho_h = ortho_size_m(data, width, height)
+    shift_x, shift_y = shift_in_larger_side(data, *shape)
+    ortho_w, ortho_h = ortho_size_m(data, *shape)
     dof = data.dof
     camera = Camera(
         name=camera_object.name,

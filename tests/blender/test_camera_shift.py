@@ -1,6 +1,6 @@
 """Sensor fit and lens shift as Blender defines them: every camera ray Prism's F12 export makes lands,
 through Blender's own projection matrix (``Object.calc_matrix_camera``), on the raster position it was
-made for, whatever the sensor fit, the image's orientation and the shift."""
+made for, whatever the sensor fit, the image's orientation, the pixel aspect and the shift."""
 
 from __future__ import annotations
 
@@ -13,15 +13,16 @@ import pytest
 
 
 CASES = [
-    (kind, fit, resolution)
+    (kind, fit, resolution, (1.0, 1.0))
     for kind in ("PERSP", "ORTHO")
     for fit in ("AUTO", "HORIZONTAL", "VERTICAL")
     for resolution in ((48, 30), (30, 48))
-]
+] + [("PERSP", fit, (40, 36), aspect) for fit in ("AUTO", "VERTICAL") for aspect in ((1.6, 1.0), (1.0, 1.3))]
 
 
-@pytest.mark.parametrize("kind, fit, resolution", CASES)
-def test_camera_rays_land_where_blenders_projection_puts_them(prism_addon, fresh_scene, kind, fit, resolution):
+@pytest.mark.parametrize("kind, fit, resolution, pixel_aspect", CASES)
+def test_camera_rays_land_where_blenders_projection_puts_them(prism_addon, fresh_scene, kind, fit, resolution,
+                                                              pixel_aspect):
     export = importlib.import_module(f"{prism_addon.__name__}.engine.export.camera")
     cameras = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.cameras")
     stages = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.stages.camera")
@@ -39,9 +40,11 @@ def test_camera_rays_land_where_blenders_projection_puts_them(prism_addon, fresh
     data.shift_x, data.shift_y = 0.21, -0.13
     fresh_scene.render.resolution_x, fresh_scene.render.resolution_y = resolution
     fresh_scene.render.resolution_percentage = 100
+    fresh_scene.render.pixel_aspect_x, fresh_scene.render.pixel_aspect_y = pixel_aspect
     depsgraph = bpy.context.evaluated_depsgraph_get()
     width, height = resolution
-    projection = np.array(camera.calc_matrix_camera(depsgraph, x=width, y=height))
+    projection = np.array(camera.calc_matrix_camera(depsgraph, x=width, y=height, scale_x=pixel_aspect[0],
+                                                    scale_y=pixel_aspect[1]))
 
     setup = cameras.make_camera(export.export_camera(fresh_scene, depsgraph), settings.RenderSettings())
     rng = np.random.default_rng(3)
