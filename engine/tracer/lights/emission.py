@@ -5,7 +5,8 @@ The path's weight is what the light sends through that (point, direction) divide
 drawing it: L cos / (p_select p_area p_direction) for surfaces, I / (p_select p_direction) for points,
 E / (p_select p_beam) for a delta sun and L / (p_select p_direction p_beam) for a sun disc — flux, so
 that its expected sum over the paths is the light's power toward the targets. The world's background
-sends no light paths (weight 0): its caustics stay with path tracing, which never skips escapes.
+sends no light paths: the light is chosen among the others (∝ power), and the world's caustics stay with
+path tracing, which never skips escapes.
 """
 
 from __future__ import annotations
@@ -25,10 +26,13 @@ def sample_emission(lights, materials, spectra, targets, u_select, u_position, u
     """(origin, unit direction, light index) of a new light path; ``beta[k]`` = its weight at
     ``wavelength_nm[k]`` (0 when the light sends nothing that way). ``u_position`` and ``u_direction``
     are pairs of uniforms."""
-    index, u_rest = pick_light(lights, u_select)
+    others = 1.0  # the share of the lights that send light paths: all but the world (the last row)
+    if lights.environment_index >= 0:
+        others = lights.select_cdf[lights.environment_index - 1] if lights.environment_index > 0 else 0.0
+    index, u_rest = pick_light(lights, u_select * others)
     row = lights.rows[index]
     kind = int(row[L_KIND])
-    select = lights.select_prob[index]
+    select = lights.select_prob[index] / others if others > 0.0 else 1.0
     if kind == ENVIRONMENT:
         origin, direction, scale, sid = (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.0, 0
     elif kind == SUN or kind == SUN_DISK:
