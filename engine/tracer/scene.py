@@ -160,7 +160,9 @@ class Camera:
     ``ortho_width_m`` x ``ortho_height_m``), ``"equirectangular"`` (longitudes and
     latitudes in radians), ``"fisheye_equidistant"`` (``fisheye_fov_rad``) or
     ``"fisheye_equisolid"`` (``fisheye_lens_mm``, ``fisheye_fov_rad``, the film as its
-    sensor), as Cycles defines them (``stages.panorama``).
+    sensor), as Cycles defines them (``stages.panorama``). Orthographic rays start ``ortho_start_m``
+    behind the camera's plane (Blender's orthographic viewport sees half its clip range behind its
+    centre); keeping the camera at the view's centre keeps the camera-relative geometry precise.
     """
 
     name: str
@@ -188,6 +190,7 @@ class Camera:
     latitude_max_rad: float = np.pi / 2
     longitude_min_rad: float = -np.pi
     longitude_max_rad: float = np.pi
+    ortho_start_m: float = 0.0
 
 
 @dataclass

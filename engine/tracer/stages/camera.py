@@ -44,11 +44,12 @@ PROJECTIONS = {"perspective": PERSPECTIVE, "orthographic": ORTHOGRAPHIC, "equire
 #: orthographic: the view's extent in metres), shift_x / shift_y (in the same units), aperture_radius_m,
 #: focus_distance_m, blades (0: a disc), blade_rotation (rad), aperture_ratio, panorama float64 [4]
 #: (``stages.panorama``), width, height (pixels), filter_kind, filter_width_px, filter_cdf_lo (Gaussian
-#: mass below -width), origin float64 [3] (the camera's position in the render's space, m).
+#: mass below -width), origin float64 [3] (the camera's position in the render's space, m), ortho_start_m
+#: (where orthographic rays start on the camera's +Z axis, m).
 CameraData = namedtuple(
     "CameraData",
     "kind projection rotation tan_w tan_h shift_x shift_y aperture_radius_m focus_distance_m blades blade_rotation "
-    "aperture_ratio panorama width height filter_kind filter_width_px filter_cdf_lo origin",
+    "aperture_ratio panorama width height filter_kind filter_width_px filter_cdf_lo origin ortho_start_m",
 )
 
 
@@ -77,7 +78,8 @@ def camera_data(camera, settings, kind, origin_m=(0.0, 0.0, 0.0)) -> CameraData:
                       float(camera.aperture_ratio), panorama_parameters(camera), width, height,
                       FILTER_GAUSSIAN if settings.pixel_filter == "gaussian" else FILTER_BOX,
                       float(settings.filter_width_px), float(ndtr(-settings.filter_width_px / sigma)),
-                      np.ascontiguousarray(origin_m, dtype=np.float64))
+                      np.ascontiguousarray(origin_m, dtype=np.float64),
+                      float(camera.ortho_start_m) if projection == ORTHOGRAPHIC else 0.0)
 
 
 @inlined
@@ -151,12 +153,13 @@ def camera_space_ray(camera, x, y, lens_u, lens_v):
         return o, d
     if camera.projection == ORTHOGRAPHIC:
         p = film_direction(camera, x, y)
-        o = (p[0], p[1], 0.0)
+        start = camera.ortho_start_m
+        o = (p[0], p[1], start)
         d = (0.0, 0.0, -1.0)
         if camera.kind == THIN_LENS:
             lx, ly = aperture_point(camera, lens_u, lens_v)
-            o = (p[0] + lx, p[1] + ly, 0.0)
-            d = (-lx, -ly, -camera.focus_distance_m)
+            o = (p[0] + lx, p[1] + ly, start)
+            d = (-lx, -ly, -(camera.focus_distance_m + start))
         return o, d
     d = panorama_direction(camera, x / camera.width, 1.0 - y / camera.height)
     o = (0.0, 0.0, 0.0)
