@@ -266,7 +266,8 @@ class RenderSession:
                 prism = scene.prism
                 image = denoise_image(image, images["Denoising Albedo"], images["Denoising Normal"],
                                       prefilter=prism.denoising_prefilter, quality=prism.denoising_quality)
-        passes["Combined"].rect = bottom_up(image, alpha=True)
+        alpha = renderer.film.alpha().astype(np.float32)[..., None]  # transparent film, holdouts (else 1)
+        passes["Combined"].rect = bottom_up(np.concatenate([image, alpha], axis=2))
         if "Noise" in wanted:
             images["Noise"] = renderer.film.variance_of_mean().astype(np.float32)
         if "Sample Count" in wanted:

@@ -84,10 +84,10 @@ class PRISM_PT_camera_lens(PrismPanel, bpy.types.Panel):
         layout.row().prop(settings, "lens_model", expand=True)
         layout.use_property_split = True
         layout.use_property_decorate = False
-        if camera.type != "PERSP":
-            error_label(layout, f"Prism renders perspective cameras only (this one is {camera.type.title()}).")
         if settings.lens_model != "REAL_LENS":
             return
+        if camera.type != "PERSP":
+            error_label(layout, "A real lens forms a perspective image: set Lens ▸ Type to Perspective.")
         layout.row().prop(settings, "lens_source", expand=True)
         if settings.lens_source == "BUNDLED":
             layout.prop(settings, "bundled_lens")
@@ -105,7 +105,8 @@ class PRISM_PT_camera_lens(PrismPanel, bpy.types.Panel):
 
 
 class PRISM_PT_camera_focus(PrismPanel, bpy.types.Panel):
-    """Focus distance, focus object and f-stop (Blender's own depth-of-field settings)."""
+    """Blender's own depth-of-field settings: the checkbox (Blender's camera), focus distance or object,
+    f-stop and the aperture's blades."""
 
     bl_label = "Focus"
     bl_context = "data"
@@ -121,9 +122,11 @@ class PRISM_PT_camera_focus(PrismPanel, bpy.types.Panel):
         dof = camera.dof
         layout.use_property_split = True
         layout.use_property_decorate = False
-        if camera.prism.lens_model == "PINHOLE":
-            layout.label(text="A pinhole keeps everything in focus; choose Thin or Real lens.", icon="INFO")
-            return
+        model = camera.prism.lens_model
+        if model == "PINHOLE":
+            layout.prop(dof, "use_dof", text="Depth of Field")
+            if not dof.use_dof:
+                return
         column = layout.column()
         column.prop(dof, "focus_object", text="Focus on Object")
         if dof.focus_object is not None and dof.focus_object.type == "ARMATURE":
@@ -132,6 +135,10 @@ class PRISM_PT_camera_focus(PrismPanel, bpy.types.Panel):
         sub.active = dof.focus_object is None
         sub.prop(dof, "focus_distance", text="Distance")
         column.prop(dof, "aperture_fstop", text="F-Stop")
+        if model != "REAL_LENS":
+            column.prop(dof, "aperture_blades", text="Blades")
+            column.prop(dof, "aperture_rotation", text="Rotation")
+            column.prop(dof, "aperture_ratio", text="Ratio")
         layout.operator("prism.autofocus", icon="VIEWZOOM")
 
 

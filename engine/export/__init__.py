@@ -32,8 +32,7 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:
             f"Scene '{scene_name}' has no visible geometry: add a mesh object, or enable an object for "
             "rendering (Outliner ▸ camera icon), before rendering."
         )
-    world = tracer_scene.world
-    world_lit = world.strength > 0 and max(world.color) > 0
+    world_lit = not tracer_scene.world.is_black()
     used = {int(i) for i in np.unique(tracer_scene.triangle_material)}
     emissive = any(_emits(tracer_scene.materials[i]) for i in used)
     if not (tracer_scene.lights or world_lit or emissive):
@@ -51,7 +50,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     Inputs Prism ignores are appended to ``warnings`` (one message each).
     """
     scene = depsgraph.scene
-    camera = export_camera(scene, depsgraph)
+    camera = export_camera(scene, depsgraph, warnings)
     geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
     tracer_scene = Scene(
         vertices=geometry.vertices,
@@ -62,6 +61,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         object_light_groups=geometry.object_light_groups,
         corner_normals=geometry.corner_normals,
         surface=geometry.surface,
+        object_flags=geometry.object_flags,
         materials=geometry.materials,
         camera=camera,
         lights=export_lights(depsgraph, warnings),

@@ -1,7 +1,10 @@
-"""The active camera → ``tracer.scene.Camera``: perspective projection plus ``Camera.prism``'s
-lens model (Blender perspective = pinhole, thin lens, or a real lens prescription).
+"""The active camera → ``tracer.scene.Camera``: Blender's projection (perspective, orthographic,
+Cycles' equirectangular and fisheye panoramas), sensor fit and shift, plus ``Camera.prism``'s lens
+model: Blender's camera (a pinhole, or a thin lens when its Depth of Field box is checked), always a
+thin lens, or a real lens prescription (perspective only).
 
-Focus distance, focus object and f-stop are Blender's own depth-of-field settings.
+Focus distance, focus object, f-stop, blades, rotation and ratio are Blender's own depth-of-field
+settings.
 """
 
 from __future__ import annotations
@@ -14,6 +17,8 @@ from ..tracer.errors import PrismInputError
 from ..tracer.scene import Camera
 
 LENS_MODELS = {"PINHOLE": "pinhole", "THIN_LENS": "thin_lens", "REAL_LENS": "real_lens"}
+PANORAMAS = {"EQUIRECTANGULAR": "equirectangular", "FISHEYE_EQUIDISTANT": "fisheye_equidistant",
+             "FISHEYE_EQUISOLID": "fisheye_equisolid"}
 
 
 def render_resolution(scene) -> tuple[int, int]:
@@ -23,21 +28,38 @@ def render_resolution(scene) -> tuple[int, int]:
     return max(1, render.resolution_x * percent // 100), max(1, render.resolution_y * percent // 100)
 
 
-def film_size_mm(camera_data, width_px: int, height_px: int) -> tuple[float, float]:
-    """The part of the sensor that maps onto the image, after Blender's sensor fit.
-
-    Pixel aspect is taken as square.
-    """
+def _fits_horizontally(camera_data, width_px: float, height_px: float) -> bool:
     fit = camera_data.sensor_fit
-    if fit == "AUTO":
-        horizontal = width_px >= height_px
+    return width_px >= height_px if fit == "AUTO" else fit == "HORIZONTAL"
+
+
+def film_size_mm(camera_data, width_px: float, height_px: float) -> tuple[float, float]:
+    """The part of the sensor that maps onto the image, after Blender's sensor fit, for an image
+    ``width_px`` x ``height_px`` as displayed (pixel counts times the pixel aspect)."""
+    horizontal = _fits_horizontally(camera_data, width_px, height_px)
+    if camera_data.sensor_fit == "AUTO":
         sensor = camera_data.sensor_width
     else:
-        horizontal = fit == "HORIZONTAL"
         sensor = camera_data.sensor_width if horizontal else camera_data.sensor_height
     if horizontal:
         return sensor, sensor * height_px / width_px
     return sensor * width_px / height_px, sensor
+
+
+def ortho_size_m(camera_data, width_px: float, height_px: float) -> tuple[float, float]:
+    """The orthographic view's width and height (m): Orthographic Scale along the fitted side."""
+    scale = float(camera_data.ortho_scale)
+    if _fits_horizontally(camera_data, width_px, height_px):
+        return scale, scale * height_px / width_px
+    return scale * width_px / height_px, scale
+
+
+def shift_in_larger_side(camera_data, width_px: float, height_px: float) -> tuple[float, float]:
+    """Blender's shift is in units of the fitted side; the tracer's in units of the larger one."""
+    horizontal = _fits_horizontally(camera_data, width_px, height_px)
+    fitted = width_px if horizontal else height_px
+    factor = fitted / max(width_px, height_px)
+    return float(camera_data.shift_x) * factor, float(camera_data.shift_y) * factor
 
 
 def check_camera_scale(camera_object) -> None:
@@ -111,9 +133,44 @@ def _lens_file(camera_object) -> str:
     return path
 
 
-def export_camera(scene, depsgraph=None) -> Camera:
+def _projection(camera_object, warnings) -> str:
+    data = camera_object.data
+    if data.type == "PERSP":
+        return "perspective"
+    if data.type == "ORTHO":
+        return "orthographic"
+    if data.type == "PANO":
+        kind = data.panorama_type
+        if kind not in PANORAMAS:
+            label = kind.replace("_", " ").title()
+            raise PrismInputError(
+                f"Camera '{camera_object.name}': the {label} panorama is not supported; set Camera ▸ Lens ▸ "
+                "Panorama Type to Equirectangular, Fisheye Equidistant or Fisheye Equisolid."
+            )
+        if (data.shift_x or data.shift_y) and warnings is not None:
+            warnings.append(f"Camera '{camera_object.name}': Shift is ignored by panoramic cameras (as in Cycles).")
+        return PANORAMAS[kind]
+    raise PrismInputError(f"Camera '{camera_object.name}' has an unknown type '{data.type}'.")
+
+
+def _lens_model(camera_object, projection) -> str:
+    """Blender's camera is a thin lens when its Depth of Field box is checked."""
+    settings = getattr(camera_object.data, "prism", None)
+    model = LENS_MODELS[settings.lens_model] if settings is not None else "pinhole"
+    if model == "pinhole" and camera_object.data.dof.use_dof:
+        return "thin_lens"
+    if model == "real_lens" and projection != "perspective":
+        raise PrismInputError(
+            f"Camera '{camera_object.name}' uses a real lens, which forms a perspective image: set Camera ▸ Lens "
+            "▸ Type to Perspective, or Prism Lens ▸ Lens Model to Blender's camera."
+        )
+    return model
+
+
+def export_camera(scene, depsgraph=None, warnings: list[str] | None = None) -> Camera:
     """The scene's active camera (as ``depsgraph`` evaluated it, when given: a material preview's
-    scene is not evaluated itself); a clear error when there is none or it is unsupported."""
+    scene is not evaluated itself); a clear error when there is none or it is unsupported. Settings
+    Prism ignores are appended to ``warnings``."""
     camera_object = scene.camera
     if camera_object is not None and depsgraph is not None:
         camera_object = camera_object.evaluated_get(depsgraph)
@@ -127,20 +184,19 @@ def export_camera(scene, depsgraph=None) -> Camera:
             f"The active camera '{camera_object.name}' is not a camera object: set a camera as the scene camera."
         )
     data = camera_object.data
-    if data.type != "PERSP":
-        kind = {"ORTHO": "orthographic", "PANO": "panoramic"}.get(data.type, data.type.lower())
-        raise PrismInputError(
-            f"Camera '{camera_object.name}' is {kind}; Prism renders perspective cameras only: "
-            "set Camera ▸ Lens ▸ Type to Perspective."
-        )
+    projection = _projection(camera_object, warnings)
     check_camera_scale(camera_object)
     width, height = render_resolution(scene)
     check_frame_memory(scene, width, height)
-    film_w, film_h = film_size_mm(data, width, height)
-    if not (np.isfinite(data.lens) and data.lens > 0):
+    # Blender fits the sensor to the image as displayed: non-square pixels (Format ▸ Aspect X/Y) stretch it.
+    shape = (width * float(scene.render.pixel_aspect_x), height * float(scene.render.pixel_aspect_y))
+    film_w, film_h = film_size_mm(data, *shape)
+    if projection == "perspective" and not (np.isfinite(data.lens) and data.lens > 0):
         raise PrismInputError(f"Camera '{camera_object.name}' has focal length {data.lens} mm: use a positive value.")
-    settings = getattr(data, "prism", None)
-    model = LENS_MODELS[settings.lens_model] if settings is not None else "pinhole"
+    model = _lens_model(camera_object, projection)
+    shift_x, shift_y = shift_in_larger_side(data, *shape)
+    ortho_w, ortho_h = ortho_size_m(data, *shape)
+    dof = data.dof
     camera = Camera(
         name=camera_object.name,
         camera_to_world=rigid_matrix(camera_object.matrix_world),
@@ -149,10 +205,22 @@ def export_camera(scene, depsgraph=None) -> Camera:
         film_width_mm=float(film_w),
         film_height_mm=float(film_h),
         model=model,
-        fstop=float(data.dof.aperture_fstop),
-        focus_distance_m=float(data.dof.focus_distance),
-        shift_x=float(data.shift_x),
-        shift_y=float(data.shift_y),
+        fstop=float(dof.aperture_fstop),
+        focus_distance_m=float(dof.focus_distance),
+        shift_x=shift_x if projection in ("perspective", "orthographic") else 0.0,
+        shift_y=shift_y if projection in ("perspective", "orthographic") else 0.0,
+        aperture_blades=int(dof.aperture_blades),
+        aperture_rotation_rad=float(dof.aperture_rotation),
+        aperture_ratio=float(dof.aperture_ratio),
+        projection=projection,
+        ortho_width_m=ortho_w,
+        ortho_height_m=ortho_h,
+        fisheye_fov_rad=float(data.fisheye_fov),
+        fisheye_lens_mm=float(data.fisheye_lens),
+        latitude_min_rad=float(data.latitude_min),
+        latitude_max_rad=float(data.latitude_max),
+        longitude_min_rad=float(data.longitude_min),
+        longitude_max_rad=float(data.longitude_max),
     )
     if model == "pinhole":
         return camera
@@ -160,7 +228,7 @@ def export_camera(scene, depsgraph=None) -> Camera:
     if not (math.isfinite(camera.focus_distance_m) and camera.focus_distance_m > 0):
         raise PrismInputError(
             f"Camera '{camera_object.name}' focuses at {camera.focus_distance_m:g} m: set a focus distance above 0 "
-            "(Camera ▸ Prism Lens ▸ Focus)."
+            "(Camera ▸ Depth of Field ▸ Focus Distance)."
         )
     if not (math.isfinite(camera.fstop) and camera.fstop > 0):
         raise PrismInputError(f"Camera '{camera_object.name}' has f-stop {camera.fstop:g}: use a positive f-stop.")

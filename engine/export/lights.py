@@ -2,7 +2,10 @@
 
 The spectrum comes from ``Light.prism`` (``export.spectra``): the light's RGB colour, a
 blackbody at a colour temperature, a monochromatic line, a standard illuminant or a
-spectrum file. Strength is Blender's own energy.
+spectrum file. Strength is Blender's own energy. Spread, sun angle, spot size and blend and
+the Camera ray visibility are Cycles'; portals emit nothing (as in Cycles, where they only
+guide the world's sampling); settings Prism does not model get one warning per light
+(``light_settings``).
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ import numpy as np
 
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Light, SpectrumSpec
+from .light_settings import is_portal, light_warnings
 from .spectra import light_emission_source
 
 _AREA_SHAPES = {"SQUARE": "rectangle", "RECTANGLE": "rectangle", "DISK": "disk", "ELLIPSE": "disk"}
@@ -59,6 +63,7 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
         light.spot_blend = float(light_data.spot_blend)
     if light_data.type == "AREA":
         light.area_shape = _AREA_SHAPES[light_data.shape]
+        light.spread_rad = float(getattr(light_data, "spread", math.pi))
         size_v = light_data.size if light_data.shape in {"SQUARE", "DISK"} else light_data.size_y
         light.size_u_m = float(light_data.size * scale[0])
         light.size_v_m = float(size_v * scale[1])
@@ -75,6 +80,7 @@ def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
     """Every visible light instance of the evaluated depsgraph (lights of power 0 are skipped)."""
     lights = []
     warned = set()
+    warned_objects = set()
     for instance in depsgraph.object_instances:
         obj = instance.object
         if obj.type != "LIGHT":
@@ -86,8 +92,14 @@ def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
                 f"Light '{obj.name}': Blender's Temperature checkbox is ignored; for a blackbody spectrum "
                 "set Light ▸ Colour Source to Blackbody."
             )
+        if is_portal(obj.data.original):
+            continue
+        if warnings is not None and obj.original.name not in warned_objects:
+            warned_objects.add(obj.original.name)
+            warnings.extend(light_warnings(obj))
         # Settings from the original light (see ``export_material``), placement from the instance.
         light = _export_light(obj.name, obj.data.original, instance.matrix_world)
+        light.visible_camera = bool(getattr(obj, "visible_camera", False))
         light.light_group = obj.lightgroup
         if light.power_w > 0 or light.irradiance_w_m2 > 0:
             lights.append(light)

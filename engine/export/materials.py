@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 
+from ..properties.principled import surface_node
 from ..tracer.bsdf.closure import CONDUCTOR, DIELECTRIC, FRESNEL_CONDUCTOR, FRESNEL_F82
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Material, SpectrumSpec
@@ -104,6 +105,9 @@ class MaterialExporter:
             return _thin_film(material, settings)
         if not material.use_nodes or material.node_tree is None:
             return _viewport_material(material)
+        node = surface_node(material)
+        if node is not None and node.bl_idname == "ShaderNodeHoldout":
+            return Material(name=material.name, kind="diffuse", base_color=(0.0, 0.0, 0.0), holdout=True)
         overrides = {}
         if settings is not None and settings.reflectance_source != "COLOR":
             overrides["reflectance"] = material_reflectance_source(material, (0.0, 0.0, 0.0)).spec()

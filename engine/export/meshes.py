@@ -27,6 +27,7 @@ from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
 from .surface_attributes import SurfaceCollector
 from .unrendered import particle_hair_warnings, unrendered_type_warning
+from .visibility import object_flags
 
 #: Types whose evaluated mesh arrives as a separate MESH instance.
 _EVALUATED_AS_MESH_INSTANCE = {"CURVE", "FONT", "SURFACE", "META"}
@@ -43,6 +44,7 @@ class ExportedGeometry:
     materials: list[Material]
     object_light_groups: list[str] = field(default_factory=list)
     surface: object = None  # scene.SurfaceAttributes read by node materials, or None
+    object_flags: np.ndarray | None = None  # uint8 per entry of object_names (``tracer.visibility``)
 
 
 @dataclass
@@ -54,6 +56,7 @@ class _Instances:
     matrices: list = field(default_factory=list)  # 16 floats each, row-major
     infos: list = field(default_factory=list)  # (colour RGBA, pass index, random id) per instance
     light_group: str = ""  # Object ▸ Shading ▸ Light Group
+    flags: int = 0
 
 
 class _Materials:
@@ -128,7 +131,9 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             request = materials.request([slot.material for slot in obj.material_slots]) if kind == "MESH" else None
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
-            pieces[key] = _Instances(obj.name, geometry, light_group=obj.lightgroup) if geometry is not None else None
+            flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
+            pieces[key] = (_Instances(obj.name, geometry, light_group=obj.lightgroup, flags=flags)
+                           if geometry is not None else None)
         piece = pieces[key]
         if piece is not None:
             matrix = instance.matrix_world
@@ -149,6 +154,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     materials = _Materials(warnings)
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
+    flags: list[int] = []
     groups: list[str] = []
     camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
     pieces = _gather(depsgraph, warnings, read, materials)
@@ -163,6 +169,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                 names.append(piece.name)
                 groups.append(piece.light_group)
                 surface.add_other(len(placed.triangles))
+                flags.append(piece.flags)
             continue
         local = piece.geometry
         placed = instance_triangles(local.vertices, local.triangles, local.corner_normals, matrices)
@@ -171,9 +178,11 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
         names.append(piece.name)
         groups.append(piece.light_group)
         surface.add_mesh(local, matrices, piece.infos, np.linalg.det(matrices[:, :3, :3]) < 0)
+        flags.append(piece.flags)
     geometry = _assemble(parts, names, materials.materials)
     geometry.object_light_groups = groups
     geometry.surface = surface.surface()
+    geometry.object_flags = np.asarray(flags, np.uint8)
     return geometry
 
 

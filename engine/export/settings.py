@@ -50,6 +50,7 @@ def export_settings(
         border=border,
         pixel_filter=prism.pixel_filter.lower(),
         filter_width_px=float(prism.filter_width_px),
+        film_transparent=bool(scene.render.film_transparent),
         light_tracing=prism.light_tracing.lower(),
         passes=passes if passes is not None else PassRequest(),
         adaptive_threshold=float(prism.adaptive_threshold) if prism.use_adaptive_sampling else 0.0,
@@ -57,6 +58,10 @@ def export_settings(
         time_limit_s=float(prism.time_limit),
         spectral_band_nm=float(prism.spectral_band_nm) if spectral else 0.0,
     )
+    cycles = getattr(scene, "cycles", None)
+    if cycles is not None:  # Film ▸ Transparent ▸ Transparent Glass lives in Cycles' settings
+        settings.transparent_glass = bool(cycles.film_transparent_glass)
+        settings.transparent_roughness = float(cycles.film_transparent_roughness)
     try:
         settings.validate()
     except PrismInputError as error:  # stored past the UI's limits (a script, an old file): say where

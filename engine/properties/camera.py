@@ -1,6 +1,7 @@
 """``Camera.prism``: which lens model the camera uses.
 
-Focus distance, f-stop and focus object are Blender's own ``camera.dof`` settings.
+Depth of field (the checkbox, focus distance or object, f-stop, blades, rotation, ratio) is Blender's own
+``camera.dof``.
 """
 
 import importlib
@@ -16,8 +17,14 @@ LENS_DIRECTORY = Path(__file__).resolve().parents[2] / "lenses"
 DEFAULT_BUNDLED_LENS = "double_gauss_50mm"
 
 LENS_MODEL_ITEMS = [
-    ("PINHOLE", "Blender perspective", "Blender's perspective camera: a pinhole, everything in focus", 0),
-    ("THIN_LENS", "Thin lens", "An ideal thin lens: depth of field from the f-stop and focus distance", 1),
+    (
+        "PINHOLE",
+        "Blender camera",
+        "Blender's camera as Cycles renders it: perspective, orthographic or panoramic, in focus everywhere "
+        "unless its Depth of Field box is checked",
+        0,
+    ),
+    ("THIN_LENS", "Thin lens", "An ideal thin lens, always: depth of field from the f-stop and focus distance", 1),
     (
         "REAL_LENS",
         "Real lens",

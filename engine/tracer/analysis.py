@@ -28,7 +28,7 @@ class SceneAnalysis:
     mesh_lights: bool = False
     light_kinds: list[str] = field(default_factory=list)
     features: list[str] = field(default_factory=list)
-    world: bool = False
+    world: str = ""
     guided_lines: int = 0
     guided_measured: int = 0
     guided_smooth: int = 0
@@ -55,7 +55,7 @@ class SceneAnalysis:
         lights = ", ".join(sorted(set(k for k in self.light_kinds if k != "emissive meshes"))) or "none"
         parts.append(f"lights: {lights}" + (" + emissive meshes" if self.mesh_lights else ""))
         if self.world:
-            parts.append("world")
+            parts.append(self.world)
         parts.append("NEE+BSDF MIS" if use_mis else "NEE only (no MIS)")
         if self.see_through_films:
             parts.append("see-through film shadows")

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from .frame_plan import film_bytes_per_pixel
-from .stages.film import splat
+from .stages.film import splat, splat_alpha
 from .stages.light_splat import add_pass_splats
 
 
@@ -39,6 +39,7 @@ class Film:
         self._count = np.zeros(count, dtype=np.int64)
         columns = layout.width if layout is not None else 0
         self._aux = np.zeros((count, columns))
+        self._alpha = None  # sums of the samples' alpha, once a render has any transparency
         self.nan_samples = 0
         self.light_paths = 0  # light paths traced so far (the light splats' denominator)
         self._light_sum = self._light_sum_sq = self._light_splats = None
@@ -55,6 +56,22 @@ class Film:
         x0, y0 = self.origin
         self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, self._aux, pixel_index, rgb, aux,
                                       len(pixel_index), self.frame_width, x0, y0, self.width))
+
+    def add_alpha(self, pixel_index: np.ndarray, alpha: np.ndarray) -> None:
+        """Add the alpha (1 - transparency) of the samples ``add`` just took, in the same order."""
+        if self._alpha is None:
+            self._alpha = np.zeros(len(self._count))
+        pixel_index = np.ascontiguousarray(pixel_index, dtype=np.int64)
+        x0, y0 = self.origin
+        splat_alpha(self._alpha, pixel_index, np.ascontiguousarray(alpha, dtype=np.float64), len(pixel_index),
+                    self.frame_width, x0, y0, self.width)
+
+    def alpha(self) -> np.ndarray:
+        """Per-pixel mean alpha, float64 [H, W] (1 where nothing was see-through)."""
+        if self._alpha is None:
+            return np.ones((self.height, self.width))
+        n = np.maximum(self._count, 1)
+        return np.where(self._count > 0, self._alpha / n, 1.0).reshape(self.height, self.width)
 
     def add_light(self, pixel_index: np.ndarray, rgb: np.ndarray, paths: int) -> None:
         """Add one pass's splats of ``paths`` light paths, in path order: ``pixel_index`` [N] (frame

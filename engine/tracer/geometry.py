@@ -8,7 +8,8 @@ camera: a scene moved 1e7 m from the origin renders as it does at the origin. Ze
 ``Geometry``: ``vertices`` float32 [V, 3] (camera-relative metres), ``triangles`` int32 [T, 3],
 ``material`` int32 [T], ``normals`` float32 [T, 3, 3] (unit shading normals at the corners) or
 [0, 3, 3] for flat shading, ``attributes`` (``SurfaceArrays``: what node materials read, empty arrays
-when nothing does).
+when nothing does), ``flags`` uint8 [T] (``visibility``: the rays that see the triangle's object, and
+whether it is a holdout).
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ import numpy as np
 
 from .jit import inlined, kernel
 
-Geometry = namedtuple("Geometry", "vertices triangles material normals attributes")
+Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags")
 
 #: UV maps, colour attributes and UV tangents per corner, instance of each triangle, instance rows, the
 #: camera position (world = camera-relative + ``offset``) and object-space corner positions; see
@@ -46,8 +47,11 @@ def prepare_geometry(scene, offset):
     normals = np.zeros((0, 3, 3), np.float32)
     if scene.corner_normals is not None and len(scene.corner_normals) == len(triangles):
         normals = np.ascontiguousarray(np.asarray(scene.corner_normals, dtype=np.float32)[original])
+    from .visibility import triangle_flags
+
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
-                        np.ascontiguousarray(material), normals, surface_arrays(scene.surface, original, offset))
+                        np.ascontiguousarray(material), normals, surface_arrays(scene.surface, original, offset),
+                        triangle_flags(scene, original))
     return geometry, original, int(len(triangles) - len(original))
 
 

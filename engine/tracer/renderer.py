@@ -3,6 +3,7 @@
     renderer = Renderer(scene, settings, progress=None)
     renderer.render_pass()          # + settings.samples_per_pass samples per pixel
     renderer.image_rgb()            # float32 [H, W, 3] scene-linear Rec.709, row 0 = top
+    renderer.image_alpha()          # float32 [H, W] (transparent film, holdouts; 1 otherwise)
     renderer.variance_rgb()         # float32 [H, W, 3] variance of the mean
     renderer.spectral_film          # SpectralFilm (band radiance) when settings.spectral_band_nm > 0, else None
     renderer.samples_done, renderer.strategy, renderer.stats
@@ -55,9 +56,12 @@ from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
 from .spectra.wavelength_guide import build_guide
 from .spectral_film import SpectralFilm
+from .stages.camera import ORTHOGRAPHIC, PERSPECTIVE
 from .stages.passes import new_pass_data
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
+from .visibility import HOLDOUT
+from .visibility_accel import RayClassAccel, needs_ray_classes
 
 MAX_CHUNK_PATHS = 1 << 16  # largest chunk one thread traces at once (memory ~0.5 kB per path)
 MIN_CHUNK_PATHS = 4096  # below this, per-bounce Python overhead dominates
@@ -137,10 +141,11 @@ class Renderer:
 
     def _build_geometry(self):
         """Triangles relative to ``origin`` and their Embree scene."""
-        self.geometry = self.accel = None  # the old tables go first: one BVH in memory at a time
+        self.geometry = self.accel = self.ray_classes = None  # the old tables go first: one BVH in memory at a time
         self.geometry, self._original_triangle, self._dropped = prepare_geometry(self.scene, self.origin)
         self._used = sorted(set(np.unique(self.geometry.material).tolist()))
         self.accel = Accel(self.geometry)
+        self.ray_classes = RayClassAccel(self.geometry, self.accel) if needs_ray_classes(self.geometry) else None
 
     def _build_shading(self):
         """Everything the paths read besides the triangles and the camera: spectra, materials, lights,
@@ -167,7 +172,10 @@ class Renderer:
         self._guide = guide
         self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
                                               bool(settings.use_mis), SAMPLERS[settings.sampler],
-                                              int(settings.seed) & 0xFFFFFFFF, False)
+                                              int(settings.seed) & 0xFFFFFFFF, False, bool(settings.film_transparent),
+                                              bool(settings.film_transparent and settings.transparent_glass),
+                                              float(settings.transparent_roughness) ** 2)
+        self._alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self._glass_clamps = np.zeros(len(materials.glasses), np.int64)
         self._describe()
 
@@ -283,7 +291,7 @@ class Renderer:
         a.dispersion = bool(a.dispersive) or a.camera_disperses
         a.light_kinds = [light.kind for light in self.scene.lights]
         a.features = list(self.material_table.features)
-        a.world = self.light_table.arrays.world_strength > 0
+        a.world = self.light_table.world
         specular, films = [], []
         for m in used:
             if flags[m] & MAT_DELTA:
@@ -295,12 +303,26 @@ class Renderer:
                                                          _kept(self.scene.triangle_object, self._original_triangle))
             small = small_lights(lights.rows[:len(self.light_table.names)], self.light_table.names, lights.mesh,
                                  self.caustic_targets)
-        layout = self.pass_layout.kernel
         a.light_tracing, a.light_tracing_note = choose_light_tracing(
             s.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
-            lights.select_prob.shape[0] > 0,
-            "real lens" if self.camera.lens is not None else "spectral output" if s.spectral_band_nm
-            else "light passes" if layout.light >= 0 or layout.groups > 0 else "")
+            any(kind != "world" for kind in self.light_table.kinds), self._path_tracing_only())
+        return a
+
+    def _path_tracing_only(self) -> str:
+        """Why this render cannot trace light paths to the camera ("" if it can): connections reach a
+        perspective camera's pinhole or lens only, and see every object as the camera does."""
+        layout = self.pass_layout.kernel
+        if self.camera.lens is not None:
+            return "real lens"
+        if self.camera.data.projection != PERSPECTIVE:
+            return "orthographic camera" if self.camera.data.projection == ORTHOGRAPHIC else "panoramic camera"
+        if self.settings.spectral_band_nm:
+            return "spectral output"
+        if layout.light >= 0 or layout.groups > 0:
+            return "light passes"
+        if self.ray_classes is not None or (self.geometry.flags & HOLDOUT).any():
+            return "ray visibility or holdouts"
+        return ""
         return a
 
     def _frame_region(self, border):
@@ -388,7 +410,8 @@ class Renderer:
             extra = light_buffers(self._local, count)
             splats, rays, rejected = trace_light_chunk(self, buffers, extra, start, count, spp, self.samples_done,
                                                        clamps)
-            return extra.pixel[:splats].copy(), buffers.rgb[:splats].copy(), None, rays, rejected, clamps, None
+            return (extra.pixel[:splats].copy(), buffers.rgb[:splats].copy(), None, rays, rejected, clamps, None,
+                    None)
         from .stages.trace import trace_chunk
 
         rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
@@ -396,8 +419,9 @@ class Renderer:
         spectral = None
         if self.spectral_film is not None:
             spectral = self.spectral_film.record(buffers.state, count)
+        alpha = 1.0 - buffers.state.transparency[:count] if self._alpha else None
         return (buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), values, rays, rejected, clamps,
-                spectral)
+                spectral, alpha)
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
@@ -462,7 +486,7 @@ class Renderer:
                 if job is None:
                     break
                 try:
-                    pixel, rgb, values, rays, rejected, clamps, spectral = job.result()
+                    pixel, rgb, values, rays, rejected, clamps, spectral, alpha = job.result()
                 except CancelledError:
                     break
                 with self._jobs_lock:
@@ -471,6 +495,8 @@ class Renderer:
                     light_splats.append((pixel, rgb, chunks[i][1] - chunks[i][0]))
                 else:
                     self.film.add(pixel, rgb, values)
+                    if alpha is not None:
+                        self.film.add_alpha(pixel, alpha)
                     if spectral is not None:
                         self.spectral_film.add(pixel, *spectral)
                 self.stats["rays_cast"] += rays
@@ -580,6 +606,17 @@ class Renderer:
     def image_rgb(self) -> np.ndarray:
         """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top (0 outside the region)."""
         return self._frame(self.film.mean().astype(np.float32))
+
+    def image_alpha(self) -> np.ndarray:
+        """Mean alpha, float32 [H, W], row 0 = top (``image_rgb`` is premultiplied by it; 1 outside the
+        region)."""
+        region = self.film.alpha().astype(np.float32)
+        x0, y0, x1, y1 = self.region
+        if (x0, y0, x1, y1) == (0, 0, self.width, self.height):
+            return region
+        frame = np.ones((self.height, self.width), np.float32)
+        frame[y0:y1, x0:x1] = region
+        return frame
 
     def variance_rgb(self) -> np.ndarray:
         """Per-pixel variance of the mean estimate, float32 [H, W, 3]."""

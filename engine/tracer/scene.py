@@ -81,7 +81,8 @@ class Material:
     used (diffuse albedo, a conductor's normal-incidence reflectance).
     ``shader`` (a ``materials.shader.ShaderProgram``), when set, is the material as its Blender node
     tree defines it and replaces the kind-based closure; the other fields then only describe it for
-    messages.
+    messages. ``holdout`` (Blender's Holdout shader): camera rays see a transparent black hole in the
+    image; other rays a black surface.
     """
 
     name: str
@@ -102,6 +103,7 @@ class Material:
     aovs: dict = field(default_factory=dict)  # shader AOV name -> (r, g, b, value) on this material
     reflectance: ReflectanceSpec | None = None
     shader: object = None
+    holdout: bool = False
 
 
 @dataclass
@@ -117,8 +119,10 @@ class Light:
     ``radius_m`` is the soft radius of point/spot lights (0 = a true point).
     ``spot_size_rad`` is the full cone angle, ``spot_blend`` Blender's blend.
     ``area_shape``: ``"rectangle"`` or ``"disk"`` with ``size_u_m`` x ``size_v_m``
-    (full extents; a disk uses them as diameters). ``sun_angle_rad`` is the
-    sun's angular diameter.
+    (full extents; a disk uses them as diameters); ``spread_rad`` (Cycles' Spread, π:
+    a Lambertian emitter) narrows an area light's beam like a soft-box grid.
+    ``sun_angle_rad`` is the sun's angular diameter. ``visible_camera``: camera rays see
+    the light (area, sphere and sun discs; Object ▸ Visibility ▸ Camera).
     """
 
     name: str
@@ -137,6 +141,8 @@ class Light:
     size_u_m: float = 1.0
     size_v_m: float = 1.0
     sun_angle_rad: float = 0.0
+    spread_rad: float = np.pi
+    visible_camera: bool = False
     light_group: str = ""  # Blender's Object ▸ Shading ▸ Light Group ("" = none)
 
 
@@ -148,10 +154,18 @@ class Camera:
     down local -Z, +Y up, as Blender's. ``film_width_mm`` x ``film_height_mm`` is
     the part of the sensor that maps onto the image (after Blender's sensor fit).
     ``model``: ``"pinhole"``, ``"thin_lens"`` (``fstop`` and
-    ``focus_distance_m``) or ``"real_lens"`` (``lens_file``, traced element by
-    element; ``fstop`` scales its aperture stop, ``sensor_distance_mm`` None means
-    focus at ``focus_distance_m``). ``shift_x``/``shift_y`` are Blender's lens
-    shift in units of the larger film dimension.
+    ``focus_distance_m``; an aperture of ``aperture_blades`` straight blades (below 3: a
+    disc) turned by ``aperture_rotation_rad``, anamorphic ``aperture_ratio``) or
+    ``"real_lens"`` (``lens_file``, traced element by element; ``fstop`` scales its
+    aperture stop, ``sensor_distance_mm`` None means focus at ``focus_distance_m``).
+    ``shift_x``/``shift_y`` are Blender's lens shift in units of the larger film
+    dimension. ``projection``: ``"perspective"``, ``"orthographic"`` (the view is
+    ``ortho_width_m`` x ``ortho_height_m``), ``"equirectangular"`` (longitudes and
+    latitudes in radians), ``"fisheye_equidistant"`` (``fisheye_fov_rad``) or
+    ``"fisheye_equisolid"`` (``fisheye_lens_mm``, ``fisheye_fov_rad``, the film as its
+    sensor), as Cycles defines them (``stages.panorama``). Orthographic rays start ``ortho_start_m``
+    behind the camera's plane (Blender's orthographic viewport sees half its clip range behind its
+    centre); keeping the camera at the view's centre keeps the camera-relative geometry precise.
     """
 
     name: str
@@ -167,15 +181,73 @@ class Camera:
     sensor_distance_mm: float | None = None
     shift_x: float = 0.0
     shift_y: float = 0.0
+    aperture_blades: int = 0
+    aperture_rotation_rad: float = 0.0
+    aperture_ratio: float = 1.0
+    projection: str = "perspective"
+    ortho_width_m: float = 6.0
+    ortho_height_m: float = 4.0
+    fisheye_fov_rad: float = np.pi
+    fisheye_lens_mm: float = 10.5
+    latitude_min_rad: float = -np.pi / 2
+    latitude_max_rad: float = np.pi / 2
+    longitude_min_rad: float = -np.pi
+    longitude_max_rad: float = np.pi
+    ortho_start_m: float = 0.0
+
+
+@dataclass
+class Sky:
+    """Blender's Nishita Sky Texture (single scattering in a spherical atmosphere, evaluated per
+    wavelength): the sun at ``sun_elevation_rad`` above the horizon and ``sun_rotation_rad`` about -Z
+    (0 puts it toward +Y, growing toward +X, as Blender's), seen from ``altitude_m``; densities
+    relative to Earth's air, dust (aerosols) and ozone. With ``sun_disc`` the sun is a disc of angular
+    diameter ``sun_size_rad`` whose radiance is multiplied by ``sun_intensity``."""
+
+    sun_elevation_rad: float = 0.2618
+    sun_rotation_rad: float = 0.0
+    sun_disc: bool = True
+    sun_size_rad: float = 0.009512
+    sun_intensity: float = 1.0
+    altitude_m: float = 0.0
+    air_density: float = 1.0
+    dust_density: float = 1.0
+    ozone_density: float = 1.0
 
 
 @dataclass
 class World:
-    """Constant background radiance: ``color`` (linear Rec.709) x ``strength``."""
+    """The background: radiance ``strength`` x (``color``, an equirectangular image or a sky).
+
+    ``kind``: ``"constant"`` (``color``, linear Rec.709), ``"image"`` (``image_rgb`` float32
+    [H, W, 3] linear Rec.709, Blender's equirectangular layout: row 0 is the zenith, column 0 the
+    direction -X, the image centre +X; ``interpolation`` ``"linear"`` or ``"closest"``) or ``"sky"``
+    (``sky``). ``to_texture`` [3, 3] maps a world direction to the direction the texture is looked
+    up with (Blender's Mapping node; identity by default; any invertible matrix). ``sampled``: light
+    sampling of the world (Cycles' World ▸ Settings ▸ Sampling), else it is found by escaping rays
+    only.
+    """
 
     color: tuple[float, float, float] = (0.0, 0.0, 0.0)
     strength: float = 1.0
     light_group: str = ""
+    kind: str = "constant"
+    image_rgb: np.ndarray | None = None
+    interpolation: str = "linear"
+    sky: Sky | None = None
+    to_texture: np.ndarray = field(default_factory=lambda: np.eye(3))
+    sampled: bool = True
+    name: str = "World"
+
+    def is_black(self) -> bool:
+        """True when the background emits nothing (no light to sample or to see)."""
+        if not self.strength > 0:
+            return True
+        if self.kind == "constant":
+            return not max(self.color) > 0
+        if self.kind == "image":
+            return self.image_rgb is None or not np.nanmax(self.image_rgb, initial=0.0) > 0
+        return False
 
 
 @dataclass
@@ -211,7 +283,9 @@ class Scene:
     [T, 3, 3] (unit shading normals at each triangle corner) or None for flat
     shading. ``object_light_groups`` (parallel to ``object_names``, may be empty): each object's light
     group, for the light its emissive triangles give. ``surface`` holds UV maps, colour attributes,
-    tangents and object data for node materials (None when no material reads them).
+    tangents and object data for node materials (None when no material reads them). ``object_flags``
+    uint8 [objects] (parallel to ``object_names``: ``visibility.RAY_*`` and ``HOLDOUT`` bits; None: every
+    object seen by every ray, no holdout).
     """
 
     vertices: np.ndarray
@@ -224,6 +298,7 @@ class Scene:
     triangle_object: np.ndarray | None = None
     object_names: list[str] = field(default_factory=list)
     corner_normals: np.ndarray | None = None
+    object_flags: np.ndarray | None = None
     object_light_groups: list[str] = field(default_factory=list)
     surface: SurfaceAttributes | None = None
 

@@ -57,6 +57,11 @@ class RenderSettings:
     time_limit_s: float = 0.0
     # Multispectral output (``spectral_film``): band width in nm, 0 = off (no spectral buffer at all).
     spectral_band_nm: float = 0.0
+    # Film ▸ Transparent (Cycles' names): the background the camera sees becomes alpha 0; with
+    # transparent_glass, so does what it sees through glass no rougher than transparent_roughness.
+    film_transparent: bool = False
+    transparent_glass: bool = False
+    transparent_roughness: float = 0.1
 
     def validate(self) -> None:
         """Raise ``PrismInputError`` for settings no render can use."""

@@ -13,14 +13,18 @@ deterministic). Embree reads the queues' float32 rays directly.
 - ``flags`` int32 (``COLLAPSED``: only the hero is carried, ×K; ``PREV_DELTA``: the last scattering was
   a delta lobe or the camera; ``SEEN_DIFFUSE`` / ``CAUSTIC`` / ``NOT_CAUSTIC``: where a camera path stands
   in the split with light tracing, ``stages.caustic_split``; ``LIGHT_SPECULAR`` / ``LIGHT_CONNECTED``:
-  a light path's, ``stages.light_paths``);
+  a light path's, ``stages.light_paths``; ``CAMERA_PATH``: the path still sees what the camera sees — no
+  scattering yet but transparent glass — so the background and holdouts make it transparent;
+  ``LAST_DIFFUSE``, ``LAST_TRANSMISSION``: what the last scattering was (neither: glossy), for ray
+  visibility);
 - ``throughput`` and ``radiance`` float64 [n, K]; ``eta_scale`` float64 (Π eta'² of refractions, for
   Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample);
 - ``origin``, ``direction`` float64 [n, 3] (the current ray, camera-relative metres),
   ``mis_origin`` float64 [n, 3] (the last vertex that was not a null film crossing: light pdfs of
   emitters hit later are measured from it);
 - ``hit_triangle`` int32, ``hit_u``, ``hit_v``, ``hit_t`` float64 (the hit handed from the emission
-  stage to the shading stage).
+  stage to the shading stage);
+- ``transparency`` float64 (how much of the sample is see-through: 1 - its alpha).
 """
 
 from __future__ import annotations
@@ -36,6 +40,9 @@ CAUSTIC = 8
 NOT_CAUSTIC = 16
 LIGHT_SPECULAR = 32
 LIGHT_CONNECTED = 64
+CAMERA_PATH = 128
+LAST_DIFFUSE = 256
+LAST_TRANSMISSION = 512
 
 _PATH_FIELDS = (
     ("pixel", np.int64, ()), ("sample", np.int64, ()), ("seed", np.int64, ()),
@@ -45,6 +52,7 @@ _PATH_FIELDS = (
     ("eta_scale", np.float64, ()), ("prev_pdf", np.float64, ()),
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
     ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
+    ("transparency", np.float64, ()),
 )
 PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
 
@@ -108,4 +116,5 @@ class ChunkBuffers:
         self.shadows = new_shadow_queue(n, k)
         self.scratch = new_shading_scratch(k, registers)
         self.rgb = np.empty((n, 3))
+        self.alpha = np.empty(n)
         self.counters = np.zeros(1, np.int64)  # rays dropped as non-finite

@@ -56,6 +56,22 @@ def concentric_disk(u1, u2):
 
 
 @kernel
+def regular_polygon(u1, u2, corners, rotation):
+    """Area-uniform point of the regular polygon inscribed in the unit circle with ``corners`` corners at
+    angles rotation + (2k + 1)π/corners (an edge's midpoint on +X when rotation is 0); density 1/area."""
+    corner = min(int(u1 * corners), corners - 1)
+    u = u1 * corners - corner
+    s = math.sqrt(u)
+    a = 1.0 - s  # barycentrics of the corner triangle (centre, corner k, corner k + 1)
+    b = u2 * s
+    half = math.pi / corners
+    x, y = (a + b) * math.cos(half), (a - b) * math.sin(half)
+    angle = rotation + 2.0 * half * corner
+    c, sn = math.cos(angle), math.sin(angle)
+    return c * x - sn * y, sn * x + c * y
+
+
+@kernel
 def cosine_hemisphere(u1, u2):
     """Cosine-weighted direction about +Z; pdf cos(θ)/π."""
     x, y = concentric_disk(u1, u2)

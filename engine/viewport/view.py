@@ -7,8 +7,12 @@ point (x, y, -1) of view space at NDC (P00 x - P02, P11 y - P12), so the region 
 a film of ``2 f / P00`` x ``2 f / P11`` mm with a shift; in camera view ``f`` is the camera's own
 focal length, so a real lens sees the film in millimetres exactly where Blender draws the camera
 frame (the passepartout around it is film beyond the frame), and thin-lens depth of field keeps its
-aperture. The render border is the viewport's own (View ▸ Render Region) in a free view, the scene's
-(a fraction of the camera frame) in camera view.
+aperture. An orthographic window matrix puts view-space x at NDC P00 x + P03, so the region spans
+``2 / P00`` x ``2 / P11`` metres centred on (-P03 / P00, -P13 / P11). Blender draws an orthographic
+free view from half its clip range behind the view's centre to half beyond, so its rays start
+``clip_end / 2`` behind the centre (as Cycles places them).
+The render border is the viewport's own (View ▸ Render Region) in a free view, the scene's (a fraction
+of the camera frame) in camera view.
 """
 
 from __future__ import annotations
@@ -30,8 +34,8 @@ class ViewportView:
     """A region's view: size in pixels, ``view_matrix`` (world → view) and ``window_matrix``
     (projection) as 16 floats row by row, whether it is a perspective and a camera view, the render
     border as fractions (min x, min y, max x, max y; y up) of the region (free view) or of the camera
-    frame (camera view), None when off, and in camera view the camera frame in region pixels (left,
-    bottom, right, top)."""
+    frame (camera view), None when off, in camera view the camera frame in region pixels (left,
+    bottom, right, top), and the view's Clip End (m)."""
 
     width: int
     height: int
@@ -41,6 +45,7 @@ class ViewportView:
     camera_view: bool
     border: tuple | None
     frame: tuple | None = None
+    clip_end_m: float = 1000.0
 
     @property
     def projection(self) -> np.ndarray:
@@ -68,7 +73,7 @@ def view_of(context, scene) -> ViewportView:
     if camera_view and border is not None and scene.camera is not None:
         frame = camera_frame(scene, view.perspective_matrix, region.width, region.height)
     return ViewportView(int(region.width), int(region.height), _flat(view.view_matrix), _flat(view.window_matrix),
-                        bool(view.is_perspective), camera_view, border, frame)
+                        bool(view.is_perspective), camera_view, border, frame, float(space.clip_end))
 
 
 def camera_frame(scene, perspective_matrix, width: int, height: int) -> tuple:
@@ -87,32 +92,43 @@ def view_camera(view: ViewportView, scene_camera: Camera | None) -> tuple[Camera
     """(tracer camera rendering the whole region, border in pixels (x0, y0, x1, y1; rows from the
     top) or None). ``scene_camera`` is the exported scene camera, used in camera view (its lens
     model, focal length and depth of field)."""
-    if not view.perspective:
-        raise PrismInputError(
-            "The viewport shows an orthographic view; Prism renders perspective views: "
-            "switch the view to perspective (View ▸ Perspective/Orthographic, Numpad 5)."
-        )
     if view.camera_view and scene_camera is None:
-        raise PrismInputError("The viewport looks through a camera that is not the scene's perspective camera.")
+        raise PrismInputError("The viewport looks through a camera that is not the scene's camera.")
+    if view.camera_view and scene_camera.projection not in ("perspective", "orthographic"):
+        raise PrismInputError(
+            f"The viewport looks through the panoramic camera '{scene_camera.name}': render it with F12, or "
+            "leave the camera view (Numpad 0) to render the viewport."
+        )
+    to_world = rigid_matrix(np.linalg.inv(np.asarray(view.view_matrix, dtype=np.float64).reshape(4, 4)))
+    placement = _perspective(view, scene_camera) if view.perspective else _orthographic(view)
+    placement.update(camera_to_world=to_world, resolution=(view.width, view.height))
+    if view.camera_view:
+        camera = replace(scene_camera, **placement)
+    else:
+        camera = Camera(name="Viewport", **placement)
+    return camera, _border_pixels(view)
+
+
+def _perspective(view: ViewportView, scene_camera: Camera | None) -> dict:
     p = view.projection
     focal = scene_camera.focal_length_mm if view.camera_view else FREE_VIEW_FOCAL_MM
     film_width, film_height = 2.0 * focal / p[0, 0], 2.0 * focal / p[1, 1]
     larger = max(film_width, film_height)
-    to_world = rigid_matrix(np.linalg.inv(np.asarray(view.view_matrix, dtype=np.float64).reshape(4, 4)))
-    placement = dict(
-        camera_to_world=to_world,
-        resolution=(view.width, view.height),
-        film_width_mm=film_width,
-        film_height_mm=film_height,
-        # ``scene.Camera`` gives the shift in units of the larger film side (``stages.camera``)
-    shift_x=p[0, 2] / p[0, 0] * focal / larger,
-        shift_y=p[1, 2] / p[1, 1] * focal / larger,
-    )
-    if view.camera_view:
-        camera = replace(scene_camera, **placement)
-    else:
-        camera = Camera(name="Viewport", focal_length_mm=focal, **placement)
-    return camera, _border_pixels(view)
+    # ``scene.Camera`` gives the shift in units of the larger film side (``stages.camera``)
+    return dict(projection="perspective", focal_length_mm=focal, film_width_mm=film_width,
+                film_height_mm=film_height, shift_x=p[0, 2] / p[0, 0] * focal / larger,
+                shift_y=p[1, 2] / p[1, 1] * focal / larger)
+
+
+def _orthographic(view: ViewportView) -> dict:
+    p = view.projection
+    width_m, height_m = 2.0 / p[0, 0], 2.0 / p[1, 1]
+    larger = max(width_m, height_m)
+    placement = dict(projection="orthographic", ortho_width_m=width_m, ortho_height_m=height_m,
+                     shift_x=-p[0, 3] / p[0, 0] / larger, shift_y=-p[1, 3] / p[1, 1] / larger)
+    if not view.camera_view:
+        placement["ortho_start_m"] = 0.5 * view.clip_end_m
+    return placement
 
 
 def _border_pixels(view: ViewportView) -> tuple | None:

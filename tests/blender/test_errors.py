@@ -42,6 +42,43 @@ def _camera_type(kind):
     return mutate
 
 
+def _panorama(kind):
+    def mutate():
+        data = bpy.context.scene.camera.data
+        data.type = "PANO"
+        data.panorama_type = kind
+
+    return mutate
+
+
+def _real_lens_ortho(tmp):
+    def mutate():
+        _real_lens(REPO_ROOT / "lenses" / "double_gauss_50mm.lens")()
+        bpy.context.scene.camera.data.type = "ORTHO"
+
+    return mutate
+
+
+def _world_texture(kind, **settings):
+    return lambda tmp: lambda: _add_world_texture(tmp, kind, settings)
+
+
+def _add_world_texture(tmp, kind, settings):
+    world = bpy.data.worlds.new("Sky")
+    world.use_nodes = True
+    nodes = world.node_tree.nodes
+    node = nodes.new(kind)
+    for key, value in settings.items():
+        if key == "image_path":
+            image = bpy.data.images.new("hdri", 4, 2, float_buffer=True)
+            image.source, image.filepath = "FILE", str(Path(tmp) / value)
+            node.image = image
+        else:
+            setattr(node, key, value)
+    world.node_tree.links.new(node.outputs["Color"], nodes["Background"].inputs["Color"])
+    bpy.context.scene.world = world
+
+
 def _real_lens(path):
     def mutate():
         settings = bpy.context.scene.camera.data.prism
@@ -223,8 +260,21 @@ def _huge_resolution():
 CASES = {
     "no camera": (_no_camera, "Scene 'Scene' has no active camera"),
     "camera is not a camera": (_empty_as_camera, "The active camera 'Helper' is not a camera object"),
-    "orthographic camera": (_camera_type("ORTHO"), "Camera 'Camera' is orthographic; Prism renders perspective"),
-    "panoramic camera": (_camera_type("PANO"), "Camera 'Camera' is panoramic; Prism renders perspective"),
+    "mirror ball panorama": (_panorama("MIRRORBALL"), "Camera 'Camera': the Mirrorball panorama is not supported"),
+    "real lens on an orthographic camera": (
+        _real_lens_ortho, "Camera 'Camera' uses a real lens, which forms a perspective image: set Camera ▸ Lens"
+    ),
+    "environment texture without an image": (
+        _world_texture("ShaderNodeTexEnvironment"), "World 'Sky', Environment Texture 'Environment Texture' has no image"
+    ),
+    "environment image file missing": (
+        _world_texture("ShaderNodeTexEnvironment", image_path="gone.exr"),
+        "World 'Sky', Environment Texture 'Environment Texture': image 'hdri' has no pixels",
+    ),
+    "Hosek-Wilkie sky": (
+        _world_texture("ShaderNodeTexSky", sky_type="HOSEK_WILKIE"),
+        "World 'Sky', Sky Texture 'Sky Texture': sky type Hosek Wilkie is not supported; set Sky Type to Nishita",
+    ),
     "no lens chosen": (lambda tmp: _real_lens(None), "Camera 'Camera' uses a real lens but no prescription is chosen"),
     "missing lens file": (lambda tmp: _real_lens(Path(tmp) / "nowhere.lens"), "nowhere.lens' does not exist"),
     "invalid lens file": (_bad_toml_lens, "bad.lens: not valid TOML: Invalid value (at line 5, column 16)"),
@@ -284,7 +334,9 @@ CASES = {
         _huge_resolution, "Scene 'Scene': a 65536 x 65536 frame needs about 81.4 GB (80.0 GB for the image Blender"
     ),
 }
-_NEEDS_TMP = {"no lens chosen", "missing lens file", "invalid lens file", "unknown glass in lens"}
+_NEEDS_TMP = {"no lens chosen", "missing lens file", "invalid lens file", "unknown glass in lens",
+              "real lens on an orthographic camera", "environment texture without an image",
+              "environment image file missing", "Hosek-Wilkie sky"}
 
 
 @pytest.mark.parametrize("case", list(CASES))

@@ -185,7 +185,15 @@ def test_camera_panels_draw_for_every_lens_model(prism_addon, fresh_scene, tmp_p
 
     camera.type = "ORTHO"
     log = _draw(prism_addon.ui.panels_camera.PRISM_PT_camera_lens, _context(fresh_scene, camera=camera))
-    assert any("perspective cameras only" in text for text in _labels(log))
+    assert any("forms a perspective image" in text for text in _labels(log))
+    camera.prism.lens_model = "PINHOLE"  # Blender's camera: orthographic is fine, DoF behind its checkbox
+    log = _draw(prism_addon.ui.panels_camera.PRISM_PT_camera_lens, _context(fresh_scene, camera=camera))
+    assert not any("perspective" in text for text in _labels(log))
+    log = _draw(prism_addon.ui.panels_camera.PRISM_PT_camera_focus, _context(fresh_scene, camera=camera))
+    assert "use_dof" in _props(log) and "aperture_fstop" not in _props(log)
+    camera.dof.use_dof = True
+    log = _draw(prism_addon.ui.panels_camera.PRISM_PT_camera_focus, _context(fresh_scene, camera=camera))
+    assert {"aperture_fstop", "aperture_blades", "aperture_rotation", "aperture_ratio"} <= set(_props(log))
 
 
 @pytest.mark.parametrize("light_type", ["POINT", "SPOT", "SUN", "AREA"])

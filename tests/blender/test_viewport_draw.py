@@ -118,12 +118,16 @@ def test_view_draw_shows_the_session_image_through_the_display_shader(prism_addo
                                _display_encoded(scene, frame.rgba[..., :3], tmp_path), atol=2e-3)
 
 
-@pytest.mark.parametrize("lens_model", ["PINHOLE", "REAL_LENS"])
+@pytest.mark.parametrize("lens_model", ["PINHOLE", "REAL_LENS", "ORTHOGRAPHIC"])
 def test_camera_view_shows_the_final_render(prism_addon, card_scene, tmp_path, lens_model):
     """Looking through the camera, its frame filling the region: the viewport traces the final
-    render's rays (the real lens too) and, through AgX at +0.7 EV, shows its picture."""
+    render's rays (the real lens and an orthographic camera too) and, through AgX at +0.7 EV, shows
+    its picture."""
     camera = card_scene.camera.data
-    camera.prism.lens_model = lens_model
+    if lens_model == "ORTHOGRAPHIC":
+        camera.type, camera.ortho_scale = "ORTHO", 3.0
+    else:
+        camera.prism.lens_model = lens_model
     if lens_model == "REAL_LENS":
         camera.prism.lens_source, camera.prism.bundled_lens = "BUNDLED", "double_gauss_50mm"
         camera.dof.focus_distance, camera.dof.aperture_fstop = 3.9, 4.0
@@ -143,6 +147,28 @@ def test_camera_view_shows_the_final_render(prism_addon, card_scene, tmp_path, l
     shown = _display_encoded(card_scene, viewport, tmp_path)
     expected = _display_encoded(card_scene, final[::-1], tmp_path)
     assert np.abs(shown - expected).max() < 1e-3
+
+
+@pytest.mark.parametrize("forward_m", [0.0, 3.5])
+def test_an_orthographic_free_view_renders_the_orthographic_cameras_picture(prism_addon, card_scene, forward_m):
+    """A free orthographic view where the orthographic camera stands, or moved 3.5 m along its axis
+    past the card: Blender draws such a view from clip_end / 2 behind its centre, so both show the
+    camera's final render (the same rays but for where they start)."""
+    camera = card_scene.camera.data
+    camera.type, camera.ortho_scale = "ORTHO", 3.0
+    final = render_linear_rgb(card_scene, samples=8, seed=0)
+    engine = StubEngine()
+    session = importlib.import_module(f"{prism_addon.__name__}.engine.viewport.session").session_of(engine)
+    context = camera_context(card_scene, REGION, camera_view=False)
+    view = context.region_data
+    view.view_matrix = Matrix.Translation((0.0, 0.0, forward_m)) @ view.view_matrix
+    assert not view.is_perspective
+    try:
+        session.view_update(context, bpy.context.evaluated_depsgraph_get())
+        frame = wait_for_frame(session, lambda f: f.divider == 1 and f.samples == 8)
+    finally:
+        session.stop()
+    assert np.abs(frame.rgba[..., :3] - final[::-1]).mean() < 1e-4 * final.mean()
 
 
 def _perspective(width, height, fov_y=0.8, near=0.1, far=100.0):

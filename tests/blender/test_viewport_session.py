@@ -166,19 +166,15 @@ def test_pause_holds_the_image_until_resumed(viewport):
     wait_for_frame(session, lambda f: f.samples > held.samples)
 
 
-def test_an_orthographic_view_says_so_and_perspective_recovers(viewport):
-    session, engine, context = viewport
+def test_a_camera_view_through_a_panoramic_camera_says_so(viewport):
+    session, _, _ = viewport
     wait_for_frame(session)
-    perspective = context.region_data.is_perspective
-    context.region_data.is_perspective = False
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    session.sync_view(context, depsgraph)
-    assert "orthographic" in session.status() and session.error is not None
-    context.region_data.is_perspective = perspective
-    context.region_data.view_matrix = Matrix.Translation((0.1, 0.0, 0.0)) @ context.region_data.view_matrix
-    session.sync_view(context, depsgraph)
-    assert session.error is None
-    wait_for_frame(session, lambda f: f.divider == 1)
+    scene = bpy.context.scene
+    scene.camera.data.type = "PANO"
+    scene.camera.data.panorama_type = "EQUIRECTANGULAR"
+    _update()
+    session.sync_view(camera_context(scene, REGION, camera_view=True), bpy.context.evaluated_depsgraph_get())
+    assert session.error is not None and "panoramic camera 'Camera'" in session.status()
 
 
 def test_the_viewport_region_border_is_honoured(viewport):

@@ -28,17 +28,18 @@ class StubEngine:
         self.stats.append(info)
 
 
-def view_context(view_matrix, window_matrix, size, camera_view=False, region_border=None):
+def view_context(view_matrix, window_matrix, size, camera_view=False, region_border=None, clip_end=1000.0):
     """A ``context`` with what ``view_update`` / ``view_draw`` read of a 3D viewport region."""
     width, height = size
     region_data = SimpleNamespace(
         view_matrix=view_matrix.copy(), window_matrix=window_matrix.copy(),
         perspective_matrix=window_matrix @ view_matrix, view_perspective="CAMERA" if camera_view else "PERSP",
-        is_perspective=True,
+        is_perspective=window_matrix[3][3] == 0.0,  # a perspective projection's last row is (0, 0, -1, 0)
     )
     x0, y0, x1, y1 = region_border or (0.0, 0.0, 1.0, 1.0)
     space = SimpleNamespace(use_render_border=region_border is not None, render_border_min_x=x0,
-                            render_border_min_y=y0, render_border_max_x=x1, render_border_max_y=y1)
+                            render_border_min_y=y0, render_border_max_x=x1, render_border_max_y=y1,
+                            clip_end=clip_end)
     return SimpleNamespace(region=SimpleNamespace(width=width, height=height), region_data=region_data,
                            space_data=space)
 

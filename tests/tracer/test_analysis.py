@@ -104,6 +104,31 @@ def test_the_analysis_reads_materials_lights_and_the_camera_for_light_tracing():
     assert r.analysis.light_tracing
 
 
+def test_light_tracing_needs_a_perspective_camera_that_sees_every_object():
+    """Connections reach a perspective camera's pinhole or lens, and see what Embree's full scene holds:
+    other projections, holdouts and ray visibility leave caustics to path tracing."""
+    from engine.tracer.visibility import ALL_RAYS, HOLDOUT, RAY_CAMERA
+
+    scene = plane_under_point_light(size=8)
+    scene.materials = [Material("Mirror", kind="conductor", base_color=(1, 1, 1)), Material("Floor")]
+    scene.triangle_material = np.array([0, 1])
+    scene.camera.projection, scene.camera.ortho_width_m, scene.camera.ortho_height_m = "orthographic", 2.0, 2.0
+    r = Renderer(scene, settings())
+    assert not r.analysis.light_tracing and "caustics by path tracing (orthographic camera)" in r.strategy
+    scene.camera.projection = "equirectangular"
+    r = Renderer(scene, settings())
+    assert not r.analysis.light_tracing and "caustics by path tracing (panoramic camera)" in r.strategy
+    scene.camera.projection = "perspective"
+    scene.triangle_object, scene.object_names = np.array([0, 1]), ["Mirror", "Floor"]
+    for flags in ((ALL_RAYS | HOLDOUT, ALL_RAYS), (ALL_RAYS, ALL_RAYS & ~RAY_CAMERA)):
+        scene.object_flags = np.array(flags, np.uint8)
+        r = Renderer(scene, settings())
+        assert not r.analysis.light_tracing and "(ray visibility or holdouts)" in r.strategy
+    scene.object_flags = np.array([ALL_RAYS, ALL_RAYS], np.uint8)
+    r = Renderer(scene, settings())
+    assert r.analysis.light_tracing
+
+
 def test_an_unknown_light_tracing_mode_is_refused():
     import pytest
 

@@ -64,11 +64,14 @@ def _ball_on_floor(resolution=(32, 24), **camera):
 
 
 @pytest.mark.parametrize("camera, filter", [({}, "box"),
-                                            (dict(model="thin_lens", fstop=0.5, focus_distance_m=3.0), "gaussian")])
+                                            (dict(model="thin_lens", fstop=0.5, focus_distance_m=3.0), "gaussian"),
+                                            (dict(model="thin_lens", fstop=0.5, focus_distance_m=2.5, aperture_blades=5,
+                                                  aperture_rotation_rad=0.3, aperture_ratio=1.6), "box")])
 def test_caustic_of_a_glass_ball_agrees_with_long_path_tracing(camera, filter):
     """A 2 m area light over a glass ball: path tracing alone converges here, slowly. The split
     (caustics by light tracing, the rest by path tracing) agrees with it block by block, in the
-    caustic too, through a pinhole with the box filter and a thin lens with the Gaussian filter."""
+    caustic too, through a pinhole with the box filter, a thin lens with the Gaussian filter and Blender's
+    five-bladed, anamorphic aperture."""
     scene = _ball_on_floor(**camera)
     reference = _render(scene, samples=2048, samples_per_pass=512, max_bounces=6, light_tracing="off", seed=7,
                         pixel_filter=filter)

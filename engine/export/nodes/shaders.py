@@ -287,7 +287,8 @@ def emission(c, node, context, weight):
 
 
 def holdout(c, node, context, weight):
-    c.warn(node, "renders black: Prism's film has no alpha to hold out.")
+    c.warn(node, "is mixed with other shaders; Prism holds out only a material whose Surface is a Holdout "
+                 "node, so here it renders black.")
 
 
 def subsurface(c, node, context, weight):

@@ -71,10 +71,12 @@ REFRACTION_ONLY = 1
 SMOOTH_ALPHA = 1e-3  # below this GGX alpha a lobe is treated as a perfect specular (delta) one
 MAX_CLOSURES = 16  # closures one material may combine
 
-# What a sampled direction was (returned by every ``sample``).
+# What a sampled direction was (returned by every ``sample``; ``SAMPLED_DIFFUSE`` is added by
+# ``dispatch.bsdf_sample`` when the chosen closure is diffuse).
 SAMPLED_DELTA = 1
 SAMPLED_TRANSMISSION = 2
 SAMPLED_NULL = 4  # straight through without scattering (Transparent BSDF): a null event for MIS
+SAMPLED_DIFFUSE = 8
 
 
 def register_source(register: int) -> float:

@@ -13,8 +13,8 @@ import math
 
 from ..jit import kernel
 from . import conductor, dielectric, diffuse, thin_film, translucent, transparent
-from .closure import (C_ALPHA, C_KIND, C_MIRROR, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA, SMOOTH_ALPHA,
-                      THIN_FILM, TRANSLUCENT, TRANSPARENT)
+from .closure import (C_ALPHA, C_KIND, C_MIRROR, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA,
+                      SAMPLED_DIFFUSE, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT, TRANSPARENT)
 
 
 @kernel
@@ -88,9 +88,12 @@ def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, 
     """Sample the material of ``count`` resolved closures: (wi, pdf, sampled flags, eta scale) and
     ``weight[k]`` = f |cos wi| / pdf. ``scratch`` is float64 [2, K]."""
     if count == 1:
-        result = closure_sample(rows[0], spectral[0], eta[0], wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
+        wi, pdf, flags, eta_scale = closure_sample(rows[0], spectral[0], eta[0], wo, wavelength_nm, hero, collapsed,
+                                                   u0, u1, u2, weight)
         _tinted(spectral, 0, weight)
-        return result
+        if int(rows[0, C_KIND]) == DIFFUSE:
+            flags |= SAMPLED_DIFFUSE
+        return wi, pdf, flags, eta_scale
     total = 0.0
     for c in range(count):
         total += rows[c, C_WEIGHT]
@@ -117,6 +120,8 @@ def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, 
     u_lobe = min(max((target - before) / w_chosen, 0.0), 0.9999999999999999)
     wi, pdf, flags, eta_scale = closure_sample(rows[chosen], spectral[chosen], eta[chosen], wo, wavelength_nm, hero,
                                                collapsed, u_lobe, u1, u2, weight)
+    if int(rows[chosen, C_KIND]) == DIFFUSE:
+        flags |= SAMPLED_DIFFUSE
     if flags & SAMPLED_DELTA or pdf <= 0.0:
         _tinted(spectral, chosen, weight)
         for k in range(weight.shape[0]):

@@ -2,6 +2,10 @@
 
 Power P over area A gives radiance P / (π A) (Cycles' convention). Sampled uniformly by area and
 converted to solid angle; rays that hit the front face see it, the back is invisible.
+
+Spread (Cycles'): a soft-box grid of slats narrows the beam to a half-angle a; radiance at angle θ
+from the normal is multiplied by (tan a - tan θ) / (tan a - a) (0 beyond a), which keeps the power:
+∫₀ᵃ cos θ (tan a - tan θ) / (tan a - a) 2π sin θ dθ = π. (A spread of π leaves the light Lambertian.)
 """
 
 from __future__ import annotations
@@ -12,8 +16,10 @@ import numpy as np
 
 from ..jit import kernel
 from ..warps import concentric_disk
-from .row import (DISK, L_AREA, L_HALF_U, L_HALF_V, L_KIND, L_NX, L_NZ, L_PX, L_PY, L_PZ, L_SCALE, L_SPECTRUM, L_UX,
-                  L_UY, L_UZ, L_VX, L_VY, L_VZ, LIGHT_ROW, RECTANGLE, L_NY)
+from .row import (DISK, L_AREA, L_CAMERA, L_HALF_U, L_HALF_V, L_KIND, L_NX, L_NY, L_NZ, L_PX, L_PY, L_PZ, L_SCALE,
+                  L_SPECTRUM, L_SPREAD_NORM, L_SPREAD_TAN, L_UX, L_UY, L_UZ, L_VX, L_VY, L_VZ, LIGHT_ROW, RECTANGLE)
+
+MIN_HALF_SPREAD = 1e-3  # rad: a narrower beam is a collimated one, which no light sample finds
 
 
 def area_row(light, spectrum_id, offset):
@@ -38,7 +44,25 @@ def area_row(light, spectrum_id, offset):
     row[L_UX:L_UZ + 1] = u
     row[L_VX:L_VZ + 1] = v
     row[L_HALF_U], row[L_HALF_V], row[L_AREA] = half_u, half_v, area
+    row[L_CAMERA] = 1.0 if light.visible_camera else 0.0
+    half = 0.5 * float(light.spread_rad)
+    if half < 0.5 * math.pi - 1e-9:
+        half = max(half, MIN_HALF_SPREAD)
+        row[L_SPREAD_TAN] = math.tan(half)
+        # tan a - a loses its digits for small a: its series a³/3 + 2a⁵/15 there.
+        row[L_SPREAD_NORM] = 1.0 / (math.tan(half) - half) if half > 0.05 else 1.0 / (half**3 / 3 + 2 * half**5 / 15)
     return row
+
+
+@kernel
+def spread_factor(row, cos_l):
+    """Radiance factor of the spread at cos θ = ``cos_l`` from the normal (1 without a spread)."""
+    if row[L_SPREAD_TAN] == 0.0:
+        return 1.0
+    if not cos_l > 0.0:
+        return 0.0
+    tan_l = math.sqrt(max(1.0 - cos_l * cos_l, 0.0)) / cos_l
+    return max(row[L_SPREAD_TAN] - tan_l, 0.0) * row[L_SPREAD_NORM]
 
 
 def area_power(row) -> float:
@@ -63,7 +87,7 @@ def sample_li(row, p, u1, u2):
     cos_l = -(wi[0] * row[L_NX] + wi[1] * row[L_NY] + wi[2] * row[L_NZ])
     if cos_l <= 0.0:
         return wi, dist, 0.0, 0.0
-    return wi, dist, dist * dist / (row[L_AREA] * cos_l), row[L_SCALE]
+    return wi, dist, dist * dist / (row[L_AREA] * cos_l), row[L_SCALE] * spread_factor(row, cos_l)
 
 
 @kernel
@@ -93,7 +117,7 @@ def pdf_li(row, o, d, t):
 
 @kernel
 def le(row, o, d, t):
-    return row[L_SCALE]
+    return row[L_SCALE] * spread_factor(row, -(d[0] * row[L_NX] + d[1] * row[L_NY] + d[2] * row[L_NZ]))
 
 
 @kernel
@@ -112,4 +136,4 @@ def sample_position(row, u1, u2):
 def emitted(row, d):
     """Radiance factor × cos to the normal leaving the light along ``d`` (front face only)."""
     cos_l = d[0] * row[L_NX] + d[1] * row[L_NY] + d[2] * row[L_NZ]
-    return row[L_SCALE] * cos_l if cos_l > 0.0 else 0.0
+    return row[L_SCALE] * spread_factor(row, cos_l) * cos_l if cos_l > 0.0 else 0.0

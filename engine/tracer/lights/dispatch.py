@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import math
+
 from ..jit import inlined
 from ..materials.emitters import emission_at
 from ..materials.table import MAT_EMISSION_VARIES
 from ..spectra.table import spectrum_value
-from . import area, mesh, point, sun
-from .row import DISK, L_KIND, L_SPECTRUM, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
+from . import area, environment, mesh, point, sun
+from .row import DISK, ENVIRONMENT, L_CAMERA, L_KIND, L_SPECTRUM, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
 
 
 @inlined
@@ -47,6 +49,10 @@ def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wave
             for k in range(li.shape[0]):
                 li[k] = strength * spectrum_value(spectra, sid, wavelength_nm[k])
         return wi, dist, pdf * lights.select_prob[index], False, lights.mesh.group[e]
+    if kind == ENVIRONMENT:
+        wi, pdf = environment.sample_li(lights.environment, u1, u2)
+        environment.radiance(lights.environment, spectra, wi, wavelength_nm, li)
+        return wi, math.inf, pdf * lights.select_prob[index], False, lights.group[index]
     if kind == POINT or kind == SPHERE:
         wi, dist, pdf, factor = point.sample_li(row, p, u1, u2)
     elif kind == RECTANGLE or kind == DISK:
@@ -60,18 +66,22 @@ def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wave
 
 
 @inlined
+def light_distance(lights, index, o, d):
+    """Distance along the ray to hittable light ``index`` (inf: missed)."""
+    row = lights.rows[index]
+    if int(row[L_KIND]) == SPHERE:
+        return point.sphere_hit_distance(row, o, d)
+    return area.intersect(row, o, d)
+
+
+@inlined
 def intersect_light(lights, o, d, t_max):
     """The closest hittable light along the ray before ``t_max``: (light index or -1, distance)."""
     best = -1
     t_best = t_max
     for h in range(lights.hittable.shape[0]):
         index = lights.hittable[h]
-        row = lights.rows[index]
-        kind = int(row[L_KIND])
-        if kind == SPHERE:
-            t = point.sphere_hit_distance(row, o, d)
-        else:
-            t = area.intersect(row, o, d)
+        t = light_distance(lights, index, o, d)
         if t < t_best:
             best = index
             t_best = t
@@ -104,6 +114,21 @@ def light_spectrum(lights, index):
 @inlined
 def is_distant(lights, index):
     return int(lights.rows[index, L_KIND]) == SUN_DISK
+
+
+@inlined
+def seen_by_camera(lights, index):
+    return lights.rows[index, L_CAMERA] != 0.0
+
+
+@inlined
+def environment_pdf(lights, d):
+    """Light-sampling density (incl. selection) of the background along an escaping ray ``d``; 0 when
+    the background is not light-sampled."""
+    index = lights.environment_index
+    if index < 0:
+        return 0.0
+    return environment.pdf_li(lights.environment, d) * lights.select_prob[index]
 
 
 @inlined

@@ -4,7 +4,9 @@ specular objects (``caustic_targets``), dispatched on the light's kind.
 The path's weight is what the light sends through that (point, direction) divided by the density of
 drawing it: L cos / (p_select p_area p_direction) for surfaces, I / (p_select p_direction) for points,
 E / (p_select p_beam) for a delta sun and L / (p_select p_direction p_beam) for a sun disc — flux, so
-that its expected sum over the paths is the light's power toward the targets.
+that its expected sum over the paths is the light's power toward the targets. The world's background
+sends no light paths: the light is chosen among the others (∝ power), and the world's caustics stay with
+path tracing, which never skips escapes.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from ..spectra.table import spectrum_value
 from . import area, mesh, point, sun
 from .caustic_targets import sample_beam, sample_direction
 from .dispatch import pick_light
-from .row import L_KIND, L_SPECTRUM, MESH, POINT, SPHERE, SUN, SUN_DISK
+from .row import ENVIRONMENT, L_KIND, L_SPECTRUM, MESH, POINT, SPHERE, SUN, SUN_DISK
 
 
 @inlined
@@ -27,11 +29,16 @@ def sample_emission(lights, materials, spectra, geometry, targets, u_select, u_p
     ``wavelength_nm[k]`` (0 when the light sends nothing that way). ``u_position`` and ``u_direction``
     are pairs of uniforms; ``rows`` and ``regs`` are scratch memory for emissive materials whose emission
     varies over the surface (their program runs where the path starts)."""
-    index, u_rest = pick_light(lights, u_select)
+    others = 1.0  # the share of the lights that send light paths: all but the world (the last row)
+    if lights.environment_index >= 0:
+        others = lights.select_cdf[lights.environment_index - 1] if lights.environment_index > 0 else 0.0
+    index, u_rest = pick_light(lights, u_select * others)
     row = lights.rows[index]
     kind = int(row[L_KIND])
-    select = lights.select_prob[index]
-    if kind == SUN or kind == SUN_DISK:
+    select = lights.select_prob[index] / others if others > 0.0 else 1.0
+    if kind == ENVIRONMENT:
+        origin, direction, scale, sid = (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.0, 0
+    elif kind == SUN or kind == SUN_DISK:
         direction, pdf_direction, factor = sun.sample_emission_direction(row, u_direction[0], u_direction[1])
         origin, pdf_beam = sample_beam(targets, direction, u_target, u_position[0], u_position[1])
         scale = factor / (select * pdf_direction * pdf_beam) if pdf_beam > 0.0 else 0.0

@@ -14,8 +14,8 @@ import numpy as np
 from ..jit import kernel
 from ..vec3 import tangents, to_world
 from ..warps import uniform_cone, uniform_sphere
-from .row import (L_COS_HALF, L_NX, L_NY, L_NZ, L_PX, L_PY, L_PZ, L_RADIUS, L_SCALE, L_SMOOTH, L_SPECTRUM, L_SPOT,
-                  LIGHT_ROW, POINT, SPHERE, L_KIND)
+from .row import (L_CAMERA, L_COS_HALF, L_KIND, L_NX, L_NY, L_NZ, L_PX, L_PY, L_PZ, L_RADIUS, L_SCALE, L_SMOOTH,
+                  L_SPECTRUM, L_SPOT, LIGHT_ROW, POINT, SPHERE)
 
 
 def point_row(light, spectrum_id, offset):
@@ -33,6 +33,7 @@ def point_row(light, spectrum_id, offset):
     row[L_SPOT] = 1.0 if light.kind == "spot" else 0.0
     row[L_COS_HALF] = math.cos(min(light.spot_size_rad, math.pi) / 2.0)
     row[L_SMOOTH] = (1.0 - row[L_COS_HALF]) * float(np.clip(light.spot_blend, 0.0, 1.0))
+    row[L_CAMERA] = 1.0 if light.visible_camera and radius > 0 else 0.0
     return row
 
 

@@ -2,9 +2,10 @@
 
 Light sampling picks one light with probability ∝ its power (spectra are luminance-normalised, so
 powers compare): P for point, spot and area lights, E π R² for a sun (R: the scene's bounding-sphere
-radius), π Σ area × strength for the emissive meshes; every light keeps at least 1/(20 n) so none
-starves. The world (a constant background, ``world_spectrum`` × ``world_strength``) is found by
-escaping rays only.
+radius), π Σ area × strength for the emissive meshes, π R² ∫ L dω for the world's background; every
+light keeps at least 1/(20 n) so none starves. The background (``lights.environment``) is one light
+(``environment_index``, -1 when it is black, a constant colour, or its sampling is off: then escaping
+rays alone find it); a sky's Sun disc is a distant light of its own.
 """
 
 from __future__ import annotations
@@ -15,16 +16,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import PrismInputError
-from ..scene import SpectrumSpec
 from .area import area_power, area_row
+from .environment import build_environment
 from .mesh import build_mesh_emitters
 from .point import point_power, point_row
-from .row import L_KIND, LIGHT_ROW, MESH, RECTANGLE, DISK, SPHERE, SUN, SUN_DISK, KIND_NAMES, POINT
+from .row import DISK, ENVIRONMENT, KIND_NAMES, L_KIND, LIGHT_ROW, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
 from .sun import sun_power, sun_row
 
-#: ``group`` int32 [rows] and ``world_group``: light group index of each light and of the world (-1: none).
+#: ``environment`` (``lights.environment.EnvironmentArrays``) and ``environment_index`` (its row, -1:
+#: not light-sampled); ``group`` int32 [rows] and ``world_group``: light group index of each light and of
+#: the world (-1: none).
 LightArrays = namedtuple(
-    "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index world_spectrum world_strength group "
+    "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index environment environment_index group "
     "world_group"
 )
 
@@ -33,9 +36,11 @@ LightArrays = namedtuple(
 class LightTable:
     arrays: LightArrays
     names: list  # one per row
-    kinds: list  # Blender kinds ("point", "area", "sun", "emissive meshes") per row
+    kinds: list  # Blender kinds ("point", "area", "sun", "emissive meshes", "world") per row
     power: np.ndarray | None = None  # per row, the selection's power (luminance-normalised watts)
     scene_radius_m: float = 1.0
+    world: str = ""  # what the background is, for the render stats ("" when black)
+    world_emission: tuple | None = None  # (spectrum id, power) of the background, for the wavelength guide
 
 
 def _emits(light) -> bool:
@@ -64,8 +69,10 @@ def _light_row(light, spectra, offset):
     raise PrismInputError(f"Light '{light.name}': unknown light type '{light.kind}'.")
 
 
-def _power(row, scene_radius_m, mesh_total):
+def _power(row, scene_radius_m, mesh_total, environment_total):
     kind = int(row[L_KIND])
+    if kind == ENVIRONMENT:
+        return np.pi * max(scene_radius_m, 1e-3) ** 2 * environment_total
     if kind in (POINT, SPHERE):
         return point_power(row)
     if kind in (RECTANGLE, DISK):
@@ -101,9 +108,26 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
         names.append(KIND_NAMES[MESH])
         kinds.append(KIND_NAMES[MESH])
         groups.append(-1)
+    world = scene.world
+    world_group = group_index.get(getattr(world, "light_group", ""), -1) if world is not None else -1
+    environment, environment_total, sky_rows, guide_spectrum = build_environment(world, spectra)
+    for row in sky_rows:
+        rows.append(row)
+        names.append(f"{world.name} sun")
+        kinds.append("sun")
+        groups.append(world_group)
+    environment_index = -1
+    if environment_total > 0 and world.sampled:
+        row = np.zeros(LIGHT_ROW)
+        row[L_KIND] = ENVIRONMENT
+        environment_index = len(rows)
+        rows.append(row)
+        names.append(world.name)
+        kinds.append(KIND_NAMES[ENVIRONMENT])
+        groups.append(world_group)
     verts = np.asarray(vertices, np.float64)
     radius = 0.5 * float(np.linalg.norm(np.ptp(verts, axis=0))) if len(verts) else 1.0
-    power = np.array([_power(r, radius, mesh_total) for r in rows], dtype=np.float64)
+    power = np.array([_power(r, radius, mesh_total, environment_total) for r in rows], dtype=np.float64)
     power = np.maximum(np.nan_to_num(power), 0.0)
     n = len(rows)
     if n:
@@ -117,10 +141,25 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
         cdf[-1] = 1.0
     table = np.array(rows, dtype=np.float64).reshape(-1, LIGHT_ROW)
     hittable = np.array([i for i, r in enumerate(rows) if int(r[L_KIND]) in (SPHERE, RECTANGLE, DISK)], np.int32)
-    world = scene.world
-    black = not (world.strength > 0 and max(world.color) > 0)
-    world_spectrum = spectra.emission(SpectrumSpec(kind="rgb", rgb=tuple(float(c) for c in world.color)))
     arrays = LightArrays(table if n else np.zeros((1, LIGHT_ROW)), prob, cdf, hittable, mesh, mesh_index,
-                         world_spectrum, 0.0 if black else float(world.strength),
-                         np.array(groups if n else [-1], np.int32), group_index.get(world.light_group, -1))
-    return LightTable(arrays, names, kinds, power, radius)
+                         environment, environment_index, np.array(groups if n else [-1], np.int32), world_group)
+    return LightTable(arrays, names, kinds, power, radius, _world_description(world, environment_index),
+                      _world_emission(world, environment_total, guide_spectrum, radius))
+
+
+def _world_emission(world, environment_total, guide_spectrum, radius):
+    """(spectrum id, power through the scene's bounding sphere) of the background, or None."""
+    if world is None or world.is_black() or guide_spectrum < 0:
+        return None
+    if world.kind == "constant":
+        return guide_spectrum, np.pi * float(world.strength) * np.pi * radius * radius
+    return guide_spectrum, np.pi * radius * radius * environment_total
+
+
+def _world_description(world, environment_index) -> str:
+    if world is None or world.is_black():
+        return ""
+    kind = {"constant": "colour", "image": "HDRI", "sky": "Nishita sky"}.get(world.kind, world.kind)
+    if world.kind == "constant":
+        return f"world {kind}"
+    return f"world {kind}" + (" (light-sampled)" if environment_index >= 0 else " (not light-sampled)")

@@ -8,6 +8,7 @@ import numpy as np
 from ..bsdf.closure import CLOSURE_ROW
 from ..geometry import Geometry, SurfaceArrays
 from ..textures.image import build_textures
+from ..visibility import ALL_RAYS
 from .layering import load_tables
 
 
@@ -20,7 +21,8 @@ def fold_evaluator():
                                np.zeros((0, 1, 3, 4), np.float32), np.zeros(0, np.int32), np.zeros((0, 27)),
                                np.zeros(3), np.zeros((0, 3, 3), np.float32))
     geometry = Geometry(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32), np.array([[0, 1, 2]], np.int32),
-                        np.zeros(1, np.int32), np.zeros((0, 3, 3), np.float32), attributes)
+                        np.zeros(1, np.int32), np.zeros((0, 3, 3), np.float32), attributes,
+                        np.full(1, ALL_RAYS, np.uint8))
     tables = load_tables()
     textures = build_textures([])
     rows = np.zeros((1, CLOSURE_ROW))

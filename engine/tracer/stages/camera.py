@@ -6,9 +6,13 @@ come from the sampler's pixel slot: uniform in the pixel ("box"), or filter impo
 Gaussian of standard deviation width/3 truncated at ``width`` ("gaussian", weight 1).
 
 Cameras (``CameraData``, in the render's space: world positions minus the render's origin, where the
-camera sits at ``origin``: 0 for a final render, anywhere near it in the viewport): ``PINHOLE``, ``THIN_LENS``
-(aperture radius focal/(2 f-stop), sharp at ``focus_distance_m`` along the view axis). Blender's
-conventions: the camera looks down its local -Z, +Y up; lens shift in units of the larger film side.
+camera sits at ``origin``: 0 for a final render, anywhere near it in the viewport): a projection
+(``projection``: Blender's perspective and orthographic cameras, Cycles' equirectangular and fisheye
+panoramas, see ``panorama``) and an aperture (``kind``: ``PINHOLE`` or ``THIN_LENS``, radius focal/(2
+f-stop) (1/(2 f-stop) m orthographic, as Cycles), sharp at ``focus_distance_m`` along the view axis —
+along the ray for panoramas —, a disc or a regular polygon of ``blades`` corners turned by
+``blade_rotation``, squeezed horizontally by 1/``aperture_ratio``). Blender's conventions: the camera
+looks down its local -Z, +Y up; lens shift in units of the larger film side (of the orthographic extent).
 """
 
 from __future__ import annotations
@@ -21,23 +25,31 @@ import numpy as np
 from ..jit import inlined, kernel
 from ..sampler import SLOT_HERO, SLOT_LENS, SLOT_PIXEL, SLOT_WAVELENGTH, pixel_seed, sample_1d, sample_2d
 from ..spectra.wavelength_sampling import MODE_GAUSSIAN_RGB, inverse_normal_cdf, sample_wavelengths
-from ..state import PREV_DELTA
-from ..warps import concentric_disk
+from ..state import CAMERA_PATH, PREV_DELTA
+from ..vec3 import tangents
+from ..warps import concentric_disk, regular_polygon
+from .panorama import EQUIRECTANGULAR, FISHEYE_EQUIDISTANT, FISHEYE_EQUISOLID, panorama_direction
 from .queue import push_ray
 
 PINHOLE = 0
 THIN_LENS = 1
 FILTER_BOX = 0
 FILTER_GAUSSIAN = 1
+PERSPECTIVE = 0
+ORTHOGRAPHIC = 1
+PROJECTIONS = {"perspective": PERSPECTIVE, "orthographic": ORTHOGRAPHIC, "equirectangular": EQUIRECTANGULAR,
+               "fisheye_equidistant": FISHEYE_EQUIDISTANT, "fisheye_equisolid": FISHEYE_EQUISOLID}
 
-#: kind, rotation float64 [3, 3] (camera to world), tan_w / tan_h (film size / focal length), shift_x /
-#: shift_y (in the same units), aperture_radius_m, focus_distance_m, width, height (pixels),
-#: filter_kind, filter_width_px, filter_cdf_lo (Gaussian mass below -width), origin float64 [3] (the
-#: camera's position in the render's space, m).
+#: kind, projection, rotation float64 [3, 3] (camera to world), tan_w / tan_h (film size / focal length;
+#: orthographic: the view's extent in metres), shift_x / shift_y (in the same units), aperture_radius_m,
+#: focus_distance_m, blades (0: a disc), blade_rotation (rad), aperture_ratio, panorama float64 [4]
+#: (``stages.panorama``), width, height (pixels), filter_kind, filter_width_px, filter_cdf_lo (Gaussian
+#: mass below -width), origin float64 [3] (the camera's position in the render's space, m), ortho_start_m
+#: (where orthographic rays start on the camera's +Z axis, m).
 CameraData = namedtuple(
     "CameraData",
-    "kind rotation tan_w tan_h shift_x shift_y aperture_radius_m focus_distance_m width height "
-    "filter_kind filter_width_px filter_cdf_lo origin",
+    "kind projection rotation tan_w tan_h shift_x shift_y aperture_radius_m focus_distance_m blades blade_rotation "
+    "aperture_ratio panorama width height filter_kind filter_width_px filter_cdf_lo origin ortho_start_m",
 )
 
 
@@ -46,17 +58,28 @@ def camera_data(camera, settings, kind, origin_m=(0.0, 0.0, 0.0)) -> CameraData:
     ``origin_m`` in the render's space."""
     from scipy.special import ndtr
 
+    from .panorama import panorama_parameters
+
     width, height = (int(r) for r in camera.resolution)
-    f = float(camera.focal_length_mm)
-    larger = max(camera.film_width_mm, camera.film_height_mm) / f
-    aperture = camera.focal_length_mm / (2.0 * camera.fstop) / 1000.0 if kind == THIN_LENS else 0.0
+    projection = PROJECTIONS[camera.projection]
+    if projection == ORTHOGRAPHIC:
+        scale_w, scale_h = float(camera.ortho_width_m), float(camera.ortho_height_m)
+        aperture = 1.0 / (2.0 * camera.fstop) if kind == THIN_LENS else 0.0
+    else:
+        f = float(camera.focal_length_mm)
+        scale_w, scale_h = camera.film_width_mm / f, camera.film_height_mm / f
+        aperture = camera.focal_length_mm / (2.0 * camera.fstop) / 1000.0 if kind == THIN_LENS else 0.0
+    larger = max(scale_w, scale_h)
+    blades = int(camera.aperture_blades) if camera.aperture_blades >= 3 else 0
     sigma = settings.filter_width_px / 3.0
-    return CameraData(kind, np.ascontiguousarray(np.asarray(camera.camera_to_world, np.float64)[:3, :3]),
-                      camera.film_width_mm / f, camera.film_height_mm / f, camera.shift_x * larger,
-                      camera.shift_y * larger, aperture, float(camera.focus_distance_m), width, height,
+    return CameraData(kind, projection, np.ascontiguousarray(np.asarray(camera.camera_to_world, np.float64)[:3, :3]),
+                      scale_w, scale_h, camera.shift_x * larger, camera.shift_y * larger, aperture,
+                      float(camera.focus_distance_m), blades, float(camera.aperture_rotation_rad),
+                      float(camera.aperture_ratio), panorama_parameters(camera), width, height,
                       FILTER_GAUSSIAN if settings.pixel_filter == "gaussian" else FILTER_BOX,
                       float(settings.filter_width_px), float(ndtr(-settings.filter_width_px / sigma)),
-                      np.ascontiguousarray(origin_m, dtype=np.float64))
+                      np.ascontiguousarray(origin_m, dtype=np.float64),
+                      float(camera.ortho_start_m) if projection == ORTHOGRAPHIC else 0.0)
 
 
 @inlined
@@ -84,7 +107,8 @@ def start_path(state, i, pixel, sample, seed):
     state.pixel[i] = pixel
     state.sample[i] = sample
     state.seed[i] = ps
-    state.flags[i] = PREV_DELTA
+    state.flags[i] = PREV_DELTA | CAMERA_PATH
+    state.transparency[i] = 0.0
     state.eta_scale[i] = 1.0
     state.prev_pdf[i] = 0.0
     state.throughput[i, :] = 1.0
@@ -104,19 +128,58 @@ def draw_wavelengths(state, i, ws, sampler, ps, sample):
     state.hero[i] = min(int(sample_1d(sampler, ps, sample, SLOT_HERO) * k), k - 1)
 
 
+@kernel
+def aperture_point(camera, u, v):
+    """A point of the aperture (camera-space metres in its plane): uniform over the disc or polygon."""
+    if camera.blades >= 3:
+        x, y = regular_polygon(u, v, camera.blades, camera.blade_rotation)
+    else:
+        x, y = concentric_disk(u, v)
+    return x * camera.aperture_radius_m / camera.aperture_ratio, y * camera.aperture_radius_m
+
+
+@inlined
+def camera_space_ray(camera, x, y, lens_u, lens_v):
+    """(origin, direction (not unit; zero: no ray)) in camera space (-Z forward) through raster
+    position (x, y) and lens sample (lens_u, lens_v)."""
+    if camera.projection == PERSPECTIVE:
+        d = film_direction(camera, x, y)
+        o = (0.0, 0.0, 0.0)
+        if camera.kind == THIN_LENS:
+            lx, ly = aperture_point(camera, lens_u, lens_v)
+            f = camera.focus_distance_m
+            o = (lx, ly, 0.0)
+            d = (d[0] * f - lx, d[1] * f - ly, -f)
+        return o, d
+    if camera.projection == ORTHOGRAPHIC:
+        p = film_direction(camera, x, y)
+        start = camera.ortho_start_m
+        o = (p[0], p[1], start)
+        d = (0.0, 0.0, -1.0)
+        if camera.kind == THIN_LENS:
+            lx, ly = aperture_point(camera, lens_u, lens_v)
+            o = (p[0] + lx, p[1] + ly, start)
+            d = (-lx, -ly, -(camera.focus_distance_m + start))
+        return o, d
+    d = panorama_direction(camera, x / camera.width, 1.0 - y / camera.height)
+    o = (0.0, 0.0, 0.0)
+    if camera.kind == THIN_LENS and (d[0] != 0.0 or d[1] != 0.0 or d[2] != 0.0):
+        lx, ly = aperture_point(camera, lens_u, lens_v)
+        s, t = tangents(d)
+        f = camera.focus_distance_m
+        o = (lx * s[0] + ly * t[0], lx * s[1] + ly * t[1], lx * s[2] + ly * t[2])
+        d = (d[0] * f - o[0], d[1] * f - o[1], d[2] * f - o[2])
+    return o, d
+
+
 @inlined
 def camera_ray(camera, x, y, lens_u, lens_v):
     """(origin, unit direction) of the camera ray through raster position (x, y) (pixels from the
-    top-left corner) and lens sample (lens_u, lens_v), in the render's space."""
-    d = film_direction(camera, x, y)
-    o = (0.0, 0.0, 0.0)
-    if camera.kind == THIN_LENS:
-        lx, ly = concentric_disk(lens_u, lens_v)
-        lx *= camera.aperture_radius_m
-        ly *= camera.aperture_radius_m
-        f = camera.focus_distance_m
-        o = (lx, ly, 0.0)
-        d = (d[0] * f - lx, d[1] * f - ly, -f)
+    top-left corner) and lens sample (lens_u, lens_v), in the render's space; the direction is
+    (0, 0, 0) where the camera sees nothing (outside a fisheye's circle)."""
+    o, d = camera_space_ray(camera, x, y, lens_u, lens_v)
+    if d[0] == 0.0 and d[1] == 0.0 and d[2] == 0.0:
+        return o, d
     r = camera.rotation
     c = camera.origin
     wo = (c[0] + r[0, 0] * o[0] + r[0, 1] * o[1] + r[0, 2] * o[2],
@@ -145,6 +208,8 @@ def camera_kernel(state, rays, camera, ws, settings, pixels, first, count, sampl
         x = pixel % camera.width + filter_offset(camera, ux)
         y = pixel // camera.width + filter_offset(camera, uy)
         origin, direction = camera_ray(camera, x, y, lu, lv)
+        if direction[0] == 0.0 and direction[1] == 0.0 and direction[2] == 0.0:
+            continue  # outside a fisheye's circle: the path adds nothing
         for c in range(3):
             state.mis_origin[i, c] = origin[c]
         queued += push_ray(state, rays, queued, i, origin, direction)

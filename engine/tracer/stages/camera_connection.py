@@ -22,8 +22,7 @@ from __future__ import annotations
 import math
 
 from ..jit import inlined
-from ..warps import concentric_disk
-from .camera import FILTER_BOX, THIN_LENS
+from .camera import FILTER_BOX, THIN_LENS, aperture_point
 
 
 @inlined
@@ -72,9 +71,7 @@ def connect_to_camera(camera, p, u_lens, u_filter):
     ``p`` to the pixel (filter weight included). ``u_lens``, ``u_filter``: pairs of uniforms."""
     lx = ly = 0.0
     if camera.kind == THIN_LENS:
-        lx, ly = concentric_disk(u_lens[0], u_lens[1])
-        lx *= camera.aperture_radius_m
-        ly *= camera.aperture_radius_m
+        lx, ly = aperture_point(camera, u_lens[0], u_lens[1])
     r = camera.rotation
     c = camera.origin
     lens = (c[0] + r[0, 0] * lx + r[0, 1] * ly, c[1] + r[1, 0] * lx + r[1, 1] * ly, c[2] + r[2, 0] * lx + r[2, 1] * ly)

@@ -1,10 +1,16 @@
 """Stage 2: emission found by this bounce's rays, and which paths go on to a surface.
 
-For each queued ray: a hittable light closer than Embree's hit (spheres, area lights; Blender lights
-are invisible to camera rays), an emissive triangle, or an escape (world background, sun discs) adds
-its radiance × throughput × MIS weight. Light pdfs are measured from the path's ``mis_origin`` (the
-last vertex before any free-standing film it crossed; films do not bend rays). A path that hits a light
-ends there; one that hits a surface is listed for shading unless it has used its last bounce.
+For each queued ray: every hittable light in front of the surface Embree found (spheres, area lights;
+Blender lights are seen by camera rays only when their Camera ray visibility is on), an emissive
+triangle, or an escape (the world's background, sun discs) adds its radiance × throughput × MIS
+weight. Light pdfs are measured from the path's ``mis_origin`` (the last vertex before any
+free-standing film it crossed; films do not bend rays). Lights are transparent, as in Cycles: a ray
+that meets one adds its light and goes on to whatever lies behind it. A path that hits a surface is
+listed for shading unless it has used its last bounce.
+
+Film transparency (Cycles'): a camera path (``CAMERA_PATH``: no scattering yet but transparent glass)
+that escapes into a transparent film's background, or meets a holdout, becomes see-through by its
+throughput's mean (``transparency``) and brings no light from there.
 """
 
 from __future__ import annotations
@@ -12,11 +18,14 @@ from __future__ import annotations
 import math
 
 from ..jit import inlined, kernel
-from ..lights.dispatch import (distant_hit, emitter_group, emitter_pdf, intersect_light, is_distant, light_hit,
-                               light_spectrum)
+from ..lights import environment
+from ..lights.dispatch import (distant_hit, emitter_group, emitter_pdf, environment_pdf, is_distant, light_distance,
+                               light_hit, light_spectrum, seen_by_camera)
 from ..materials.emitters import emission_at
 from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE
 from ..spectra.table import spectrum_value
+from ..state import CAMERA_PATH, PREV_DELTA
+from ..visibility import HOLDOUT
 from .mis import emitter_weight
 from .passes import camera_slot, deposit, features_done
 
@@ -33,6 +42,60 @@ def _add(state, i, factor, sid, spectra, weight, passes, layout, group, slot, al
             deposit(passes, layout, i, k, value, group, slot, albedo)
 
 
+@inlined
+def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout):
+    """Every hittable light between the ray's origin and distance ``t`` adds its emission."""
+    offset = (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
+    for h in range(lights.hittable.shape[0]):
+        index = lights.hittable[h]
+        if depth == 0 and not seen_by_camera(lights, index):
+            continue
+        t_light = light_distance(lights, index, o, d)
+        if t_light < t:
+            factor, pdf = light_hit(lights, index, mis_origin, d, t_light + offset)
+            _add(state, i, factor, light_spectrum(lights, index), spectra,
+                 emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index],
+                 camera_slot(layout, depth, False), True)
+
+
+@inlined
+def _see_through(state, i):
+    """Path ``i`` is transparent by its throughput's mean from here on."""
+    k = state.throughput.shape[1]
+    total = 0.0
+    for c in range(k):
+        total += state.throughput[i, c]
+    state.transparency[i] += total / k
+
+
+@inlined
+def _add_background(state, i, d, lights, spectra, settings, depth, passes, layout):
+    """The world's background and the sun discs seen by an escaping ray."""
+    if settings.film_transparent and state.flags[i] & CAMERA_PATH:
+        _see_through(state, i)
+        return
+    slot = camera_slot(layout, depth, True)
+    env = lights.environment
+    if env.kind != environment.ENV_NONE:
+        weight = 1.0
+        if lights.environment_index >= 0 and not state.flags[i] & PREV_DELTA:
+            weight = emitter_weight(state, i, environment_pdf(lights, d), settings.use_mis)
+        if weight > 0.0:
+            fp = environment.footprint(env, d)
+            for k in range(state.radiance.shape[1]):
+                value = state.throughput[i, k] * weight * environment.value(env, spectra, fp, state.wavelength[i, k])
+                state.radiance[i, k] += value
+                if layout.columns > 0:
+                    deposit(passes, layout, i, k, value, lights.world_group, slot, True)
+    for index in range(lights.rows.shape[0] if lights.select_prob.shape[0] > 0 else 0):
+        if is_distant(lights, index) and (depth > 0 or seen_by_camera(lights, index)):
+            factor, pdf = distant_hit(lights, index, d)
+            if factor > 0.0:
+                _add(state, i, factor, light_spectrum(lights, index), spectra,
+                     emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index], slot,
+                     True)
+
+
 @kernel
 def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, lights, spectra,
                     settings, depth, surface, passes, layout, scratch):
@@ -47,38 +110,22 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
         d = (state.direction[i, 0], state.direction[i, 1], state.direction[i, 2])
         triangle = hit_triangle[j]
         t = float(hit_t[j]) if triangle >= 0 else math.inf
-        light = -1
-        if depth > 0 and lights.hittable.shape[0] > 0:
-            light, t_light = intersect_light(lights, o, d, t)
-            if light >= 0:
-                t = t_light
         mis_origin = (state.mis_origin[i, 0], state.mis_origin[i, 1], state.mis_origin[i, 2])
-        t_mis = t + (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
-        if light >= 0:
-            factor, pdf = light_hit(lights, light, mis_origin, d, t_mis)
-            _add(state, i, factor, light_spectrum(lights, light), spectra,
-                 emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[light], -1, True)
+        if lights.hittable.shape[0] > 0:
+            _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout)
+        if triangle < 0:
+            _add_background(state, i, d, lights, spectra, settings, depth, passes, layout)
             if layout.columns > 0:
                 features_done(passes, layout, i)
             continue
-        if triangle < 0:
-            slot = camera_slot(layout, depth, True)
-            if lights.world_strength > 0.0:
-                _add(state, i, lights.world_strength, lights.world_spectrum, spectra, 1.0, passes, layout,
-                     lights.world_group, slot, True)
-            if depth > 0:
-                for index in range(lights.rows.shape[0] if lights.select_prob.shape[0] > 0 else 0):
-                    if is_distant(lights, index):
-                        factor, pdf = distant_hit(lights, index, d)
-                        if factor > 0.0:
-                            _add(state, i, factor, light_spectrum(lights, index), spectra,
-                                 emitter_weight(state, i, pdf, settings.use_mis), passes, layout,
-                                 lights.group[index], slot, True)
+        if geometry.flags[triangle] & HOLDOUT and state.flags[i] & CAMERA_PATH:
+            _see_through(state, i)
             if layout.columns > 0:
                 features_done(passes, layout, i)
             continue
         material = geometry.material[triangle]
         if materials.flags[material] & MAT_EMISSIVE:
+            t_mis = t + (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
             weight = 1.0 if depth == 0 else emitter_weight(state, i, emitter_pdf(lights, triangle, d, t_mis),
                                                           settings.use_mis)
             group, slot = emitter_group(lights, triangle), camera_slot(layout, depth, False)

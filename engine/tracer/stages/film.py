@@ -26,6 +26,21 @@ def film_kernel(state, count, ws, rgb):
 
 
 @kernel
+def splat_alpha(total, pixels, alpha, count, frame_width, x0, y0, width):
+    """Add ``alpha[j]`` to pixel ``pixels[j]`` for j < count (frame indices, as ``splat``; consecutive
+    samples of a pixel summed first, so chunked renders merge to the same sums)."""
+    j = 0
+    while j < count:
+        p = pixels[j]
+        local = (p // frame_width - y0) * width + (p % frame_width - x0)
+        run = 0.0
+        while j < count and pixels[j] == p:
+            run += alpha[j]
+            j += 1
+        total[local] += run
+
+
+@kernel
 def splat(total, total_sq, samples, aux_total, pixels, rgb, aux, count, frame_width, x0, y0, width):
     """Add ``rgb[j]`` (and the pass values ``aux[j]``) to pixel ``pixels[j]`` for j < count; returns how
     many samples were not finite. Pixels are frame indices; the film holds the rectangle whose top-left

@@ -5,6 +5,11 @@ from __future__ import annotations
 from collections import namedtuple
 
 #: max_bounces, roulette_depth (first vertex depth where roulette may end a path, minus one),
-#: use_mis, sampler (``sampler.SOBOL`` / ``INDEPENDENT``), seed, light_tracing (caustic paths come from
-#: light tracing and path tracing skips them: ``stages.caustic_split``).
-KernelSettings = namedtuple("KernelSettings", "max_bounces roulette_depth use_mis sampler seed light_tracing")
+#: use_mis, sampler (``sampler.SOBOL`` / ``INDEPENDENT``), seed; light_tracing (caustic paths come from
+#: light tracing and path tracing skips them: ``stages.caustic_split``); film_transparent (the background
+#: seen by camera paths is see-through), transparent_glass (camera paths stay camera paths through
+#: transmission of roughness² at most ``transparent_alpha``), as Cycles' Film ▸ Transparent.
+KernelSettings = namedtuple(
+    "KernelSettings",
+    "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha",
+)

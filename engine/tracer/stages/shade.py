@@ -6,19 +6,22 @@ one-sided glass); dispersion (a path meeting a dispersive material keeps only it
 hit (``materials.surface``: its program, when it has one, may also bend the shading normal); light
 sampling (``nee``) unless every lobe is a delta; BSDF sampling; roulette; and the path's next ray,
 queued. A free-standing film crossed straight through, or a cut-out (Transparent BSDF, alpha), is a
-null event for MIS: the path keeps the pdf and ``mis_origin`` of the vertex before it.
+null event for MIS: the path keeps the pdf and ``mis_origin`` of the vertex before it, and the ray
+type it had (a camera ray seen through a cut-out is still a camera ray, as in Cycles). A camera path
+also stays one through transparent glass (transmission no rougher than the film's threshold, with
+Transparent Glass on).
 """
 
 from __future__ import annotations
 
-from ..bsdf.closure import SAMPLED_DELTA, SAMPLED_NULL
+from ..bsdf.closure import C_ALPHA, SAMPLED_DELTA, SAMPLED_DIFFUSE, SAMPLED_NULL, SAMPLED_TRANSMISSION
 from ..bsdf.dispatch import bsdf_sample
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..materials.surface import shade_surface
 from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
-from ..state import COLLAPSED, PREV_DELTA
+from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
 from .caustic_split import classify_vertex
 from .nee import consistent, sample_direct
@@ -35,6 +38,17 @@ def collapse_to_hero(state, i):
     for c in range(k):
         state.throughput[i, c] = state.throughput[i, c] * k if c == hero else 0.0
     state.flags[i] |= COLLAPSED
+
+
+@inlined
+def _through_transparent_glass(settings, rows, closures, sampled):
+    """Whether a sampled event keeps a camera path one (Cycles' Transparent Glass)."""
+    if not (settings.transparent_glass and sampled & SAMPLED_TRANSMISSION):
+        return False
+    for c in range(closures):
+        if rows[c, C_ALPHA] > settings.transparent_alpha:
+            return False
+    return True
 
 
 @inlined
@@ -111,6 +125,12 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         for c in range(k):
             state.throughput[i, c] *= weight[c]
         state.eta_scale[i] *= eta_scale
+        if not sampled & SAMPLED_NULL:
+            if state.flags[i] & CAMERA_PATH and not _through_transparent_glass(settings, rows, closures, sampled):
+                state.flags[i] &= ~CAMERA_PATH
+            state.flags[i] = (state.flags[i] & ~(LAST_DIFFUSE | LAST_TRANSMISSION)) | (
+                LAST_TRANSMISSION if sampled & SAMPLED_TRANSMISSION
+                else (LAST_DIFFUSE if sampled & SAMPLED_DIFFUSE else 0))
         if not survives(state, i, depth, settings, collapsed):
             continue
         # A film crossed straight through, or a cut-out (Transparent BSDF, alpha): a null event for MIS. Light

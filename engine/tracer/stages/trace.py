@@ -21,7 +21,7 @@ _ROUTE_FIRST_SHADOWS, _ROUTE_SECOND_EMISSION, _ROUTE_END = 0, 1, 2
 
 def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
     """Deliver the light of the first ``count`` shadow rays that reach their lights; returns rays cast."""
-    accel = renderer.accel
+    accel = renderer.accel if renderer.ray_classes is None else renderer.ray_classes
     rays = 0
     if renderer.analysis.see_through_films or renderer.analysis.see_through_cutouts:
         for _ in range(MAX_FILM_LAYERS):
@@ -67,7 +67,10 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     for depth in range(settings.max_bounces + 2):
         if queued == 0:
             break
-        hit = renderer.accel.intersect(current, queued)
+        if renderer.ray_classes is None:
+            hit = renderer.accel.intersect(current, queued)
+        else:
+            hit = renderer.ray_classes.intersect(current, queued, state, depth)
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, *hit, geometry, materials, lights, spectra, settings,
                                    depth, buffers.surface, passes, layout, buffers.scratch)

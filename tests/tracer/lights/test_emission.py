@@ -109,6 +109,36 @@ def test_area_light_starts_uniformly_and_sends_its_power(shape):
     assert mean == pytest.approx(flux, abs=error + 2e-3 * flux)
 
 
+def test_area_light_spread_keeps_its_power_and_its_cone():
+    """Cycles' Spread narrows the emission (same power): light paths carry the whole power into a
+    target around the light, and nothing into one outside the spread's cone."""
+    light = _area_light("rectangle", (0, 0, 1), (0, 0, -1))
+    light.spread_rad = np.radians(40.0)
+    emission = Emission(_scene([((0.0, 0.0, 1.0), 2.0)], [light]))
+    s = emission.sample(_uniforms(6))
+    mean, error = _mean_and_error(s.beta / emission.lights.spectrum_at(0))
+    assert mean == pytest.approx(40.0, abs=error)
+    cos_out = -s.direction[s.beta > 0][:, 2]
+    assert cos_out.min() > np.cos(np.radians(20.0)) - 1e-9  # within the spread's half-angle of the normal
+    aside = Emission(_scene([((2.0, 0.0, 0.0), 0.3)], [light]))  # 50° and more from the normal
+    assert aside.sample(_uniforms(7, n=20_000)).beta.max() == 0.0
+
+
+def test_the_world_sends_no_light_paths_and_the_other_lights_keep_their_power():
+    """Under a bright light-sampled HDRI (most of the scene's power), every light path starts on the area
+    light, whose mean weight is still its whole power."""
+    from engine.tracer.scene import World
+
+    scene = _scene([((0.0, 0.0, 1.0), 2.0)], [_area_light("rectangle", (0, 0, 1), (0, 0, -1))])
+    scene.world = World(kind="image", image_rgb=np.full((8, 16, 3), 50.0, np.float32))
+    emission = Emission(scene)
+    assert emission.lights.arrays.environment_index == 1 and emission.lights.arrays.select_prob[1] > 0.9
+    s = emission.sample(_uniforms(8))
+    assert np.all(s.light == 0)
+    mean, error = _mean_and_error(s.beta / emission.lights.spectrum_at(0))
+    assert mean == pytest.approx(40.0, abs=error)
+
+
 @pytest.mark.parametrize("kind", ["point", "spot"])
 def test_point_light_sends_its_intensity_into_the_target_cone(kind):
     light = Light("p", kind, np.array([0.0, 0.0, 1.0]), direction=np.array([0.0, 0.0, -1.0]), power_w=30.0,

@@ -16,7 +16,7 @@ def test_selection_is_proportional_to_power_with_a_floor():
                      Light("off", "point", np.array([1, 0, 3.0]), power_w=0.0)]
     lights = SceneLights(scene)
     a = lights.arrays
-    assert lights.table.names == ["lamp", "area", "dim"] and a.mesh_index == -1 and a.world_strength == 0.0
+    assert lights.table.names == ["lamp", "area", "dim"] and a.mesh_index == -1 and a.environment_index == -1
     p = a.select_prob
     assert p.sum() == pytest.approx(1.0) and p[1] / p[0] == pytest.approx(3.0)
     assert p[2] == pytest.approx(1 / 60, rel=0.05)  # the floor 1/(20 n)

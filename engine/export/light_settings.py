@@ -1,0 +1,34 @@
+"""Settings of a Blender light that Prism does not model: one warning each, naming the light."""
+
+from __future__ import annotations
+
+_RAY_FLAGS = (("visible_diffuse", "Diffuse"), ("visible_glossy", "Glossy"), ("visible_transmission", "Transmission"))
+_DEFAULT_MAX_BOUNCES = 1024
+
+
+def is_portal(light_data) -> bool:
+    """A Cycles portal: it only guides the world's sampling and emits nothing."""
+    cycles = getattr(light_data, "cycles", None)
+    return light_data.type == "AREA" and bool(getattr(cycles, "is_portal", False))
+
+
+def light_warnings(obj) -> list[str]:
+    """Warnings for the settings of light object ``obj`` that Prism ignores."""
+    data = obj.data.original
+    name = obj.name
+    warnings = []
+    hidden = [label for prop, label in _RAY_FLAGS if not getattr(obj, prop, True)]
+    if hidden:
+        warnings.append(f"Light '{name}': Ray Visibility {', '.join(hidden)} off is ignored; Prism lets every ray "
+                        "see the light (only the Camera setting is honoured).")
+    if not getattr(data, "use_shadow", True):
+        warnings.append(f"Light '{name}': Cast Shadow off is ignored; Prism's lights always cast shadows.")
+    cycles = getattr(data, "cycles", None)
+    if cycles is not None and getattr(cycles, "max_bounces", _DEFAULT_MAX_BOUNCES) < _DEFAULT_MAX_BOUNCES:
+        warnings.append(f"Light '{name}': Max Bounces {cycles.max_bounces} is ignored; the scene's bounce limit applies.")
+    if getattr(data, "use_nodes", False) and data.node_tree is not None and len(data.node_tree.nodes) > 2:
+        warnings.append(f"Light '{name}': its node tree is ignored; Prism uses the light's colour and power.")
+    linking = getattr(obj, "light_linking", None)
+    if linking is not None and (linking.receiver_collection is not None or linking.blocker_collection is not None):
+        warnings.append(f"Light '{name}': light and shadow linking are ignored; the light reaches every object.")
+    return warnings

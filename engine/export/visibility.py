@@ -1,0 +1,27 @@
+"""An object's ray visibility and holdout (Object ▸ Visibility) → ``tracer.visibility`` flag bits."""
+
+from __future__ import annotations
+
+from ..tracer.visibility import HOLDOUT, RAY_CAMERA, RAY_DIFFUSE, RAY_GLOSSY, RAY_SHADOW, RAY_TRANSMISSION
+
+_RAYS = (("visible_camera", RAY_CAMERA), ("visible_shadow", RAY_SHADOW), ("visible_diffuse", RAY_DIFFUSE),
+         ("visible_glossy", RAY_GLOSSY), ("visible_transmission", RAY_TRANSMISSION))
+
+
+def object_flags(obj, view_layer, warnings) -> int:
+    """The flags of an (evaluated) object; a warning for what Prism does not render (shadow catchers)."""
+    flags = 0
+    for name, bit in _RAYS:
+        if getattr(obj, name, True):
+            flags |= bit
+    holdout = bool(getattr(obj, "is_holdout", False))
+    if not holdout and view_layer is not None and hasattr(obj, "holdout_get"):
+        try:
+            holdout = bool(obj.holdout_get(view_layer=view_layer))  # the collection's Holdout in the view layer
+        except (RuntimeError, TypeError):
+            pass
+    if holdout:
+        flags |= HOLDOUT
+    if getattr(obj, "is_shadow_catcher", False) and warnings is not None:
+        warnings.append(f"Object '{obj.name}': Shadow Catcher is ignored; Prism renders it as an ordinary object.")
+    return flags

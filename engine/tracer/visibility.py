@@ -1,0 +1,33 @@
+"""Which rays see an object (Cycles' Object ▸ Visibility ▸ Ray Visibility) and holdouts, per triangle.
+
+Bits of ``Geometry.flags``: ``RAY_CAMERA``, ``RAY_SHADOW``, ``RAY_DIFFUSE``, ``RAY_GLOSSY``,
+``RAY_TRANSMISSION`` (the object is seen by such rays) and ``HOLDOUT`` (Object ▸ Visibility ▸ Holdout,
+or a Holdout material: camera paths find a transparent hole there).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+RAY_CAMERA = 1
+RAY_SHADOW = 2
+RAY_DIFFUSE = 4
+RAY_GLOSSY = 8
+RAY_TRANSMISSION = 16
+HOLDOUT = 32
+ALL_RAYS = RAY_CAMERA | RAY_SHADOW | RAY_DIFFUSE | RAY_GLOSSY | RAY_TRANSMISSION
+RAY_NAMES = {RAY_CAMERA: "camera", RAY_SHADOW: "shadow", RAY_DIFFUSE: "diffuse", RAY_GLOSSY: "glossy",
+             RAY_TRANSMISSION: "transmission"}
+
+
+def triangle_flags(scene, original) -> np.ndarray:
+    """uint8 [T] of the render's triangles (``original``: their indices in ``scene.triangles``)."""
+    count = len(original)
+    flags = np.full(count, ALL_RAYS, np.uint8)
+    if scene.object_flags is not None and scene.triangle_object is not None and count:
+        objects = np.asarray(scene.triangle_object)[original]
+        flags = np.asarray(scene.object_flags, np.uint8)[objects].copy()
+    holdout_materials = np.array([bool(getattr(m, "holdout", False)) for m in scene.materials], bool)
+    if holdout_materials.any() and count:
+        flags[holdout_materials[np.asarray(scene.triangle_material)[original]]] |= HOLDOUT
+    return np.ascontiguousarray(flags)
