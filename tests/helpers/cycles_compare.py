@@ -9,11 +9,10 @@ and by relative MSE.
 
 from __future__ import annotations
 
-import os
-import tempfile
-
 import bpy
 import numpy as np
+
+from .cycles import render_cycles_rgba, render_prism_rgba
 
 LUMINANCE = np.array([0.2126729, 0.7151522, 0.0721750])
 
@@ -28,61 +27,15 @@ def single_scatter(scene=None) -> None:
                 node.distribution = "GGX"
 
 
-def _read_exr(path):
-    image = bpy.data.images.load(path)
-    width, height = image.size
-    pixels = np.empty(width * height * 4, np.float32)
-    image.pixels.foreach_get(pixels)
-    bpy.data.images.remove(image)
-    return pixels.reshape(height, width, 4)[::-1, :, :3].astype(np.float64)
-
-
-def _render(scene):
-    settings = scene.render.image_settings
-    settings.file_format, settings.color_depth = "OPEN_EXR", "32"
-    scene.render.use_file_extension = False
-    with tempfile.TemporaryDirectory() as directory:
-        path = os.path.join(directory, "render.exr")
-        scene.render.filepath = path
-        bpy.ops.render.render(write_still=True)
-        return _read_exr(path)
-
-
 def render_cycles(scene, samples: int, max_bounces: int = 8, seed: int = 0) -> np.ndarray:
-    """Scene-linear [H, W, 3] (row 0 on top) rendered by Cycles on the CPU."""
+    """Scene-linear [H, W, 3] (row 0 on top) rendered by Cycles on the CPU, single-scatter GGX."""
     single_scatter(scene)
-    scene.render.engine = "CYCLES"
-    cycles = scene.cycles
-    cycles.device = "CPU"
-    cycles.samples = samples
-    cycles.use_adaptive_sampling = False
-    cycles.use_denoising = False
-    cycles.pixel_filter_type = "BOX"
-    cycles.filter_width = 1.0
-    cycles.sample_clamp_direct = 0.0
-    cycles.sample_clamp_indirect = 0.0
-    cycles.caustics_reflective = cycles.caustics_refractive = True
-    cycles.blur_glossy = 0.0
-    cycles.seed = seed
-    for name in ("max_bounces", "diffuse_bounces", "glossy_bounces", "transmission_bounces",
-                 "transparent_max_bounces"):
-        setattr(cycles, name, max_bounces)
-    cycles.volume_bounces = 0
-    scene.render.threads_mode = "FIXED"
-    scene.render.threads = 2
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
-    scene.view_settings.exposure = 0.0
-    scene.view_settings.gamma = 1.0
-    return _render(scene)
+    return render_cycles_rgba(scene, samples, seed, max_bounces)[..., :3].astype(np.float64)
 
 
 def render_prism(scene, samples: int, max_bounces: int = 8, seed: int = 0) -> np.ndarray:
-    scene.render.engine = "PRISM"
-    scene.prism.samples = samples
-    scene.prism.seed = seed
     scene.prism.max_bounces = max_bounces
-    return _render(scene)
+    return render_prism_rgba(scene, samples, seed)[..., :3].astype(np.float64)
 
 
 def object_ids(scene, objects, samples: int = 16) -> np.ndarray:
