@@ -18,8 +18,7 @@ import bpy
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from build_demo_scene import add_mesh_object, principled, run  # noqa: E402
-from render import load_addon_package  # noqa: E402  (the add-on, for its settings)
+from build_demo_scene import add_mesh_object, new_scene, principled, run  # noqa: E402
 
 SUN_ELEVATION_DEG = 30.0
 SUN_ROTATION_DEG = 150.0  # the Sun behind the spheres' left, so shadows and caustics fall toward the camera
@@ -54,12 +53,7 @@ def sky_world():
 
 
 def build(path: Path) -> None:
-    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
-    if not hasattr(bpy.types.Scene, "prism"):
-        load_addon_package().register()
-    scene = bpy.context.scene
-    scene.render.resolution_x, scene.render.resolution_y = 480, 270
-    scene.render.resolution_percentage = 100
+    scene = new_scene(480, 270)
     scene.view_settings.view_transform, scene.view_settings.exposure = "AgX", -3.0
 
     add_mesh_object("Floor", floor_mesh(), principled("Stone", (0.55, 0.52, 0.48), Roughness=1.0))
