@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: render rainbow test extension bench venv clean inventory
+.PHONY: render rainbow sky test extension bench venv clean inventory
 
 # Creates .venv with the pinned requirements, once; re-running is a no-op.
 $(STAMP): requirements.txt
@@ -24,6 +24,12 @@ render: $(STAMP)
 rainbow: $(STAMP)
 	$(PY) demo/build_rainbow_scene.py renders/rainbow.blend
 	$(PY) render.py renders/rainbow.blend --samples 64 --output renders/rainbow.png
+
+# Builds the sky demo (three balls under a Nishita sky) and renders it with Prism and with Cycles, side by side.
+sky: $(STAMP)
+	$(PY) demo/build_sky_scene.py renders/sky.blend
+	$(PY) render.py renders/sky.blend --samples 256 --output renders/sky.png
+	$(PY) demo/render_cycles.py renders/sky.blend renders/sky_cycles.png --samples 128
 
 # Runs the test suite.
 test: $(STAMP)

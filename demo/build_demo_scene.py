@@ -67,13 +67,19 @@ def prism_mesh():
     return mesh
 
 
-def build(path: Path) -> None:
+def new_scene(width: int, height: int):
+    """An empty factory-settings scene of ``width`` x ``height`` pixels with the add-on registered."""
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     if not hasattr(bpy.types.Scene, "prism"):
         load_addon_package().register()
     scene = bpy.context.scene
-    scene.render.resolution_x, scene.render.resolution_y = 480, 320
+    scene.render.resolution_x, scene.render.resolution_y = width, height
     scene.render.resolution_percentage = 100
+    return scene
+
+
+def build(path: Path) -> None:
+    scene = new_scene(480, 320)
 
     add_mesh_object("Room", room_mesh(), principled("Walls", (0.75, 0.72, 0.68), Roughness=1.0))
     bpy.ops.mesh.primitive_monkey_add(location=(-0.9, 0.4, 0.55), rotation=(0, 0, math.radians(-20)))

@@ -20,8 +20,7 @@ from mathutils import Matrix
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from build_demo_scene import principled, run, save_with_world  # noqa: E402
-from render import load_addon_package  # noqa: E402  (the add-on, for its settings)
+from build_demo_scene import new_scene, principled, run, save_with_world  # noqa: E402
 
 N_D = 1.78472  # N-SF11 at 587.6 nm: the lamp is aimed for minimum deviation
 SIDE, HEIGHT = 0.12, 0.15  # prism triangle side and length (m)
@@ -90,13 +89,8 @@ def slit_lamp_and_prism(scene, at, lamp_distance=0.6, slit=0.004):
 
 
 def build(path: Path, light_tracing: str = "AUTO") -> None:
-    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
-    if not hasattr(bpy.types.Scene, "prism"):
-        load_addon_package().register()
-    scene = bpy.context.scene
+    scene = new_scene(640, 360)
     scene.render.engine = "PRISM"
-    scene.render.resolution_x, scene.render.resolution_y = 640, 360
-    scene.render.resolution_percentage = 100
     scene.prism.samples, scene.prism.samples_per_pass = 64, 8
     scene.prism.light_tracing = light_tracing
 

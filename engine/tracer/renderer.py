@@ -201,6 +201,8 @@ class Renderer:
         self.cancelled = False
         self.set_region(self._frame_region(self.settings.border))
         warnings = [f"{self._dropped} zero-area triangle(s) dropped"] if self._dropped else []
+        if self.camera.lens is not None:
+            warnings += self.camera.lens.warnings
         self.stats = {
             "rays_cast": 0,
             "seconds": 0.0,

@@ -16,6 +16,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import PrismInputError
+from ..spectra.wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 from .exit_pupil import RADIAL_BINS, ExitPupilBounds
 from .lens_file import load_lens
 from .media import D_LINE_NM
@@ -30,6 +31,21 @@ NORMALISATION_POINTS, NORMALISATION_GENERATOR = 46368, 28657
 
 
 @lru_cache(maxsize=8)
+def glass_range_warnings(system) -> list[str]:
+    """One message per glass of ``system`` whose data does not cover the wavelengths a render samples
+    (360-830 nm): outside its range the kernels use its index at the range's edge."""
+    messages = []
+    for surface in system.surfaces:
+        glass = getattr(surface.medium, "glass", None)
+        lo, hi = getattr(glass, "valid_range_nm", (VISIBLE_MIN_NM, VISIBLE_MAX_NM))
+        if lo > VISIBLE_MIN_NM or hi < VISIBLE_MAX_NM:
+            text = (f"Lens '{system.name}': glass '{surface.medium.label}' is specified for {lo:g}-{hi:g} nm only: "
+                    f"wavelengths outside that range use its index at the nearer edge")
+            if text not in messages:
+                messages.append(text)
+    return messages
+
+
 def _pupil_bounds(system, film_z_mm, film_radius_mm, full):
     return ExitPupilBounds(system, film_z_mm, film_radius_mm, RADIAL_BINS, full=full)
 
@@ -102,6 +118,7 @@ class RealLensCamera:
         )
         if self.outside_image_circle_fraction > 0.001:
             self.strategy += f", {100 * self.outside_image_circle_fraction:.0f}% of the frame outside the image circle"
+        self.warnings = glass_range_warnings(self.system)
 
     # ---- rays ---------------------------------------------------------------------------
     def kernel_tables(self):

@@ -100,3 +100,20 @@ def test_errors_name_the_camera_or_the_file(tmp_path):
         RealLensCamera(_camera(lens_file=str(tmp_path / "x.lens")), RenderSettings())
     with pytest.raises(PrismInputError, match="closer than it can focus"):
         RealLensCamera(_camera("telephoto_250mm", focus_distance_m=0.2), RenderSettings())
+
+
+def test_a_lens_glass_specified_on_part_of_the_visible_range_is_named_in_the_render_warnings():
+    """The achromat's SF10 is specified from 380 nm; the render samples from 360 nm, where the kernels
+    hold SF10's index at its 380 nm value: the render says so, once, naming lens and glass."""
+    from benchmarks import scenes
+    from engine.tracer.renderer import Renderer
+
+    assert RealLensCamera(_camera(), RenderSettings()).warnings == []
+    achromat = RealLensCamera(_camera("achromat_100mm", fstop=8.0), RenderSettings())
+    assert achromat.warnings == ["Lens 'Achromatic doublet 100mm f/8': glass 'SF10' is specified for "
+                                 "380-2500 nm only: wavelengths outside that range use its index at the nearer edge"]
+    scene = scenes.build("cornell_grey")
+    scene.camera = _camera("achromat_100mm", fstop=8.0, camera_to_world=scene.camera.camera_to_world,
+                           resolution=(8, 8))
+    renderer = Renderer(scene, RenderSettings(samples=1, threads=1))
+    assert renderer.stats["warnings"] == achromat.warnings
