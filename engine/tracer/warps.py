@@ -113,3 +113,17 @@ def power_heuristic(pdf_a, pdf_b):
     if not (a2 + b2 > 0.0) or math.isinf(b2):
         return 0.0
     return a2 / (a2 + b2)
+
+
+@kernel
+def cdf_index(cdf, u):
+    """The bin a uniform ``u`` falls in: the first index whose value in the increasing ``cdf`` (its last
+    value 1) exceeds ``u``, by binary search."""
+    lo, hi = 0, cdf.shape[0] - 1
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if cdf[mid] <= u:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo

@@ -8,6 +8,7 @@ from ..jit import inlined
 from ..materials.emitters import emission_at
 from ..materials.table import MAT_EMISSION_VARIES
 from ..spectra.table import spectrum_value
+from ..warps import cdf_index
 from . import area, environment, mesh, point, sun
 from .row import DISK, ENVIRONMENT, L_CAMERA, L_KIND, L_SPECTRUM, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
 
@@ -16,13 +17,7 @@ from .row import DISK, ENVIRONMENT, L_CAMERA, L_KIND, L_SPECTRUM, MESH, POINT, R
 def pick_light(lights, u):
     """(light index, u rescaled to [0, 1) within its interval) for a light chosen ∝ select_prob."""
     cdf = lights.select_cdf
-    lo, hi = 0, cdf.shape[0] - 1
-    while lo < hi:
-        mid = (lo + hi) >> 1
-        if cdf[mid] <= u:
-            lo = mid + 1
-        else:
-            hi = mid
+    lo = cdf_index(cdf, u)
     below = cdf[lo - 1] if lo > 0 else 0.0
     prob = lights.select_prob[lo]
     return lo, min(max((u - below) / prob, 0.0), 0.9999999999999999) if prob > 0.0 else 0.0

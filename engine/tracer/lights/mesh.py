@@ -18,7 +18,7 @@ from collections import namedtuple
 import numpy as np
 
 from ..jit import inlined
-from ..warps import uniform_triangle
+from ..warps import cdf_index, uniform_triangle
 
 MeshEmitters = namedtuple("MeshEmitters", "triangle material geometry cdf probability of_triangle group")
 
@@ -57,15 +57,7 @@ def build_mesh_emitters(vertices, triangles, triangle_material, strength_of_mate
 @inlined
 def pick(emitters, u):
     """The emitter row whose cdf interval holds ``u``."""
-    cdf = emitters.cdf
-    lo, hi = 0, cdf.shape[0] - 1
-    while lo < hi:
-        mid = (lo + hi) >> 1
-        if cdf[mid] <= u:
-            lo = mid + 1
-        else:
-            hi = mid
-    return lo
+    return cdf_index(emitters.cdf, u)
 
 
 @inlined

@@ -20,6 +20,7 @@ from collections import namedtuple
 import numpy as np
 
 from ..jit import kernel
+from ..warps import cdf_index
 
 SphereDistribution = namedtuple("SphereDistribution", "marginal_cdf conditional_cdf cell_prob z_edges")
 
@@ -64,13 +65,7 @@ def build_sphere_distribution(mean_value) -> SphereDistribution:
 @kernel
 def _search(cdf, u):
     """First index whose cdf value exceeds ``u`` (cdf ends at 1), and u rescaled within that interval."""
-    lo, hi = 0, cdf.shape[0] - 1
-    while lo < hi:
-        mid = (lo + hi) >> 1
-        if cdf[mid] <= u:
-            lo = mid + 1
-        else:
-            hi = mid
+    lo = cdf_index(cdf, u)
     below = cdf[lo - 1] if lo > 0 else 0.0
     width = cdf[lo] - below
     rest = (u - below) / width if width > 0.0 else 0.5
