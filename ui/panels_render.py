@@ -6,7 +6,7 @@ from __future__ import annotations
 import bpy
 
 from . import spectral_plot
-from ._panel_base import PrismPanel
+from ._panel_base import PrismPanel, ToggledScenePanel
 
 _PLOT_SCALE = 10.0
 
@@ -44,25 +44,15 @@ class PRISM_PT_sampling(PrismPanel, bpy.types.Panel):
         sub.prop(settings, "filter_width_px")
 
 
-class PRISM_PT_denoise(PrismPanel, bpy.types.Panel):
+class PRISM_PT_denoise(ToggledScenePanel, bpy.types.Panel):
     """Final-frame denoising (OpenImageDenoise, as the compositor's Denoise node)."""
 
     bl_label = "Denoise"
     bl_context = "render"
     bl_parent_id = "PRISM_PT_sampling"
 
-    def draw_header(self, context):
-        self.layout.prop(context.scene.prism, "use_denoising", text="")
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.prism
-        column = layout.column()
-        column.active = settings.use_denoising
-        column.prop(settings, "denoising_prefilter")
-        column.prop(settings, "denoising_quality")
+    toggle = "use_denoising"
+    settings = ("denoising_prefilter", "denoising_quality")
 
 
 class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):
@@ -138,25 +128,17 @@ class PRISM_PT_performance(PrismPanel, bpy.types.Panel):
         sub.prop(settings, "tile_size")
 
 
-class PRISM_PT_spectral_output(PrismPanel, bpy.types.Panel):
+class PRISM_PT_spectral_output(ToggledScenePanel, bpy.types.Panel):
     """The optional multispectral EXR."""
 
     bl_label = "Spectral Output"
     bl_context = "render"
     bl_options = {"DEFAULT_CLOSED"}
 
-    def draw_header(self, context):
-        self.layout.prop(context.scene.prism, "use_spectral_output", text="")
+    toggle = "use_spectral_output"
+    settings = ("spectral_band_nm", "spectral_output_path")
 
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.prism
-        column = layout.column()
-        column.active = settings.use_spectral_output
-        column.prop(settings, "spectral_band_nm")
-        column.prop(settings, "spectral_output_path")
+    def draw_more(self, column) -> None:
         column.label(text="Bands as S0.<nm> channels (Fichet et al. 2021), with the render as R, G, B.")
 
 

@@ -325,7 +325,6 @@ class Renderer:
         if self.ray_classes is not None or (self.geometry.flags & HOLDOUT).any():
             return "ray visibility or holdouts"
         return ""
-        return a
 
     def _frame_region(self, border):
         """The rendered rectangle (x0, y0, x1, y1), rows from the top: the border, else the frame."""

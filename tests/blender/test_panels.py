@@ -68,9 +68,18 @@ def _panels(prism_addon):
     ]
 
 
+class _PanelStandIn(SimpleNamespace):
+    """``self`` for a panel's draw(): a recording layout, and the panel class's attributes and methods
+    (Blender panels cannot be instantiated outside a redraw)."""
+
+    def __getattr__(self, name):
+        value = getattr(self.panel_class, name)
+        return value.__get__(self) if callable(value) and hasattr(value, "__get__") else value
+
+
 def _draw(panel_class, context):
     log = []
-    panel = SimpleNamespace(layout=RecordingLayout(log), bl_space_type="PROPERTIES")
+    panel = _PanelStandIn(layout=RecordingLayout(log), bl_space_type="PROPERTIES", panel_class=panel_class)
     panel_class.draw(panel, context)
     return log
 
