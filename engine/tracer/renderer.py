@@ -65,16 +65,20 @@ from .visibility_accel import RayClassAccel, needs_ray_classes
 
 MAX_CHUNK_PATHS = 1 << 16  # largest chunk one thread traces at once (memory ~0.5 kB per path)
 MIN_CHUNK_PATHS = 4096  # below this, per-bounce Python overhead dominates
+#: Chunks per worker thread in a pass: paths differ in length (glass, escapes), so one chunk per thread
+#: leaves threads idle at the end of the pass; a few each let the pool balance them.
+CHUNKS_PER_THREAD = 4
 #: A camera this far (m) from the render's origin gets the geometry rebuilt around it (``set_camera``):
 #: float32 positions keep ~0.1 mm there.
 REBASE_DISTANCE_M = 1000.0
 
 
 def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int:
-    """Paths per chunk: one chunk per thread (fewer kernel launches: each holds the GIL for ~10 µs),
-    within the bounds above, and a multiple of ``samples_per_pixel`` (a chunk never splits a pixel's
-    samples of a pass: see ``film``)."""
-    size = max(MIN_CHUNK_PATHS, min(MAX_CHUNK_PATHS, -(-path_count // max(threads, 1))))
+    """Paths per chunk: ``CHUNKS_PER_THREAD`` chunks per thread (each kernel launch holds the GIL for
+    ~10 µs, so not more), within the bounds above, and a multiple of ``samples_per_pixel`` (a chunk never
+    splits a pixel's samples of a pass: see ``film``)."""
+    chunks = max(threads, 1) * CHUNKS_PER_THREAD
+    size = max(MIN_CHUNK_PATHS, min(MAX_CHUNK_PATHS, -(-path_count // chunks)))
     return int(max(samples_per_pixel, size - size % samples_per_pixel))
 
 
@@ -473,7 +477,7 @@ class Renderer:
         chunks = [(a, b, False) for a, b in zip(bounds[:-1], bounds[1:])]
         if self.analysis.light_tracing:  # as many light paths as camera paths, numbered the same way
             chunks += [(a, b, True) for a, b, _ in chunks]
-        window = 2 * self._workers  # chunks in flight: bounded memory for huge frames
+        window = 4 * self._workers  # chunks in flight: bounded memory for huge frames
         jobs = self._jobs
         light_splats = []  # (pixel, rgb, paths) of the pass's light chunks, in chunk order
         try:

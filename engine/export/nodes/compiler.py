@@ -27,10 +27,12 @@ _MATH = {name: i for i, name in enumerate(op.MATH_OPERATIONS)}
 
 @dataclass
 class Weight:
-    """A closure weight: ``scale`` (scalar) × ``colour`` (RGB)."""
+    """A closure weight: ``scale`` (scalar) × ``colour`` (RGB), under a constant Principled specular layer
+    when ``layer`` is set ((index, roughness, largest f0): see ``ClosureSpec.layer``)."""
 
     scale: Value
     colour: Value
+    layer: tuple | None = None
 
 
 @dataclass
@@ -265,7 +267,7 @@ class MaterialCompiler:
 
     def weighted(self, weight: Weight, scale: Value | None = None, colour: Value | None = None) -> Weight:
         return Weight(self.multiply(weight.scale, scale) if scale is not None else weight.scale,
-                      self.multiply(weight.colour, colour) if colour is not None else weight.colour)
+                      self.multiply(weight.colour, colour) if colour is not None else weight.colour, weight.layer)
 
     def add_closure(self, closure: PendingClosure) -> None:
         if self.known(closure.weight.scale) == 0.0 or self.known(closure.weight.colour) == (0.0, 0.0, 0.0):
@@ -273,6 +275,8 @@ class MaterialCompiler:
         self.closures.append(closure)
 
     def add_emission(self, weight: Weight, colour: Value | None, strength: Value, spectrum=None) -> None:
+        if weight.layer is not None:  # Principled adds its emission above its specular layer
+            raise ValueError("an emission under a constant specular layer is not compiled")
         scale = self.multiply(weight.scale, strength)
         if 0.0 in (self.known(strength), self.known(weight.scale), self.known(scale)):
             return

@@ -31,7 +31,7 @@ def _selection(kind, fresnel, rgb):
 
 def _closure(c, pending, normal_register):
     spec = ClosureSpec(pending.kind, fresnel=pending.fresnel, glass=pending.glass, coat_nm=pending.coat_nm,
-                       coat_ior=pending.coat_ior)
+                       coat_ior=pending.coat_ior, layer=pending.weight.layer)
     scale, colour = c.known(pending.weight.scale), c.known(pending.weight.colour)
     if pending.measured is not None and pending.kind != CONDUCTOR:
         spec.tint = Colour(spectrum=pending.measured)
@@ -107,6 +107,23 @@ def _emission(c, program):
         program.emission_strength = 1.0
 
 
+def _read_registers(program) -> set[int]:
+    """Registers the tracer reads after the program ran: closure colours and bindings, normal, emission."""
+    live = set()
+    for spec in program.closures:
+        for colour in (spec.tint, spec.s0, spec.s1):
+            if colour is not None and colour.register is not None:
+                live.update(range(colour.register, colour.register + 3))
+        live.update(register for _, register, _ in spec.bindings)
+    if program.normal >= 0:
+        live.update(range(program.normal, program.normal + 3))
+    if program.emission is not None and program.emission.register is not None:
+        live.update(range(program.emission.register, program.emission.register + 3))
+    if program.emission_scale >= 0:
+        live.add(program.emission_scale)
+    return live
+
+
 def finish(c) -> ShaderProgram:
     """The ``ShaderProgram`` of compiler ``c`` after its walk."""
     default_normal = displacement_bump(c, c.displacement) if getattr(c, "displacement", None) is not None else None
@@ -118,7 +135,7 @@ def finish(c) -> ShaderProgram:
     program = ShaderProgram(closures)
     _emission(c, program)
     program.normal = normal.register if normal is not None else -1
-    program.instructions = c.builder.instructions()
+    program.instructions = c.builder.instructions(live=_read_registers(program))
     program.constants = c.builder.initial_registers()
     program.register_count = c.builder.register_count
     program.images = list(c.images)

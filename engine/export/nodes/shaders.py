@@ -163,10 +163,15 @@ def principled(c, node, context, weight: Weight):
         c.add_closure(specular)
         f0 = c.vector_math("SCALE", specular_tint, s=_f0(c, eta))
         f0 = _saturate(c, f0)
-        s = _layer_albedo(c, roughness, cos, eta)
-        one = c.const(1.0, 1.0, 1.0)
-        albedo = c.vector_math("ADD", f0, c.vector_math("SCALE", c.vector_math("SUBTRACT", one, f0), s=s))
-        weight = c.weighted(weight, scale=c.clamp01(c.one_minus(_max_channel(c, albedo))))
+        constant = (normal is None and weight.layer is None
+                    and None not in (c.known(f0), c.known(roughness), c.known(eta)))
+        if constant:  # applied per hit from the closure rows, without running a program
+            weight = Weight(weight.scale, weight.colour, (c.known(eta), c.known(roughness), max(c.known(f0))))
+        else:
+            s = _layer_albedo(c, roughness, cos, eta)
+            one = c.const(1.0, 1.0, 1.0)
+            albedo = c.vector_math("ADD", f0, c.vector_math("SCALE", c.vector_math("SUBTRACT", one, f0), s=s))
+            weight = c.weighted(weight, scale=c.clamp01(c.one_minus(_max_channel(c, albedo))))
 
     if c.known(_val(c, node, "Subsurface Weight", context)) != 0.0:
         c.warn(node, "has Subsurface Weight; Prism renders subsurface scattering as diffuse reflection.")

@@ -24,6 +24,10 @@ material's program (``register_source``).
 - ``C_GLASS``: row of the material table's glass array (dielectrics); resolved into ``eta``.
 - ``C_COAT_NM``, ``C_COAT_IOR``: a thin-film coating over a conductor or dielectric (0 nm: none).
 - ``C_FILM_NM``, ``C_FILM_IOR``: a free-standing film (soap bubble).
+- ``C_LAYER_ETA``, ``C_LAYER_ROUGHNESS``, ``C_LAYER_F0``: a constant GGX dielectric layer above the closure
+  (the Principled specular layer over diffuse, metal or glass): its index (0: no layer), Blender roughness and
+  largest normal-incidence reflectance. The closure's tint is scaled per hit by what the layer lets through,
+  1 - its albedo seen from the view direction (``materials.layering.under_layer``).
 """
 
 from __future__ import annotations
@@ -52,7 +56,10 @@ C_FRESNEL = 11
 C_ETA = 12
 C_TINT_SCALE = 13
 C_MIRROR = 14
-CLOSURE_ROW = 15
+C_LAYER_ETA = 15
+C_LAYER_ROUGHNESS = 16
+C_LAYER_F0 = 17
+CLOSURE_ROW = 18
 
 #: Spectral sources and the ``spectral`` slot each fills.
 SPECTRAL_SOURCES = (C_SPECTRUM, C_S1, C_TINT)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 
-from ..jit import kernel
+from ..jit import inlined, kernel
 from .closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FRESNEL, FRESNEL_CONDUCTOR, FRESNEL_DIELECTRIC,
                       FRESNEL_F82, FRESNEL_NONE, SAMPLED_DELTA, SMOOTH_ALPHA)
 from .microfacet import ggx_d, ggx_g1, ggx_g2, reflect, sample_visible_normal, visible_normal_pdf
@@ -24,7 +24,7 @@ _C82_5 = (6.0 / 7.0) ** 5
 _C82_WEIGHT = (1.0 / 7.0) * (6.0 / 7.0) ** 6
 
 
-@kernel
+@inlined
 def reflectance(row, spectral, cos_i, wavelength_nm, k):
     """Reflectance of the interface at wavelength column ``k`` for incidence cosine ``cos_i``."""
     cos_i = min(abs(cos_i), 1.0)
@@ -59,6 +59,45 @@ def reflectance(row, spectral, cos_i, wavelength_nm, k):
     return f0 + (1.0 - f0) * c5
 
 
+@inlined
+def _uncoated_dielectric(row):
+    """Whether the reflectance is a dielectric's Fresnel, the same at every wavelength but for its tint."""
+    return int(row[C_FRESNEL]) == FRESNEL_DIELECTRIC and not row[C_COAT_NM] > 0.0
+
+
+@kernel
+def reflectances(row, spectral, cos_i, wavelength_nm, scale, out):
+    """``out[k]`` = ``scale`` × the reflectance at every carried wavelength, in one call (calls that take
+    arrays are not free in numba, and a dielectric's Fresnel is computed once, not per wavelength)."""
+    if _uncoated_dielectric(row):
+        eta = row[C_ETA]
+        f = fresnel_dielectric(min(abs(cos_i), 1.0), eta)
+        f0 = dielectric_f0(eta)
+        for k in range(out.shape[0]):
+            out[k] = scale * tinted_fresnel(f, f0, spectral[0, k], False)
+        return
+    for k in range(out.shape[0]):
+        out[k] = scale * reflectance(row, spectral, cos_i, wavelength_nm, k)
+
+
+@kernel
+def mean_tinted_reflectance(row, spectral, cos_i, wavelength_nm):
+    """Mean over the carried wavelengths of the closure's tint (``spectral[2]``) × its reflectance: its share
+    of the reflected light, for choosing among a material's closures."""
+    count = wavelength_nm.shape[0]
+    total = 0.0
+    if _uncoated_dielectric(row):
+        eta = row[C_ETA]
+        f = fresnel_dielectric(min(abs(cos_i), 1.0), eta)
+        f0 = dielectric_f0(eta)
+        for k in range(count):
+            total += spectral[2, k] * tinted_fresnel(f, f0, spectral[0, k], False)
+    else:
+        for k in range(count):
+            total += spectral[2, k] * reflectance(row, spectral, cos_i, wavelength_nm, k)
+    return total / count
+
+
 @kernel
 def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
     """(wi, pdf, sampled flags, eta scale); ``weight[k]`` = f |cos wi| / pdf (F for the mirror)."""
@@ -68,8 +107,7 @@ def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, w
         if wo[2] <= 0.0:
             weight[:] = 0.0
             return wi, 0.0, SAMPLED_DELTA, 1.0
-        for k in range(weight.shape[0]):
-            weight[k] = reflectance(row, spectral, wo[2], wavelength_nm, k)
+        reflectances(row, spectral, wo[2], wavelength_nm, 1.0, weight)
         return wi, math.inf, SAMPLED_DELTA, 1.0
     wm = sample_visible_normal(wo, alpha, u1, u2)
     wi = reflect(wo, wm)
@@ -79,8 +117,7 @@ def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, w
     if wo[2] <= 0.0 or wi[2] <= 0.0 or not (pdf > 0.0 and math.isfinite(pdf)) or not math.isfinite(ratio):
         weight[:] = 0.0
         return wi, 0.0, 0, 1.0
-    for k in range(weight.shape[0]):
-        weight[k] = ratio * reflectance(row, spectral, cos_om, wavelength_nm, k)
+    reflectances(row, spectral, cos_om, wavelength_nm, ratio, weight)
     return wi, pdf, 0, 1.0
 
 
@@ -103,6 +140,5 @@ def evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
     pdf = visible_normal_pdf(wo, wm, alpha) / (4.0 * cos_om)
     if not (math.isfinite(scalar) and math.isfinite(pdf)):
         return 0.0
-    for k in range(f.shape[0]):
-        f[k] = scalar * reflectance(row, spectral, cos_om, wavelength_nm, k)
+    reflectances(row, spectral, cos_om, wavelength_nm, scalar, f)
     return pdf

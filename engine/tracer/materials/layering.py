@@ -4,6 +4,9 @@ Blender lets the sheen, coat and specular layers take their share first: the clo
 weighted by 1 - albedo(view) of the layer above. For a GGX reflection whose dielectric Fresnel (index
 η) is remapped to start at a tinted f0, albedo = mix(f0, 1, s(roughness, μ, η)), with s tabulated by
 ``tools/generate_layer_albedo.py`` (``data/ggx_layer_albedo.npz``) and read here trilinearly.
+
+A layer whose parameters are constant is stored in the rows of the closures under it (``bsdf.closure``
+``C_LAYER_*``) and applied here (``under_layer``); a varying one is computed by the material's program.
 """
 
 from __future__ import annotations
@@ -14,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..bsdf.closure import C_LAYER_ETA, C_LAYER_F0, C_LAYER_ROUGHNESS
 from ..jit import kernel
 
 TABLE_PATH = Path(__file__).resolve().parent / "data" / "ggx_layer_albedo.npz"
@@ -56,3 +60,14 @@ def dielectric_s(tables, roughness, cos_view, eta):
             for dk in range(2):
                 s += wj * (fk if dk else 1.0 - fk) * table[i + di, j + dj, k + dk]
     return s
+
+
+@kernel
+def under_layer(tables, row, cos_view):
+    """Fraction of the light a closure receives under the constant layer of its ``row`` (1 without one):
+    1 - albedo, with the albedo's largest channel f0 + (1 - f0) s, i.e. (1 - f0)(1 - s), clamped to 0-1."""
+    eta = row[C_LAYER_ETA]
+    if not eta > 0.0:
+        return 1.0
+    s = dielectric_s(tables, row[C_LAYER_ROUGHNESS], cos_view, eta)
+    return min(max((1.0 - row[C_LAYER_F0]) * (1.0 - s), 0.0), 1.0)

@@ -10,7 +10,8 @@ initial value is set (``initial_registers``); the interpreter starts each hit fr
 An instruction whose inputs are all constant is run once when emitted, through the kernels' own
 interpreter (``evaluate``: one implementation of every node), and becomes a constant; a hit only runs
 what depends on the surface point. Without ``evaluate`` (e.g. when a panel only wants the warnings)
-nothing is folded.
+nothing is folded. ``instructions(live=...)`` leaves out instructions whose results nothing reads (a
+layer weight no closure binds, a texture whose output is unused), so a hit never runs them.
 """
 
 from __future__ import annotations
@@ -25,6 +26,11 @@ from . import opcodes as op
 NEVER_FOLDED = {op.UV, op.COLOR_ATTRIBUTE, op.POSITION, op.NORMAL, op.TRUE_NORMAL, op.INCOMING, op.GENERATED,
                 op.OBJECT_COORDINATES, op.OBJECT_INFO, op.BACKFACING, op.TANGENT, op.PARAMETRIC, op.FRESNEL,
                 op.LAYER_WEIGHT, op.NORMAL_MAP, op.BUMP, op.BIND, op.BIND_RGB, op.IMAGE}
+
+
+#: Registers counted as read from each operand, at least: some instructions read a colour's alpha or a
+#: vector's components from an operand declared narrower, and reading more only keeps more instructions.
+_READ_SPAN = 4
 
 
 @dataclass(frozen=True)
@@ -42,6 +48,7 @@ class ProgramBuilder:
         self._initial: list[float] = []
         self._constant: list[bool] = []
         self._rows: list[list[int]] = []
+        self._groups: list[tuple[int, int, frozenset, range]] = []  # (first row, rows, reads, writes)
 
     # -- registers ---------------------------------------------------------------------------------
     def constant(self, *values) -> Value:
@@ -106,6 +113,9 @@ class ProgramBuilder:
                 self._initial[r] = float(registers[r])
                 self._constant[r] = True
             return out
+        reads = frozenset(r for v in inputs for r in range(v.register, v.register + max(v.width, _READ_SPAN)))
+        writes = range(out.register, out.register + out.width) if out is not None else range(0)
+        self._groups.append((len(self._rows), len(rows), reads, writes))
         self._rows.extend(rows)
         return out
 
@@ -120,5 +130,16 @@ class ProgramBuilder:
     def initial_registers(self) -> np.ndarray:
         return np.asarray(self._initial, dtype=np.float64)
 
-    def instructions(self) -> np.ndarray:
-        return np.asarray(self._rows, dtype=np.int32).reshape(-1, op.INSTRUCTION)
+    def instructions(self, live=None) -> np.ndarray:
+        """The program's instructions: all of them, or with ``live`` (the registers read from outside the
+        program: closure colours and bindings, the normal, the emission) only those these depend on."""
+        if live is None:
+            return np.asarray(self._rows, dtype=np.int32).reshape(-1, op.INSTRUCTION)
+        needed = set(live)
+        kept = []
+        for first, size, reads, writes in reversed(self._groups):
+            if not writes or any(r in needed for r in writes):
+                kept.append((first, size))
+                needed.update(reads)
+        rows = [row for first, size in reversed(kept) for row in self._rows[first:first + size]]
+        return np.asarray(rows, dtype=np.int32).reshape(-1, op.INSTRUCTION)

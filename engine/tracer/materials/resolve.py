@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ..bsdf.closure import (C_GLASS, C_KIND, C_S1, C_SPECTRUM, C_TINT, C_TINT_SCALE, C_WEIGHT, CONDUCTOR, DIELECTRIC,
                             DIFFUSE, TRANSLUCENT)
-from ..bsdf.conductor import reflectance
+from ..bsdf.conductor import mean_tinted_reflectance
 from ..jit import inlined, kernel
 from ..spectra.dispersion import refractive_index
 from ..spectra.rgb_lut import reflectance_values, unbounded_values
@@ -82,12 +82,11 @@ def selection_weights(rows, spectral, count, wavelength_nm, cos_o):
     k_count = spectral.shape[2]
     for c in range(count):
         kind = int(rows[c, C_KIND])
-        total = 0.0
-        for k in range(k_count):
-            albedo = 1.0
-            if kind == DIFFUSE or kind == TRANSLUCENT:
-                albedo = spectral[c, 0, k]
-            elif kind == CONDUCTOR:
-                albedo = reflectance(rows[c], spectral[c], cos_o, wavelength_nm, k)
-            total += spectral[c, 2, k] * albedo
-        rows[c, C_WEIGHT] = max(total / k_count, 0.0)
+        if kind == CONDUCTOR:
+            share = mean_tinted_reflectance(rows[c], spectral[c], cos_o, wavelength_nm)
+        else:
+            total = 0.0
+            for k in range(k_count):
+                total += spectral[c, 2, k] * (spectral[c, 0, k] if kind == DIFFUSE or kind == TRANSLUCENT else 1.0)
+            share = total / k_count
+        rows[c, C_WEIGHT] = max(share, 0.0)

@@ -3,7 +3,8 @@ for shadow rays.
 
 Materials with a program (``MAT_PROGRAM``) start each hit from their constant register file, run their
 instructions (``program.run_program``) and then resolve their closures; the others are resolved from
-their constant rows (``resolve.resolve_material``) as before. Nothing here allocates: the register file
+their constant rows (``resolve.resolve_material``). Closures under a constant layer (``MAT_LAYERED``) are
+then scaled by what the layer lets through from the view direction (``layering.under_layer``). Nothing here allocates: the register file
 and closure rows are the caller's scratch memory.
 """
 
@@ -14,7 +15,8 @@ from ..jit import inlined
 from ..spectra.table import spectrum_value
 from .program import run_program
 from .resolve import _fill, copy_rows, resolve_material, resolve_spectral, selection_weights
-from .table import MAT_ONE_SIDED, MAT_PROGRAM
+from .layering import under_layer
+from .table import MAT_LAYERED, MAT_ONE_SIDED, MAT_PROGRAM
 
 
 @inlined
@@ -25,6 +27,15 @@ def _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing
         regs[r] = programs.constants[first + r]
     run_program(programs.instructions, programs.start[material], programs.count[material], regs, rows,
                 programs.tables, materials.textures, geometry, triangle, u, v, p, ng, n, wo, backfacing)
+
+
+@inlined
+def _apply_layers(tables, rows, spectral, count, cos_o):
+    for c in range(count):
+        through = under_layer(tables, rows[c], cos_o)
+        if through != 1.0:
+            for k in range(spectral.shape[2]):
+                spectral[c, 2, k] *= through
 
 
 @inlined
@@ -43,7 +54,10 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
         resolve_spectral(materials, spectra, count, wavelength_nm, hero, rows, spectral, eta, glass_clamps, regs)
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
+    if flags & (MAT_PROGRAM | MAT_LAYERED):
         cos_o = wo[0] * shading[0] + wo[1] * shading[1] + wo[2] * shading[2]
+        if flags & MAT_LAYERED:
+            _apply_layers(materials.programs.tables, rows, spectral, count, cos_o)
         if count > 1:
             selection_weights(rows, spectral, count, wavelength_nm, cos_o)
     if flags & MAT_ONE_SIDED and backfacing and count > 1:

@@ -17,7 +17,9 @@ the kernels decide without looking at kinds:
 - ``MAT_TRANSPARENT``: a Transparent closure lets light straight through (cut-outs): shadow rays pass,
   attenuated by it;
 - ``MAT_EMISSION_VARIES``: the emission is computed per hit (its strength here is an estimate for light
-  selection).
+  selection);
+- ``MAT_LAYERED``: a closure lies under a constant dielectric layer (``C_LAYER_*``), whose albedo depends on
+  the view direction: its tint and the closures' selection weights are computed per hit.
 """
 
 from __future__ import annotations
@@ -28,7 +30,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..bsdf.closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C_FILM_NM, C_FRESNEL, C_GLASS,
-                            C_KIND, C_MIRROR, C_S1, C_SPECTRUM, C_TINT, C_TINT_SCALE, C_WEIGHT, CLOSURE_ROW,
+                            C_KIND, C_LAYER_ETA, C_LAYER_F0, C_LAYER_ROUGHNESS, C_MIRROR, C_S1, C_SPECTRUM, C_TINT,
+                            C_TINT_SCALE, C_WEIGHT, CLOSURE_ROW,
                             CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT,
                             TRANSPARENT, register_source)
 from ..errors import PrismInputError
@@ -46,6 +49,7 @@ MAT_EMISSIVE = 16
 MAT_PROGRAM = 32
 MAT_TRANSPARENT = 64
 MAT_EMISSION_VARIES = 128
+MAT_LAYERED = 256
 
 MaterialArrays = namedtuple(
     "MaterialArrays",
@@ -105,6 +109,8 @@ def _row(spec, spectra, glasses, glass_index, name):
     row[C_FRESNEL] = float(spec.fresnel)
     row[C_ETA] = float(spec.eta)
     row[C_MIRROR] = 0.0
+    layer = spec.layer if spec.layer is not None else (0.0, 0.0, 0.0)
+    row[C_LAYER_ETA], row[C_LAYER_ROUGHNESS], row[C_LAYER_F0] = (float(x) for x in layer)
     row[C_SPECTRUM], _ = _source(spec.s0, spectra, name)
     row[C_S1], _ = _source(spec.s1, spectra, name)
     row[C_TINT], row[C_TINT_SCALE] = _source(spec.tint, spectra, name, bounded=False)
@@ -183,6 +189,8 @@ def build_materials(materials, used, spectra) -> MaterialTable:
                 flags[m] |= MAT_NULL
             if spec.kind == TRANSPARENT:
                 flags[m] |= MAT_TRANSPARENT
+            if spec.layer is not None:
+                flags[m] |= MAT_LAYERED
             needs_lut = needs_lut or any(c is not None and c.varies for c in (spec.tint, spec.s0, spec.s1))
         if closures and all(_is_delta(spec) for spec in closures):
             flags[m] |= MAT_DELTA
