@@ -237,3 +237,30 @@ def test_scene_settings_become_render_settings(prism_addon, fresh_scene):
     assert (preview.samples, preview.max_bounces) == (settings_module.PREVIEW_SAMPLES, 3)
     overridden = settings_module.export_settings(fresh_scene, samples=7, seed=1, threads=2)
     assert (overridden.samples, overridden.seed, overridden.threads) == (7, 1, 2)
+
+
+def test_constant_principled_materials_run_no_program_per_hit(prism_addon, basic):
+    """Plastic, metal and glass Principled BSDFs with constant inputs compile to closures alone: the
+    specular layer over the diffuse is a constant layer of the diffuse row (applied per hit without an
+    interpreter), and the layer weights metal and glass never read are left out. A textured roughness keeps
+    its program."""
+    op = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.materials.opcodes")
+    node = _principled(basic)
+    node.inputs["Roughness"].default_value = 0.3
+    shader = _material(_export(prism_addon)).shader
+    assert len(shader.instructions) == 0 and shader.normal < 0
+    layers = [spec.layer for spec in shader.closures]
+    assert layers[0] is None and layers[-1] == pytest.approx((1.5, 0.3, 0.04))  # specular, then diffuse under it
+
+    for inputs in ({"Metallic": 1.0}, {"Metallic": 0.0, "Transmission Weight": 1.0}):
+        for name, value in inputs.items():
+            node.inputs[name].default_value = value
+        shader = _material(_export(prism_addon)).shader
+        assert len(shader.instructions) == 0, inputs
+
+    node.inputs["Transmission Weight"].default_value = 0.0
+    tree = basic.active_material.node_tree
+    noise = tree.nodes.new("ShaderNodeTexNoise")
+    tree.links.new(noise.outputs["Fac"], node.inputs["Roughness"])
+    shader = _material(_export(prism_addon)).shader
+    assert op.LAYER_ALBEDO in shader.instructions[:, op.OP] and op.NOISE in shader.instructions[:, op.OP]

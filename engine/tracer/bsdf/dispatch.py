@@ -28,32 +28,39 @@ def closure_is_delta(row):
 
 
 @kernel
-def _closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+    mirror = row[C_MIRROR] > 0.0
+    if mirror:
+        wo = (wo[0], wo[1], -wo[2])
     kind = int(row[C_KIND])
     if kind == DIFFUSE:
-        return diffuse.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
-    if kind == CONDUCTOR:
-        return conductor.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
-    if kind == DIELECTRIC:
-        return dielectric.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
-    if kind == TRANSLUCENT:
-        return translucent.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
-    if kind == TRANSPARENT:
-        return transparent.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
-    return thin_film.sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
+        wi, pdf, flags, eta_scale = diffuse.sample(row, spectral, eta, wo, wavelength_nm, hero,
+                                                   collapsed, u0, u1, u2, weight)
+    elif kind == CONDUCTOR:
+        wi, pdf, flags, eta_scale = conductor.sample(row, spectral, eta, wo, wavelength_nm, hero,
+                                                     collapsed, u0, u1, u2, weight)
+    elif kind == DIELECTRIC:
+        wi, pdf, flags, eta_scale = dielectric.sample(row, spectral, eta, wo, wavelength_nm, hero,
+                                                      collapsed, u0, u1, u2, weight)
+    elif kind == TRANSLUCENT:
+        wi, pdf, flags, eta_scale = translucent.sample(row, spectral, eta, wo, wavelength_nm, hero,
+                                                       collapsed, u0, u1, u2, weight)
+    elif kind == TRANSPARENT:
+        wi, pdf, flags, eta_scale = transparent.sample(row, spectral, eta, wo, wavelength_nm, hero,
+                                                       collapsed, u0, u1, u2, weight)
+    else:
+        wi, pdf, flags, eta_scale = thin_film.sample(row, spectral, eta, wo, wavelength_nm, hero,
+                                                     collapsed, u0, u1, u2, weight)
+    if mirror:
+        wi = (wi[0], wi[1], -wi[2])
+    return wi, pdf, flags, eta_scale
 
 
 @kernel
-def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
     if row[C_MIRROR] > 0.0:
-        wi, pdf, flags, eta_scale = _closure_sample(row, spectral, eta, (wo[0], wo[1], -wo[2]), wavelength_nm, hero,
-                                                    collapsed, u0, u1, u2, weight)
-        return (wi[0], wi[1], -wi[2]), pdf, flags, eta_scale
-    return _closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight)
-
-
-@kernel
-def _closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
+        wo = (wo[0], wo[1], -wo[2])
+        wi = (wi[0], wi[1], -wi[2])
     kind = int(row[C_KIND])
     if kind == DIFFUSE:
         return diffuse.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
@@ -66,14 +73,6 @@ def _closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed
     if kind == TRANSPARENT:
         return transparent.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     return thin_film.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
-
-
-@kernel
-def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
-    if row[C_MIRROR] > 0.0:
-        return _closure_evaluate(row, spectral, eta, (wo[0], wo[1], -wo[2]), (wi[0], wi[1], -wi[2]), wavelength_nm,
-                                 hero, collapsed, f)
-    return _closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
 
 
 @kernel

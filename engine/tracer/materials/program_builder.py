@@ -28,11 +28,6 @@ NEVER_FOLDED = {op.UV, op.COLOR_ATTRIBUTE, op.POSITION, op.NORMAL, op.TRUE_NORMA
                 op.LAYER_WEIGHT, op.NORMAL_MAP, op.BUMP, op.BIND, op.BIND_RGB, op.IMAGE}
 
 
-#: Registers counted as read from each operand, at least: some instructions read a colour's alpha or a
-#: vector's components from an operand declared narrower, and reading more only keeps more instructions.
-_READ_SPAN = 4
-
-
 @dataclass(frozen=True)
 class Value:
     register: int
@@ -113,7 +108,7 @@ class ProgramBuilder:
                 self._initial[r] = float(registers[r])
                 self._constant[r] = True
             return out
-        reads = frozenset(r for v in inputs for r in range(v.register, v.register + max(v.width, _READ_SPAN)))
+        reads = frozenset(r for v in inputs for r in range(v.register, v.register + v.width))
         writes = range(out.register, out.register + out.width) if out is not None else range(0)
         self._groups.append((len(self._rows), len(rows), reads, writes))
         self._rows.extend(rows)
