@@ -22,6 +22,42 @@ def _reporting(prism_addon):
     return importlib.import_module(f"{prism_addon.__name__}.engine.render_request").render_request()
 
 
+def _count_passes(prism_addon, monkeypatch) -> list:
+    """The ``samples_done`` after each finished ``Renderer.render_pass``, appended as the render goes."""
+    renderer_module = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.renderer")
+    done = []
+    original_pass = renderer_module.Renderer.render_pass
+
+    def counting_pass(self):
+        original_pass(self)
+        done.append(self.samples_done)
+
+    monkeypatch.setattr(renderer_module.Renderer, "render_pass", counting_pass)
+    return done
+
+
+def _press_esc_after(prism_addon, monkeypatch, done: list, passes: int) -> None:
+    """Renders see the real engine, except that Esc is 'pressed' once ``passes`` passes have finished."""
+    session = _session(prism_addon)
+
+    class EscAfter:
+        def __init__(self, engine):
+            self._engine = engine
+
+        def test_break(self):
+            return len(done) >= passes
+
+        def __getattr__(self, name):
+            return getattr(self._engine, name)
+
+    original_init = session.RenderSession.__init__
+
+    def init(self, engine, depsgraph, *handed_over):
+        original_init(self, EscAfter(engine), depsgraph, *handed_over)
+
+    monkeypatch.setattr(session.RenderSession, "__init__", init)
+
+
 @pytest.fixture
 def lit_plane(fresh_scene):
     add_plane("Floor", 8.0, color=(0.8, 0.8, 0.8))
@@ -44,34 +80,8 @@ def test_blackbody_light_changes_colour_not_luminance(lit_plane):
 
 
 def test_cancelling_after_the_first_pass_keeps_the_partial_image(prism_addon, lit_plane, monkeypatch):
-    session = _session(prism_addon)
-    renderer_module = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.renderer")
-    passes = []
-    original_pass = renderer_module.Renderer.render_pass
-
-    def counting_pass(self):
-        original_pass(self)
-        passes.append(self.samples_done)
-
-    monkeypatch.setattr(renderer_module.Renderer, "render_pass", counting_pass)
-    class EscAfterFirstPass:
-        """The real engine, except that Esc is 'pressed' once a pass has finished."""
-
-        def __init__(self, engine):
-            self._engine = engine
-
-        def test_break(self):
-            return len(passes) >= 1
-
-        def __getattr__(self, name):
-            return getattr(self._engine, name)
-
-    original_init = session.RenderSession.__init__
-
-    def init(self, engine, depsgraph, *handed_over):
-        original_init(self, EscAfterFirstPass(engine), depsgraph, *handed_over)
-
-    monkeypatch.setattr(session.RenderSession, "__init__", init)
+    passes = _count_passes(prism_addon, monkeypatch)
+    _press_esc_after(prism_addon, monkeypatch, passes, 1)
     with _reporting(prism_addon) as report:
         image = render_linear_rgb(lit_plane, samples=64)
     assert passes == [1]
@@ -81,15 +91,7 @@ def test_cancelling_after_the_first_pass_keeps_the_partial_image(prism_addon, li
 
 
 def test_first_pass_is_quick_then_full_passes(prism_addon, lit_plane, monkeypatch):
-    renderer_module = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.renderer")
-    done = []
-    original_pass = renderer_module.Renderer.render_pass
-
-    def counting_pass(self):
-        original_pass(self)
-        done.append(self.samples_done)
-
-    monkeypatch.setattr(renderer_module.Renderer, "render_pass", counting_pass)
+    done = _count_passes(prism_addon, monkeypatch)
     lit_plane.prism.samples_per_pass = 4
     with _reporting(prism_addon) as report:
         render_linear_rgb(lit_plane, samples=9)
@@ -117,34 +119,8 @@ def test_the_render_result_is_refreshed_at_intervals_and_holds_every_finished_pa
     assert writes == [1, 6]
 
     writes.clear()
-    renderer_module = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.renderer")
-    done = []
-    original_pass = renderer_module.Renderer.render_pass
-
-    def counting_pass(self):
-        original_pass(self)
-        done.append(self.samples_done)
-
-    monkeypatch.setattr(renderer_module.Renderer, "render_pass", counting_pass)
-
-    class EscAfterThreePasses:
-        """The real engine, except that Esc is 'pressed' once three passes have finished."""
-
-        def __init__(self, engine):
-            self._engine = engine
-
-        def test_break(self):
-            return len(done) >= 3
-
-        def __getattr__(self, name):
-            return getattr(self._engine, name)
-
-    original_init = session.RenderSession.__init__
-
-    def init(self, engine, depsgraph, *handed_over):
-        original_init(self, EscAfterThreePasses(engine), depsgraph, *handed_over)
-
-    monkeypatch.setattr(session.RenderSession, "__init__", init)
+    done = _count_passes(prism_addon, monkeypatch)
+    _press_esc_after(prism_addon, monkeypatch, done, 3)
     with _reporting(prism_addon) as report:
         image = render_linear_rgb(lit_plane, samples=64)
     assert report.cancelled and done == [1, 2, 3]

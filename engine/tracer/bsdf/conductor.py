@@ -60,41 +60,40 @@ def reflectance(row, spectral, cos_i, wavelength_nm, k):
 
 
 @inlined
-def _uncoated_dielectric(row):
-    """Whether the reflectance is a dielectric's Fresnel, the same at every wavelength but for its tint."""
-    return int(row[C_FRESNEL]) == FRESNEL_DIELECTRIC and not row[C_COAT_NM] > 0.0
+def _shared_fresnel(row, cos_i):
+    """(F, F0) of an uncoated dielectric reflection, the same at every wavelength but for its tint, so
+    computed once per call; (-1, 0) for the other reflectance models."""
+    if int(row[C_FRESNEL]) != FRESNEL_DIELECTRIC or row[C_COAT_NM] > 0.0:
+        return -1.0, 0.0
+    return fresnel_dielectric(min(abs(cos_i), 1.0), row[C_ETA]), dielectric_f0(row[C_ETA])
+
+
+@inlined
+def _reflectance_at(row, spectral, cos_i, wavelength_nm, k, shared):
+    f, f0 = shared
+    if f >= 0.0:
+        return tinted_fresnel(f, f0, spectral[0, k], False)
+    return reflectance(row, spectral, cos_i, wavelength_nm, k)
 
 
 @kernel
 def reflectances(row, spectral, cos_i, wavelength_nm, scale, out):
     """``out[k]`` = ``scale`` × the reflectance at every carried wavelength, in one call (calls that take
     arrays are not free in numba, and a dielectric's Fresnel is computed once, not per wavelength)."""
-    if _uncoated_dielectric(row):
-        eta = row[C_ETA]
-        f = fresnel_dielectric(min(abs(cos_i), 1.0), eta)
-        f0 = dielectric_f0(eta)
-        for k in range(out.shape[0]):
-            out[k] = scale * tinted_fresnel(f, f0, spectral[0, k], False)
-        return
+    shared = _shared_fresnel(row, cos_i)
     for k in range(out.shape[0]):
-        out[k] = scale * reflectance(row, spectral, cos_i, wavelength_nm, k)
+        out[k] = scale * _reflectance_at(row, spectral, cos_i, wavelength_nm, k, shared)
 
 
 @kernel
 def mean_tinted_reflectance(row, spectral, cos_i, wavelength_nm):
     """Mean over the carried wavelengths of the closure's tint (``spectral[2]``) × its reflectance: its share
     of the reflected light, for choosing among a material's closures."""
+    shared = _shared_fresnel(row, cos_i)
     count = wavelength_nm.shape[0]
     total = 0.0
-    if _uncoated_dielectric(row):
-        eta = row[C_ETA]
-        f = fresnel_dielectric(min(abs(cos_i), 1.0), eta)
-        f0 = dielectric_f0(eta)
-        for k in range(count):
-            total += spectral[2, k] * tinted_fresnel(f, f0, spectral[0, k], False)
-    else:
-        for k in range(count):
-            total += spectral[2, k] * reflectance(row, spectral, cos_i, wavelength_nm, k)
+    for k in range(count):
+        total += spectral[2, k] * _reflectance_at(row, spectral, cos_i, wavelength_nm, k, shared)
     return total / count
 
 
