@@ -3,7 +3,7 @@
 Time of a checkpoint = Renderer construction (scene analysis, BVH build) + the
 render passes so far, excluding the time to read the image back. Passes are
 ``PASS_SPP`` samples per pixel (fewer when a checkpoint is closer), so a 64 x 64
-pass is 65,536 paths, cut into chunks by ``renderer.chunk_size`` (``CHUNKS_PER_THREAD`` per thread).
+pass is 65,536 paths, cut into chunks by ``chunk_pool.chunk_size`` (``CHUNKS_PER_THREAD`` per thread).
 """
 
 from __future__ import annotations

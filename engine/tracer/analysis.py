@@ -16,6 +16,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from .lights.apparent_size import small_lights
+from .lights.caustic_targets import build_caustic_targets
+from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, MAT_TRANSPARENT
+from .stages.camera import ORTHOGRAPHIC, PERSPECTIVE
+from .visibility import HOLDOUT
+
 
 @dataclass
 class SceneAnalysis:
@@ -93,3 +99,58 @@ def choose_light_tracing(mode: str, specular: list[str], films: list[str], recei
     if mode == "auto" and not small_lights:
         return False, "caustics by path tracing (lights large enough)"
     return True, f"caustics by light tracing ({', '.join(focusing)})"
+
+
+def analyse_scene(scene, settings, used, material_table, light_table, camera, geometry, pass_layout, ray_classes,
+                  triangle_objects):
+    """(``SceneAnalysis`` of a render, the caustic targets of its specular triangles or None) from its
+    tables: ``used`` material indices, ``camera`` (``cameras.make_camera``), ``geometry`` (its triangles),
+    ``pass_layout`` (``passes.FilmLayout``), ``ray_classes`` (None unless some object hides from some ray
+    type), ``triangle_objects`` (the object of each triangle, or None)."""
+    k = int(settings.wavelengths_per_path) if settings.wavelength_mode == "cie" else 3
+    a = SceneAnalysis(settings.wavelength_mode, k, list(used), sampler=settings.sampler)
+    flags = material_table.arrays.flags
+    for m in used:
+        if flags[m] & MAT_DISPERSIVE:
+            material = scene.materials[m]
+            a.dispersive.append(material.glass or material.name)
+    a.mesh_lights = any(flags[m] & MAT_EMISSIVE for m in used)
+    a.see_through_films = any(flags[m] & MAT_NULL for m in used)
+    a.see_through_cutouts = any(flags[m] & MAT_TRANSPARENT for m in used)
+    a.camera_disperses = camera.disperses
+    a.camera_strategy = camera.strategy
+    a.dispersion = bool(a.dispersive) or a.camera_disperses
+    a.light_kinds = [light.kind for light in scene.lights]
+    a.features = list(material_table.features)
+    a.world = light_table.world
+    specular, films = [], []
+    for m in used:
+        if flags[m] & MAT_DELTA:
+            (films if flags[m] & MAT_NULL else specular).append(scene.materials[m].name)
+    lights = light_table.arrays
+    targets, small = None, []
+    if specular or films:
+        targets = build_caustic_targets(geometry, flags, MAT_DELTA, triangle_objects)
+        small = small_lights(lights.rows[:len(light_table.names)], light_table.names, lights.mesh, targets)
+    only = _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes)
+    a.light_tracing, a.light_tracing_note = choose_light_tracing(
+        settings.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
+        any(kind != "world" for kind in light_table.kinds), only)
+    return a, targets
+
+
+def _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes) -> str:
+    """Why this render cannot trace light paths to the camera ("" if it can): connections reach a
+    perspective camera's pinhole or lens only, and see every object as the camera does."""
+    layout = pass_layout.kernel
+    if camera.lens is not None:
+        return "real lens"
+    if camera.data.projection != PERSPECTIVE:
+        return "orthographic camera" if camera.data.projection == ORTHOGRAPHIC else "panoramic camera"
+    if settings.spectral_band_nm:
+        return "spectral output"
+    if layout.light >= 0 or layout.groups > 0:
+        return "light passes"
+    if ray_classes is not None or (geometry.flags & HOLDOUT).any():
+        return "ray visibility or holdouts"
+    return ""

@@ -29,6 +29,7 @@ class Film:
     def __init__(self, width: int, height: int, layout=None, region=None):
         x0, y0, x1, y1 = region if region is not None else (0, 0, width, height)
         self.frame_width = int(width)
+        self.frame_height = int(height)
         self.origin = (int(x0), int(y0))
         self.width = int(x1 - x0)
         self.height = int(y1 - y0)
@@ -88,6 +89,16 @@ class Film:
         self.nan_samples += add_pass_splats(self._light_sum, self._light_sum_sq, self._light_splats,
                                             pixel_index[inside], rgb[inside], self.frame_width, x0, y0, self.width)
         self.light_paths += int(paths)
+
+    def in_frame(self, image: np.ndarray, fill: float = 0.0) -> np.ndarray:
+        """``image`` [H, W, ...] of the region placed in a whole frame filled with ``fill`` (itself when
+        the region is the frame)."""
+        x0, y0 = self.origin
+        if (x0, y0, self.width, self.height) == (0, 0, self.frame_width, self.frame_height):
+            return image
+        frame = np.full((self.frame_height, self.frame_width) + image.shape[2:], fill, image.dtype)
+        frame[y0:y0 + self.height, x0:x0 + self.width] = image
+        return frame
 
     @property
     def counts(self) -> np.ndarray:

@@ -209,6 +209,18 @@ class FilmLayout:
         return aux_mean[..., first:first + width]
 
 
+def aov_table(materials, aovs: dict) -> np.ndarray:
+    """[materials, AOVs, 4]: what each material writes into each AOV pass (colour: r, g, b, 1; value:
+    value, 0, 0, 0); 0 where a material has no AOV Output of that name."""
+    table = np.zeros((max(1, len(materials)), len(aovs), 4))
+    for m, material in enumerate(materials):
+        for a, (name, kind) in enumerate(aovs.items()):
+            if name in material.aovs:
+                r, g, b, value = material.aovs[name]
+                table[m, a] = (value, 0.0, 0.0, 0.0) if kind == "VALUE" else (r, g, b, 1.0)
+    return table
+
+
 def blender_passes(request: PassRequest) -> list[tuple[str, str, str]]:
     """(name, channel ids, kind) of every pass ``request`` produces besides Combined, in Blender's order."""
     out = [(name, PASSES[name].channels, PASSES[name].kind) for name in PASSES if name in request.passes]

@@ -29,73 +29,39 @@ depends on the seed only — not on the thread count or the chunk size.
 
 from __future__ import annotations
 
-import os
 import threading
 import time
-from concurrent.futures import CancelledError, ThreadPoolExecutor
 from dataclasses import replace
 
 import numpy as np
 
 from . import adaptive
 from .accel import Accel
-from .analysis import SceneAnalysis, choose_light_tracing
+from .analysis import analyse_scene
 from .cameras import make_camera
+from .chunk_pool import ChunkPool
 from .errors import PrismInputError
 from .film import Film
 from .geometry import prepare_geometry
-from .lights.apparent_size import small_lights
-from .lights.caustic_targets import build_caustic_targets
 from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
-from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, MAT_TRANSPARENT, build_materials
-from .passes import FilmLayout
+from .materials.table import build_materials
+from .passes import FilmLayout, aov_table
 from .sampler import SAMPLERS
 from .scene import SpectrumSpec
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
 from .spectra.wavelength_guide import build_guide
 from .spectral_film import SpectralFilm
-from .stages.camera import ORTHOGRAPHIC, PERSPECTIVE
 from .stages.passes import new_pass_data
 from .stages.settings import KernelSettings
 from .state import ChunkBuffers
 from .visibility import HOLDOUT
 from .visibility_accel import RayClassAccel, needs_ray_classes
 
-MAX_CHUNK_PATHS = 1 << 16  # largest chunk one thread traces at once (memory ~0.5 kB per path)
-MIN_CHUNK_PATHS = 4096  # below this, per-bounce Python overhead dominates
-#: Chunks per worker thread in a pass: paths differ in length (glass, escapes), so one chunk per thread
-#: leaves threads idle at the end of the pass; a few each let the pool balance them.
-CHUNKS_PER_THREAD = 4
 #: A camera this far (m) from the render's origin gets the geometry rebuilt around it (``set_camera``):
 #: float32 positions keep ~0.1 mm there.
 REBASE_DISTANCE_M = 1000.0
-
-
-def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int:
-    """Paths per chunk: ``CHUNKS_PER_THREAD`` chunks per thread (each kernel launch holds the GIL for
-    ~10 µs, so not more), within the bounds above, and a multiple of ``samples_per_pixel`` (a chunk never
-    splits a pixel's samples of a pass: see ``film``)."""
-    chunks = max(threads, 1) * CHUNKS_PER_THREAD
-    size = max(MIN_CHUNK_PATHS, min(MAX_CHUNK_PATHS, -(-path_count // chunks)))
-    return int(max(samples_per_pixel, size - size % samples_per_pixel))
-
-
-def worker_threads(requested: int) -> int:
-    return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
-
-
-def aov_table(materials, aovs: dict) -> np.ndarray:
-    """[materials, AOVs, 4]: what each material writes into each AOV pass (colour: r, g, b, 1; value:
-    value, 0, 0, 0); 0 where a material has no AOV Output of that name."""
-    table = np.zeros((max(1, len(materials)), len(aovs), 4))
-    for m, material in enumerate(materials):
-        for a, (name, kind) in enumerate(aovs.items()):
-            if name in material.aovs:
-                r, g, b, value = material.aovs[name]
-                table[m, a] = (value, 0.0, 0.0, 0.0) if kind == "VALUE" else (r, g, b, 1.0)
-    return table
 
 
 def _triangle_groups(scene, original_triangle, light_groups):
@@ -135,12 +101,8 @@ class Renderer:
         self.width, self.height = (int(r) for r in scene.camera.resolution)
         self._build_geometry()
         self._build_shading()
-        self._workers = worker_threads(settings.threads)
-        self._pool = ThreadPoolExecutor(self._workers)
+        self._pool = ChunkPool(settings.threads)
         self._local = threading.local()
-        self._cancel = threading.Event()
-        self._jobs_lock = threading.Lock()
-        self._jobs = {}
         self.restart(time.perf_counter() - started)
 
     def _build_geometry(self):
@@ -184,13 +146,15 @@ class Renderer:
         self._describe()
 
     def _describe(self):
-        self.analysis = self._analyse(self._used)
+        self.analysis, targets = analyse_scene(self.scene, self.settings, self._used, self.material_table,
+                                               self.light_table, self.camera, self.geometry, self.pass_layout,
+                                               self.ray_classes, _kept(self.scene.triangle_object,
+                                                                       self._original_triangle))
         if self._guide is not None:
             a, guide = self.analysis, self._guide
             a.guided_lines, a.guided_measured, a.guided_smooth = guide.lines, guide.measured, guide.smooth
         self.kernel_settings = self.kernel_settings._replace(light_tracing=bool(self.analysis.light_tracing))
-        if not self.analysis.light_tracing:
-            self.caustic_targets = None
+        self.caustic_targets = targets if self.analysis.light_tracing else None
         self.strategy = self.analysis.strategy(self.settings.use_mis, self.settings.pixel_filter)
 
     def restart(self, setup_seconds: float = 0.0) -> None:
@@ -201,7 +165,7 @@ class Renderer:
         self._first_sample = 0
         self._passes = 0
         self._glass_clamps[:] = 0
-        self._cancel.clear()
+        self._pool.reset()
         self.cancelled = False
         self.set_region(self._frame_region(self.settings.border))
         warnings = [f"{self._dropped} zero-area triangle(s) dropped"] if self._dropped else []
@@ -274,61 +238,8 @@ class Renderer:
         self.settings = settings
         self.camera = make_camera(self.scene.camera, settings, self.origin)
         self._build_shading()
-        workers = worker_threads(settings.threads)
-        if workers != self._workers:
-            self._pool.shutdown(wait=True)
-            self._workers, self._pool = workers, ThreadPoolExecutor(workers)
+        self._pool.resize(settings.threads)
         self.restart(time.perf_counter() - started)
-
-    def _analyse(self, used) -> SceneAnalysis:
-        s = self.settings
-        k = int(s.wavelengths_per_path) if s.wavelength_mode == "cie" else 3
-        a = SceneAnalysis(s.wavelength_mode, k, list(used), sampler=s.sampler)
-        flags = self.material_table.arrays.flags
-        for m in used:
-            if flags[m] & MAT_DISPERSIVE:
-                material = self.scene.materials[m]
-                a.dispersive.append(material.glass or material.name)
-        a.mesh_lights = any(flags[m] & MAT_EMISSIVE for m in used)
-        a.see_through_films = any(flags[m] & MAT_NULL for m in used)
-        a.see_through_cutouts = any(flags[m] & MAT_TRANSPARENT for m in used)
-        a.camera_disperses = self.camera.disperses
-        a.camera_strategy = self.camera.strategy
-        a.dispersion = bool(a.dispersive) or a.camera_disperses
-        a.light_kinds = [light.kind for light in self.scene.lights]
-        a.features = list(self.material_table.features)
-        a.world = self.light_table.world
-        specular, films = [], []
-        for m in used:
-            if flags[m] & MAT_DELTA:
-                (films if flags[m] & MAT_NULL else specular).append(self.scene.materials[m].name)
-        lights = self.light_table.arrays
-        small = []
-        if specular or films:
-            self.caustic_targets = build_caustic_targets(self.geometry, flags, MAT_DELTA,
-                                                         _kept(self.scene.triangle_object, self._original_triangle))
-            small = small_lights(lights.rows[:len(self.light_table.names)], self.light_table.names, lights.mesh,
-                                 self.caustic_targets)
-        a.light_tracing, a.light_tracing_note = choose_light_tracing(
-            s.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
-            any(kind != "world" for kind in self.light_table.kinds), self._path_tracing_only())
-        return a
-
-    def _path_tracing_only(self) -> str:
-        """Why this render cannot trace light paths to the camera ("" if it can): connections reach a
-        perspective camera's pinhole or lens only, and see every object as the camera does."""
-        layout = self.pass_layout.kernel
-        if self.camera.lens is not None:
-            return "real lens"
-        if self.camera.data.projection != PERSPECTIVE:
-            return "orthographic camera" if self.camera.data.projection == ORTHOGRAPHIC else "panoramic camera"
-        if self.settings.spectral_band_nm:
-            return "spectral output"
-        if layout.light >= 0 or layout.groups > 0:
-            return "light passes"
-        if self.ray_classes is not None or (self.geometry.flags & HOLDOUT).any():
-            return "ray visibility or holdouts"
-        return ""
 
     def _frame_region(self, border):
         """The rendered rectangle (x0, y0, x1, y1), rows from the top: the border, else the frame."""
@@ -451,15 +362,11 @@ class Renderer:
         dropped, running ones finish; ``render_pass`` then returns early without
         counting the pass (and later passes do nothing until ``restart``). The film
         keeps the chunks already added."""
-        self._cancel.set()
-        with self._jobs_lock:
-            jobs = list(self._jobs.values())
-        for job in jobs:
-            job.cancel()
+        self._pool.cancel()
 
     def render_pass(self) -> None:
         """Add ``samples_per_pass`` samples (fewer on the last pass) to every pixel."""
-        if self._cancel.is_set():
+        if self._pool.cancelled:
             self.cancelled = True
             return
         started = time.perf_counter()
@@ -472,30 +379,13 @@ class Renderer:
         if spp == 0 or len(self._pixels) == 0:
             return
         total = len(self._pixels) * spp
-        size = chunk_size(total, self._workers, spp)
-        bounds = list(range(0, total, size)) + [total]
-        chunks = [(a, b, False) for a, b in zip(bounds[:-1], bounds[1:])]
+        chunks = [(a, b, False) for a, b in self._pool.chunks(total, spp)]
         if self.analysis.light_tracing:  # as many light paths as camera paths, numbered the same way
             chunks += [(a, b, True) for a, b, _ in chunks]
-        window = 4 * self._workers  # chunks in flight: bounded memory for huge frames
-        jobs = self._jobs
         light_splats = []  # (pixel, rgb, paths) of the pass's light chunks, in chunk order
         try:
-            for i in range(len(chunks)):
-                with self._jobs_lock:
-                    for j in range(i, min(i + window, len(chunks))):
-                        if j not in jobs and not self._cancel.is_set():
-                            start, stop, light = chunks[j]
-                            jobs[j] = self._pool.submit(self._chunk, start, stop, spp, light)
-                job = jobs.get(i)
-                if job is None:
-                    break
-                try:
-                    pixel, rgb, values, rays, rejected, clamps, spectral, alpha = job.result()
-                except CancelledError:
-                    break
-                with self._jobs_lock:
-                    del jobs[i]
+            for i, result in self._pool.run(chunks, lambda start, stop, light: self._chunk(start, stop, spp, light)):
+                pixel, rgb, values, rays, rejected, clamps, spectral, alpha = result
                 if chunks[i][2]:
                     light_splats.append((pixel, rgb, chunks[i][1] - chunks[i][0]))
                 else:
@@ -509,16 +399,14 @@ class Renderer:
                 self._glass_clamps += clamps
                 if self.progress is not None:
                     self.progress((i + 1) / len(chunks))
-                if self._cancel.is_set():
-                    break
         finally:
-            self._drop_jobs()
+            self._pool.drop()
             if light_splats:
                 self._add_light_splats(light_splats)
             elapsed = time.perf_counter() - started
             self.stats["seconds"] += elapsed
             self._sampling_seconds += elapsed
-        if self._cancel.is_set():
+        if self._pool.cancelled:
             self.cancelled = True
             return
         self.samples_done += spp
@@ -569,20 +457,6 @@ class Renderer:
         if not len(self._pixels):
             self.converged = True
 
-    def _drop_jobs(self):
-        """Cancel queued chunks and wait for running ones (after a cancel or an error)."""
-        with self._jobs_lock:
-            jobs = list(self._jobs.values())
-            self._jobs.clear()
-        for job in jobs:
-            job.cancel()
-        for job in jobs:
-            if not job.cancelled():
-                try:
-                    job.result()
-                except Exception:  # noqa: BLE001 - the pass is abandoned anyway
-                    pass
-
     def _glass_warnings(self):
         for glass, count in zip(self.material_table.glasses, self._glass_clamps):
             if count:
@@ -592,40 +466,26 @@ class Renderer:
                 messages = self.stats["warnings"]
                 messages[:] = [m for m in messages if not m.startswith(prefix)] + [text]
 
-    def _frame(self, region_image: np.ndarray) -> np.ndarray:
-        x0, y0, x1, y1 = self.region
-        if (x0, y0, x1, y1) == (0, 0, self.width, self.height):
-            return region_image
-        frame = np.zeros((self.height, self.width) + region_image.shape[2:], region_image.dtype)
-        frame[y0:y1, x0:x1] = region_image
-        return frame
-
     def frame_mean(self) -> np.ndarray:
         """The film's float64 mean as a whole frame [H, W, 3] (0 outside the region)."""
-        return self._frame(self.film.mean())
+        return self.film.in_frame(self.film.mean())
 
     def sample_counts(self) -> np.ndarray:
         """Samples per pixel as a whole frame, int64 [H, W] (0 outside the region)."""
-        return self._frame(self.film.counts)
+        return self.film.in_frame(self.film.counts)
 
     def image_rgb(self) -> np.ndarray:
         """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top (0 outside the region)."""
-        return self._frame(self.film.mean().astype(np.float32))
+        return self.film.in_frame(self.film.mean().astype(np.float32))
 
     def image_alpha(self) -> np.ndarray:
         """Mean alpha, float32 [H, W], row 0 = top (``image_rgb`` is premultiplied by it; 1 outside the
         region)."""
-        region = self.film.alpha().astype(np.float32)
-        x0, y0, x1, y1 = self.region
-        if (x0, y0, x1, y1) == (0, 0, self.width, self.height):
-            return region
-        frame = np.ones((self.height, self.width), np.float32)
-        frame[y0:y1, x0:x1] = region
-        return frame
+        return self.film.in_frame(self.film.alpha().astype(np.float32), fill=1.0)
 
     def variance_rgb(self) -> np.ndarray:
-        """Per-pixel variance of the mean estimate, float32 [H, W, 3]."""
-        return self._frame(self.film.variance_of_mean().astype(np.float32))
+        """Per-pixel variance of the mean estimate, float32 [H, W, 3] (0 outside the region)."""
+        return self.film.in_frame(self.film.variance_of_mean().astype(np.float32))
 
     def pass_images(self) -> dict[str, np.ndarray]:
         """The requested passes of the region (``settings.passes``): Blender pass name → float32 [h, w, C]."""
@@ -635,9 +495,7 @@ class Renderer:
 
     def close(self) -> None:
         """Cancel outstanding work and free the thread pool (idempotent)."""
-        self._cancel.set()
-        self._drop_jobs()
-        self._pool.shutdown(wait=True, cancel_futures=True)
+        self._pool.close()
 
     def __enter__(self):
         return self
@@ -648,6 +506,6 @@ class Renderer:
 
     def __del__(self):
         try:
-            self._pool.shutdown(wait=False, cancel_futures=True)
+            self._pool.close_now()
         except Exception:
             pass

@@ -81,7 +81,7 @@ def test_gaussian_pixel_filter_offsets_and_chunking():
     from scipy import stats
 
     from engine.tracer.cameras import make_camera
-    from engine.tracer.renderer import CHUNKS_PER_THREAD, chunk_size
+    from engine.tracer.chunk_pool import CHUNKS_PER_THREAD, chunk_size
     from engine.tracer.stages.camera import filter_offset
 
     scene = plane_under_point_light(size=4)
