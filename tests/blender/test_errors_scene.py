@@ -1,28 +1,24 @@
-"""Errors a user can act on: each one is a Blender error report naming the object and the fix,
-the render stops (no silent wrong image), and the batch script exits non-zero with the message."""
+"""Errors in the scene a user can act on: each one is a Blender error report naming the object and the fix,
+the render stops (no silent wrong image), and the batch script exits non-zero with the message.
+
+Each case breaks the renderable scene of ``helpers.error_scenes`` in one way (camera, lens, world,
+material, light, geometry, frame size) and is checked at export, at render and in the batch script.
+"""
 
 from __future__ import annotations
 
 import importlib
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import bpy
 import pytest
 
 from helpers.batch import run_batch
-from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+from helpers.error_scenes import base_scene as _base_scene
+from helpers.error_scenes import light as _light
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
-
-
-def _base_scene():
-    """A scene that renders: a plane, a light, a camera."""
-    add_plane("Floor", 4.0)
-    add_point_light("Bulb", 100.0, (0.0, 0.0, 2.0))
-    add_camera((0.0, -3.0, 1.5), (1.1, 0.0, 0.0), resolution=(8, 8))
 
 
 def _no_camera():
@@ -33,13 +29,6 @@ def _empty_as_camera():
     empty = bpy.data.objects.new("Helper", None)
     bpy.context.scene.collection.objects.link(empty)
     bpy.context.scene.camera = empty
-
-
-def _camera_type(kind):
-    def mutate():
-        bpy.context.scene.camera.data.type = kind
-
-    return mutate
 
 
 def _panorama(kind):
@@ -124,18 +113,6 @@ def _glass(source, **values):
                 node.inputs["IOR"].default_value = value
             else:
                 setattr(material.prism, key, value)
-
-    return mutate
-
-
-def _light(**values):
-    def mutate():
-        data = bpy.data.lights["Bulb"]
-        for key, value in values.items():
-            if key == "energy":
-                data.energy = value
-            else:
-                setattr(data.prism, key, value)
 
     return mutate
 
@@ -235,14 +212,6 @@ def _thin_film_material():
 
 def _far_vertex():
     bpy.data.objects["Floor"].data.vertices[0].co = (3.4e38, 0.0, 0.0)
-
-
-def _scene_setting(**values):
-    def mutate():
-        for key, value in values.items():
-            bpy.context.scene.prism[key] = value  # past the property's limits, as a script or an old file can
-
-    return mutate
 
 
 def _world_strength_nan():
@@ -363,45 +332,3 @@ def test_error_is_reported_and_stops_the_render(prism_addon, fresh_scene, tmp_pa
     assert (status, line) == (1, f"Prism: error: {exported.value}")
     assert not output.exists()
     bad_input(case, status, line)
-
-
-def test_batch_exits_non_zero_with_the_message(fresh_scene, tmp_path):
-    _base_scene()
-    _light(color_source="BLACKBODY", temperature_k=90000.0)()
-    path = tmp_path / "hot.blend"
-    bpy.ops.wm.save_as_mainfile(filepath=str(path))
-    completed = subprocess.run(
-        [sys.executable, str(REPO_ROOT / "render.py"), str(path), "--output", str(tmp_path / "x.png")],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
-    assert completed.returncode == 1
-    last_line = completed.stderr.strip().splitlines()[-1]
-    assert last_line.startswith("Prism: error: Light 'Bulb': blackbody temperature 90000 K is outside")
-    assert not (tmp_path / "x.png").exists()
-
-
-
-SETTING_CASES = {
-    "Samples 0": (dict(samples=0), "Samples must be at least 1 (got 0)."),
-    "Samples per Pass -3": (dict(samples_per_pass=-3), "Samples per pass must be at least 1 (got -3)."),
-    "Wavelengths per Path 40": (dict(wavelengths_per_path=40), "Wavelengths per path must be between 1 and 16 (got 40)."),
-    "Max Bounces -1": (dict(max_bounces=-1), "Max bounces cannot be negative (got -1)."),
-}
-
-
-@pytest.mark.parametrize("case", list(SETTING_CASES))
-def test_scene_settings_stored_past_their_limits(prism_addon, fresh_scene, tmp_path, capsys, bad_input, case):
-    """As a script or an old file can store them: the message says which scene and panel."""
-    requests = importlib.import_module(f"{prism_addon.__name__}.engine.render_request")
-    values, message = SETTING_CASES[case]
-    _base_scene()
-    _scene_setting(**values)()
-    expected = f"Scene 'Scene', Render Properties ▸ Prism: {message}"
-    with requests.render_request() as report, pytest.raises(RuntimeError):
-        bpy.ops.render.render()
-    assert report.error == expected
-    status, line = run_batch(capsys, "--output", tmp_path / "x.png")
-    assert (status, line) == (1, f"Prism: error: {expected}")
-    bad_input(f"scene setting {case} (stored past the UI's limit)", status, line)
