@@ -1,4 +1,5 @@
-"""docs/performance.md: the targets, a reading of the measurements, and where a pass spends its time.
+"""docs/performance.md: the targets, a reading of the measurements, what dominates a pass, and the
+document's frame (header, method, sections) that places the tables of ``findings_tables.py``.
 
 Every number in the document comes from ``results`` (this run's measurements); the prose around
 them only says what was measured, how to read it, and which conclusion the numbers support.
@@ -9,31 +10,15 @@ from __future__ import annotations
 import numpy as np
 
 from . import report
+from .findings_tables import (_ceiling_table, _demo_profile, _demo_section, _experiment_section, _sampler_table,
+                              _scaling_table, _stage_table, _startup_table)
+from .findings_values import _embree_share, _glass_ceiling, _largest_stage, _pct, _peer_ratio, _stage_rows
 
 MIN_EMBREE_SCALING = 1.3  # below this, embreex's own 1 -> 2 thread speed-up says the second core was busy
 
 
-def _pct(x):
-    return "n/a" if x is None or not np.isfinite(x) else f"{100 * x:.0f} %"
-
-
 def _status(ok):
     return "**met**" if ok else "**not met**"
-
-
-def _glass_ceiling(results):
-    return next((c for c in results.get("ceiling", []) if c["scene"] == "cornell_glass"), None)
-
-
-def _peer_ratio(c):
-    """(ratio, note, measured) of a peer comparison: at equal total time, or at equal render time when
-    the total-time curves do not overlap; ``measured`` is False when only an extrapolation exists."""
-    ratio, note = c["ratio"], f" at {c['seconds']:.2f} s"
-    if c["extrapolated"] and np.isfinite(c.get("ratio_render_only", float("nan"))):
-        return c["ratio_render_only"], " at equal render time, set-up excluded (total times do not overlap)", True
-    if c["extrapolated"]:
-        return ratio, note + " (extrapolated: the curves do not overlap in time)", False
-    return ratio, note, True
 
 
 def _targets(results):
@@ -95,20 +80,6 @@ def _targets(results):
                   f"{row['ratio']:.2f}x ({row['seconds']:.2f} s vs {hero['gaussian_seconds']:.2f} s){ext} | "
                   f"{_status(row['ratio'] >= report.TARGET_HERO_SPEEDUP)} |"]
     return "\n".join(lines)
-
-
-def _stage_rows(results, scene, threads):
-    entry = next((s for s in results.get("stages", []) if s["scene"] == scene), None)
-    return None if entry is None else entry.get(str(threads))
-
-
-def _embree_share(split):
-    return sum(r["share"] for r in split["rows"] if r["stage"].startswith("Embree"))
-
-
-def _largest_stage(split):
-    return max((r for r in split["rows"] if not r["stage"].startswith("Embree") and np.isfinite(r["share"])),
-               key=lambda r: r["cpu"])
 
 
 def _reading(results):
@@ -250,46 +221,6 @@ def _hero_why(results):
     return text
 
 
-def _ceiling_table(results):
-    rows = ["| scene | threads | pass (s), median | embreex on the same rays (s) | fraction | fraction in CPU time | "
-            "samples/s | ceiling samples/s | rays recorded (closest / shadow / film) | rays in stats |",
-            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    for c in results.get("ceiling", []):
-        rows.append(f"| {c['scene']} | {c['threads']} | {c['pass_seconds']:.4f} | {c['embree_seconds']:.4f} | "
-                    f"{_pct(c['fraction'])} | {_pct(c.get('cpu_fraction'))} | "
-                    f"{c['samples_per_second']:,.0f} | {c['ceiling_samples_per_second']:,.0f} | "
-                    f"{c['rays_recorded']:,} ({c['closest_rays']:,} / {c['shadow_rays']:,} / {c['film_rays']:,}) | "
-                    f"{c['rays_counted']:,} |")
-    return "\n".join(rows)
-
-
-def _stage_table(results, threads):
-    entries = [(s["scene"], s[str(threads)]) for s in results.get("stages", []) if str(threads) in s]
-    if not entries:
-        return "(not measured)"
-    stages = []  # every scene's stages, each new one placed after the stage it follows in its scene
-    for _, split in entries:
-        previous = None
-        for r in split["rows"]:
-            if r["stage"] not in stages:
-                stages.insert(stages.index(previous) + 1 if previous in stages else len(stages), r["stage"])
-            previous = r["stage"]
-    rows = ["| CPU ms per pass (share of the chunks' CPU) | " + " | ".join(name for name, _ in entries) + " |",
-            "|---|" + "---:|" * len(entries),
-            "| pass, wall clock | " + " | ".join(f"{1000 * split['pass_seconds']:.1f}" for _, split in entries) + " |",
-            "| all chunks, CPU | " + " | ".join(f"{1000 * split['chunk_cpu']:.1f}" for _, split in entries) + " |"]
-    for stage in stages:
-        cells = []
-        for _, split in entries:
-            row = next((r for r in split["rows"] if r["stage"] == stage), None)
-            share = "" if row is None or not np.isfinite(row["share"]) else f" ({_pct(row['share'])})"
-            cells.append("-" if row is None else f"{1000 * row['cpu']:.1f}{share}")
-        rows.append(f"| {stage} | " + " | ".join(cells) + " |")
-    rows.append(f"| {threads} x wall - chunks' CPU (idle, waits, descheduled) | "
-                + " | ".join(f"{1000 * split['unexplained']:.1f}" for _, split in entries) + " |")
-    return "\n".join(rows)
-
-
 def _dominates(results):
     """What the stage split says, per scene and overall."""
     out = []
@@ -319,98 +250,6 @@ def _dominates(results):
                    f"pass has to fall from {ceil['pass_seconds'] * 1000:.1f} ms to "
                    f"{ceil['embree_seconds'] / report.TARGET_CEILING * 1000:.1f} ms (2 threads, wall clock).")
     return "\n".join(out) if out else "- (no stage split in this run)"
-
-
-def _scaling_table(ts):
-    return "\n".join([
-        "| | 1 thread (s) | 2 threads (s) | speed-up |", "|---|---:|---:|---:|",
-        f"| Prism pass | {ts['prism_1']:.4f} | {ts['prism_2']:.4f} | {ts['prism_speedup']:.2f} |",
-        f"| embreex, the same rays | {ts['embree_1']:.4f} | {ts['embree_2']:.4f} | {ts['embree_speedup']:.2f} |"])
-
-
-def _sampler_table(gains):
-    rows = ["| scene | spp | relMSE Sobol | relMSE independent | independent / Sobol | FLIP Sobol | FLIP independent |",
-            "|---|---:|---:|---:|---:|---:|---:|"]
-    for g in gains:
-        for p in g["points"]:
-            rows.append(f"| {g['scene']} | {p['spp']} | {p['sobol']:.3g} | {p['independent']:.3g} | {p['gain']:.2f} | "
-                        f"{p['flip_sobol']:.3f} | {p['flip_independent']:.3f} |")
-    return "\n".join(rows)
-
-
-def _startup_table(st):
-    keys = [("process_seconds", "whole process (interpreter start-up included)"),
-            ("import_seconds", "import the tracer (numba, kernel modules)"),
-            ("colour_import_seconds", "import colour-science (first Renderer of a process)"),
-            ("setup_seconds", "Renderer construction (tables, BVH)"),
-            ("first_pass_seconds", "first pass (compile, or load the kernels from disk)"),
-            ("second_pass_seconds", "second pass")]
-    rows = ["| phase | cold cache (s) | warm cache (s) |", "|---|---:|---:|"]
-    for key, label in keys:
-        rows.append(f"| {label} | {st['cold'].get(key, float('nan')):.3f} | {st['warm'].get(key, float('nan')):.3f} |")
-    return "\n".join(rows)
-
-
-def _demo_section(demo, rel):
-    before = demo.get("before", {})
-    def noise(side):
-        return f"{side['noise']:.2f}" if "noise" in side else "-"
-
-    lines = ["| | process (s), mean [runs] | Blender render time (s) | noise (display levels) | image |",
-             "|---|---:|---:|---:|---|"]
-    for label, side, alt in ((f"numpy tracer ({demo['before_commit'][:7]})", before, "before"),
-                             ("compiled core", demo["now"], "now")):
-        if "process_seconds" in side:
-            runs = ", ".join(f"{t:.1f}" for t in side.get("runs", []))
-            lines.append(f"| {label} | {side['process_seconds']:.1f} [{runs}] | {side['blender_seconds']:.1f} | "
-                         f"{noise(side)} | ![{alt}]({rel}/{side['image']}) |")
-    return "\n".join(lines)
-
-
-def _demo_profile(demo):
-    """Where the demo scene's pass goes (its stage split), or a note."""
-    prof = demo.get("profile")
-    if not prof:
-        return []
-    if "error" in prof:
-        return [f"The demo scene's profile failed in this run ({prof['error']}).", ""]
-    split = prof["stages"]
-    lines = [f"Where a pass of the demo scene goes (`tools/profile_pass.py --blend demo.blend --spp {prof['spp']}`, "
-             f"{prof['width']} x {prof['height']}, {prof['triangles']:,} triangles, {prof['threads']} threads): "
-             f"{prof['rays'] / prof['paths']:.2f} rays per path, {1e6 * split['chunk_cpu'] / split['paths']:.2f} "
-             f"CPU-us per path in the chunks, {_pct(prof.get('fraction'))} of the embreex ceiling "
-             f"({_pct(prof.get('cpu_fraction'))} in CPU time).", "",
-             "| stage | CPU ms per pass | share |", "|---|---:|---:|"]
-    for row in split["rows"]:
-        if np.isfinite(row["share"]):
-            lines.append(f"| {row['stage']} | {1000 * row['cpu']:.1f} | {_pct(row['share'])} |")
-    return lines + [""]
-
-
-def _cell(value):
-    if isinstance(value, float):
-        return "n/a" if not np.isfinite(value) else f"{value:.3g}"
-    return str(value).replace("|", "\\|").replace("\n", " ")
-
-
-def _experiment_section(record):
-    parts = [f"## Experiment: {record['title']}", ""]
-    if "error" in record:
-        parts += [f"Skipped: `benchmarks/experiments/{record['name']}.py` failed in this run "
-                  f"({_cell(record['error'])}).", ""]
-        return parts
-    if record.get("summary"):
-        parts += [record["summary"], ""]
-    rows = record.get("rows", [])
-    columns = []
-    for row in rows:
-        columns += [k for k in row if k not in columns]
-    if columns:
-        parts += ["| " + " | ".join(_cell(c) for c in columns) + " |", "|" + "---|" * len(columns)]
-        parts += ["| " + " | ".join(_cell(row[c]) if c in row else "" for c in columns) + " |" for row in rows]
-        parts.append("")
-    parts += [f"(`benchmarks/experiments/{record['name']}.py`, {record['seconds']:.1f} s)", ""]
-    return parts
 
 
 def document(results, tables, plots, rel):

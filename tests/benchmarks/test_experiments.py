@@ -5,7 +5,7 @@ import types
 
 import pytest
 
-from benchmarks import experiments, findings
+from benchmarks import experiments, findings_tables
 
 
 @pytest.fixture
@@ -34,7 +34,7 @@ def test_a_module_that_keeps_the_contract_becomes_a_section(fake_module):
                                           "summary": "Measured."})
     record = experiments.run_one(name, quick=True)
     assert record["title"] == "Texture cost" and "error" not in record
-    text = "\n".join(findings._experiment_section(record))
+    text = "\n".join(findings_tables._experiment_section(record))
     assert "## Experiment: Texture cost" in text and "Measured." in text
     assert "| scene | pass (s) | n |" in text
     assert "| a | 0.123 |  |" in text and "| b |  | 3 |" in text
@@ -53,7 +53,7 @@ def _raises(quick):
 def test_a_failing_module_is_skipped_with_a_note(fake_module, attributes, message):
     record = experiments.run_one(fake_module("bad", **attributes), quick=False)
     assert message in record["error"] and "rows" not in record
-    text = "\n".join(findings._experiment_section(record))
+    text = "\n".join(findings_tables._experiment_section(record))
     assert "Skipped" in text and "bad.py" in text
 
 
