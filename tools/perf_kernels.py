@@ -1,0 +1,136 @@
+"""Where a render's CPU time goes, function by function, compiled kernels included (Linux ``perf``).
+
+    .venv/bin/python tools/perf_kernels.py cornell_glass [--size 64] [--spp 16] [--threads 1] [--seconds 20]
+    .venv/bin/python tools/perf_kernels.py --blend renders/demo.blend [--spp 4] ...   (bpy module)
+
+``perf`` sees numba's machine code as anonymous memory. This tool compiles the kernels afresh into a
+throw-away cache (the LLVM modules, and so the function names, exist only for code compiled in this
+process: ~2 minutes), writes ``/tmp/perf-<pid>.map`` (start, size, name of every compiled function,
+sizes up to the next function's start), then lets ``perf record`` sample the process while it renders
+passes, and prints the share of samples per shared library and per function. Functions numba inlined
+are counted in their caller (most of shading is in ``shade_kernel`` itself). Needs ``perf`` and
+``kernel.perf_event_paranoid`` <= 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import gc
+import os
+import subprocess
+import sys
+import tempfile
+import threading
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+
+def _demangle(symbol: str) -> str:
+    """numba's Itanium-style name (``_ZN6engine6tracer...``) as a dotted Python path."""
+    if not symbol.startswith("_ZN"):
+        return symbol
+    parts, i = [], 3
+    while i < len(symbol) and symbol[i].isdigit():
+        j = i
+        while symbol[j].isdigit():
+            j += 1
+        length = int(symbol[i:j])
+        parts.append(symbol[j:j + length])
+        i = j + length
+    return ".".join(parts) or symbol
+
+
+def write_perf_map(path: Path) -> int:
+    """Write the perf map of every function compiled in this process; returns how many."""
+    from numba.core.registry import CPUDispatcher
+
+    starts = {}
+    for obj in gc.get_objects():
+        if not isinstance(obj, CPUDispatcher):
+            continue
+        for result in obj.overloads.values():
+            library = result.library
+            for function in library._final_module.functions:
+                if function.is_declaration:
+                    continue
+                try:
+                    address = library.get_pointer_to_function(function.name)
+                except Exception:  # noqa: BLE001 - dropped by the optimiser: nothing to map
+                    continue
+                if address:
+                    starts[address] = _demangle(function.name)
+    ordered = sorted(starts)
+    with open(path, "w", encoding="utf-8") as out:
+        for start, end in zip(ordered, ordered[1:] + [ordered[-1] + 65536] if ordered else []):
+            out.write(f"{start:x} {min(end - start, 1 << 20):x} {starts[start]}\n")
+    return len(ordered)
+
+
+def _report(data: Path, top: int) -> None:
+    def table(sort):
+        text = subprocess.run(["perf", "report", "-i", str(data), "--sort", sort, "--stdio", "--percent-limit", "0.2"],
+                              capture_output=True, text=True).stdout
+        return [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
+
+    print("share of samples per library:")
+    for line in table("dso")[:12]:
+        print("  " + line.strip())
+    print("per function (numba's by module path; Embree's library is stripped):")
+    rows = []
+    for line in table("sym"):
+        share, _, rest = line.strip().partition("%")
+        name = rest.split("]", 1)[-1].strip()
+        rows.append((float(share), _demangle(name)))
+    for share, name in rows[:top]:
+        print(f"  {share:6.2f} %  {name[:110]}")
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("scene", nargs="?", default="cornell_glass")
+    parser.add_argument("--blend")
+    parser.add_argument("--size", type=int, default=64)
+    parser.add_argument("--spp", type=int, default=16)
+    parser.add_argument("--threads", type=int, default=1)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--seconds", type=float, default=20.0)
+    parser.add_argument("--top", type=int, default=30)
+    args = parser.parse_args(argv)
+    cache = tempfile.mkdtemp(prefix="prism-perf-kernels-")
+    os.environ["PRISM_KERNEL_CACHE"] = cache  # before any kernel module is imported: compile here
+
+    from dataclasses import replace
+
+    if args.blend:
+        from tools.profile_pass import _blend
+
+        scene, settings = _blend(args.blend, args)
+        renderer_module = __import__(type(scene).__module__.rsplit(".", 1)[0] + ".renderer", fromlist=["Renderer"])
+    else:
+        from benchmarks import prism_runs, scenes
+        from engine.tracer import renderer as renderer_module
+
+        scene = scenes.build(args.scene, (args.size, args.size))
+        settings = replace(prism_runs.settings_for({}, samples=10**6, seed=args.seed, threads=args.threads),
+                           samples_per_pass=args.spp)
+    data = Path(cache) / "perf.data"
+    with renderer_module.Renderer(scene, settings) as renderer:
+        renderer.render_pass()  # compiles every kernel the scene uses
+        mapped = write_perf_map(Path(f"/tmp/perf-{os.getpid()}.map"))
+        print(f"{mapped} compiled functions mapped; sampling {args.seconds:g} s of passes", flush=True)
+        record = subprocess.Popen(["perf", "record", "-q", "-p", str(os.getpid()), "-o", str(data), "--",
+                                   "sleep", str(args.seconds)])
+        done = threading.Event()
+        threading.Thread(target=lambda: (record.wait(), done.set()), daemon=True).start()
+        passes = 0
+        while not done.is_set():
+            renderer.render_pass()
+            passes += 1
+    print(f"{passes} passes of {settings.samples_per_pass} spp, {args.threads} thread(s)")
+    _report(data, args.top)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
