@@ -11,7 +11,14 @@ from collections import namedtuple
 
 import numpy as np
 
-from .light_paths import connection_splats, emit_kernel, light_bounce_kernel, queue_connections
+from ..jit import Launch
+from . import light_paths as _light_paths
+
+# Called per bounce of every light chunk (``jit.Launch``: no per-call typing of the tables).
+emit_kernel = Launch(_light_paths.emit_kernel)
+light_bounce_kernel = Launch(_light_paths.light_bounce_kernel)
+queue_connections = Launch(_light_paths.queue_connections)
+connection_splats = Launch(_light_paths.connection_splats)
 
 #: Per-thread memory of light chunks besides the ``ChunkBuffers``: the light of each path (int32 [n])
 #: and the pixels of the chunk's splats (int64 [n]; their colours go to ``ChunkBuffers.rgb``).

@@ -6,13 +6,27 @@ queues, never a loop over rays.
 
 from __future__ import annotations
 
-from .camera import camera_kernel
-from .emission import emission_kernel
-from .film import film_kernel
-from .passes import convert_kernel, reset_kernel, route_kernel
-from .real_lens import real_lens_kernel
-from .shade import shade_kernel
-from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
+from ..jit import Launch
+from . import camera as _camera
+from . import emission as _emission
+from . import film as _film
+from . import passes as _passes
+from . import real_lens as _real_lens
+from . import shade as _shade
+from . import shadow as _shadow
+from .shadow import MAX_FILM_LAYERS
+
+# Called per bounce of every chunk: launched without the dispatcher's per-call typing (``jit.Launch``).
+camera_kernel = Launch(_camera.camera_kernel)
+real_lens_kernel = Launch(_real_lens.real_lens_kernel)
+emission_kernel = Launch(_emission.emission_kernel)
+shade_kernel = Launch(_shade.shade_kernel)
+film_layer_kernel = Launch(_shadow.film_layer_kernel)
+shadow_kernel = Launch(_shadow.shadow_kernel)
+route_kernel = Launch(_passes.route_kernel)
+reset_kernel = Launch(_passes.reset_kernel)
+convert_kernel = Launch(_passes.convert_kernel)
+film_kernel = Launch(_film.film_kernel)
 
 #: When ``route_kernel`` splits the light: after the first vertex's shadows, after the second ray's
 #: emission, at the end.
