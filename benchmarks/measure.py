@@ -30,6 +30,15 @@ def scene_config(cfg, name):
 GAUSS = {"wavelength_mode": "gaussian_rgb"}
 INDEPENDENT_LABEL = "independent sampler"
 INDEPENDENT = (INDEPENDENT_LABEL, {"sampler": "independent"})  # the sampler's gain: same spp, same reference
+#: Dispersive scenes: wavelengths per path, and the per-channel Gaussians of the student renderer.
+WAVELENGTH_STRATEGIES = [
+    ("cie x4 (default)", {}),
+    ("cie x1", {"wavelengths_per_path": 1}),
+    ("cie x2", {"wavelengths_per_path": 2}),
+    ("cie x8", {"wavelengths_per_path": 8}),
+    ("gaussian_rgb", GAUSS),
+    INDEPENDENT,
+]
 # (label, settings overrides); the first of each scene is its baseline (Sobol sampler).
 EXPERIMENTS = {
     "cornell_grey": [
@@ -40,22 +49,8 @@ EXPERIMENTS = {
         ("no RR", {"russian_roulette_depth": 1000}),
         INDEPENDENT,
     ],
-    "cornell_glass": [
-        ("cie x4 (default)", {}),
-        ("cie x1", {"wavelengths_per_path": 1}),
-        ("cie x2", {"wavelengths_per_path": 2}),
-        ("cie x8", {"wavelengths_per_path": 8}),
-        ("gaussian_rgb", GAUSS),
-        INDEPENDENT,
-    ],
-    "prism": [
-        ("cie x4 (default)", {}),
-        ("cie x1", {"wavelengths_per_path": 1}),
-        ("cie x2", {"wavelengths_per_path": 2}),
-        ("cie x8", {"wavelengths_per_path": 8}),
-        ("gaussian_rgb", GAUSS),
-        INDEPENDENT,
-    ],
+    "cornell_glass": WAVELENGTH_STRATEGIES,
+    "prism": WAVELENGTH_STRATEGIES,
     "lens": [
         ("exit-pupil bounds (default)", {}),
         ("no pupil bounds", {"use_pupil_bounds": False}),
