@@ -15,7 +15,7 @@ import math
 from ..jit import inlined, kernel
 from .closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FRESNEL, FRESNEL_CONDUCTOR, FRESNEL_DIELECTRIC,
                       FRESNEL_F82, FRESNEL_NONE, SAMPLED_DELTA, SMOOTH_ALPHA)
-from .microfacet import ggx_d, ggx_g1, ggx_g2, reflect, sample_visible_normal, visible_normal_pdf
+from .microfacet import ggx_d, ggx_g1_g2, reflect, sample_visible_normal
 from .optics import dielectric_f0, fresnel_conductor, fresnel_dielectric, thin_film_reflectance, tinted_fresnel
 
 # F82-tint (Kutz et al., "Novel aspects of the Adobe Standard Material"): the Schlick curve less
@@ -97,6 +97,13 @@ def mean_tinted_reflectance(row, spectral, cos_i, wavelength_nm):
     return total / count
 
 
+@inlined
+def _reflection_pdf(d, g1_o, cos_o):
+    """pdf of wi = reflect(wo, wm) with wm drawn from the visible normals, D_wo(wm) / (4 wo.wm); D_wo(wm) =
+    G1(wo) (wo.wm) D(wm) / cos_o, so the wo.wm cancel (``cos_o`` > 0, wo.wm > 0)."""
+    return g1_o * d / (4.0 * cos_o)
+
+
 @kernel
 def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
     """(wi, pdf, sampled flags, eta scale); ``weight[k]`` = f |cos wi| / pdf (F for the mirror)."""
@@ -108,12 +115,16 @@ def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, w
             return wi, 0.0, SAMPLED_DELTA, 1.0
         reflectances(row, spectral, wo[2], wavelength_nm, 1.0, weight)
         return wi, math.inf, SAMPLED_DELTA, 1.0
+    if wo[2] <= 0.0:
+        weight[:] = 0.0
+        return (-wo[0], -wo[1], wo[2]), 0.0, 0, 1.0
     wm = sample_visible_normal(wo, alpha, u1, u2)
     wi = reflect(wo, wm)
     cos_om = min(max(wo[0] * wm[0] + wo[1] * wm[1] + wo[2] * wm[2], 0.0), 1.0)
-    pdf = visible_normal_pdf(wo, wm, alpha) / (4.0 * cos_om) if cos_om > 0.0 else 0.0
-    ratio = ggx_g2(wo, wi, alpha) / ggx_g1(wo, alpha)
-    if wo[2] <= 0.0 or wi[2] <= 0.0 or not (pdf > 0.0 and math.isfinite(pdf)) or not math.isfinite(ratio):
+    g1, g2 = ggx_g1_g2(wo, wi, alpha)
+    pdf = _reflection_pdf(ggx_d(wm, alpha), g1, wo[2]) if cos_om > 0.0 else 0.0
+    ratio = g2 / g1
+    if wi[2] <= 0.0 or not (pdf > 0.0 and math.isfinite(pdf)) or not math.isfinite(ratio):
         weight[:] = 0.0
         return wi, 0.0, 0, 1.0
     reflectances(row, spectral, cos_om, wavelength_nm, ratio, weight)
@@ -135,8 +146,10 @@ def evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
     cos_om = min(max(wo[0] * wm[0] + wo[1] * wm[1] + wo[2] * wm[2], 0.0), 1.0)
     if cos_om <= 0.0:
         return 0.0
-    scalar = ggx_d(wm, alpha) * ggx_g2(wo, wi, alpha) / (4.0 * wo[2] * wi[2])
-    pdf = visible_normal_pdf(wo, wm, alpha) / (4.0 * cos_om)
+    d = ggx_d(wm, alpha)
+    g1, g2 = ggx_g1_g2(wo, wi, alpha)
+    scalar = d * g2 / (4.0 * wo[2] * wi[2])
+    pdf = _reflection_pdf(d, g1, wo[2])
     if not (math.isfinite(scalar) and math.isfinite(pdf)):
         return 0.0
     reflectances(row, spectral, cos_om, wavelength_nm, scalar, f)

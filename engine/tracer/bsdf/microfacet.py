@@ -43,6 +43,13 @@ def ggx_g2(wo, wi, alpha):
 
 
 @kernel
+def ggx_g1_g2(wo, wi, alpha):
+    """(G1(wo), G2(wo, wi)), sharing Λ(wo)."""
+    lambda_o = ggx_lambda(wo, alpha)
+    return 1.0 / (1.0 + lambda_o), 1.0 / (1.0 + lambda_o + ggx_lambda(wi, alpha))
+
+
+@kernel
 def _upper(w):
     return (w[0], w[1], w[2]) if w[2] >= 0.0 else (-w[0], -w[1], -w[2])
 
