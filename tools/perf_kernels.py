@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import argparse
 import gc
+import importlib
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -106,7 +108,7 @@ def main(argv=None) -> int:
         from tools.profile_pass import _blend
 
         scene, settings = _blend(args.blend, args)
-        renderer_module = __import__(type(scene).__module__.rsplit(".", 1)[0] + ".renderer", fromlist=["Renderer"])
+        renderer_module = importlib.import_module(type(scene).__module__.rsplit(".", 1)[0] + ".renderer")
     else:
         from benchmarks import prism_runs, scenes
         from engine.tracer import renderer as renderer_module
@@ -129,6 +131,7 @@ def main(argv=None) -> int:
             passes += 1
     print(f"{passes} passes of {settings.samples_per_pass} spp, {args.threads} thread(s)")
     _report(data, args.top)
+    shutil.rmtree(cache, ignore_errors=True)  # the throw-away kernels (~100 MB) and perf's samples
     return 0
 
 

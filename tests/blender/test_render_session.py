@@ -36,16 +36,16 @@ def _count_passes(prism_addon, monkeypatch) -> list:
     return done
 
 
-def _press_esc_after(prism_addon, monkeypatch, done: list, passes: int) -> None:
-    """Renders see the real engine, except that Esc is 'pressed' once ``passes`` passes have finished."""
+def _press_esc_when(prism_addon, monkeypatch, pressed) -> None:
+    """Renders see the real engine, except that ``test_break`` (Esc) answers ``pressed()``."""
     session = _session(prism_addon)
 
-    class EscAfter:
+    class EscWhen:
         def __init__(self, engine):
             self._engine = engine
 
         def test_break(self):
-            return len(done) >= passes
+            return pressed()
 
         def __getattr__(self, name):
             return getattr(self._engine, name)
@@ -53,9 +53,14 @@ def _press_esc_after(prism_addon, monkeypatch, done: list, passes: int) -> None:
     original_init = session.RenderSession.__init__
 
     def init(self, engine, depsgraph, *handed_over):
-        original_init(self, EscAfter(engine), depsgraph, *handed_over)
+        original_init(self, EscWhen(engine), depsgraph, *handed_over)
 
     monkeypatch.setattr(session.RenderSession, "__init__", init)
+
+
+def _press_esc_after(prism_addon, monkeypatch, done: list, passes: int) -> None:
+    """Esc is 'pressed' once ``passes`` passes have finished (``done``: see ``_count_passes``)."""
+    _press_esc_when(prism_addon, monkeypatch, lambda: len(done) >= passes)
 
 
 @pytest.fixture
@@ -192,28 +197,13 @@ def test_dispersive_glass_reaches_the_renderer(prism_addon, lit_plane):
 
 
 def test_cancelling_inside_a_pass_stops_after_the_current_chunk(prism_addon, lit_plane, monkeypatch):
-    session = _session(prism_addon)
     calls = []
 
-    class EscDuringFirstPass:
-        """Esc 'pressed' from the second check on: that check runs after the pass's first chunk."""
+    def pressed():  # Esc from the second check on: that check runs after the pass's first chunk
+        calls.append(True)
+        return len(calls) >= 2
 
-        def __init__(self, engine):
-            self._engine = engine
-
-        def test_break(self):
-            calls.append(True)
-            return len(calls) >= 2
-
-        def __getattr__(self, name):
-            return getattr(self._engine, name)
-
-    original_init = session.RenderSession.__init__
-
-    def init(self, engine, depsgraph, *handed_over):
-        original_init(self, EscDuringFirstPass(engine), depsgraph, *handed_over)
-
-    monkeypatch.setattr(session.RenderSession, "__init__", init)
+    _press_esc_when(prism_addon, monkeypatch, pressed)
     lit_plane.prism.samples_per_pass = 64  # one pass of 24 x 24 x 64 paths, cut into two chunks
     with _reporting(prism_addon) as report:
         image = render_linear_rgb(lit_plane, samples=64)
