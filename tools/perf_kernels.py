@@ -2,6 +2,7 @@
 
     .venv/bin/python tools/perf_kernels.py cornell_glass [--size 64] [--spp 16] [--threads 1] [--seconds 20]
     .venv/bin/python tools/perf_kernels.py --blend renders/demo.blend [--spp 4] ...   (bpy module)
+    .venv/bin/python tools/perf_kernels.py cornell_glass --annotate shade_kernel   (its hottest instructions)
 
 ``perf`` sees numba's machine code as anonymous memory. This tool compiles the kernels afresh into a
 throw-away cache (the LLVM modules, and so the function names, exist only for code compiled in this
@@ -15,6 +16,7 @@ are counted in their caller (most of shading is in ``shade_kernel`` itself). Nee
 from __future__ import annotations
 
 import argparse
+import ctypes
 import gc
 import importlib
 import os
@@ -23,6 +25,7 @@ import subprocess
 import sys
 import tempfile
 import threading
+from collections import Counter
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -63,10 +66,44 @@ def write_perf_map(path: Path) -> int:
                 if address:
                     starts[address] = _demangle(function.name)
     ordered = sorted(starts)
+    spans = {}
     with open(path, "w", encoding="utf-8") as out:
         for start, end in zip(ordered, ordered[1:] + [ordered[-1] + 65536] if ordered else []):
-            out.write(f"{start:x} {min(end - start, 1 << 20):x} {starts[start]}\n")
-    return len(ordered)
+            size = min(end - start, 1 << 20)
+            out.write(f"{start:x} {size:x} {starts[start]}\n")
+            spans[starts[start]] = (start, size)
+    return spans
+
+
+def annotate(data: Path, spans: dict, name_part: str, folder: Path, lines: int = 60) -> None:
+    """The hottest instructions of the function whose name contains ``name_part``: its machine code is
+    read from this process's memory and disassembled, the samples' addresses counted against it."""
+    matches = [name for name in spans if name_part in name]
+    if not matches:
+        print(f"no compiled function's name contains {name_part!r}")
+        return
+    name = min(matches, key=len)
+    start, size = spans[name]
+    code = folder / "function.bin"
+    code.write_bytes(ctypes.string_at(start, size))
+    listing = subprocess.run(["objdump", "-D", "-b", "binary", "-m", "i386:x86-64", "--no-show-raw-insn",
+                              f"--adjust-vma={start:#x}", str(code)], capture_output=True, text=True).stdout
+    ips = subprocess.run(["perf", "script", "-i", str(data), "-F", "ip"], capture_output=True, text=True).stdout
+    counts = Counter(int(ip, 16) for ip in ips.split() if start <= int(ip, 16) < start + size)
+    total = sum(counts.values()) or 1
+    print(f"{name}: {total} samples in {size} bytes; hottest instructions (share of the function):")
+    rows = []
+    for line in listing.splitlines():
+        address, sep, text = line.partition(":")
+        try:
+            at = int(address.strip(), 16)
+        except ValueError:
+            continue
+        if sep and text.strip():
+            rows.append((at, text.strip()))
+    hot = sorted(rows, key=lambda row: -counts.get(row[0], 0))[:lines]
+    for at, text in sorted(hot):
+        print(f"  {100.0 * counts.get(at, 0) / total:5.1f} %  {at - start:6x}  {text[:90]}")
 
 
 def _report(data: Path, top: int) -> None:
@@ -98,6 +135,7 @@ def main(argv=None) -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--seconds", type=float, default=20.0)
     parser.add_argument("--top", type=int, default=30)
+    parser.add_argument("--annotate", metavar="NAME", help="also list the hottest instructions of this function")
     args = parser.parse_args(argv)
     cache = tempfile.mkdtemp(prefix="prism-perf-kernels-")
     os.environ["PRISM_KERNEL_CACHE"] = cache  # before any kernel module is imported: compile here
@@ -119,8 +157,8 @@ def main(argv=None) -> int:
     data = Path(cache) / "perf.data"
     with renderer_module.Renderer(scene, settings) as renderer:
         renderer.render_pass()  # compiles every kernel the scene uses
-        mapped = write_perf_map(Path(f"/tmp/perf-{os.getpid()}.map"))
-        print(f"{mapped} compiled functions mapped; sampling {args.seconds:g} s of passes", flush=True)
+        spans = write_perf_map(Path(f"/tmp/perf-{os.getpid()}.map"))
+        print(f"{len(spans)} compiled functions mapped; sampling {args.seconds:g} s of passes", flush=True)
         record = subprocess.Popen(["perf", "record", "-q", "-p", str(os.getpid()), "-o", str(data), "--",
                                    "sleep", str(args.seconds)])
         done = threading.Event()
@@ -131,6 +169,8 @@ def main(argv=None) -> int:
             passes += 1
     print(f"{passes} passes of {settings.samples_per_pass} spp, {args.threads} thread(s)")
     _report(data, args.top)
+    if args.annotate:
+        annotate(data, spans, args.annotate, Path(cache))
     shutil.rmtree(cache, ignore_errors=True)  # the throw-away kernels (~100 MB) and perf's samples
     return 0
 

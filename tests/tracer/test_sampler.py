@@ -26,6 +26,12 @@ def test_scrambling_is_a_bijection_on_32_bit_integers_sampled():
     assert [s.reverse_bits32(s.reverse_bits32(int(v))) for v in x[:50]] == list(x[:50])
 
 
+def test_bit_reversal_reverses_the_low_32_bits():
+    rng = np.random.default_rng(3)
+    for value in [0, 1, 2**31, 2**32 - 1, 0x12345678, 2**32 + 5, *rng.integers(0, 2**40, 200).tolist()]:
+        assert s.reverse_bits32(value) == int(format(value & 0xFFFFFFFF, "032b")[::-1], 2), value
+
+
 @pytest.mark.parametrize("count", [16, 64, 256])
 def test_every_power_of_two_prefix_is_stratified_in_every_elementary_interval(count):
     log2 = int(np.log2(count))
