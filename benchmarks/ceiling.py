@@ -3,9 +3,9 @@
 We record every ray query one pass of the renderer sends to its ``engine.tracer.accel.Accel``
 (``intersect``, ``intersect_before`` and ``occluded`` on a ``state.RayQueue``: float32 origins,
 directions and, for shadow rays, ``tmax``), then replay exactly those batches on a bare embreex
-scene of the renderer's own triangles (``renderer.geometry``: camera-relative, as the rays are) with
-the same number of threads, timing only Embree's ``run``. The renderer's path throughput as a
-fraction of the ceiling is then
+scene of the renderer's own triangles (``renderer.tables.geometry``: camera-relative, as the rays
+are) with the same number of threads, timing only Embree's ``run``. The renderer's path throughput
+as a fraction of the ceiling is then
 
     fraction = (embreex time for the pass's rays) / (renderer time for a pass)
 
@@ -66,7 +66,7 @@ class RayRecorder:
 
 def record_pass(renderer) -> RayRecorder:
     """Render one pass of ``renderer`` with its queries recorded (the pass is not timed)."""
-    recorder = RayRecorder(renderer.accel)
+    recorder = RayRecorder(renderer.tables.accel)
     try:
         recorder.active = True
         renderer.render_pass()

@@ -147,7 +147,7 @@ def measure_ceiling(name, cfg):
         rays_before = renderer.stats["rays_cast"]
         recorder = ceiling.record_pass(renderer)
         rays_counted = renderer.stats["rays_cast"] - rays_before
-        replayer = ceiling.Replayer(renderer.geometry, recorder.batches, THREADS)
+        replayer = ceiling.Replayer(renderer.tables.geometry, recorder.batches, THREADS)
         # alternate renderer passes and embreex replays so load from other work hits both alike
         pass_times, embree_times, pass_cpu, embree_cpu = [], [], [], []
         for _ in range(cfg["ceiling_passes"]):
@@ -190,7 +190,7 @@ def measure_thread_scaling(name, cfg):
         for r in renderers.values():
             r.render_pass()  # warm-up
         recorder = ceiling.record_pass(renderers[2])
-        replayers = {t: ceiling.Replayer(renderers[2].geometry, recorder.batches, t) for t in (1, 2)}
+        replayers = {t: ceiling.Replayer(renderers[2].tables.geometry, recorder.batches, t) for t in (1, 2)}
         times = {(side, t): [] for side in ("prism", "embree") for t in (1, 2)}
         for _ in range(cfg["scaling_rounds"]):
             for t in (1, 2):

@@ -1,7 +1,7 @@
 """Where a pass spends its time: CPU time (and wall time) per stage kernel and per Embree query.
 
 The stage kernels are called by ``engine.tracer.stages.trace`` through its module namespace, and the
-Embree queries through ``renderer.accel``: for the measured passes both are replaced by timing
+Embree queries through ``renderer.tables.accel``: for the measured passes both are replaced by timing
 wrappers (``thread_time`` and ``perf_counter`` around each call, a handful per chunk and bounce), and
 restored afterwards. Nothing in the renderer changes; the timed passes of the harness never run
 wrapped.
@@ -80,20 +80,20 @@ def timed_stages(renderer, clock: _Clock):
     module_names = [n for _, names in KERNEL_STAGES for n in names] + [CHUNK]
     saved_module = {n: getattr(trace, n) for n in module_names}
     accel_names = [n for _, names in EMBREE_STAGES for n in names]
-    saved_accel = {n: getattr(renderer.accel, n) for n in accel_names}
+    saved_accel = {n: getattr(renderer.tables.accel, n) for n in accel_names}
     saved_add = renderer.film.add
     try:
         for n in module_names:
             setattr(trace, n, clock.wrap(n, saved_module[n]))
         for n in accel_names:
-            setattr(renderer.accel, n, clock.wrap(n, saved_accel[n]))
+            setattr(renderer.tables.accel, n, clock.wrap(n, saved_accel[n]))
         renderer.film.add = clock.wrap("film.add", saved_add)
         yield
     finally:
         for n, f in saved_module.items():
             setattr(trace, n, f)
         for n in accel_names:
-            delattr(renderer.accel, n)  # back to the class's methods
+            delattr(renderer.tables.accel, n)  # back to the class's methods
         del renderer.film.add
 
 

@@ -34,7 +34,7 @@ best = min(times)
 print("pass wall/cpu", best, "rays/pass", r.stats["rays_cast"] / r._passes)
 # record rays
 batches = []
-acc = r.accel
+acc = r.tables.accel
 orig = (acc.intersect, acc.occluded, acc.intersect_before)
 def rec(kind, fn):
     def f(q, n):
@@ -47,7 +47,7 @@ acc.intersect, acc.occluded, acc.intersect_before = orig
 from embreex import rtcore_scene
 from embreex.mesh_construction import TriangleMesh
 es = rtcore_scene.EmbreeScene()
-TriangleMesh(es, r.geometry.vertices, r.geometry.triangles)
+TriangleMesh(es, r.tables.geometry.vertices, r.tables.geometry.triangles)
 def replay(bs):
     for kind, o, d, tm in bs:
         if kind == "closest": es.run(o, d, output=1)

@@ -92,10 +92,10 @@ def main(argv=None) -> int:
         print(f"  pass wall {wall:.4f} s, cpu {cpu:.4f} s, {rays:,} rays ({rays / paths:.2f} per path)")
         print(f"  paths/s {paths / wall:,.0f}   rays/s {rays / wall:,.0f}   rays per CPU-s {rays / cpu:,.0f}")
         report.update(scene=args.scene, width=width, height=height, paths=paths, pass_seconds=wall, pass_cpu=cpu,
-                      rays=rays, triangles=int(len(renderer.geometry.triangles)))
+                      rays=rays, triangles=int(len(renderer.tables.geometry.triangles)))
         if not args.no_ceiling:
             recorder = ceiling.record_pass(renderer)
-            replayer = ceiling.Replayer(renderer.geometry, recorder.batches, args.threads)
+            replayer = ceiling.Replayer(renderer.tables.geometry, recorder.batches, args.threads)
             embree = min(replayer.seconds() for _ in range(args.passes))
             embree_cpu = min(replayer.cpu_seconds() for _ in range(args.passes))
             replayer.close()

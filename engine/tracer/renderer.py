@@ -7,6 +7,7 @@
     renderer.variance_rgb()         # float32 [H, W, 3] variance of the mean
     renderer.spectral_film          # SpectralFilm (band radiance) when settings.spectral_band_nm > 0, else None
     renderer.samples_done, renderer.strategy, renderer.stats
+    renderer.tables                 # SceneTables: the triangles, their Embree scene, shading, analysis
     renderer.start_at_sample(n)     # continue the seed's sequence at sample n (chunked renders)
     renderer.finished               # every pixel has its samples, converged (adaptive) or time is up
     renderer.pass_images()          # the requested passes of the region: name -> float32 [h, w, C]
@@ -18,9 +19,10 @@
     renderer.set_camera(camera, border)   renderer.set_shading(scene)
     renderer.set_geometry(scene)          renderer.set_settings(settings)   renderer.restart()
 
-Set-up turns the scene into tables once (``geometry``, ``spectra.table``, ``materials``, ``lights``,
-``spectra.wavelength_sampling``, the camera) with every position relative to the render's origin (the
-camera's position; the viewport keeps the first one while the view moves). A pass is cut
+Set-up turns the scene into tables once (``scene_tables.SceneTables``: triangles and their Embree
+scene, spectra, materials, lights, wavelength sampling, the scene analysis) and makes the camera, with
+every position relative to the render's origin (the camera's position; the viewport keeps the first
+one while the view moves). A pass is cut
 into chunks of paths that run on Prism's thread pool; a chunk runs the stages of ``stages`` bounce by
 bounce, Embree queries in between (kernels and Embree release the GIL). Every random number comes from
 the sampler indexed by (pixel, sample, dimension) and the film adds samples in path order, so the image
@@ -36,48 +38,19 @@ from dataclasses import replace
 import numpy as np
 
 from . import adaptive
-from .accel import Accel
-from .analysis import analyse_scene
 from .cameras import make_camera
 from .chunk_pool import ChunkPool
 from .errors import PrismInputError
 from .film import Film
-from .geometry import prepare_geometry
-from .lights.emitters import emitter_spectra
-from .lights.table import build_lights
-from .materials.table import build_materials
-from .passes import FilmLayout, aov_table
 from .sampler import SAMPLERS
-from .scene import SpectrumSpec
-from .spectra import wavelength_sampling
-from .spectra.table import SpectrumTable
-from .spectra.wavelength_guide import build_guide
+from .scene_tables import SceneTables
 from .spectral_film import SpectralFilm
 from .stages.passes import new_pass_data
-from .stages.settings import KernelSettings
 from .state import ChunkBuffers
-from .visibility import HOLDOUT
-from .visibility_accel import RayClassAccel, needs_ray_classes
 
 #: A camera this far (m) from the render's origin gets the geometry rebuilt around it (``set_camera``):
 #: float32 positions keep ~0.1 mm there.
 REBASE_DISTANCE_M = 1000.0
-
-
-def _triangle_groups(scene, original_triangle, light_groups):
-    """Light group index [T] of each render triangle's object (None when no group has a pass)."""
-    if not light_groups or scene.triangle_object is None or not scene.object_light_groups:
-        return None
-    index = {name: g for g, name in enumerate(light_groups)}
-    of_object = np.array([index.get(name, -1) for name in scene.object_light_groups], np.int32)
-    return of_object[np.asarray(scene.triangle_object)[original_triangle]]
-
-
-def _kept(triangle_object, original):
-    """The object of each kept triangle (``original``: their indices before dropping), or None."""
-    if triangle_object is None:
-        return None
-    return np.asarray(triangle_object)[original]
 
 
 def _check_settings(settings) -> None:
@@ -99,63 +72,15 @@ class Renderer:
         self.camera = make_camera(scene.camera, settings, origin)
         self.origin = self.camera.origin
         self.width, self.height = (int(r) for r in scene.camera.resolution)
-        self._build_geometry()
-        self._build_shading()
+        self.tables = SceneTables(scene, settings, self.camera)
         self._pool = ChunkPool(settings.threads)
         self._local = threading.local()
         self.restart(time.perf_counter() - started)
 
-    def _build_geometry(self):
-        """Triangles relative to ``origin`` and their Embree scene."""
-        self.geometry = self.accel = self.ray_classes = None  # the old tables go first: one BVH in memory at a time
-        self.geometry, self._original_triangle, self._dropped = prepare_geometry(self.scene, self.origin)
-        self._used = sorted(set(np.unique(self.geometry.material).tolist()))
-        self.accel = Accel(self.geometry)
-        self.ray_classes = RayClassAccel(self.geometry, self.accel) if needs_ray_classes(self.geometry) else None
-
-    def _build_shading(self):
-        """Everything the paths read besides the triangles and the camera: spectra, materials, lights,
-        wavelength sampling, kernel settings."""
-        scene, settings, used = self.scene, self.settings, self._used
-        if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
-            raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
-        spectra = SpectrumTable()
-        self.material_table = build_materials(scene.materials, set(used), spectra)
-        materials = self.material_table.arrays
-        groups = tuple(settings.passes.light_groups)
-        self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
-                                        self.geometry.material, materials.emission_strength, self.origin,
-                                        light_groups=groups,
-                                        triangle_group=_triangle_groups(scene, self._original_triangle, groups))
-        white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
-        self.pass_layout = FilmLayout(settings.passes, white)
-        self._aov_table = aov_table(scene.materials, settings.passes.aovs)
-        self.spectra = spectra.arrays()
-        guide = None
-        if settings.wavelength_mode == "cie":
-            guide = build_guide(self.spectra, emitter_spectra(self.light_table, materials))
-        self.wavelengths = wavelength_sampling.build(settings, guide)
-        self._guide = guide
-        self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
-                                              bool(settings.use_mis), SAMPLERS[settings.sampler],
-                                              int(settings.seed) & 0xFFFFFFFF, False, bool(settings.film_transparent),
-                                              bool(settings.film_transparent and settings.transparent_glass),
-                                              float(settings.transparent_roughness) ** 2)
-        self._alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
-        self._glass_clamps = np.zeros(len(materials.glasses), np.int64)
-        self._describe()
-
-    def _describe(self):
-        self.analysis, targets = analyse_scene(self.scene, self.settings, self._used, self.material_table,
-                                               self.light_table, self.camera, self.geometry, self.pass_layout,
-                                               self.ray_classes, _kept(self.scene.triangle_object,
-                                                                       self._original_triangle))
-        if self._guide is not None:
-            a, guide = self.analysis, self._guide
-            a.guided_lines, a.guided_measured, a.guided_smooth = guide.lines, guide.measured, guide.smooth
-        self.kernel_settings = self.kernel_settings._replace(light_tracing=bool(self.analysis.light_tracing))
-        self.caustic_targets = targets if self.analysis.light_tracing else None
-        self.strategy = self.analysis.strategy(self.settings.use_mis, self.settings.pixel_filter)
+    @property
+    def strategy(self) -> str:
+        """What the render does for this scene, in one line (``analysis``)."""
+        return self.tables.strategy
 
     def restart(self, setup_seconds: float = 0.0) -> None:
         """Start the image again: an empty film and no samples, a cancelled renderer rendering again.
@@ -164,11 +89,12 @@ class Renderer:
                               if self.settings.spectral_band_nm else None)
         self._first_sample = 0
         self._passes = 0
-        self._glass_clamps[:] = 0
+        self._glass_clamps = np.zeros(len(self.tables.material_table.arrays.glasses), np.int64)
         self._pool.reset()
         self.cancelled = False
         self.set_region(self._frame_region(self.settings.border))
-        warnings = [f"{self._dropped} zero-area triangle(s) dropped"] if self._dropped else []
+        dropped = self.tables.dropped_triangles
+        warnings = [f"{dropped} zero-area triangle(s) dropped"] if dropped else []
         if self.camera.lens is not None:
             warnings += self.camera.lens.warnings
         self.stats = {
@@ -177,7 +103,7 @@ class Renderer:
             "setup_seconds": setup_seconds,
             "nan_samples": 0,
             "rejected_rays": 0,
-            "dropped_triangles": self._dropped,
+            "dropped_triangles": dropped,
             "paths": 0,
             "warnings": warnings,
             "strategy": self.strategy,
@@ -203,10 +129,9 @@ class Renderer:
         self.origin = self.camera.origin
         self.width, self.height = (int(r) for r in camera.resolution)
         if rebase:
-            self._build_geometry()
-            self._build_shading()
+            self.tables.rebuild(scene, self.settings, self.camera)
         else:
-            self._describe()
+            self.tables.describe(scene, self.settings, self.camera)
         self.restart(time.perf_counter() - started)
 
     def set_shading(self, scene) -> None:
@@ -216,7 +141,7 @@ class Renderer:
         scene = replace(scene, camera=self.scene.camera)
         scene.validate(triangles=False)
         self.scene = scene
-        self._build_shading()
+        self.tables.rebuild_shading(scene, self.settings, self.camera)
         self.restart(time.perf_counter() - started)
 
     def set_geometry(self, scene) -> None:
@@ -226,8 +151,7 @@ class Renderer:
         scene = replace(scene, camera=self.scene.camera)
         scene.validate()
         self.scene = scene
-        self._build_geometry()
-        self._build_shading()
+        self.tables.rebuild(scene, self.settings, self.camera)
         self.restart(time.perf_counter() - started)
 
     def set_settings(self, settings) -> None:
@@ -237,7 +161,7 @@ class Renderer:
         _check_settings(settings)
         self.settings = settings
         self.camera = make_camera(self.scene.camera, settings, self.origin)
-        self._build_shading()
+        self.tables.rebuild_shading(self.scene, settings, self.camera)
         self._pool.resize(settings.threads)
         self.restart(time.perf_counter() - started)
 
@@ -273,7 +197,7 @@ class Renderer:
     def film(self) -> Film:
         """The region's film."""
         if self._film is None:
-            self._film = Film(self.width, self.height, self.pass_layout, self.region)
+            self._film = Film(self.width, self.height, self.tables.pass_layout, self.region)
         return self._film
 
     def _region_pixel_list(self) -> np.ndarray:
@@ -297,13 +221,14 @@ class Renderer:
 
     def _buffers(self, paths: int) -> ChunkBuffers:
         buffers = getattr(self._local, "buffers", None)
-        layout = self.pass_layout.kernel
-        registers = self.material_table.register_count
-        if (buffers is None or buffers.capacity < paths or buffers.k != self.wavelengths.count
+        tables = self.tables
+        layout = tables.pass_layout.kernel
+        registers = tables.material_table.register_count
+        if (buffers is None or buffers.capacity < paths or buffers.k != tables.wavelengths.count
                 or buffers.passes.values.shape[1] != layout.columns or buffers.passes.spectral.shape[1] != layout.slots
                 or buffers.scratch.registers.shape[0] < registers):
-            passes = new_pass_data(paths, self.wavelengths.count, self.pass_layout)
-            buffers = self._local.buffers = ChunkBuffers(paths, self.wavelengths.count, passes, registers)
+            passes = new_pass_data(paths, tables.wavelengths.count, tables.pass_layout)
+            buffers = self._local.buffers = ChunkBuffers(paths, tables.wavelengths.count, passes, registers)
         return buffers
 
     def pass_data(self, buffers: ChunkBuffers):
@@ -311,7 +236,8 @@ class Renderer:
         axes = np.asarray(self.scene.camera.camera_to_world, np.float64)[:3, :3]
         return buffers.passes._replace(camera_axes=np.ascontiguousarray(axes),
                                        camera_at=np.asarray(self.camera.position - self.origin, np.float64),
-                                       render_origin=np.asarray(self.origin, np.float64), aov_table=self._aov_table)
+                                       render_origin=np.asarray(self.origin, np.float64),
+                                       aov_table=self.tables.aov_table)
 
     def _chunk(self, start, stop, spp, light=False):
         """Trace camera (or, with ``light``, light) paths ``start .. stop`` of the pass; returns (pixel [n],
@@ -335,7 +261,7 @@ class Renderer:
         spectral = None
         if self.spectral_film is not None:
             spectral = self.spectral_film.record(buffers.state, count)
-        alpha = 1.0 - buffers.state.transparency[:count] if self._alpha else None
+        alpha = 1.0 - buffers.state.transparency[:count] if self.tables.needs_alpha else None
         return (buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), values, rays, rejected, clamps,
                 spectral, alpha)
 
@@ -380,7 +306,7 @@ class Renderer:
             return
         total = len(self._pixels) * spp
         chunks = [(a, b, False) for a, b in self._pool.chunks(total, spp)]
-        if self.analysis.light_tracing:  # as many light paths as camera paths, numbered the same way
+        if self.tables.analysis.light_tracing:  # as many light paths as camera paths, numbered the same way
             chunks += [(a, b, True) for a, b, _ in chunks]
         light_splats = []  # (pixel, rgb, paths) of the pass's light chunks, in chunk order
         try:
@@ -458,7 +384,7 @@ class Renderer:
             self.converged = True
 
     def _glass_warnings(self):
-        for glass, count in zip(self.material_table.glasses, self._glass_clamps):
+        for glass, count in zip(self.tables.material_table.glasses, self._glass_clamps):
             if count:
                 lo, hi = glass.valid_range_nm
                 prefix = f"Glass '{glass.name}' is specified for {lo:g}-{hi:g} nm only: "
@@ -489,9 +415,10 @@ class Renderer:
 
     def pass_images(self) -> dict[str, np.ndarray]:
         """The requested passes of the region (``settings.passes``): Blender pass name → float32 [h, w, C]."""
-        if self.pass_layout.width == 0:
+        layout = self.tables.pass_layout
+        if layout.width == 0:
             return {}
-        return self.pass_layout.images(self.film.aux_mean())
+        return layout.images(self.film.aux_mean())
 
     def close(self) -> None:
         """Cancel outstanding work and free the thread pool (idempotent)."""

@@ -20,7 +20,7 @@ def test_recorder_sees_every_ray_the_renderer_counts(glass_scene):
         before = renderer.stats["rays_cast"]
         recorder = ceiling.record_pass(renderer)
         counted = renderer.stats["rays_cast"] - before
-        assert "intersect" not in vars(renderer.accel)  # the class's methods are back
+        assert "intersect" not in vars(renderer.tables.accel)  # the class's methods are back
     assert recorder.ray_count == counted > 0
     assert recorder.count(ceiling.CLOSEST) > 0 and recorder.count(ceiling.OCCLUDED) > 0
     for kind, origin, direction, tmax in recorder.batches:
@@ -32,19 +32,19 @@ def test_replay_finds_the_renderers_hits(glass_scene):
     """Replayed on the renderer's camera-relative triangles, every closest-hit query finds the renderer's hits."""
     with Renderer(glass_scene, settings_for({}, samples=4, seed=2, threads=1)) as renderer:
         hits = []
-        query = renderer.accel.intersect
+        query = renderer.tables.accel.intersect
 
         def keep(rays, count):
             out = query(rays, count)
             hits.append(out[0].copy())
             return out
 
-        renderer.accel.intersect = keep
-        recorder = ceiling.RayRecorder(renderer.accel)
+        renderer.tables.accel.intersect = keep
+        recorder = ceiling.RayRecorder(renderer.tables.accel)
         recorder.active = True
         renderer.render_pass()
         recorder.uninstall()
-        replayer = ceiling.Replayer(renderer.geometry, recorder.batches, threads=1)
+        replayer = ceiling.Replayer(renderer.tables.geometry, recorder.batches, threads=1)
         closest = [b for b in recorder.batches if b[0] == ceiling.CLOSEST]
         again = [replayer.scene.run(o, d, output=1)["primID"] for _, o, d, _ in closest]
         replayer.close()

@@ -80,7 +80,7 @@ def test_navigation_restarts_the_image_at_once(viewport):
     session, _, context = viewport
     before = wait_for_frame(session, lambda f: f.divider == 1 and f.samples >= 2)
     renderer = session.render._renderer
-    accel = renderer.accel
+    accel = renderer.tables.accel
     context.region_data.view_matrix = Matrix.Rotation(0.3, 4, "Z") @ context.region_data.view_matrix
     session.sync_view(context, bpy.context.evaluated_depsgraph_get())
     wait_for_frame(session, lambda f: f.change > before.change)
@@ -88,7 +88,7 @@ def test_navigation_restarts_the_image_at_once(viewport):
     after = next(f for f in engine.frames if f is not None and f.change > before.change)
     assert after.samples == 1 and after.divider == 4
     moved = wait_for_frame(session, lambda f: f.change > before.change and f.divider == 1)
-    assert session.render._renderer is renderer and renderer.accel is accel  # the triangles stay
+    assert session.render._renderer is renderer and renderer.tables.accel is accel  # the triangles stay
     assert np.abs(moved.rgba - before.rgba).mean() > 0.01
     # a redraw of the same view changes nothing
     session.sync_view(context, bpy.context.evaluated_depsgraph_get())
@@ -102,7 +102,7 @@ def test_material_colour_change_updates_shading_without_reading_a_mesh(viewport)
     card = _card_pixels(red).mean(axis=0)
     assert card[0] > 2 * card[1]
     reads, renderer = session.sync.mesh_reads, session.render._renderer
-    accel, geometry = renderer.accel, renderer.geometry
+    accel, geometry = renderer.tables.accel, renderer.tables.geometry
     principled = bpy.data.materials["Card material"].node_tree.nodes["Principled BSDF"]
     principled.inputs["Base Color"].default_value = (0.1, 0.8, 0.1, 1.0)
     _update()
@@ -110,7 +110,7 @@ def test_material_colour_change_updates_shading_without_reading_a_mesh(viewport)
     card = _card_pixels(green).mean(axis=0)
     assert card[1] > 2 * card[0]
     assert session.sync.mesh_reads == reads  # no mesh exported again
-    assert renderer.accel is accel and renderer.geometry is geometry  # nor a new Embree scene
+    assert renderer.tables.accel is accel and renderer.tables.geometry is geometry  # nor a new Embree scene
 
 
 def test_moves_place_again_and_edits_read_only_the_edited_mesh(viewport):
@@ -133,17 +133,17 @@ def test_light_edits_and_settings_reach_the_render(viewport):
     session, _, context = viewport
     first = wait_for_frame(session, lambda f: f.divider == 1)
     renderer = session.render._renderer
-    accel = renderer.accel
+    accel = renderer.tables.accel
     bpy.data.lights["Bulb"].energy = 30.0  # a tenth
     _update()
     dim = wait_for_frame(session, lambda f: f.change > first.change and f.divider == 1)
-    assert renderer.accel is accel
+    assert renderer.tables.accel is accel
     assert dim.rgba[..., :3].mean() < 0.3 * first.rgba[..., :3].mean()
     scene = bpy.context.scene
     scene.prism.preview_max_bounces = 1
     session.sync_view(context, bpy.context.evaluated_depsgraph_get())  # a settings change only redraws
     wait_for_frame(session, lambda f: f.change > dim.change)
-    assert renderer.settings.max_bounces == 1 and renderer.accel is accel
+    assert renderer.settings.max_bounces == 1 and renderer.tables.accel is accel
 
 
 def test_pause_holds_the_image_until_resumed(viewport):

@@ -121,7 +121,7 @@ def test_scenes_without_caustics_render_exactly_as_with_light_tracing_off():
     for mode in ("auto", "off"):
         with Renderer(scene, settings(samples=4, light_tracing=mode)) as r:
             r.render_pass()
-            assert not r.analysis.light_tracing and r.film.light_paths == 0
+            assert not r.tables.analysis.light_tracing and r.film.light_paths == 0
             images[mode] = r.film.mean()
     with Renderer(scene, settings()) as r:
         assert "no caustics to light-trace" in r.strategy

@@ -46,7 +46,7 @@ def test_hidden_from_camera_is_unseen_but_still_shadows():
     grey = Material("floor", base_color=(0.5, 0.5, 0.5))
     seen, _ = _render(_scene(grey, ALL_RAYS))
     hidden, r = _render(_scene(grey, ALL_RAYS & ~RAY_CAMERA))
-    assert r.ray_classes is not None
+    assert r.tables.ray_classes is not None
     empty, _ = _render(_scene(grey, 0, sphere=False))
     silhouette = _silhouette()
     shadow = silhouette & (np.abs(hidden - empty).sum(-1) > 0.05)

@@ -37,11 +37,11 @@ def test_shading_change_keeps_the_embree_scene_and_renders_as_a_new_renderer():
     green = _card_scene(card_colour=(0.1, 0.8, 0.1), light_at=(-0.5, 0.5, 2.0))
     with Renderer(scene, settings()) as r:
         _image(r)
-        accel, geometry = r.accel, r.geometry
+        accel, geometry = r.tables.accel, r.tables.geometry
         r.set_shading(green)
         assert r.samples_done == 0 and r.film.counts.sum() == 0
         image = _image(r)
-        assert r.accel is accel and r.geometry is geometry
+        assert r.tables.accel is accel and r.tables.geometry is geometry
     assert np.array_equal(image, _fresh(green))
 
 
@@ -61,10 +61,10 @@ def test_camera_move_keeps_the_origin_and_matches_a_new_renderer():
     scene = _card_scene()
     moved = replace(scene.camera, camera_to_world=look_at((1.5, -3.5, 2.5), (0.2, 0.0, 0.3)), resolution=(20, 20))
     with Renderer(scene, settings()) as r:
-        origin, accel = r.origin.copy(), r.accel
+        origin, accel = r.origin.copy(), r.tables.accel
         _image(r)
         r.set_camera(moved, border=(2, 3, 18, 15))
-        assert r.accel is accel and np.array_equal(r.origin, origin)
+        assert r.tables.accel is accel and np.array_equal(r.origin, origin)
         assert (r.width, r.height) == (20, 20) and r.samples_done == 0
         image = _image(r, passes=2)
         counts = r.film.counts
@@ -80,9 +80,9 @@ def test_a_camera_far_from_the_origin_rebases_the_geometry():
     scene = _card_scene()
     far = replace(scene.camera, camera_to_world=look_at((0.0, -4.0 - 2 * REBASE_DISTANCE_M, 3.0), (0.0, 0.0, 0.3)))
     with Renderer(scene, settings()) as r:
-        accel = r.accel
+        accel = r.tables.accel
         r.set_camera(far)
-        assert r.accel is not accel
+        assert r.tables.accel is not accel
         np.testing.assert_allclose(r.origin, far.camera_to_world[:3, 3])
 
 

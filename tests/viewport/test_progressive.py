@@ -73,7 +73,7 @@ def test_a_camera_move_restarts_at_once_and_a_colour_change_keeps_the_triangles(
     _start(render, scene, samples=0)  # until stopped
     _wait(render, lambda f: f.divider == 1 and f.samples >= 4)
     renderer = render._renderer
-    accel = renderer.accel
+    accel = renderer.tables.accel
     moved = replace(scene.camera, camera_to_world=look_at((2.0, -3.0, 3.0), (0.0, 0.0, 0.3)))
     number = render.update(Change(camera=moved))
     first = _wait(render, lambda f: f.change == number)
@@ -81,7 +81,7 @@ def test_a_camera_move_restarts_at_once_and_a_colour_change_keeps_the_triangles(
     green = _scene(card=(0.1, 0.8, 0.1))
     number = render.update(Change(scene=green))
     frame = _wait(render, lambda f: f.change == number and f.divider == 1 and f.samples >= 2)
-    assert render._renderer is renderer and renderer.accel is accel  # no new Embree scene
+    assert render._renderer is renderer and renderer.tables.accel is accel  # no new Embree scene
     assert renderer.scene.materials[1].base_color == (0.1, 0.8, 0.1)
     card = frame.rgba[..., :3].reshape(-1, 3)
     assert (card[:, 1] > 2 * card[:, 0] + 0.05).any()  # green pixels

@@ -37,29 +37,30 @@ def trace_light_chunk(renderer, buffers, extra, first, count, samples_per_pixel,
     """Trace light paths ``first .. first + count`` of the pass; returns (splats, rays cast, rays dropped
     as non-finite): ``extra.pixel[:splats]`` and ``buffers.rgb[:splats]`` hold the splats."""
     state = buffers.state
-    settings = renderer.kernel_settings
-    materials = renderer.material_table.arrays
-    lights = renderer.light_table.arrays
+    tables = renderer.tables
+    settings = tables.kernel_settings
+    materials = tables.material_table.arrays
+    lights = tables.light_table.arrays
     rejected = buffers.counters
     rejected[0] = 0
     current = buffers.rays[0]
-    queued = emit_kernel(state, current, extra.light, lights, materials, renderer.spectra, renderer.geometry,
-                         renderer.caustic_targets, renderer.wavelengths, settings, first, count, samples_per_pixel,
+    queued = emit_kernel(state, current, extra.light, lights, materials, tables.spectra, tables.geometry,
+                         tables.caustic_targets, tables.wavelengths, settings, first, count, samples_per_pixel,
                          first_sample, buffers.scratch)
     rays_cast = 0
     for depth in range(settings.max_bounces + 1):
         if queued == 0:
             break
-        hit = renderer.accel.intersect(current, queued)
+        hit = tables.accel.intersect(current, queued)
         rays_cast += queued
         following = buffers.rays[1] if current is buffers.rays[0] else buffers.rays[0]
-        queued = light_bounce_kernel(state, current, queued, *hit, extra.light, renderer.geometry, materials, lights,
-                                     renderer.spectra, renderer.camera.data, settings, depth, following,
+        queued = light_bounce_kernel(state, current, queued, *hit, extra.light, tables.geometry, materials, lights,
+                                     tables.spectra, renderer.camera.data, settings, depth, following,
                                      buffers.scratch, glass_clamps, rejected)
         current = following
     connections = buffers.shadows.rays
     waiting = queue_connections(state, count, connections)
-    occluded = renderer.accel.occluded(connections, waiting)
+    occluded = tables.accel.occluded(connections, waiting)
     rays_cast += waiting
-    splats = connection_splats(state, connections, waiting, occluded, renderer.wavelengths, extra.pixel, buffers.rgb)
+    splats = connection_splats(state, connections, waiting, occluded, tables.wavelengths, extra.pixel, buffers.rgb)
     return splats, rays_cast, int(rejected[0])

@@ -35,16 +35,17 @@ _ROUTE_FIRST_SHADOWS, _ROUTE_SECOND_EMISSION, _ROUTE_END = 0, 1, 2
 
 def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
     """Deliver the light of the first ``count`` shadow rays that reach their lights; returns rays cast."""
-    accel = renderer.accel if renderer.ray_classes is None else renderer.ray_classes
+    tables = renderer.tables
+    accel = tables.accel if tables.ray_classes is None else tables.ray_classes
     rays = 0
-    if renderer.analysis.see_through_films or renderer.analysis.see_through_cutouts:
+    if tables.analysis.see_through_films or tables.analysis.see_through_cutouts:
         for _ in range(MAX_FILM_LAYERS):
             if count == 0:
                 return rays
             hit = accel.intersect_before(shadows.rays, count)
             rays += count
-            count = film_layer_kernel(state, shadows, count, *hit, renderer.geometry, renderer.material_table.arrays,
-                                      passes, layout, renderer.spectra, scratch)
+            count = film_layer_kernel(state, shadows, count, *hit, tables.geometry, tables.material_table.arrays,
+                                      passes, layout, tables.spectra, scratch)
     if count:
         occluded = accel.occluded(shadows.rays, count)
         rays += count
@@ -56,24 +57,26 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     """Trace paths ``first .. first + count`` of the pass into ``buffers`` (``buffers.rgb[:count]`` holds
     their colours afterwards); returns (rays cast, rays dropped as non-finite)."""
     state = buffers.state
-    settings = renderer.kernel_settings
-    materials = renderer.material_table.arrays
-    lights = renderer.light_table.arrays
-    geometry = renderer.geometry
-    spectra = renderer.spectra
+    tables = renderer.tables
+    settings = tables.kernel_settings
+    materials = tables.material_table.arrays
+    lights = tables.light_table.arrays
+    geometry = tables.geometry
+    spectra = tables.spectra
+    wavelengths = tables.wavelengths
     rejected = buffers.counters
     rejected[0] = 0
     current = buffers.rays[0]
     if renderer.camera.lens is None:
-        queued = camera_kernel(state, current, renderer.camera.data, renderer.wavelengths, settings,
+        queued = camera_kernel(state, current, renderer.camera.data, wavelengths, settings,
                                renderer._pixels, first, count, samples_per_pixel, first_sample)
     else:
         queued = real_lens_kernel(state, current, renderer.camera.data, renderer.camera.lens_tables,
-                                  renderer.wavelengths, settings, renderer._pixels, first, count, samples_per_pixel,
+                                  wavelengths, settings, renderer._pixels, first, count, samples_per_pixel,
                                   first_sample)
     rejected[0] += count - queued
     passes = renderer.pass_data(buffers)
-    layout = renderer.pass_layout.kernel
+    layout = tables.pass_layout.kernel
     if layout.columns:
         reset_kernel(passes, layout, count)
     routed = 0 if layout.light >= 0 else _ROUTE_END + 1
@@ -81,10 +84,10 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     for depth in range(settings.max_bounces + 2):
         if queued == 0:
             break
-        if renderer.ray_classes is None:
-            hit = renderer.accel.intersect(current, queued)
+        if tables.ray_classes is None:
+            hit = tables.accel.intersect(current, queued)
         else:
-            hit = renderer.ray_classes.intersect(current, queued, state, depth)
+            hit = tables.ray_classes.intersect(current, queued, state, depth)
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, *hit, geometry, materials, lights, spectra, settings,
                                    depth, buffers.surface, passes, layout, buffers.scratch)
@@ -106,7 +109,7 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     while routed <= _ROUTE_END:
         route_kernel(state, passes, layout, count, routed)
         routed += 1
-    film_kernel(state, count, renderer.wavelengths, buffers.rgb)
+    film_kernel(state, count, wavelengths, buffers.rgb)
     if layout.slots:
-        convert_kernel(state, passes, layout, renderer.wavelengths, count)
+        convert_kernel(state, passes, layout, wavelengths, count)
     return rays_cast, int(rejected[0])

@@ -1,0 +1,122 @@
+"""The scene's tables: everything the paths of a render read besides the camera and the film.
+
+    tables = SceneTables(scene, settings, camera)   # geometry, Embree, shading, analysis
+    tables.rebuild(scene, settings, camera)         # all again (new triangles, or a new origin)
+    tables.rebuild_shading(scene, settings, camera) # materials, lights, world, settings; same triangles
+    tables.describe(scene, settings, camera)        # the analysis again (a new camera, same origin)
+
+Every position is relative to the render's origin (``camera.origin``). The tables are
+
+- ``geometry`` (``geometry.prepare_geometry``: float32 triangles, zero-area ones dropped), its Embree
+  scene ``accel`` and, when objects hide from some rays, ``ray_classes`` (else None);
+- ``spectra`` (``spectra.table``), ``material_table`` (``materials.table``), ``light_table``
+  (``lights.table``), ``pass_layout`` and ``aov_table`` (``passes``), the wavelength sampling
+  ``wavelengths`` (guided by ``guide`` towards the scene's emission lines in ``cie`` mode, else None),
+  ``kernel_settings`` (``stages.settings``) and ``needs_alpha`` (the film keeps alpha);
+- what the scene needs (``analysis.analyse_scene``): ``analysis``, ``caustic_targets`` (None without
+  light tracing) and the one-line ``strategy``;
+- ``dropped_triangles``: how many zero-area triangles were left out.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .accel import Accel
+from .analysis import analyse_scene
+from .errors import PrismInputError
+from .geometry import prepare_geometry
+from .lights.emitters import emitter_spectra
+from .lights.table import build_lights
+from .materials.table import build_materials
+from .passes import FilmLayout, aov_table
+from .sampler import SAMPLERS
+from .scene import SpectrumSpec
+from .spectra import wavelength_sampling
+from .spectra.table import SpectrumTable
+from .spectra.wavelength_guide import build_guide
+from .stages.settings import KernelSettings
+from .visibility import HOLDOUT
+from .visibility_accel import RayClassAccel, needs_ray_classes
+
+
+def _triangle_groups(scene, original_triangle, light_groups):
+    """Light group index [T] of each render triangle's object (None when no group has a pass)."""
+    if not light_groups or scene.triangle_object is None or not scene.object_light_groups:
+        return None
+    index = {name: g for g, name in enumerate(light_groups)}
+    of_object = np.array([index.get(name, -1) for name in scene.object_light_groups], np.int32)
+    return of_object[np.asarray(scene.triangle_object)[original_triangle]]
+
+
+def _kept(triangle_object, original):
+    """The object of each kept triangle (``original``: their indices before dropping), or None."""
+    if triangle_object is None:
+        return None
+    return np.asarray(triangle_object)[original]
+
+
+class SceneTables:
+    """The tables of ``scene`` rendered with ``settings`` from ``camera`` (a ``cameras`` camera, whose
+    ``origin`` the positions are relative to). Rebuild them only while no pass runs."""
+
+    def __init__(self, scene, settings, camera):
+        self.geometry = self.accel = self.ray_classes = None
+        self.rebuild(scene, settings, camera)
+
+    def rebuild(self, scene, settings, camera) -> None:
+        """All tables again: triangles relative to ``camera.origin``, their Embree scene, shading, analysis."""
+        self._build_geometry(scene, camera.origin)
+        self.rebuild_shading(scene, settings, camera)
+
+    def _build_geometry(self, scene, origin) -> None:
+        """Triangles relative to ``origin`` (m) and their Embree scene."""
+        self.geometry = self.accel = self.ray_classes = None  # the old tables go first: one BVH in memory at a time
+        self.geometry, self._original_triangle, self.dropped_triangles = prepare_geometry(scene, origin)
+        self._used = sorted(set(np.unique(self.geometry.material).tolist()))
+        self.accel = Accel(self.geometry)
+        self.ray_classes = RayClassAccel(self.geometry, self.accel) if needs_ray_classes(self.geometry) else None
+
+    def rebuild_shading(self, scene, settings, camera) -> None:
+        """Everything the paths read besides the triangles and the camera: spectra, materials, lights,
+        wavelength sampling, kernel settings; then the analysis (``describe``)."""
+        used = self._used
+        if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
+            raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
+        spectra = SpectrumTable()
+        self.material_table = build_materials(scene.materials, set(used), spectra)
+        materials = self.material_table.arrays
+        groups = tuple(settings.passes.light_groups)
+        self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
+                                        self.geometry.material, materials.emission_strength, camera.origin,
+                                        light_groups=groups,
+                                        triangle_group=_triangle_groups(scene, self._original_triangle, groups))
+        white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
+        self.pass_layout = FilmLayout(settings.passes, white)
+        self.aov_table = aov_table(scene.materials, settings.passes.aovs)
+        self.spectra = spectra.arrays()
+        guide = None
+        if settings.wavelength_mode == "cie":
+            guide = build_guide(self.spectra, emitter_spectra(self.light_table, materials))
+        self.wavelengths = wavelength_sampling.build(settings, guide)
+        self.guide = guide
+        self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
+                                              bool(settings.use_mis), SAMPLERS[settings.sampler],
+                                              int(settings.seed) & 0xFFFFFFFF, False, bool(settings.film_transparent),
+                                              bool(settings.film_transparent and settings.transparent_glass),
+                                              float(settings.transparent_roughness) ** 2)
+        self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
+        self.describe(scene, settings, camera)
+
+    def describe(self, scene, settings, camera) -> None:
+        """What the scene needs seen from ``camera``: ``analysis``, light tracing on or off (with its
+        ``caustic_targets``) and the ``strategy`` line."""
+        self.analysis, targets = analyse_scene(scene, settings, self._used, self.material_table, self.light_table,
+                                               camera, self.geometry, self.pass_layout, self.ray_classes,
+                                               _kept(scene.triangle_object, self._original_triangle))
+        if self.guide is not None:
+            a, guide = self.analysis, self.guide
+            a.guided_lines, a.guided_measured, a.guided_smooth = guide.lines, guide.measured, guide.smooth
+        self.kernel_settings = self.kernel_settings._replace(light_tracing=bool(self.analysis.light_tracing))
+        self.caustic_targets = targets if self.analysis.light_tracing else None
+        self.strategy = self.analysis.strategy(settings.use_mis, settings.pixel_filter)
