@@ -22,16 +22,15 @@
 Set-up turns the scene into tables once (``scene_tables.SceneTables``: triangles and their Embree
 scene, spectra, materials, lights, wavelength sampling, the scene analysis) and makes the camera, with
 every position relative to the render's origin (the camera's position; the viewport keeps the first
-one while the view moves). A pass is cut
-into chunks of paths that run on Prism's thread pool; a chunk runs the stages of ``stages`` bounce by
-bounce, Embree queries in between (kernels and Embree release the GIL). Every random number comes from
-the sampler indexed by (pixel, sample, dimension) and the film adds samples in path order, so the image
-depends on the seed only — not on the thread count or the chunk size.
+one while the view moves). A pass is cut into chunks of paths that run on Prism's thread pool
+(``chunk_pool``); a chunk (``chunk_tracer``) runs the stages of ``stages`` bounce by bounce, Embree
+queries in between (kernels and Embree release the GIL). Every random number comes from the sampler
+indexed by (pixel, sample, dimension) and the film adds samples in path order, so the image depends
+on the seed only — not on the thread count or the chunk size.
 """
 
 from __future__ import annotations
 
-import threading
 import time
 from dataclasses import replace
 
@@ -40,12 +39,12 @@ import numpy as np
 from . import adaptive
 from .cameras import make_camera
 from .chunk_pool import ChunkPool
+from .chunk_tracer import ChunkTracer
 from .errors import PrismInputError
 from .film import Film
 from .sampler import SAMPLERS
 from .scene_tables import SceneTables
 from .spectral_film import SpectralFilm
-from .stages.passes import new_pass_data
 from .state import ChunkBuffers
 
 #: A camera this far (m) from the render's origin gets the geometry rebuilt around it (``set_camera``):
@@ -74,7 +73,7 @@ class Renderer:
         self.width, self.height = (int(r) for r in scene.camera.resolution)
         self.tables = SceneTables(scene, settings, self.camera)
         self._pool = ChunkPool(settings.threads)
-        self._local = threading.local()
+        self._chunks = ChunkTracer()
         self.restart(time.perf_counter() - started)
 
     @property
@@ -219,18 +218,6 @@ class Renderer:
         """Pixels the next pass samples (fewer than the region's once adaptive sampling stops some)."""
         return len(self._region_pixel_list())
 
-    def _buffers(self, paths: int) -> ChunkBuffers:
-        buffers = getattr(self._local, "buffers", None)
-        tables = self.tables
-        layout = tables.pass_layout.kernel
-        registers = tables.material_table.register_count
-        if (buffers is None or buffers.capacity < paths or buffers.k != tables.wavelengths.count
-                or buffers.passes.values.shape[1] != layout.columns or buffers.passes.spectral.shape[1] != layout.slots
-                or buffers.scratch.registers.shape[0] < registers):
-            passes = new_pass_data(paths, tables.wavelengths.count, tables.pass_layout)
-            buffers = self._local.buffers = ChunkBuffers(paths, tables.wavelengths.count, passes, registers)
-        return buffers
-
     def pass_data(self, buffers: ChunkBuffers):
         """The per-path pass storage of ``buffers`` with this render's camera and AOV tables."""
         axes = np.asarray(self.scene.camera.camera_to_world, np.float64)[:3, :3]
@@ -238,32 +225,6 @@ class Renderer:
                                        camera_at=np.asarray(self.camera.position - self.origin, np.float64),
                                        render_origin=np.asarray(self.origin, np.float64),
                                        aov_table=self.tables.aov_table)
-
-    def _chunk(self, start, stop, spp, light=False):
-        """Trace camera (or, with ``light``, light) paths ``start .. stop`` of the pass; returns (pixel [n],
-        rgb [n, 3], pass values [n, C] (None for light paths), rays, counters): one sample per camera path,
-        the splats of light paths."""
-        count = stop - start
-        buffers = self._buffers(count)
-        clamps = np.zeros_like(self._glass_clamps)
-        if light:
-            from .stages.light_trace import light_buffers, trace_light_chunk
-
-            extra = light_buffers(self._local, count)
-            splats, rays, rejected = trace_light_chunk(self, buffers, extra, start, count, spp, self.samples_done,
-                                                       clamps)
-            return (extra.pixel[:splats].copy(), buffers.rgb[:splats].copy(), None, rays, rejected, clamps, None,
-                    None)
-        from .stages.trace import trace_chunk
-
-        rays, rejected = trace_chunk(self, buffers, start, count, spp, self.samples_done, clamps)
-        values = buffers.passes.values[:count].copy()
-        spectral = None
-        if self.spectral_film is not None:
-            spectral = self.spectral_film.record(buffers.state, count)
-        alpha = 1.0 - buffers.state.transparency[:count] if self.tables.needs_alpha else None
-        return (buffers.state.pixel[:count].copy(), buffers.rgb[:count].copy(), values, rays, rejected, clamps,
-                spectral, alpha)
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of
@@ -310,7 +271,7 @@ class Renderer:
             chunks += [(a, b, True) for a, b, _ in chunks]
         light_splats = []  # (pixel, rgb, paths) of the pass's light chunks, in chunk order
         try:
-            for i, result in self._pool.run(chunks, lambda start, stop, light: self._chunk(start, stop, spp, light)):
+            for i, result in self._pool.run(chunks, lambda a, b, light: self._chunks.trace(self, a, b, spp, light)):
                 pixel, rgb, values, rays, rejected, clamps, spectral, alpha = result
                 if chunks[i][2]:
                     light_splats.append((pixel, rgb, chunks[i][1] - chunks[i][0]))
