@@ -3,6 +3,7 @@
     .venv/bin/python tools/perf_kernels.py cornell_glass [--size 64] [--spp 16] [--threads 1] [--seconds 20]
     .venv/bin/python tools/perf_kernels.py --blend renders/demo.blend [--spp 4] ...   (bpy module)
     .venv/bin/python tools/perf_kernels.py cornell_glass --annotate shade_kernel   (its hottest instructions)
+    .venv/bin/python tools/perf_kernels.py cornell_grey --cycles   (Cycles on the same scene, for comparison)
 
 ``perf`` sees numba's machine code as anonymous memory. This tool compiles the kernels afresh into a
 throw-away cache (the LLVM modules, and so the function names, exist only for code compiled in this
@@ -113,8 +114,15 @@ def _report(data: Path, top: int) -> None:
         return [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
 
     print("share of samples per library:")
-    for line in table("dso")[:12]:
+    libraries = table("dso")
+    for line in libraries[:12]:
         print("  " + line.strip())
+    shares = {line.split("%", 1)[1].strip(): float(line.split("%", 1)[0]) for line in libraries}
+    # Cycles' idle TBB workers yield in a loop: kernel and TBB samples that render nothing.
+    idle = sum(share for name, share in shares.items() if "kernel.kallsyms" in name or "libtbb" in name)
+    embree = sum(share for name, share in shares.items() if "embree" in name)
+    print(f"Embree's share of the user-space samples (the OS kernel and TBB left out): "
+          f"{100.0 * embree / max(100.0 - idle, 1e-9):.1f} %")
     print("per function (numba's by module path; Embree's library is stripped):")
     rows = []
     for line in table("sym"):
@@ -123,6 +131,39 @@ def _report(data: Path, top: int) -> None:
         rows.append((float(share), _demangle(name)))
     for share, name in rows[:top]:
         print(f"  {share:6.2f} %  {name[:110]}")
+
+
+def _record_while(data: Path, seconds: float, render) -> int:
+    """Call ``render()`` over and over while ``perf record`` samples this process for ``seconds``;
+    returns how many calls ran."""
+    record = subprocess.Popen(["perf", "record", "-q", "-p", str(os.getpid()), "-o", str(data), "--",
+                               "sleep", str(seconds)])
+    done = threading.Event()
+    threading.Thread(target=lambda: (record.wait(), done.set()), daemon=True).start()
+    calls = 0
+    while not done.is_set():
+        render()
+        calls += 1
+    return calls
+
+
+def profile_cycles(args, folder: Path) -> None:
+    """The same scene rendered by Cycles (``benchmarks.peers.cycles``: CPU, Embree in its own library,
+    ``--threads`` threads), sampled the same way: Embree's share of a renderer that is not Prism."""
+    import bpy
+
+    from benchmarks import scenes
+    from benchmarks.peers.cycles import build_blender_scene
+
+    blender = build_blender_scene(scenes.build(args.scene, (args.size, args.size)), args.threads)
+    blender.render.filepath = str(folder / "cycles.exr")
+    blender.cycles.samples = args.spp
+    blender.render.use_persistent_data = True  # later renders reuse the BVH: traversal is measured, not builds
+    bpy.ops.render.render(write_still=True)  # kernels loaded, scene synchronised
+    data = folder / "perf.data"
+    renders = _record_while(data, args.seconds, lambda: bpy.ops.render.render(write_still=True))
+    print(f"Cycles: {renders} renders of {args.spp} spp, {args.threads} thread(s)")
+    _report(data, args.top)
 
 
 def main(argv=None) -> int:
@@ -136,8 +177,13 @@ def main(argv=None) -> int:
     parser.add_argument("--seconds", type=float, default=20.0)
     parser.add_argument("--top", type=int, default=30)
     parser.add_argument("--annotate", metavar="NAME", help="also list the hottest instructions of this function")
+    parser.add_argument("--cycles", action="store_true", help="profile Cycles rendering the benchmark scene instead")
     args = parser.parse_args(argv)
     cache = tempfile.mkdtemp(prefix="prism-perf-kernels-")
+    if args.cycles:
+        profile_cycles(args, Path(cache))
+        shutil.rmtree(cache, ignore_errors=True)
+        return 0
     os.environ["PRISM_KERNEL_CACHE"] = cache  # before any kernel module is imported: compile here
 
     from dataclasses import replace
@@ -159,14 +205,7 @@ def main(argv=None) -> int:
         renderer.render_pass()  # compiles every kernel the scene uses
         spans = write_perf_map(Path(f"/tmp/perf-{os.getpid()}.map"))
         print(f"{len(spans)} compiled functions mapped; sampling {args.seconds:g} s of passes", flush=True)
-        record = subprocess.Popen(["perf", "record", "-q", "-p", str(os.getpid()), "-o", str(data), "--",
-                                   "sleep", str(args.seconds)])
-        done = threading.Event()
-        threading.Thread(target=lambda: (record.wait(), done.set()), daemon=True).start()
-        passes = 0
-        while not done.is_set():
-            renderer.render_pass()
-            passes += 1
+        passes = _record_while(data, args.seconds, renderer.render_pass)
     print(f"{passes} passes of {settings.samples_per_pass} spp, {args.threads} thread(s)")
     _report(data, args.top)
     if args.annotate:
