@@ -47,8 +47,8 @@ def _demangle(symbol: str) -> str:
     return ".".join(parts) or symbol
 
 
-def write_perf_map(path: Path) -> int:
-    """Write the perf map of every function compiled in this process; returns how many."""
+def write_perf_map(path: Path) -> dict[str, tuple[int, int]]:
+    """Write the perf map of every function compiled in this process; returns name -> (start, size)."""
     from numba.core.registry import CPUDispatcher
 
     starts = {}
@@ -90,7 +90,8 @@ def annotate(data: Path, spans: dict, name_part: str, folder: Path, lines: int =
     listing = subprocess.run(["objdump", "-D", "-b", "binary", "-m", "i386:x86-64", "--no-show-raw-insn",
                               f"--adjust-vma={start:#x}", str(code)], capture_output=True, text=True).stdout
     ips = subprocess.run(["perf", "script", "-i", str(data), "-F", "ip"], capture_output=True, text=True).stdout
-    counts = Counter(int(ip, 16) for ip in ips.split() if start <= int(ip, 16) < start + size)
+    addresses = (int(ip, 16) for ip in ips.split())
+    counts = Counter(at for at in addresses if start <= at < start + size)
     total = sum(counts.values()) or 1
     print(f"{name}: {total} samples in {size} bytes; hottest instructions (share of the function):")
     rows = []

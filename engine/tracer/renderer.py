@@ -271,19 +271,18 @@ class Renderer:
             chunks += [(a, b, True) for a, b, _ in chunks]
         light_splats = []  # (pixel, rgb, paths) of the pass's light chunks, in chunk order
         try:
-            for i, result in self._pool.run(chunks, lambda a, b, light: self._chunks.trace(self, a, b, spp, light)):
-                pixel, rgb, values, rays, rejected, clamps, spectral, alpha = result
+            for i, got in self._pool.run(chunks, lambda a, b, light: self._chunks.trace(self, a, b, spp, light)):
                 if chunks[i][2]:
-                    light_splats.append((pixel, rgb, chunks[i][1] - chunks[i][0]))
+                    light_splats.append((got.pixel, got.rgb, chunks[i][1] - chunks[i][0]))
                 else:
-                    self.film.add(pixel, rgb, values)
-                    if alpha is not None:
-                        self.film.add_alpha(pixel, alpha)
-                    if spectral is not None:
-                        self.spectral_film.add(pixel, *spectral)
-                self.stats["rays_cast"] += rays
-                self.stats["rejected_rays"] += rejected
-                self._glass_clamps += clamps
+                    self.film.add(got.pixel, got.rgb, got.values)
+                    if got.alpha is not None:
+                        self.film.add_alpha(got.pixel, got.alpha)
+                    if got.spectral is not None:
+                        self.spectral_film.add(got.pixel, *got.spectral)
+                self.stats["rays_cast"] += got.rays
+                self.stats["rejected_rays"] += got.rejected
+                self._glass_clamps += got.clamps
                 if self.progress is not None:
                     self.progress((i + 1) / len(chunks))
         finally:
