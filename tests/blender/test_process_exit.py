@@ -1,0 +1,45 @@
+"""The bpy processes leave with ``os._exit`` (render.py, the test suite); what they create in the
+system temporary folder must go with them all the same."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+
+
+def _environment_with_temporary_folder(folder: Path) -> dict:
+    environment = dict(os.environ, TMPDIR=str(folder), PYTEST_DEBUG_TEMPROOT=str(folder))
+    environment.pop("PYTEST_ADDOPTS", None)
+    return environment
+
+
+def test_render_script_removes_blenders_session_folder(tmp_path):
+    temporary = tmp_path / "tmp"
+    temporary.mkdir()
+    missing = tmp_path / "missing.blend"  # bpy is loaded before the file is looked for
+    completed = subprocess.run(
+        [sys.executable, str(REPO_ROOT / "render.py"), str(missing), "--output", str(tmp_path / "out.png")],
+        capture_output=True, text=True, timeout=300, env=_environment_with_temporary_folder(temporary),
+    )
+    assert completed.returncode == 1, completed.stderr
+    assert "does not exist" in completed.stderr
+    assert sorted(path.name for path in temporary.iterdir()) == []
+
+
+def test_a_passing_test_run_leaves_nothing_in_the_temporary_folder(tmp_path):
+    temporary = tmp_path / "tmp"
+    temporary.mkdir()
+    one_test = "tests/blender/test_batch_arguments.py::test_output_that_is_a_folder_is_refused"
+    completed = subprocess.run(
+        [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", one_test],
+        cwd=REPO_ROOT, capture_output=True, text=True, timeout=300,
+        env=_environment_with_temporary_folder(temporary),
+    )
+    assert completed.returncode == 0, completed.stdout + completed.stderr
+    assert "1 passed" in completed.stdout
+    left = sorted(str(path.relative_to(temporary)) for path in temporary.rglob("*"))
+    assert not any(name.startswith("blender_") for name in left), left
+    assert not any(path.name == ".lock" for path in temporary.rglob(".lock")), left
+    assert not any(name.count("/") >= 2 for name in left), f"a test's folder outlived the run: {left}"
