@@ -46,7 +46,6 @@ from __future__ import annotations
 import importlib
 import importlib.util
 import os
-import shutil
 import sys
 from contextlib import contextmanager
 from pathlib import Path
@@ -346,20 +345,9 @@ def _script_arguments(in_blender: bool) -> list[str]:
 
 
 def exit_now(status: int) -> None:
-    """Leave the process at once with ``status``: the bpy module can hang for ever in a global
-    destructor at interpreter exit, so exit handlers are skipped.
-
-    Blender removes its session folder (``bpy.app.tempdir``, ``blender_XXXXXX`` in the system
-    temporary folder) in one of those handlers; without removing it here, every run on a farm
-    node would leave one behind.
-    """
-    bpy = sys.modules.get("bpy")
-    session_folder = Path(bpy.app.tempdir) if bpy is not None and bpy.app.tempdir else None
-    if session_folder is not None and session_folder.name.startswith("blender_"):
-        shutil.rmtree(session_folder, ignore_errors=True)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(status)
+    """End a process that loaded bpy with ``status`` at once (``engine/batch/process_exit.py`` says why)."""
+    load_addon_package()
+    importlib.import_module(f"{ADDON_PACKAGE}.engine.batch.process_exit").exit_now(status)
 
 
 if __name__ == "__main__":

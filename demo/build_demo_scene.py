@@ -10,14 +10,13 @@ Needs the Prism add-on registered (its settings live on the data-blocks).
 """
 
 import math
-import os
 import sys
 from pathlib import Path
 
 import bpy
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from render import load_addon_package  # noqa: E402  (the add-on, for its settings)
+from render import exit_now, load_addon_package  # noqa: E402  (the add-on, for its settings)
 
 
 def principled(name, color, **inputs):
@@ -130,7 +129,7 @@ def save_with_world(scene, background, path: Path) -> None:
 
 def run(build, default_path: str, what: str, **options) -> None:
     """A builder's command line: ``build(path, **options)`` to argv's first path (else ``default_path``),
-    one line on stderr, and an exit status (``os._exit``: the bpy module may hang at exit)."""
+    one line on stderr, and an exit status (``exit_now``: the bpy module may hang at exit)."""
     arguments = [a for a in sys.argv[1:] if not a.startswith("--")]
     target = Path(arguments[0] if arguments else default_path)
     status = 0
@@ -140,9 +139,7 @@ def run(build, default_path: str, what: str, **options) -> None:
     except Exception as error:  # noqa: BLE001 - report and exit non-zero
         print(f"Could not build the {what.lower()}: {error}", file=sys.stderr)
         status = 1
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(status)
+    exit_now(status)
 
 
 if __name__ == "__main__":

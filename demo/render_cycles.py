@@ -7,14 +7,13 @@ adaptive sampling: the picture shows Cycles' converged estimate of the same file
 """
 
 import argparse
-import os
 import sys
 from pathlib import Path
 
 import bpy
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from render import load_addon_package  # noqa: E402  (the add-on: the file's Prism settings load cleanly)
+from render import exit_now, load_addon_package  # noqa: E402  (the add-on: the file's Prism settings load cleanly)
 
 
 def main() -> None:
@@ -41,5 +40,4 @@ def main() -> None:
 
 if __name__ == "__main__":
     main()
-    sys.stdout.flush()
-    os._exit(0)
+    exit_now(0)

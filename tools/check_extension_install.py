@@ -31,8 +31,9 @@ KERNEL_CACHE_FILES = ("*.nbi", "*.nbc")  # numba's cache index and compiled code
 
 
 def _isolate_user_dirs(user_dir: Path) -> None:
+    # TMPDIR too: Blender's session folder goes there, and leaving with os._exit skips its removal.
     for var, sub in (("BLENDER_USER_RESOURCES", "resources"), ("BLENDER_USER_CONFIG", "config"),
-                     ("BLENDER_USER_SCRIPTS", "scripts")):
+                     ("BLENDER_USER_SCRIPTS", "scripts"), ("TMPDIR", "tmp")):
         os.environ[var] = str(user_dir / sub)
         (user_dir / sub).mkdir(parents=True, exist_ok=True)
 

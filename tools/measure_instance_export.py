@@ -15,7 +15,6 @@ from __future__ import annotations
 import argparse
 import importlib
 import math
-import os
 import sys
 import time
 import tracemalloc
@@ -45,7 +44,7 @@ def main() -> int:
     arguments = parser.parse_args()
     import bpy
 
-    from render import load_addon_package
+    from render import exit_now, load_addon_package
 
     addon = load_addon_package()
     addon.register()
@@ -68,8 +67,7 @@ def main() -> int:
     print(f"instances: {count} (+1 original), triangles: {len(geometry.triangles)}")
     print(f"export_meshes: {best:.3f} s best of {len(times)} ({best / count * 1e6:.1f} µs per instance)")
     print(f"arrays kept: {kept / count:.0f} bytes per instance; peak during export: {peak / count:.0f} bytes per instance")
-    sys.stdout.flush()
-    os._exit(0)
+    exit_now(0)
 
 
 if __name__ == "__main__":

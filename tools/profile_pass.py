@@ -21,7 +21,6 @@ from __future__ import annotations
 import argparse
 import importlib
 import json
-import os
 import sys
 import time
 from pathlib import Path
@@ -119,9 +118,9 @@ def main(argv=None) -> int:
     if args.json:
         Path(args.json).write_text(json.dumps(report, indent=1))
     if args.blend:  # the bpy module can hang at exit after a render (../shared/ENVIRONMENT.md)
-        sys.stdout.flush()
-        sys.stderr.flush()
-        os._exit(0)
+        from render import exit_now
+
+        exit_now(0)
     return 0
 
 

@@ -45,8 +45,8 @@ if {all_passes}:
         setattr(layer, "use_pass_" + name, True)
     scene.prism.use_pass_denoising_data = True
 bpy.ops.wm.save_as_mainfile(filepath={blend!r})
-import os
-os._exit(0)  # the bpy module can hang at interpreter exit
+from render import exit_now
+exit_now(0)  # the bpy module can hang at interpreter exit
 """
 
 

@@ -155,9 +155,9 @@ def main():
             "filter": "Blackman-Harris 1.5 px"}
     common.save(args.out, args, args.spp, seconds, images, info, ref)
     print(f"cycles: {args.scene} done", file=sys.stderr)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(0)
+    from render import exit_now
+
+    exit_now(0)
 
 
 if __name__ == "__main__":

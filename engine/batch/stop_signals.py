@@ -8,11 +8,12 @@ deleting the temporary files still registered here.
 
 from __future__ import annotations
 
-import os
 import signal
 import sys
 import threading
 from pathlib import Path
+
+from .process_exit import exit_now
 
 _SIGNALS = tuple(s for s in (getattr(signal, "SIGINT", None), getattr(signal, "SIGTERM", None)) if s is not None)
 #: Exit status of a run stopped by Esc inside Blender (no signal reached Python): as Ctrl-C.
@@ -80,5 +81,4 @@ class StopSignals:
             except OSError:
                 pass
         print(f"Prism: {signal.Signals(number).name} again: quitting now.", file=sys.stderr, flush=True)
-        sys.stdout.flush()
-        os._exit(128 + number)
+        exit_now(128 + number)

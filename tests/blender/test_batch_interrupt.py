@@ -3,6 +3,7 @@ unfinished is written under an output's name, and the exit status says the run w
 
 from __future__ import annotations
 
+import os
 import signal
 import subprocess
 import sys
@@ -34,14 +35,17 @@ def _scene_file(tmp_path, samples_by_frame) -> Path:
     return path
 
 
-def _signal_when(arguments, trigger_lines, number) -> tuple[int, str]:
-    """Run render.py; once every text in ``trigger_lines`` has appeared on stderr (in order), send
-    signal ``number``; return the exit status and all of stderr."""
+def _signal_when(arguments, trigger_lines, number, temporary_folder: Path) -> tuple[int, str]:
+    """Run render.py with ``temporary_folder`` as its system temporary folder; once every text in
+    ``trigger_lines`` has appeared on stderr (in order), send signal ``number``; return the exit
+    status and all of stderr."""
+    temporary_folder.mkdir(exist_ok=True)
     process = subprocess.Popen(
         [sys.executable, str(REPO_ROOT / "render.py"), *map(str, arguments)],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
         text=True,
+        env=dict(os.environ, TMPDIR=str(temporary_folder)),
     )
     watchdog = threading.Timer(240, process.kill)  # a hang fails the test instead of the suite
     watchdog.start()
@@ -78,6 +82,7 @@ def test_ctrl_c_keeps_finished_frames_and_never_replaces_an_output_with_a_partia
         [blend, "--frames", "1..3", "--output", out / "shot_#.exr"],
         ["Saved: ", "Prism: frame 2 (2/3)", "| Pass 2 |"],
         signal.SIGINT,
+        tmp_path / "tmp",
     )
     assert status == 130, stderr
     assert last_line(stderr) == f"Prism: interrupted by SIGINT: '{out / 'shot_2.exr'}' was not written."
@@ -87,6 +92,7 @@ def test_ctrl_c_keeps_finished_frames_and_never_replaces_an_output_with_a_partia
         assert (out / f"shot_{frame}.exr").read_bytes() == b"finished frame %d from an earlier run" % frame
     assert "Prism: frame 3" not in stderr
     assert _leftovers(out) == []
+    assert list((tmp_path / "tmp").iterdir()) == [], "Blender's session folder outlived the process"
     bad_input("Ctrl-C (SIGINT) during frame 2 of --frames 1..3", status, last_line(stderr))
 
 
@@ -96,7 +102,8 @@ def test_sigterm_leaves_the_output_as_it_was(fresh_scene, tmp_path, keep_partial
     output = tmp_path / "still.exr"
     output.write_bytes(b"the good render from yesterday")
     status, stderr = _signal_when(
-        [blend, "--output", output, *(["--keep-partial"] if keep_partial else [])], ["| Pass 3 |"], signal.SIGTERM
+        [blend, "--output", output, *(["--keep-partial"] if keep_partial else [])], ["| Pass 3 |"], signal.SIGTERM,
+        tmp_path / "tmp",
     )
     assert status == 143, stderr
     assert output.read_bytes() == b"the good render from yesterday"
@@ -107,4 +114,6 @@ def test_sigterm_leaves_the_output_as_it_was(fresh_scene, tmp_path, keep_partial
         image = bpy.data.images.load(str(partial))
         assert tuple(image.size) == (48, 32) and max(image.pixels[:]) > 0  # passes done before the signal
     assert _leftovers(tmp_path) == []
+    assert list((tmp_path / "tmp").iterdir()) == []
     bad_input(f"SIGTERM during a render{' with --keep-partial' if keep_partial else ''}", status, last_line(stderr))
+

@@ -28,6 +28,33 @@ def test_render_script_removes_blenders_session_folder(tmp_path):
     assert sorted(path.name for path in temporary.iterdir()) == []
 
 
+def test_a_second_signal_quits_at_once_without_leaving_anything(tmp_path):
+    temporary = tmp_path / "tmp"
+    temporary.mkdir()
+    leftover = tmp_path / "render.exr.prism-tmp"
+    script = f"""
+import os, signal, sys, time
+import bpy
+sys.path.insert(0, {str(REPO_ROOT)!r})
+from engine.batch.stop_signals import StopSignals
+open({str(leftover)!r}, "wb").close()
+with StopSignals() as signals:
+    signals.temporary_files.add(__import__("pathlib").Path({str(leftover)!r}))
+    os.kill(os.getpid(), signal.SIGTERM)
+    time.sleep(0.1)
+    os.kill(os.getpid(), signal.SIGTERM)
+    time.sleep(5)
+print("not reached")
+"""
+    completed = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300,
+                               env=_environment_with_temporary_folder(temporary))
+    assert completed.returncode == 143, completed.stderr
+    assert completed.stderr.strip().splitlines()[-1] == "Prism: SIGTERM again: quitting now."
+    assert "not reached" not in completed.stdout
+    assert not leftover.exists()
+    assert sorted(path.name for path in temporary.iterdir()) == []
+
+
 def test_a_passing_test_run_leaves_nothing_in_the_temporary_folder(tmp_path):
     temporary = tmp_path / "tmp"
     temporary.mkdir()

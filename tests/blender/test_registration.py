@@ -14,7 +14,7 @@ HEAVY_MODULES = ("numba", "llvmlite", "colour", "scipy", "embreex")
 
 _PROBE = textwrap.dedent(
     """
-    import os, sys, traceback
+    import sys, traceback
     import bpy
     sys.path.insert(0, {root!r})
 
@@ -42,9 +42,8 @@ _PROBE = textwrap.dedent(
     except Exception:
         traceback.print_exc()
         status = 1
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(status)
+    from render import exit_now
+    exit_now(status)
     """
 )
 

@@ -116,10 +116,11 @@ def run(argv: list[str]) -> int:
 
 
 def exit_now(status: int) -> None:
-    """Leave at once: the bpy module can hang in a destructor at interpreter exit."""
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(status)
+    """Leave at once, as Blender's batch scripts do (render.py's ``exit_now``)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+    from render import exit_now as leave
+
+    leave(status)
 
 
 if __name__ == "__main__":
