@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import os
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -112,14 +113,22 @@ def pytest_unconfigure(config):
     Once pytest has printed its summary, leave at once with the real exit status.
     """
     if "bpy" in sys.modules and _exit_status["code"] is not None:
-        _release_temporary_folder_lock(config)
+        _tidy_temporary_folders(config)
         exit_now(_exit_status["code"])
 
 
-def _release_temporary_folder_lock(config) -> None:
-    """pytest unlocks its numbered temporary folder in an exit handler, which ``exit_now`` skips;
-    a folder left locked is not removed by later runs for three days (1.4 GB per full run)."""
+def _tidy_temporary_folders(config) -> None:
+    """What pytest does for its numbered temporary folders in exit handlers, which ``exit_now`` skips:
+    unlock this run's folder and remove all but the newest ``tmp_path_retention_count``. Skipped, every
+    run's folder stayed locked and was kept for three days (1.4 GB per full run)."""
     factory = getattr(config, "_tmp_path_factory", None)
     basetemp = getattr(factory, "_basetemp", None)
-    if basetemp is not None and getattr(factory, "_given_basetemp", None) is None:
-        (Path(basetemp) / ".lock").unlink(missing_ok=True)
+    if basetemp is None or getattr(factory, "_given_basetemp", None) is not None:
+        return
+    (Path(basetemp) / ".lock").unlink(missing_ok=True)
+    try:
+        from _pytest.pathlib import LOCK_TIMEOUT, cleanup_numbered_dir
+    except ImportError:  # a pytest that moved them: its next run's own clean-up still sees this run unlocked
+        return
+    keep = 0 if factory._retention_policy == "none" else factory._retention_count
+    cleanup_numbered_dir(Path(basetemp).parent, "pytest-", keep, time.time() - LOCK_TIMEOUT)

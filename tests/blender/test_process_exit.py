@@ -1,6 +1,7 @@
 """The bpy processes leave with ``os._exit`` (render.py, the test suite); what they create in the
 system temporary folder must go with them all the same."""
 
+import getpass
 import os
 import subprocess
 import sys
@@ -55,9 +56,11 @@ print("not reached")
     assert sorted(path.name for path in temporary.iterdir()) == []
 
 
-def test_a_passing_test_run_leaves_nothing_in_the_temporary_folder(tmp_path):
+def test_a_passing_test_run_removes_its_folders_and_keeps_three_earlier_runs(tmp_path):
     temporary = tmp_path / "tmp"
-    temporary.mkdir()
+    runs = temporary / f"pytest-of-{getpass.getuser()}"
+    for number in range(5):  # folders of five earlier runs that failed (unlocked, as this suite leaves them)
+        (runs / f"pytest-{number}" / "test_that_failed0").mkdir(parents=True)
     one_test = "tests/blender/test_batch_arguments.py::test_output_that_is_a_folder_is_refused"
     completed = subprocess.run(
         [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", one_test],
@@ -69,4 +72,6 @@ def test_a_passing_test_run_leaves_nothing_in_the_temporary_folder(tmp_path):
     left = sorted(str(path.relative_to(temporary)) for path in temporary.rglob("*"))
     assert not any(name.startswith("blender_") for name in left), left
     assert not any(path.name == ".lock" for path in temporary.rglob(".lock")), left
-    assert not any(name.count("/") >= 2 for name in left), f"a test's folder outlived the run: {left}"
+    assert sorted(path.name for path in runs.glob("pytest-[0-9]*")) == ["pytest-2", "pytest-3", "pytest-4"], \
+        "pytest keeps the newest three runs' folders and removes a passing run's own"
+    assert not (runs / "pytest-5").exists()
