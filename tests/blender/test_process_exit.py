@@ -35,12 +35,13 @@ def test_a_second_signal_quits_at_once_without_leaving_anything(tmp_path):
     leftover = tmp_path / "render.exr.prism-tmp"
     script = f"""
 import os, signal, sys, time
+from pathlib import Path
 import bpy
 sys.path.insert(0, {str(REPO_ROOT)!r})
 from engine.batch.stop_signals import StopSignals
 open({str(leftover)!r}, "wb").close()
 with StopSignals() as signals:
-    signals.temporary_files.add(__import__("pathlib").Path({str(leftover)!r}))
+    signals.temporary_files.add(Path({str(leftover)!r}))
     os.kill(os.getpid(), signal.SIGTERM)
     time.sleep(0.1)
     os.kill(os.getpid(), signal.SIGTERM)
