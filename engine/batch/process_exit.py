@@ -17,7 +17,7 @@ from pathlib import Path
 def remove_blender_session_folder() -> None:
     """Remove Blender's session folder, if bpy is loaded and the folder is one Blender made."""
     bpy = sys.modules.get("bpy")
-    tempdir = getattr(getattr(bpy, "app", None), "tempdir", "") if bpy is not None else ""
+    tempdir = bpy.app.tempdir if bpy is not None else ""
     if tempdir and Path(tempdir).name.startswith("blender_"):
         shutil.rmtree(tempdir, ignore_errors=True)
 
