@@ -1,0 +1,93 @@
+"""Ray queries from compiled code: one ray (``closest_hit``, ``is_occluded``) and whole queues
+(``closest_hits``, ``occlusion``).
+
+Kernels call Embree's ``rtcIntersect1`` / ``rtcOccluded1`` by symbol (``library`` registers them), on
+a per-thread ``RTCRayHit`` record (``layout.new_ray_hit_record``) passed as its float32 and uint32
+views. Rays start at distance 0 (callers offset secondary origins, as with embreex) and carry ray time
+0 until motion blur gives them one.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+from numba.core import types
+
+from ..jit import inlined, kernel
+from . import library
+from .layout import ALL_MASK, DIR_X, FLAGS, GEOM_ID, INST_ID, INVALID_ID, MASK, ORG_X, PRIM_ID, RAY_ID, TFAR, TIME, \
+    TNEAR, U, V
+
+#: What a compiled loop traces against: ``scene`` the committed ``RTCScene`` handle (``scene.Scene.handle``)
+#: and this thread's ``RTCRayHit`` record as its float32 ``words`` and uint32 ``ids`` views.
+RayCaster = namedtuple("RayCaster", "scene words ids")
+
+library.load()  # before any kernel below is compiled or loaded: they link to its symbols by name
+
+# void rtcIntersect1(RTCScene, RTCRayHit*, RTCIntersectArguments*) and rtcOccluded1(RTCScene, RTCRay*,
+# RTCOccludedArguments*): pointers passed as machine words (same registers on every supported ABI);
+# null arguments select Embree's defaults.
+_rtc_intersect1 = types.ExternalFunction("rtcIntersect1", types.void(types.uintp, types.uintp, types.uintp))
+_rtc_occluded1 = types.ExternalFunction("rtcOccluded1", types.void(types.uintp, types.uintp, types.uintp))
+
+
+@inlined
+def _set_ray(words, ids, ox, oy, oz, dx, dy, dz, tmax, time):
+    words[ORG_X] = ox
+    words[ORG_X + 1] = oy
+    words[ORG_X + 2] = oz
+    words[TNEAR] = 0.0
+    words[DIR_X] = dx
+    words[DIR_X + 1] = dy
+    words[DIR_X + 2] = dz
+    words[TIME] = time
+    words[TFAR] = tmax
+    ids[MASK] = ALL_MASK
+    ids[RAY_ID] = 0
+    ids[FLAGS] = 0
+
+
+@inlined
+def closest_hit(scene, words, ids, ox, oy, oz, dx, dy, dz, tmax, time):
+    """Closest triangle along the ray before ``tmax`` in ``scene`` (an ``rtcNewScene`` handle):
+    (primitive id, or -1 for a miss; t; u; v). On a miss t is ``tmax``."""
+    _set_ray(words, ids, ox, oy, oz, dx, dy, dz, tmax, time)
+    ids[GEOM_ID] = INVALID_ID
+    ids[PRIM_ID] = INVALID_ID
+    ids[INST_ID] = INVALID_ID
+    _rtc_intersect1(scene, words.ctypes.data, 0)
+    if ids[GEOM_ID] == INVALID_ID:
+        return -1, words[TFAR], np.float32(0.0), np.float32(0.0)
+    return np.int32(ids[PRIM_ID]), words[TFAR], words[U], words[V]
+
+
+@inlined
+def is_occluded(scene, words, ids, ox, oy, oz, dx, dy, dz, tmax, time):
+    """True if anything in ``scene`` lies on the ray between 0 and ``tmax``."""
+    _set_ray(words, ids, ox, oy, oz, dx, dy, dz, tmax, time)
+    _rtc_occluded1(scene, words.ctypes.data, 0)
+    return words[TFAR] < 0.0  # Embree sets tfar to -inf when it finds an occluder
+
+
+@kernel
+def closest_hits(caster, rays, count, bounded, hits):
+    """Closest hits of rays ``0 .. count`` of ``rays`` (a ``state.RayQueue``: float32 ``origin`` /
+    ``direction`` [n, 3], ``tmax`` [n]) into ``hits`` (a ``state.HitRecord``: ``triangle`` int32, -1 for a
+    miss; ``t``, ``u``, ``v`` float32), before ``tmax`` where ``bounded``, else unbounded."""
+    for j in range(count):
+        limit = rays.tmax[j] if bounded else np.float32(np.inf)
+        hits.triangle[j], hits.t[j], hits.u[j], hits.v[j] = closest_hit(
+            caster.scene, caster.words, caster.ids, rays.origin[j, 0], rays.origin[j, 1], rays.origin[j, 2],
+            rays.direction[j, 0], rays.direction[j, 1], rays.direction[j, 2], limit, np.float32(0.0))
+
+
+@kernel
+def occlusion(caster, rays, count, occluded):
+    """``occluded[j]`` (int32) 0 where something lies before ``rays.tmax[j]``, -1 where ray ``j`` is free
+    (embreex's convention), for rays ``0 .. count`` of a ``state.RayQueue``."""
+    for j in range(count):
+        blocked = is_occluded(caster.scene, caster.words, caster.ids, rays.origin[j, 0], rays.origin[j, 1],
+                              rays.origin[j, 2], rays.direction[j, 0], rays.direction[j, 1], rays.direction[j, 2],
+                              rays.tmax[j], np.float32(0.0))
+        occluded[j] = 0 if blocked else -1
