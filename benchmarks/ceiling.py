@@ -39,6 +39,8 @@ class RayRecorder:
         self._own = {name for name in QUERIES if name in vars(accel)}  # already wrapped on the instance
         for name, kind in QUERIES.items():
             setattr(accel, name, self._recording(kind, self._originals[name]))
+        self._compiled_loops = accel.compiled_loops
+        accel.compiled_loops = False  # the chunks query Embree through the methods wrapped here
 
     def _recording(self, kind, query):
         def record(rays, count, *args, **kwargs):
@@ -50,6 +52,7 @@ class RayRecorder:
         return record
 
     def uninstall(self):
+        self.accel.compiled_loops = self._compiled_loops
         for name in QUERIES:
             if name in self._own:
                 setattr(self.accel, name, self._originals[name])

@@ -3,8 +3,9 @@
 The stage kernels are called by ``engine.tracer.stages.trace`` through its module namespace, and the
 Embree queries through ``renderer.tables.accel``: for the measured passes both are replaced by timing
 wrappers (``thread_time`` and ``perf_counter`` around each call, a handful per chunk and bounce), and
-restored afterwards. Nothing in the renderer changes; the timed passes of the harness never run
-wrapped.
+restored afterwards. Chunks run the stepwise loop for these passes (``Accel.compiled_loops`` off:
+the same kernels, called from Python, so each can be timed; the compiled bounce loop runs them in one
+call); the timed passes of the harness never run wrapped.
 
 CPU time of the calling thread is what a stage costs, whatever else the machine runs (a thread that
 is descheduled inside a kernel accrues wall time, not CPU time); shares are of the CPU time of all
@@ -82,6 +83,7 @@ def timed_stages(renderer, clock: _Clock):
     accel_names = [n for _, names in EMBREE_STAGES for n in names]
     saved_accel = {n: getattr(renderer.tables.accel, n) for n in accel_names}
     saved_add = renderer.film.add
+    renderer.tables.accel.compiled_loops = False
     try:
         for n in module_names:
             setattr(trace, n, clock.wrap(n, saved_module[n]))
@@ -94,6 +96,7 @@ def timed_stages(renderer, clock: _Clock):
             setattr(trace, n, f)
         for n in accel_names:
             delattr(renderer.tables.accel, n)  # back to the class's methods
+        renderer.tables.accel.compiled_loops = True
         del renderer.film.add
 
 

@@ -1,11 +1,15 @@
-"""Ray queries with embreex (Embree 4): closest hits and occlusion for a queue of float32 rays.
+"""Ray queries against a render's geometry: closest hits and occlusion for queues of float32 rays.
 
-Embree's ``run`` releases the GIL, so the chunks traced by Prism's worker threads query it
-concurrently; each call traces one queue serially. Rays are always finite when they get here (the
-kernels that write queues drop non-finite rays: Embree slows ~600x on NaN directions).
+Rays are traced by Prism's own Embree layer (``embree``): the scene is built once per geometry, and the
+queries run in compiled code without the GIL, so the chunks traced by Prism's worker threads query it
+concurrently. ``caster()`` is what compiled bounce loops pass to ``embree.queries`` to trace themselves.
+Rays are always finite when they get here (the kernels that write queues drop non-finite rays: Embree
+slows ~600x on NaN directions).
 """
 
 from __future__ import annotations
+
+import threading
 
 import numpy as np
 
@@ -14,33 +18,56 @@ class Accel:
     """Queries against a ``geometry.Geometry`` (camera-relative float32 vertices)."""
 
     def __init__(self, geometry):
-        self._scene = None
-        if len(geometry.triangles):
-            from embreex import rtcore_scene
-            from embreex.mesh_construction import TriangleMesh
+        from .embree.scene import Scene, TriangleGeometry
 
-            self._scene = rtcore_scene.EmbreeScene()
-            TriangleMesh(self._scene, geometry.vertices, geometry.triangles)
+        geometries = [TriangleGeometry(geometry.vertices, geometry.triangles)] if len(geometry.triangles) else []
+        self._scene = Scene(geometries)
+        self._local = threading.local()
+        #: Chunks trace in compiled loops that query Embree themselves; False makes them call this
+        #: object's query methods from Python instead (``benchmarks.ceiling`` records the rays that way).
+        self.compiled_loops = True
+
+    def caster(self):
+        """This scene with this thread's ``RTCRayHit`` record (``embree.queries.RayCaster``), made once per thread."""
+        found = getattr(self._local, "caster", None)
+        if found is None:
+            from .embree.layout import new_ray_hit_record
+            from .embree.queries import RayCaster
+
+            found = self._local.caster = RayCaster(self._scene.handle, *new_ray_hit_record())
+        return found
+
+    def _closest(self, rays, count, bounded):
+        from .embree.queries import closest_hits
+        from .state import HitRecord
+
+        hits = HitRecord(np.empty(count, np.int32), np.empty(count, np.float32), np.empty(count, np.float32),
+                         np.empty(count, np.float32))
+        closest_hits(self.caster(), _as_queue(rays), count, bounded, hits)
+        return hits
 
     def intersect(self, rays, count):
         """Closest hits of the first ``count`` rays of ``rays`` (a ``state.RayQueue``):
         (triangle int32 [count] (-1: miss), t float32, u float32, v float32)."""
-        if self._scene is None or count == 0:
-            return (np.full(count, -1, np.int32), np.full(count, np.inf, np.float32),
-                    np.zeros(count, np.float32), np.zeros(count, np.float32))
-        r = self._scene.run(rays.origin[:count], rays.direction[:count], output=1)
-        return r["primID"], r["tfar"], r["u"], r["v"]
+        return self._closest(rays, count, False)
 
     def intersect_before(self, rays, count):
         """Like ``intersect`` but only hits closer than ``rays.tmax`` (shadow rays crossing films)."""
-        if self._scene is None or count == 0:
-            return (np.full(count, -1, np.int32), np.full(count, np.inf, np.float32),
-                    np.zeros(count, np.float32), np.zeros(count, np.float32))
-        r = self._scene.run(rays.origin[:count], rays.direction[:count], dists=rays.tmax[:count].copy(), output=1)
-        return r["primID"], r["tfar"], r["u"], r["v"]
+        return self._closest(rays, count, True)
 
     def occluded(self, rays, count):
         """int32 [count]: 0 where something lies between the origin and ``tmax``, -1 where the ray is free."""
-        if self._scene is None or count == 0:
-            return np.full(count, -1, np.int32)
-        return self._scene.run(rays.origin[:count], rays.direction[:count], dists=rays.tmax[:count], query="OCCLUDED")
+        from .embree.queries import occlusion
+
+        result = np.empty(count, np.int32)
+        occlusion(self.caster(), _as_queue(rays), count, result)
+        return result
+
+
+def _as_queue(rays):
+    """``rays`` as a ``state.RayQueue`` (callers may hand any object with ``origin``, ``direction``, ``tmax``)."""
+    from .state import RayQueue
+
+    if isinstance(rays, RayQueue):
+        return rays
+    return RayQueue(np.zeros(len(rays.tmax), np.int32), rays.origin, rays.direction, rays.tmax)

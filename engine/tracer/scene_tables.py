@@ -15,7 +15,8 @@ Every position is relative to the render's origin (``camera.origin``). The table
   ``kernel_settings`` (``stages.settings``) and ``needs_alpha`` (the film keeps alpha);
 - what the scene needs (``analysis.analyse_scene``): ``analysis``, ``caustic_targets`` (None without
   light tracing) and the one-line ``strategy``;
-- ``dropped_triangles``: how many zero-area triangles were left out.
+- ``dropped_triangles``: how many zero-area triangles were left out;
+- ``arrays``: the tables compiled bounce loops read, as one record (``stages.bounce_loop.SceneArrays``).
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ from .scene import SpectrumSpec
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
 from .spectra.wavelength_guide import build_guide
+from .stages.bounce_loop import SceneArrays
 from .stages.settings import KernelSettings
 from .visibility import HOLDOUT
 from .visibility_accel import RayClassAccel, needs_ray_classes
@@ -100,11 +102,13 @@ class SceneTables:
             guide = build_guide(self.spectra, emitter_spectra(self.light_table, materials))
         self.wavelengths = wavelength_sampling.build(settings, guide)
         self.guide = guide
-        self.kernel_settings = KernelSettings(int(settings.max_bounces), int(settings.russian_roulette_depth),
-                                              bool(settings.use_mis), SAMPLERS[settings.sampler],
-                                              int(settings.seed) & 0xFFFFFFFF, False, bool(settings.film_transparent),
-                                              bool(settings.film_transparent and settings.transparent_glass),
-                                              float(settings.transparent_roughness) ** 2)
+        self.kernel_settings = KernelSettings(
+            max_bounces=int(settings.max_bounces), roulette_depth=int(settings.russian_roulette_depth),
+            use_mis=bool(settings.use_mis), sampler=SAMPLERS[settings.sampler], seed=int(settings.seed) & 0xFFFFFFFF,
+            light_tracing=False,  # the analysis decides (``describe``)
+            film_transparent=bool(settings.film_transparent),
+            transparent_glass=bool(settings.film_transparent and settings.transparent_glass),
+            transparent_alpha=float(settings.transparent_roughness) ** 2)
         self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.describe(scene, settings, camera)
 
@@ -120,3 +124,5 @@ class SceneTables:
         self.kernel_settings = self.kernel_settings._replace(light_tracing=bool(self.analysis.light_tracing))
         self.caustic_targets = targets if self.analysis.light_tracing else None
         self.strategy = self.analysis.strategy(settings.use_mis, settings.pixel_filter)
+        self.arrays = SceneArrays(self.geometry, self.material_table.arrays, self.light_table.arrays, self.spectra,
+                                  self.kernel_settings, self.wavelengths)

@@ -65,6 +65,9 @@ RayQueue = namedtuple("RayQueue", "path origin direction tmax")
 #: ``group`` int32 [n] the light group of the light sampled (for its pass).
 ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance group")
 
+#: Embree's answer for each queued ray: ``triangle`` int32 [n] (-1: a miss), ``t``, ``u``, ``v`` float32 [n].
+HitRecord = namedtuple("HitRecord", "triangle t u v")
+
 #: A list of paths (e.g. those that hit a surface this bounce).
 PathList = namedtuple("PathList", "path")
 
@@ -118,3 +121,17 @@ class ChunkBuffers:
         self.rgb = np.empty((n, 3))
         self.alpha = np.empty(n)
         self.counters = np.zeros(1, np.int64)  # rays dropped as non-finite
+        self.hits = HitRecord(np.empty(n, np.int32), np.empty(n, np.float32), np.empty(n, np.float32),
+                              np.empty(n, np.float32))
+        self.occluded = np.empty(n, np.int32)
+        self._loop = None
+
+    @property
+    def loop(self):
+        """These buffers as the bounce loop's record (``stages.bounce_loop.LoopBuffers``), made once."""
+        if self._loop is None:
+            from .stages.bounce_loop import LoopBuffers
+
+            self._loop = LoopBuffers(self.state, self.rays, self.surface, self.shadows, self.scratch, self.hits,
+                                     self.occluded, self.counters, self.rgb)
+        return self._loop

@@ -1,7 +1,7 @@
-"""One chunk of light paths, bounce by bounce (``light_paths`` kernels, Embree in between), and its splats.
+"""One chunk of light paths and its splats: ``stages.light_loop`` traces it in one compiled call (or,
+where the Embree queries must be seen from Python, stepwise: ``Accel.compiled_loops``).
 
-Like ``trace.py`` for camera paths: Python only calls kernels and Embree on whole queues. A chunk's
-splats come back in path order, and the renderer adds chunks to the film in chunk order, so every
+A chunk's splats come back in path order, and the renderer adds chunks to the film in chunk order, so every
 pixel sums its light-traced samples in the pass's path order whatever the chunking or thread count.
 """
 
@@ -12,9 +12,11 @@ from collections import namedtuple
 import numpy as np
 
 from ..jit import Launch
+from . import light_loop as _light_loop
 from . import light_paths as _light_paths
 
-# Called per bounce of every light chunk (``jit.Launch``: no per-call typing of the tables).
+# Called once per light chunk, or per bounce stepwise (``jit.Launch``: no per-call typing of the tables).
+light_loop_kernel = Launch(_light_loop.light_loop_kernel)
 emit_kernel = Launch(_light_paths.emit_kernel)
 light_bounce_kernel = Launch(_light_paths.light_bounce_kernel)
 queue_connections = Launch(_light_paths.queue_connections)
@@ -36,13 +38,28 @@ def light_buffers(local, n: int) -> LightBuffers:
 def trace_light_chunk(renderer, buffers, extra, first, count, samples_per_pixel, first_sample, glass_clamps):
     """Trace light paths ``first .. first + count`` of the pass; returns (splats, rays cast, rays dropped
     as non-finite): ``extra.pixel[:splats]`` and ``buffers.rgb[:splats]`` hold the splats."""
+    tables = renderer.tables
+    rejected = buffers.counters
+    rejected[0] = 0
+    accel = tables.accel  # held until the call returns: it owns the Embree scene the loop traces
+    if not accel.compiled_loops:
+        splats, rays_cast = _trace_stepwise(renderer, buffers, extra, first, count, samples_per_pixel, first_sample,
+                                            glass_clamps)
+    else:
+        splats, rays_cast = light_loop_kernel(buffers.loop, extra, tables.arrays, accel.caster(),
+                                              tables.caustic_targets, renderer.camera.data, first, count,
+                                              samples_per_pixel, first_sample, glass_clamps)
+    return splats, rays_cast, int(rejected[0])
+
+
+def _trace_stepwise(renderer, buffers, extra, first, count, samples_per_pixel, first_sample, glass_clamps):
+    """``light_loop_kernel``'s work with each Embree query made from Python through ``tables.accel``
+    (so a benchmark can record the queries); the same splats."""
     state = buffers.state
     tables = renderer.tables
     settings = tables.kernel_settings
     materials = tables.material_table.arrays
     lights = tables.light_table.arrays
-    rejected = buffers.counters
-    rejected[0] = 0
     current = buffers.rays[0]
     queued = emit_kernel(state, current, extra.light, lights, materials, tables.spectra, tables.geometry,
                          tables.caustic_targets, tables.wavelengths, settings, first, count, samples_per_pixel,
@@ -56,11 +73,11 @@ def trace_light_chunk(renderer, buffers, extra, first, count, samples_per_pixel,
         following = buffers.rays[1] if current is buffers.rays[0] else buffers.rays[0]
         queued = light_bounce_kernel(state, current, queued, *hit, extra.light, tables.geometry, materials, lights,
                                      tables.spectra, renderer.camera.data, settings, depth, following,
-                                     buffers.scratch, glass_clamps, rejected)
+                                     buffers.scratch, glass_clamps, buffers.counters)
         current = following
     connections = buffers.shadows.rays
     waiting = queue_connections(state, count, connections)
     occluded = tables.accel.occluded(connections, waiting)
     rays_cast += waiting
     splats = connection_splats(state, connections, waiting, occluded, tables.wavelengths, extra.pixel, buffers.rgb)
-    return splats, rays_cast, int(rejected[0])
+    return splats, rays_cast

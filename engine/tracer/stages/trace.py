@@ -1,12 +1,16 @@
-"""One chunk of paths, bounce by bounce: the stage kernels in order, Embree queries in between.
+"""One chunk of camera paths: the camera stage, then the whole bounce loop in one compiled call.
 
-This is the only Python that runs per bounce: a handful of kernel calls and Embree queries on whole
-queues, never a loop over rays.
+``stages.bounce_loop`` runs every bounce without the GIL, Embree included. Scenes where some object
+hides from some kinds of rays (``visibility_accel.RayClassAccel``: one Embree scene per kind of ray,
+chosen per ray in Python), and renders whose queries a benchmark records (``Accel.compiled_loops``
+off), still run the loop here, bounce by bounce: the same kernels in the same order, with the queries
+on whole queues in between, and the same image.
 """
 
 from __future__ import annotations
 
 from ..jit import Launch
+from . import bounce_loop as _bounce_loop
 from . import camera as _camera
 from . import emission as _emission
 from . import film as _film
@@ -27,10 +31,10 @@ route_kernel = Launch(_passes.route_kernel)
 reset_kernel = Launch(_passes.reset_kernel)
 convert_kernel = Launch(_passes.convert_kernel)
 film_kernel = Launch(_film.film_kernel)
+bounce_loop_kernel = Launch(_bounce_loop.bounce_loop_kernel)
 
-#: When ``route_kernel`` splits the light: after the first vertex's shadows, after the second ray's
-#: emission, at the end.
-_ROUTE_FIRST_SHADOWS, _ROUTE_SECOND_EMISSION, _ROUTE_END = 0, 1, 2
+_ROUTE_FIRST_SHADOWS, _ROUTE_SECOND_EMISSION, _ROUTE_END = (_bounce_loop.ROUTE_FIRST_SHADOWS,
+                                                            _bounce_loop.ROUTE_SECOND_EMISSION, _bounce_loop.ROUTE_END)
 
 
 def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
@@ -79,6 +83,12 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     layout = tables.pass_layout.kernel
     if layout.columns:
         reset_kernel(passes, layout, count)
+    see_through = bool(tables.analysis.see_through_films or tables.analysis.see_through_cutouts)
+    if tables.ray_classes is None and tables.accel.compiled_loops:
+        accel = tables.accel  # held until the call returns: it owns the Embree scene the loop traces
+        rays_cast = bounce_loop_kernel(buffers.loop, tables.arrays, accel.caster(), passes, layout, count, queued,
+                                       glass_clamps, see_through, layout.light >= 0)
+        return rays_cast, int(rejected[0])
     routed = 0 if layout.light >= 0 else _ROUTE_END + 1
     rays_cast = 0
     for depth in range(settings.max_bounces + 2):

@@ -1,0 +1,105 @@
+"""A chunk's whole bounce loop in one compiled call: Embree queries and the stage kernels in turn.
+
+    rays_cast = bounce_loop_kernel(loop, arrays, caster, passes, layout, count, queued, glass_clamps,
+                                   see_through, route_light)
+
+After the camera stage has queued the chunk's first rays, everything up to the film runs here without
+the GIL: closest hits (Embree, called from compiled code), emission, shading with light and BSDF
+sampling, shadow rays (film layers, then occlusion), the light split of the render passes, and the
+radiance → Rec.709 conversion. The stages are the same kernels ``stages.trace`` used to call from
+Python between Embree queries (a wavefront inside one call): the queues keep paths in order, so the
+image is the one the Python loop made, bit for bit, and the kernels stay small and testable alone.
+
+Records (named tuples, built once and kept, so calls from Python are typed cheaply):
+``LoopBuffers`` a thread's working memory, ``SceneArrays`` the render's tables, and
+``embree.queries.RayCaster`` the Embree scene with this thread's ray record.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+
+from ..embree.queries import closest_hits, occlusion
+from ..jit import kernel
+from .emission import emission_kernel
+from .film import film_kernel
+from .passes import convert_kernel, route_kernel
+from .shade import shade_kernel
+from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
+
+#: The render's tables the loop reads (``scene_tables.SceneTables.arrays``).
+SceneArrays = namedtuple("SceneArrays", "geometry materials lights spectra settings wavelengths")
+
+#: A worker thread's memory for one chunk (``state.ChunkBuffers.loop``): ``rays`` the two ray queues
+#: (this bounce's, the next), ``hits`` a ``state.HitRecord`` per queued ray, ``occluded`` int32 per
+#: shadow ray, ``rejected`` the counter of rays dropped as non-finite, ``rgb`` the paths' colours.
+LoopBuffers = namedtuple("LoopBuffers", "state rays surface shadows scratch hits occluded rejected rgb")
+
+#: When the light split of the render passes runs (``route_kernel``'s step): after the first vertex's
+#: shadows, after the second ray's emission, at the end.
+ROUTE_FIRST_SHADOWS, ROUTE_SECOND_EMISSION, ROUTE_END = 0, 1, 2
+
+
+@kernel
+def _trace_shadows(loop, arrays, caster, passes, layout, count, see_through):
+    """Deliver the light of the first ``count`` shadow rays that reach their lights; returns rays cast."""
+    shadows = loop.shadows
+    hits = loop.hits
+    rays = 0
+    if see_through:
+        for _ in range(MAX_FILM_LAYERS):
+            if count == 0:
+                return rays
+            closest_hits(caster, shadows.rays, count, True, hits)
+            rays += count
+            count = film_layer_kernel(loop.state, shadows, count, hits.triangle, hits.t, hits.u, hits.v,
+                                      arrays.geometry, arrays.materials, passes, layout, arrays.spectra, loop.scratch)
+    if count:
+        occlusion(caster, shadows.rays, count, loop.occluded)
+        rays += count
+        shadow_kernel(loop.state, shadows, count, loop.occluded, passes, layout)
+    return rays
+
+
+@kernel
+def bounce_loop_kernel(loop, arrays, caster, passes, layout, count, queued, glass_clamps, see_through, route_light):
+    """Trace the ``count`` paths whose first ``queued`` rays are in ``loop.rays[0]`` until all have ended,
+    then write their colours to ``loop.rgb`` (and the passes' Rec.709 columns). ``route_light``: the
+    passes split the light (``layout.light >= 0``); ``see_through``: shadow rays may cross films or
+    cut-outs. Returns the rays cast."""
+    state = loop.state
+    settings = arrays.settings
+    routed = ROUTE_FIRST_SHADOWS if route_light else ROUTE_END + 1
+    rays_cast = 0
+    for depth in range(settings.max_bounces + 2):
+        if queued == 0:
+            break
+        current = loop.rays[depth % 2]
+        closest_hits(caster, current, queued, False, loop.hits)
+        rays_cast += queued
+        surfaces = emission_kernel(state, current, queued, loop.hits.triangle, loop.hits.t, loop.hits.u, loop.hits.v,
+                                   arrays.geometry, arrays.materials, arrays.lights, arrays.spectra, settings, depth,
+                                   loop.surface, passes, layout, loop.scratch)
+        if depth == 1 and routed == ROUTE_SECOND_EMISSION:
+            route_kernel(state, passes, layout, count, routed)
+            routed += 1
+        if surfaces == 0:
+            break
+        following = loop.rays[(depth + 1) % 2]
+        queued, shadowed = shade_kernel(state, loop.surface, surfaces, arrays.geometry, arrays.materials,
+                                        arrays.lights, arrays.spectra, settings, depth, following, loop.shadows,
+                                        loop.scratch, glass_clamps, loop.rejected, passes, layout)
+        if shadowed:
+            rays_cast += _trace_shadows(loop, arrays, caster, passes, layout, shadowed, see_through)
+        if depth == 0 and routed == ROUTE_FIRST_SHADOWS:
+            route_kernel(state, passes, layout, count, routed)
+            routed += 1
+    while routed <= ROUTE_END:
+        route_kernel(state, passes, layout, count, routed)
+        routed += 1
+    film_kernel(state, count, arrays.wavelengths, loop.rgb)
+    if layout.slots:
+        convert_kernel(state, passes, layout, arrays.wavelengths, count)
+    return rays_cast
