@@ -49,9 +49,8 @@ def _checkpoints(scene, settings, checkpoints, seconds, on_renderer=None):
     try:
         for target in checkpoints:
             while renderer.samples_done < target:
-                settings.samples_per_pass = min(PASS_SPP, target - renderer.samples_done)
                 t0 = time.perf_counter()
-                renderer.render_pass()
+                renderer.render_pass(min(PASS_SPP, target - renderer.samples_done))
                 elapsed += time.perf_counter() - t0
             out.append(dict(spp=renderer.samples_done, seconds=elapsed, setup=setup, image=renderer.image_rgb(),
                             rays_cast=int(renderer.stats["rays_cast"])))

@@ -228,14 +228,10 @@ class RenderSession:
                     raise _Cancelled
 
             renderer.progress = progress
-            if quick and pass_index == 0:
-                settings.samples_per_pass = 1
             try:
-                renderer.render_pass()
+                renderer.render_pass(1 if quick and pass_index == 0 else None)
             except _Cancelled:
                 self.cancelled = True
-            finally:
-                settings.samples_per_pass = per_pass
             pass_index += 1
             final = renderer.finished or self.cancelled
             due = shown is None or time.perf_counter() - shown >= DISPLAY_INTERVAL_S

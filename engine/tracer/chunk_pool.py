@@ -13,7 +13,9 @@ import threading
 from concurrent.futures import CancelledError, ThreadPoolExecutor
 
 MAX_CHUNK_PATHS = 1 << 16  # largest chunk one thread traces at once (memory ~0.5 kB per path)
-MIN_CHUNK_PATHS = 4096  # below this, per-bounce Python overhead dominates
+#: Below this a chunk's fixed cost (a few compiled calls from Python, ~50 µs with the GIL held, and copying
+#: its results) is no longer small against its paths' tracing (~1 µs a path and more).
+MIN_CHUNK_PATHS = 1024
 #: Chunks per worker thread in a pass: paths differ in length (glass, escapes), so one chunk per thread
 #: leaves threads idle at the end of the pass; a few each let the pool balance them.
 CHUNKS_PER_THREAD = 4
@@ -22,8 +24,8 @@ WINDOW_PER_THREAD = 4
 
 
 def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int:
-    """Paths per chunk: ``CHUNKS_PER_THREAD`` chunks per thread (each kernel launch holds the GIL for
-    ~10 µs, so not more), within the bounds above, and a multiple of ``samples_per_pixel`` (a chunk never
+    """Paths per chunk: ``CHUNKS_PER_THREAD`` chunks per thread (each chunk holds the GIL for its few
+    compiled calls from Python, so not more), within the bounds above, and a multiple of ``samples_per_pixel`` (a chunk never
     splits a pixel's samples of a pass: see ``film``)."""
     chunks = max(threads, 1) * CHUNKS_PER_THREAD
     size = max(MIN_CHUNK_PATHS, min(MAX_CHUNK_PATHS, -(-path_count // chunks)))

@@ -251,8 +251,10 @@ class Renderer:
         keeps the chunks already added."""
         self._pool.cancel()
 
-    def render_pass(self) -> None:
-        """Add ``samples_per_pass`` samples (fewer on the last pass) to every pixel."""
+    def render_pass(self, samples_per_pixel: int | None = None) -> None:
+        """Add ``samples_per_pixel`` samples (default ``settings.samples_per_pass``; fewer on the last pass
+        or when a time limit is near) to every pixel. Callers that vary a pass's size (the first quick
+        pass of F12, the viewport, the benchmarks) pass it here; the settings stay as the user set them."""
         if self._pool.cancelled:
             self.cancelled = True
             return
@@ -260,7 +262,8 @@ class Renderer:
         if self._sampling_started is None:
             self._sampling_started = started
         remaining = self.settings.samples - (self.samples_done - self._first_sample)
-        spp = min(self.settings.samples_per_pass, remaining) if remaining > 0 else self.settings.samples_per_pass
+        wanted = self.settings.samples_per_pass if samples_per_pixel is None else max(1, int(samples_per_pixel))
+        spp = min(wanted, remaining) if remaining > 0 else wanted
         self._region_pixel_list()
         spp = self._fit_time_limit(spp, started)
         if spp == 0 or len(self._pixels) == 0:

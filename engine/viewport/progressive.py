@@ -242,8 +242,7 @@ class ProgressiveRender:
             per_pass = int(np.clip(PASS_PATHS // max(renderer.width * renderer.height, 1), 1, MAX_SAMPLES_PER_PASS))
             if self._wanted.samples:
                 per_pass = min(per_pass, self._wanted.samples - renderer.samples_done)
-        renderer.settings.samples_per_pass = per_pass
-        renderer.render_pass()
+        renderer.render_pass(per_pass)
         if renderer.cancelled:
             return  # a change is waiting (or the thread is stopping)
         self._passes += 1

@@ -81,7 +81,7 @@ def test_gaussian_pixel_filter_offsets_and_chunking():
     from scipy import stats
 
     from engine.tracer.cameras import make_camera
-    from engine.tracer.chunk_pool import CHUNKS_PER_THREAD, chunk_size
+    from engine.tracer.chunk_pool import CHUNKS_PER_THREAD, MIN_CHUNK_PATHS, chunk_size
     from engine.tracer.stages.camera import filter_offset
 
     scene = plane_under_point_light(size=4)
@@ -94,9 +94,9 @@ def test_gaussian_pixel_filter_offsets_and_chunking():
     assert off.std() == pytest.approx(0.5 * np.sqrt(1 - 6 * stats.norm.pdf(3) / (1 - 2 * stats.norm.cdf(-3))),
                                       rel=0.02)
     assert np.array_equal([filter_offset(box, x) for x in u[:100]], u[:100])
-    assert chunk_size(4096, 2) == 4096 and chunk_size(10**7, 2) == 1 << 16
+    assert chunk_size(MIN_CHUNK_PATHS, 2) == MIN_CHUNK_PATHS and chunk_size(10**7, 2) == 1 << 16
     assert chunk_size(10**5, 2) == 10**5 // (2 * CHUNKS_PER_THREAD)
-    assert chunk_size(10**5, 2, 3) % 3 == 0 and chunk_size(10, 2, 64) == 4096
+    assert chunk_size(10**5, 2, 3) % 3 == 0 and chunk_size(10, 2, 64) == MIN_CHUNK_PATHS
 
 
 def test_dispersive_glass_out_of_range_is_reported():

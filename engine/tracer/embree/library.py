@@ -6,9 +6,10 @@ kernels stay cacheable on disk (a ctypes function pointer would be baked into th
 address and numba refuses to cache that). ``load()`` must run before any kernel that traces is compiled
 or loaded from the cache; ``queries`` calls it on import.
 
-Where the wheels put the library (auditwheel, delvewheel and delocate each rename and move it):
-Linux ``embreex.libs/libembree4-<hash>.so.4``, Windows ``embreex.libs/embree4-<hash>.dll`` (or beside
-the package), macOS ``embreex/.dylibs/libembree4.4.dylib``.
+Where the embreex 4.4.0.post1 wheels put the library (auditwheel, delvewheel and delocate each move
+it; checked in the cp311 wheels ``make extension`` bundles): Linux ``embreex.libs/libembree4-<hash>.so.4``,
+Windows ``embreex.libs/embree4.dll`` (beside ``tbb12.dll``, which importing embreex puts on the DLL search
+path), macOS ``embreex/.dylibs/libembree4.4.dylib``.
 """
 
 from __future__ import annotations
@@ -74,6 +75,10 @@ def load() -> ctypes.CDLL:
     """The loaded library, with its signatures declared and the kernels' symbols registered (once)."""
     if _loaded:
         return _loaded[0]
+    try:
+        import embreex  # noqa: F401  (on Windows its import adds the folder of Embree's own DLLs to the search path)
+    except ImportError:
+        pass
     paths = candidate_paths()
     if not paths:
         raise EmbreeError("Embree's library was not found: the embreex package is missing or incomplete "
