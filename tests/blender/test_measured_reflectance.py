@@ -96,7 +96,8 @@ def test_nodes_that_cannot_take_a_measured_reflectance_say_what_renders(prism_ad
     drawn = labels(draw(prism_addon.ui.panels_material.PRISM_PT_material, context(fresh_scene, material=glossy)))
     assert any("has a measured reflectance" in text for text in drawn), drawn
 
-    skin = _measured(surface_material("Skin", lambda nodes, link: node(nodes, "ShaderNodeSubsurfaceScattering").outputs[0]))
+    skin = _measured(surface_material("Skin", lambda nodes, link: node(nodes,
+                                                                       "ShaderNodeSubsurfaceScattering").outputs[0]))
     exported, _ = _export(prism_addon, skin)
     assert [spec.tint.spectrum is not None for spec in exported.shader.closures] == [True]
 

@@ -49,9 +49,10 @@ def conductor_override(c, closure) -> None:
         c.conductor = metal
         if closure.measured is not None:  # the metal's n and k give its reflectance: s0 must stay n
             closure.measured = None
-            c.warn(closure.node, f"is a measured metal ({_METAL_LABELS[settings.conductor]}, Material ▸ Prism ▸ Metal), "
-                                 "whose n and k give its reflectance; the measured base colour of Material ▸ Prism "
-                                 "▸ Base Colour Spectrum is not used on it.")
+            label = _METAL_LABELS[settings.conductor]
+            c.warn(closure.node, f"is a measured metal ({label}, Material ▸ Prism ▸ Metal), whose n and k give its "
+                                 "reflectance; the measured base colour of Material ▸ Prism ▸ Base Colour Spectrum "
+                                 "is not used on it.")
 
 
 def prism_coating(c, closure) -> None:
