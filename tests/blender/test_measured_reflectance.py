@@ -125,6 +125,13 @@ def test_principled_metal_glass_film_and_viewport_materials_with_a_measured_refl
     assert any(s.s0 is not None and s.s0.spectrum == ("n", "Au") for s in exported.shader.closures)
     assert any("is a measured metal (Gold" in w for w in warnings), warnings
 
+    f82 = _measured(surface_material("F82", lambda nodes, link: node(nodes, "ShaderNodeBsdfMetallic").outputs[0]))
+    exported, _ = _export(prism_addon, f82)
+    assert [s.s0.spectrum.name for s in exported.shader.closures] == [f"{CHECKER}: moderate red"]
+    f82.node_tree.nodes["Metallic BSDF"].fresnel_type = "PHYSICAL_CONDUCTOR"
+    _, warnings = _export(prism_addon, f82)
+    assert any("'Metallic BSDF' node" in w and "its IOR and Extinction give its reflectance" in w for w in warnings)
+
     glass = _measured(surface_material("Glass", lambda nodes, link: node(nodes, "ShaderNodeBsdfPrincipled",
                                                                           Transmission_Weight=1.0).outputs[0]))
     _, warnings = _export(prism_addon, glass)
