@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import bpy
 
 from ..engine.properties.principled import read_principled
@@ -9,6 +11,10 @@ from ._panel_base import PrismPanel, error_label
 from .spectrum_display import draw_spectrum
 
 _evaluator = []  # the constant folder, once kernels are on disk
+
+#: What a render makes of a material: lobe names, whether it emits, warnings, and the names of the nodes whose
+#: colour Material ▸ Prism's measured reflectance replaces.
+Preview = namedtuple("Preview", "names emits warnings measured_nodes")
 
 
 def _material_poll(context):
@@ -47,16 +53,29 @@ def _fold():
     return _evaluator[0] if _evaluator else None
 
 
-def _preview(material):
-    """The material compiled as a render would (no image read): (lobe names, emits, warnings)."""
+def _reflectance_override(material) -> dict:
+    """Material ▸ Prism's measured reflectance as the compiler takes it, unread (no file, no colour-science):
+    the summary needs to know only which nodes it replaces."""
+    from ..engine.tracer.scene import ReflectanceSpec
+
+    settings = material.prism
+    if settings.reflectance_source == "COLOR":
+        return {}
+    kind = "measured" if settings.reflectance_source == "MEASURED" else "tabulated"
+    return {"reflectance": ReflectanceSpec(kind=kind, name=settings.measured_reflectance)}
+
+
+def _preview(material) -> Preview:
+    """The material compiled as a render would (no image read)."""
     from ..engine.export.nodes import compile_material
     from ..engine.tracer.bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_DIELECTRIC, FRESNEL_NONE,
                                               GLASS, TRANSLUCENT, TRANSPARENT)
 
     try:
-        compiled = compile_material(material, evaluate=_fold(), load_pixels=False)
+        compiled = compile_material(material, evaluate=_fold(), load_pixels=False,
+                                    overrides=_reflectance_override(material))
     except Exception as error:  # noqa: BLE001 - a panel must draw; the render reports the error itself
-        return [], False, [str(error)]
+        return Preview([], False, [str(error)], [])
     shader = compiled.shader
     names = []
     for spec in shader.closures if shader is not None else []:
@@ -75,15 +94,15 @@ def _preview(material):
         if name not in names:
             names.append(name)
     emits = shader is not None and shader.emission is not None and shader.emission_strength > 0
-    return names, emits, compiled.warnings
+    return Preview(names, emits, compiled.warnings, compiled.measured_nodes)
 
 
-def _kinds(material):
-    """(what renders, whether it emits, warnings) of ``material`` as Prism renders it."""
+def _kinds(material) -> Preview:
+    """What ``material`` renders as with Prism."""
     if material.prism.is_thin_film:
-        return ["Thin film"], False, []
+        return Preview(["Thin film"], False, [], [])
     if not material.use_nodes or material.node_tree is None:
-        return ["Metal" if material.metallic >= 0.5 else "Diffuse"], False, []
+        return Preview(["Metal" if material.metallic >= 0.5 else "Diffuse"], False, [], ["viewport display colour"])
     return _preview(material)
 
 
@@ -100,7 +119,7 @@ class PRISM_PT_material(PrismPanel, bpy.types.Panel):
     def draw(self, context):
         layout = self.layout
         material = context.material
-        names, emits, warnings = _kinds(material)
+        names, emits, warnings, _ = _kinds(material)
         text = " + ".join(names) if names else "Black (nothing connected)"
         layout.label(text=f"Renders as: {text}{' + emission' if emits else ''}", icon="SHADING_RENDERED")
         layout = _split(layout)
@@ -182,14 +201,31 @@ class PRISM_PT_material_base_spectrum(MaterialSubpanel, bpy.types.Panel):
         material = context.material
         settings = material.prism
         reading = read_principled(material)
-        layout.active = bool({"Diffuse", "Metal"} & set(_kinds(material)[0]))
+        preview = _kinds(material)
+        if settings.reflectance_source == "COLOR":
+            layout.active = bool({"Diffuse", "Metal"} & set(preview.names))
+        else:
+            layout.active = bool(preview.measured_nodes)
         layout.prop(settings, "reflectance_source")
         if settings.reflectance_source == "MEASURED":
             layout.prop(settings, "measured_reflectance")
         elif settings.reflectance_source == "FILE":
             layout.prop(settings, "reflectance_file")
+        if settings.reflectance_source != "COLOR":
+            _draw_replaced_colours(layout, material, preview.measured_nodes)
         preview = reflectance_preview(material_reflectance_source(material, reading.base_color))
         draw_spectrum(layout, "material_reflectance", preview, "Reflectance 0-1, 360-830 nm", metrics=False)
+
+
+def _draw_replaced_colours(layout, material, measured_nodes) -> None:
+    """Which colours the measured reflectance replaces, or, when none, that the render keeps the nodes' own."""
+    if material.prism.is_thin_film:
+        error_label(layout, "A free-standing thin film has no base colour: not used.")
+    elif measured_nodes:
+        layout.label(text=f"Replaces the colour of: {', '.join(measured_nodes)}", icon="INFO")
+    else:
+        error_label(layout, "No node here has a base colour it replaces (Principled, Diffuse, Subsurface, "
+                            "Metallic F82): the nodes' own colours render.")
 
 
 class PRISM_PT_material_emission_spectrum(MaterialSubpanel, bpy.types.Panel):

@@ -23,14 +23,22 @@ from .spectra import material_emission_source, material_reflectance_source
 DEFAULT_MATERIAL = Material(name="Default", kind="diffuse", base_color=(0.8, 0.8, 0.8))
 
 
-def _viewport_material(material) -> Material:
-    """A material without nodes: its viewport display colour, metallic and roughness (as Cycles)."""
+def _viewport_material(material, reflectance) -> Material:
+    """A material without nodes: its viewport display colour (or ``reflectance``, the measured one that
+    replaces it), metallic and roughness (as Cycles)."""
     colour = tuple(float(c) for c in material.diffuse_color[:3])
     if not all(math.isfinite(c) and c >= 0 for c in colour):
         raise PrismInputError(f"Material '{material.name}': a colour is negative, NaN or infinite; pick a colour again.")
     kind = "conductor" if material.metallic >= 0.5 else "diffuse"
     return Material(name=material.name, kind=kind, base_color=tuple(min(c, 1.0) for c in colour),
-                    roughness=min(max(float(material.roughness), 0.0), 1.0))
+                    roughness=min(max(float(material.roughness), 0.0), 1.0), reflectance=reflectance)
+
+
+def _measured_reflectance(material, settings):
+    """Material ▸ Prism's measured reflectance (``scene.ReflectanceSpec``), or None for the RGB base colour."""
+    if settings is None or settings.reflectance_source == "COLOR":
+        return None
+    return material_reflectance_source(material, (0.0, 0.0, 0.0)).spec()
 
 
 def _thin_film(material, settings) -> Material:
@@ -102,15 +110,20 @@ class MaterialExporter:
         material = material.original
         settings = getattr(material, "prism", None)
         if settings is not None and settings.is_thin_film:
+            if settings.reflectance_source != "COLOR" and self.warnings is not None:
+                self.warnings.append(f"Material '{material.name}': a free-standing thin film has no base colour; "
+                                     "its measured reflectance (Material ▸ Prism ▸ Base Colour Spectrum) is not "
+                                     "used, the film's interference colours render instead.")
             return _thin_film(material, settings)
+        reflectance = _measured_reflectance(material, settings)
         if not material.use_nodes or material.node_tree is None:
-            return _viewport_material(material)
+            return _viewport_material(material, reflectance)
         node = surface_node(material)
         if node is not None and node.bl_idname == "ShaderNodeHoldout":
             return Material(name=material.name, kind="diffuse", base_color=(0.0, 0.0, 0.0), holdout=True)
         overrides = {}
-        if settings is not None and settings.reflectance_source != "COLOR":
-            overrides["reflectance"] = material_reflectance_source(material, (0.0, 0.0, 0.0)).spec()
+        if reflectance is not None:
+            overrides["reflectance"] = reflectance
         if settings is not None and settings.emission_source != "COLOR":
             overrides["emission"] = material_emission_source(material, (1.0, 1.0, 1.0)).spec()
         compiled = compile_material(material, self.slots, self.image_cache, self._evaluator(), overrides=overrides)
@@ -119,7 +132,7 @@ class MaterialExporter:
         self.needs[material.name] = compiled.needs
         exported = _summary(material, compiled)
         exported.aovs = read_aovs(material, self.warnings)
-        exported.reflectance = overrides.get("reflectance")
+        exported.reflectance = reflectance  # for messages: the closures carry it (``nodes.measured_base``)
         return exported
 
 

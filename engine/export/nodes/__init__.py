@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 from .compiler import MaterialCompiler
 from .finish import finish
+from .measured_base import check_measured_used
 from .slots import AttributeSlots
 
 
@@ -25,6 +26,7 @@ class CompiledMaterial:
     glass: tuple | None = None  # ("catalogue", name) or ("abbe", (n_d, V_d)) when Material.prism sets one
     conductor: str | None = None  # a measured metal Material.prism sets
     kinds: set = field(default_factory=set)  # closure kinds, for the panel's summary
+    measured_nodes: list = field(default_factory=list)  # nodes whose colour the measured reflectance replaced
 
 
 def compile_material(material, slots=None, image_cache=None, evaluate=None, load_pixels=True,
@@ -38,9 +40,10 @@ def compile_material(material, slots=None, image_cache=None, evaluate=None, load
     if not compiler.compile_surface():
         compiler.warn(None, "has no Material Output for Cycles; Prism renders it black.")
         return CompiledMaterial(None, compiler.warnings, compiler.needs)
+    check_measured_used(compiler, compiler.measured_nodes)
     shader = finish(compiler)
     return CompiledMaterial(shader, compiler.warnings, compiler.needs, compiler.glass_description, compiler.conductor,
-                            {p.kind for p in compiler.closures})
+                            {p.kind for p in compiler.closures}, list(compiler.measured_nodes))
 
 
 __all__ = ["AttributeSlots", "CompiledMaterial", "compile_material"]

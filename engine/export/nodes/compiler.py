@@ -82,6 +82,7 @@ class MaterialCompiler:
     conductor: str | None = None
     displacement: object = None
     overrides: dict = field(default_factory=dict)  # see ``nodes.compile_material``
+    measured_nodes: list = field(default_factory=list)  # names of the nodes whose colour ``reflectance`` replaced
     _outputs: dict = field(default_factory=dict)
     _warned: set = field(default_factory=set)
 
@@ -273,6 +274,8 @@ class MaterialCompiler:
         if self.known(closure.weight.scale) == 0.0 or self.known(closure.weight.colour) == (0.0, 0.0, 0.0):
             return
         self.closures.append(closure)
+        if closure.measured is not None and closure.node.name not in self.measured_nodes:
+            self.measured_nodes.append(closure.node.name)
 
     def add_emission(self, weight: Weight, colour: Value | None, strength: Value, spectrum=None) -> None:
         if weight.layer is not None:  # Principled adds its emission above its specular layer

@@ -56,7 +56,10 @@ def _closure(c, pending, normal_register):
     else:
         tinted = pending.weight.colour if scale == 1.0 else c.multiply(pending.weight.colour, pending.weight.scale)
         spec.tint = Colour(register=tinted.register)
-    spec.s0 = Colour(spectrum=pending.measured) if pending.measured is not None else _colour(c, pending.s0)
+    # A measured reflectance replaces the base colour once: in the tint of a diffuse closure (above), in the
+    # normal-incidence reflectance s0 of a metal (a diffuse closure's s0 is a second albedo factor).
+    takes_s0 = pending.measured is not None and pending.kind == CONDUCTOR
+    spec.s0 = Colour(spectrum=pending.measured) if takes_s0 else _colour(c, pending.s0)
     spec.s1 = _colour(c, pending.s1)
     if pending.alpha is not None:
         alpha = c.known(pending.alpha)

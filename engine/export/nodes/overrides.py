@@ -3,9 +3,11 @@ for every refracting closure, a measured metal for metallic ones, a thin-film co
 
 from __future__ import annotations
 
-from ...properties.material import CONDUCTOR_NAMES
+from ...properties.material import CONDUCTOR_ITEMS, CONDUCTOR_NAMES
 from ...tracer.bsdf.closure import FRESNEL_CONDUCTOR
 from ...tracer.errors import PrismInputError
+
+_METAL_LABELS = {identifier: label for identifier, label, *_ in CONDUCTOR_ITEMS}
 
 
 def glass_override(c, closure) -> None:
@@ -45,6 +47,12 @@ def conductor_override(c, closure) -> None:
         closure.s0 = ("n", metal)
         closure.s1 = ("k", metal)
         c.conductor = metal
+        if closure.measured is not None:  # the metal's n and k give its reflectance: s0 must stay n
+            closure.measured = None
+            label = _METAL_LABELS[settings.conductor]
+            c.warn(closure.node, f"is a measured metal ({label}, Material ▸ Prism ▸ Metal), whose n and k give its "
+                                 "reflectance; the measured base colour of Material ▸ Prism ▸ Base Colour Spectrum "
+                                 "is not used on it.")
 
 
 def prism_coating(c, closure) -> None:

@@ -14,6 +14,7 @@ from ...tracer.bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_COND
                                     FRESNEL_F82, FRESNEL_NONE, GLASS, REFRACTION_ONLY, TRANSLUCENT, TRANSPARENT)
 from ...tracer.materials import opcodes as op
 from .compiler import COLOR, FLOAT, VECTOR, PendingClosure, Weight
+from .measured_base import keeps_own_colour, measured_base
 from .overrides import check_film, conductor_override, glass_override, prism_coating
 
 
@@ -129,7 +130,7 @@ def principled(c, node, context, weight: Weight):
     if c.known(metallic) != 0.0:
         metal = PendingClosure(CONDUCTOR, c.weighted(weight, scale=metallic), node, alpha=alpha, fresnel=FRESNEL_F82,
                                s0=_saturate(c, base), s1=c.vector_math("MINIMUM", specular_tint, c.const(1.0, 1.0, 1.0)),
-                               normal=normal, measured=c.overrides.get("reflectance"))
+                               normal=normal, measured=measured_base(c))
         conductor_override(c, metal)
         prism_coating(c, metal)
         c.add_closure(metal)
@@ -137,6 +138,7 @@ def principled(c, node, context, weight: Weight):
 
     transmission = c.clamp01(_val(c, node, "Transmission Weight", context))
     if c.known(transmission) != 0.0:
+        keeps_own_colour(c, node, "its transmission is tinted by the Base Color as a transmittance")
         glass = PendingClosure(DIELECTRIC, c.weighted(weight, scale=transmission), node, alpha=alpha, eta=ior,
                                fresnel=GLASS, s0=specular_tint,
                                s1=c.vector_math("POWER", _saturate(c, base), c.const(0.5, 0.5, 0.5)), normal=normal)
@@ -177,7 +179,7 @@ def principled(c, node, context, weight: Weight):
         c.warn(node, "has Subsurface Weight; Prism renders subsurface scattering as diffuse reflection.")
     if c.known(_val(c, node, "Diffuse Roughness", context)) != 0.0:
         c.warn(node, "has Diffuse Roughness; Prism renders Lambertian (smooth) diffuse reflection.")
-    measured = c.overrides.get("reflectance")
+    measured = measured_base(c)
     colour = c.vector_math("MAXIMUM", base, c.const(0.0, 0.0, 0.0)) if measured is None else None
     c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=normal, measured=measured))
 
@@ -208,15 +210,26 @@ def _blackbody_spectrum(c, node, name, context):
     return SpectrumSpec(kind="blackbody", temperature_k=float(temperature))
 
 
+def _albedo(c, node, context):
+    """(RGB colour or None, measured reflectance or None) of a diffuse node's Color: the material's measured
+    reflectance replaces it."""
+    measured = measured_base(c)
+    if measured is not None:
+        return None, measured
+    return c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0)), None
+
+
 def diffuse(c, node, context, weight):
     if c.known(_val(c, node, "Roughness", context)) != 0.0:
         c.warn(node, "has Roughness (Oren-Nayar); Prism renders Lambertian diffuse reflection.")
-    colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
-    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=_normal(c, node, context)))
+    colour, measured = _albedo(c, node, context)
+    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=_normal(c, node, context),
+                                 measured=measured))
 
 
 def glossy(c, node, context, weight):
     _distribution(c, node)
+    keeps_own_colour(c, node, "its Color is a specular tint")
     if c.known(_val(c, node, "Anisotropy", context)) != 0.0:
         c.warn(node, "is anisotropic; Prism renders it isotropic.")
     colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
@@ -245,8 +258,10 @@ def metallic(c, node, context, weight):
         s1 = one
         c.warn(node, "is a physical conductor given by RGB n and k; Prism renders its normal-incidence "
                      "reflectance with the F82 model (or a measured metal: Material ▸ Prism ▸ Metal).")
+        keeps_own_colour(c, node, "its IOR and Extinction give its reflectance")
+    measured = measured_base(c) if node.fresnel_type == "F82" else None
     metal = PendingClosure(CONDUCTOR, weight, node, alpha=alpha, fresnel=FRESNEL_F82, s0=s0, s1=s1,
-                           normal=_normal(c, node, context))
+                           normal=_normal(c, node, context), measured=measured)
     conductor_override(c, metal)
     prism_coating(c, metal)
     c.add_closure(metal)
@@ -254,6 +269,7 @@ def metallic(c, node, context, weight):
 
 def _dielectric(c, node, context, weight, mode):
     _distribution(c, node)
+    keeps_own_colour(c, node, "its Color is a transmittance")
     colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
     eta = c.math("MAXIMUM", _val(c, node, "IOR", context), c.const(1e-5))
     closure = PendingClosure(DIELECTRIC, c.weighted(weight, colour=colour), node,
@@ -273,12 +289,14 @@ def refraction(c, node, context, weight):
 
 
 def translucent(c, node, context, weight):
+    keeps_own_colour(c, node, "its Color is a transmittance")
     colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
     c.add_closure(PendingClosure(TRANSLUCENT, c.weighted(weight, colour=colour), node,
                                  normal=_normal(c, node, context)))
 
 
 def transparent(c, node, context, weight):
+    keeps_own_colour(c, node, "its Color is a transmittance")
     colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
     c.add_closure(PendingClosure(TRANSPARENT, c.weighted(weight, colour=colour), node))
 
@@ -298,8 +316,9 @@ def holdout(c, node, context, weight):
 
 def subsurface(c, node, context, weight):
     c.warn(node, "is rendered as diffuse reflection (Prism does not trace subsurface scattering).")
-    colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
-    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=_normal(c, node, context)))
+    colour, measured = _albedo(c, node, context)
+    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=_normal(c, node, context),
+                                 measured=measured))
 
 
 def mix_shader(c, node, context, weight):
