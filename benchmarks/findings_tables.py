@@ -50,13 +50,6 @@ def _stage_table(results, threads):
     return "\n".join(rows)
 
 
-def _scaling_table(ts):
-    return "\n".join([
-        "| | 1 thread (s) | 2 threads (s) | speed-up |", "|---|---:|---:|---:|",
-        f"| Prism pass | {ts['prism_1']:.4f} | {ts['prism_2']:.4f} | {ts['prism_speedup']:.2f} |",
-        f"| embreex, the same rays | {ts['embree_1']:.4f} | {ts['embree_2']:.4f} | {ts['embree_speedup']:.2f} |"])
-
-
 def _sampler_table(gains):
     rows = ["| scene | spp | relMSE Sobol | relMSE independent | independent / Sobol | FLIP Sobol | FLIP independent |",
             "|---|---:|---:|---:|---:|---:|---:|"]

@@ -178,39 +178,6 @@ def measure_ceiling(name, cfg):
                 embree_rays_per_second=recorder.ray_count / embree_seconds)
 
 
-def measure_thread_scaling(name, cfg):
-    """Pass time with 1 and 2 threads against embreex replaying the same rays with 1
-    and 2 threads, interleaved: how much of Embree's scaling the renderer keeps."""
-    cfg = scene_config(cfg, name)
-    scene = scenes.build(name, (cfg["resolution"], cfg["resolution"]))
-    from engine.tracer.renderer import Renderer
-
-    renderers = {t: Renderer(scene, settings_for({}, samples=10**6, seed=11, threads=t)) for t in (1, 2)}
-    try:
-        for r in renderers.values():
-            r.render_pass()  # warm-up
-        recorder = ceiling.record_pass(renderers[2])
-        replayers = {t: ceiling.Replayer(renderers[2].tables.geometry, recorder.batches, t) for t in (1, 2)}
-        times = {(side, t): [] for side in ("prism", "embree") for t in (1, 2)}
-        for _ in range(cfg["scaling_rounds"]):
-            for t in (1, 2):
-                t0 = time.perf_counter()
-                renderers[t].render_pass()
-                times[("prism", t)].append(time.perf_counter() - t0)
-                times[("embree", t)].append(replayers[t].seconds())
-        for rep in replayers.values():
-            rep.close()
-    finally:
-        for r in renderers.values():
-            r.close()
-    med = {k: float(np.median(v)) for k, v in times.items()}
-    prism_speedup, embree_speedup = med[("prism", 1)] / med[("prism", 2)], med[("embree", 1)] / med[("embree", 2)]
-    return dict(scene=name, rounds=cfg["scaling_rounds"], rays=recorder.ray_count,
-                prism_1=med[("prism", 1)], prism_2=med[("prism", 2)], embree_1=med[("embree", 1)],
-                embree_2=med[("embree", 2)], prism_speedup=prism_speedup, embree_speedup=embree_speedup,
-                kept=prism_speedup / embree_speedup, all={f"{k[0]}_{k[1]}": v for k, v in times.items()})
-
-
 def measure_stage_split(name, cfg):
     """A pass's time split by stage with 1 and with 2 threads (passes wrapped, not the timed ones)."""
     cfg = scene_config(cfg, name)

@@ -3,8 +3,8 @@
 For each scene: cached high-sample references, then for each strategy (the Sobol sampler's
 counterpart with independent random numbers among them) a progressive render (median of ``repeats``
 seeds) with wall time and relMSE / FLIP at each checkpoint; the embreex ceiling on the rays of one
-pass; the time of a pass split by stage kernel; 1 -> 2 thread scaling next to embreex's on the same
-rays; cold-compile and warm-start seconds; the peers (Mitsuba 3, Cycles) on the scenes they can render;
+pass; the time of a pass split by stage kernel; thread scaling up to every core next to embreex's on
+the same rays (``scaling``); cold-compile and warm-start seconds; the peers (Mitsuba 3, Cycles) on the scenes they can render;
 the demo render now and before the compiled core; the experiments of ``benchmarks/experiments/``.
 Writes benchmarks/results/results.json, table.md, *.png and docs/performance.md. This module holds
 the entry point (arguments, warm-up, the order of the parts); the measuring functions are in
@@ -23,9 +23,9 @@ import time
 import warnings
 from pathlib import Path
 
-from . import demo, experiments, metrics, references, report, scenes, startup
-from .measure import (EXPERIMENTS, THREADS, log, measure_ceiling, measure_stage_split, measure_thread_scaling,
-                      run_peers, run_scene, scene_config)
+from . import demo, experiments, metrics, references, report, scaling, scenes, startup
+from .measure import (EXPERIMENTS, THREADS, log, measure_ceiling, measure_stage_split, run_peers, run_scene,
+                      scene_config)
 from .prism_runs import PASS_SPP, progressive, settings_for
 
 RESULTS_DIR = references.BENCH_DIR / "results"
@@ -107,14 +107,11 @@ def main(argv=None):
                 f"{c['ceiling_samples_per_second']:.0f} samples/s)")
         except Exception as exc:
             results["errors"].append(f"ceiling {name}: {type(exc).__name__}: {exc}")
-    if CEILING_SCENE in results["scenes"]:
-        _section(results, "thread scaling")
-        try:
-            results["thread_scaling"] = ts = measure_thread_scaling(CEILING_SCENE, cfg)
-            log(f"threads 1 -> 2 on {CEILING_SCENE}: Prism x{ts['prism_speedup']:.2f}, "
-                f"embreex x{ts['embree_speedup']:.2f}")
-        except Exception as exc:
-            results["errors"].append(f"thread scaling: {type(exc).__name__}: {exc}")
+    _section(results, "thread scaling")
+    try:
+        results["scaling"] = scaling.measure_scaling(quick=args.quick, log=log)
+    except Exception as exc:
+        results["errors"].append(f"thread scaling: {type(exc).__name__}: {exc}")
     results["stages"] = []
     for name in [n for n in args.scenes if n in results["scenes"]]:
         _section(results, f"stage split {name}")

@@ -67,6 +67,18 @@ def main(argv=None) -> int:
     print(f"{'function':60s} {'self s':>8s} {'incl. s':>8s} {'sigs':>5s}")
     for name in sorted(own, key=own.get, reverse=True)[:args.top]:
         print(f"{name:60s} {own[name]:8.2f} {inclusive[name]:8.2f} {count[name]:5d}")
+    # A function compiled for several signatures pays for each: show where they differ.
+    signatures = defaultdict(list)
+    for kind, name, types, _ in events:
+        if kind == "start":
+            signatures[name].append(tuple(types))
+    for name in sorted(own, key=own.get, reverse=True)[:args.top]:
+        found = signatures[name]
+        if len(found) > 1 and own[name] > 1.0:
+            differing = [i for i in range(len(found[0])) if len({str(s[i]) if i < len(s) else "" for s in found}) > 1]
+            print(f"{name}: {len(found)} signatures, differing in arguments {differing}:")
+            for s in found:
+                print("   ", [str(s[i]) for i in differing if i < len(s)])
     import shutil
 
     shutil.rmtree(cache, ignore_errors=True)
