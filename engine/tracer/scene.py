@@ -166,6 +166,9 @@ class Camera:
     sensor), as Cycles defines them (``stages.panorama``). Orthographic rays start ``ortho_start_m``
     behind the camera's plane (Blender's orthographic viewport sees half its clip range behind its
     centre); keeping the camera at the view's centre keeps the camera-relative geometry precise.
+    ``clip_start_m`` / ``clip_end_m``: Blender's Clip Start / Clip End; camera rays see only geometry at
+    depths between them (along the view axis; along the ray for panoramas), as in Cycles. Clip Start
+    beyond Clip End leaves camera rays no geometry to see (Cycles: the world only).
     """
 
     name: str
@@ -194,6 +197,8 @@ class Camera:
     longitude_min_rad: float = -np.pi
     longitude_max_rad: float = np.pi
     ortho_start_m: float = 0.0
+    clip_start_m: float = 0.0
+    clip_end_m: float = float("inf")
 
 
 @dataclass
