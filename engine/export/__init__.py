@@ -65,7 +65,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         materials=geometry.materials,
         camera=camera,
         lights=export_lights(depsgraph, warnings),
-        world=export_world(scene, warnings),
+        world=export_world(scene, warnings, depsgraph.view_layer),
     )
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.validate()

@@ -177,7 +177,7 @@ class SceneSync:
                 scene = replace(scene, lights=lights)
         if updates.world or updates.scene:
             self._world_warnings = []
-            world = export_world(depsgraph.scene, self._world_warnings)
+            world = export_world(depsgraph.scene, self._world_warnings, depsgraph.view_layer)
             if not same(world, scene.world):
                 scene = replace(scene, world=world)
         if scene is previous:
