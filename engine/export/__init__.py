@@ -14,6 +14,7 @@ from .border import render_border
 from .camera import export_camera, render_resolution
 from .lights import export_lights
 from .meshes import export_meshes
+from .unrendered_settings import unrendered_setting_warnings
 from .world import export_world
 
 __all__ = ["PrismInputError", "export_camera", "export_scene", "render_border", "render_resolution"]
@@ -50,6 +51,8 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     Inputs Prism ignores are appended to ``warnings`` (one message each).
     """
     scene = depsgraph.scene
+    if warnings is not None:
+        warnings.extend(unrendered_setting_warnings(scene))
     camera = export_camera(scene, depsgraph, warnings)
     geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
     tracer_scene = Scene(
