@@ -56,14 +56,16 @@ def floor_under_lights(fresh_scene):
     return fresh_scene, point, spot
 
 
-def test_soft_falloff_lights_as_in_cycles(prism_addon, floor_under_lights):
-    """The floor inside the point light's sphere is lit (black before), the spot's cone and the ring
-    its radius adds outside the cone (nearly black before) are as bright as Cycles renders them."""
+@pytest.mark.parametrize("soft", [True, False])
+def test_point_and_spot_radius_light_as_in_cycles(prism_addon, floor_under_lights, soft):
+    """Soft Falloff on (Blender's default: a disc facing the floor) and off (a sphere): the floor inside
+    the point light's sphere is lit (black before), the spot's cone and the ring its radius adds outside
+    the cone (nearly black before) are as bright as Cycles renders them."""
     scene, point, spot = floor_under_lights
     assert point.use_soft_falloff and spot.use_soft_falloff  # Blender's default
+    point.use_soft_falloff = spot.use_soft_falloff = soft
     cycles = _regions(render_cycles_rgba(scene, 256, max_bounces=1))
     prism = _regions(render_prism_rgba(scene, 256))
-    print("cycles", cycles, "prism", prism)
     assert cycles[0] > 0.2 and cycles[2] > 0.1 * cycles[1]  # lit inside the sphere; a widened cone
     assert prism[0] == pytest.approx(cycles[0], rel=0.03)
     assert prism[1] == pytest.approx(cycles[1], rel=0.03)

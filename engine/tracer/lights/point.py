@@ -7,7 +7,8 @@ cone falloff). With radius r > 0 the light has radiance I / (π r²) and is, as 
   always faces the point it lights (and the ray that looks at it). Irradiance on axis is
   I / (d² + r²) instead of I / d²: no sharp edge where the light's sphere cuts a surface, and a
   surface inside that sphere is lit (at most I / r²);
-- without it: a sphere, sampled uniformly in the cone it subtends (a point inside it gets nothing).
+- without it: a sphere, sampled uniformly in the cone it subtends; a point inside it sees its
+  radiance all around (irradiance π · radiance = I / r²), sampled over all directions.
 
 A spot's cone falloff is taken along each sampled direction from the light's disc or sphere (as
 Cycles), so a radius widens the cone's edge.
@@ -84,12 +85,13 @@ def spot_falloff(row, px, py, pz):
 
 @kernel
 def sphere_hit_distance(row, o, d):
-    """Distance along the ray to the sphere (inf: miss, or the origin inside it)."""
+    """Distance along the ray to the sphere (inf: miss); from inside it, where the ray leaves it (Cycles
+    lights what lies inside a sphere light)."""
     ox, oy, oz = o[0] - row[L_PX], o[1] - row[L_PY], o[2] - row[L_PZ]
     b = ox * d[0] + oy * d[1] + oz * d[2]
     c = ox * ox + oy * oy + oz * oz - row[L_RADIUS] * row[L_RADIUS]
     disc = b * b - c
-    if disc < 0.0 or c <= 0.0:
+    if disc < 0.0:
         return math.inf
     root = math.sqrt(disc)
     t = -b - root
@@ -171,8 +173,12 @@ def sample_li(row, p, u1, u2):
     if row[L_SOFT] != 0.0:
         return _sample_soft_disc(row, p, u1, u2)
     omc, dist_c, to_c = _one_minus_cos(row, p)
-    if not dist_c > row[L_RADIUS]:
-        return (0.0, 0.0, 1.0), 0.0, 0.0, 0.0
+    if not dist_c > row[L_RADIUS]:  # inside: the sphere is all around, uniform directions (no spot cone, as Cycles)
+        wi = uniform_sphere(u1, u2)
+        dist = sphere_hit_distance(row, p, wi)
+        if not math.isfinite(dist):
+            return wi, 0.0, 0.0, 0.0
+        return wi, dist, 1.0 / (4.0 * math.pi), row[L_SCALE]
     axis = (to_c[0] / dist_c, to_c[1] / dist_c, to_c[2] / dist_c)
     s, t = tangents(axis)
     wi = to_world(uniform_cone(u1, u2, 1.0 - omc), s, t, axis)
@@ -189,13 +195,20 @@ def pdf_li(row, o, d, t):
     soft-falloff disc) at distance ``t``."""
     if row[L_SOFT] != 0.0:
         return _soft_disc_pdf(row, o, d, t)
-    omc, _, _ = _one_minus_cos(row, o)
+    omc, dist_c, _ = _one_minus_cos(row, o)
+    if not dist_c > row[L_RADIUS]:
+        return 1.0 / (4.0 * math.pi)
     return 1.0 / (2.0 * math.pi * max(omc, 1e-300))
 
 
 @kernel
 def le(row, o, d, t):
-    """Radiance factor seen along a ray from ``o`` that hits the sphere (or the soft-falloff disc)."""
+    """Radiance factor seen along a ray from ``o`` that hits the sphere (or the soft-falloff disc); from
+    inside the sphere, without the spot cone (as Cycles)."""
+    if row[L_SOFT] == 0.0:
+        ox, oy, oz = o[0] - row[L_PX], o[1] - row[L_PY], o[2] - row[L_PZ]
+        if ox * ox + oy * oy + oz * oz <= row[L_RADIUS] * row[L_RADIUS]:
+            return row[L_SCALE]
     return row[L_SCALE] * spot_attenuation(row, -d[0], -d[1], -d[2])
 
 
