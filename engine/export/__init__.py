@@ -14,6 +14,8 @@ from .border import render_border
 from .camera import export_camera, render_resolution
 from .lights import export_lights
 from .meshes import export_meshes
+from .missing_libraries import missing_libraries
+from .unrendered_settings import unrendered_setting_warnings
 from .world import export_world
 
 __all__ = ["PrismInputError", "export_camera", "export_scene", "render_border", "render_resolution"]
@@ -26,7 +28,12 @@ def _emits(material) -> bool:
     return material.emission is not None and material.emission_strength > 0
 
 
-def _check_something_to_see(scene_name: str, tracer_scene: Scene) -> None:
+def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=()) -> None:
+    """Raises when the image could only be black or empty; ``missing``: ``MissingLibrary``s, named when
+    nothing is left to see."""
+    if tracer_scene.triangle_count == 0 and missing:
+        raise PrismInputError(f"Scene '{scene_name}' has no visible geometry: "
+                              + "; ".join(library.sentence() for library in missing) + ".")
     if tracer_scene.triangle_count == 0:
         raise PrismInputError(
             f"Scene '{scene_name}' has no visible geometry: add a mesh object, or enable an object for "
@@ -50,6 +57,10 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     Inputs Prism ignores are appended to ``warnings`` (one message each).
     """
     scene = depsgraph.scene
+    missing = missing_libraries(scene)
+    if warnings is not None:
+        warnings.extend(unrendered_setting_warnings(scene))
+        warnings.extend(f"Scene '{scene.name}': {library.sentence()}." for library in missing)
     camera = export_camera(scene, depsgraph, warnings)
     geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
     tracer_scene = Scene(
@@ -65,9 +76,9 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         materials=geometry.materials,
         camera=camera,
         lights=export_lights(depsgraph, warnings),
-        world=export_world(scene, warnings),
+        world=export_world(scene, warnings, depsgraph.view_layer),
     )
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.validate()
-    _check_something_to_see(scene.name, tracer_scene)
+    _check_something_to_see(scene.name, tracer_scene, missing)
     return tracer_scene

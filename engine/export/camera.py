@@ -221,7 +221,13 @@ def export_camera(scene, depsgraph=None, warnings: list[str] | None = None) -> C
         latitude_max_rad=float(data.latitude_max),
         longitude_min_rad=float(data.longitude_min),
         longitude_max_rad=float(data.longitude_max),
+        clip_start_m=float(data.clip_start),
+        clip_end_m=float(data.clip_end),
     )
+    if camera.clip_start_m > camera.clip_end_m and warnings is not None:
+        warnings.append(f"Camera '{camera_object.name}': Clip Start ({camera.clip_start_m:g} m) lies beyond Clip End "
+                        f"({camera.clip_end_m:g} m), so the camera sees no geometry, only the world (as in Cycles): "
+                        "set Clip Start below Clip End (Camera ▸ Lens).")
     if model == "pinhole":
         return camera
     camera.focus_distance_m = focus_distance_m(camera_object)

@@ -58,6 +58,7 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
     light.power_w = energy
     if light_data.type in {"POINT", "SPOT"}:
         light.radius_m = float(light_data.shadow_soft_size)
+        light.soft_falloff = bool(getattr(light_data, "use_soft_falloff", False))
     if light_data.type == "SPOT":
         light.spot_size_rad = float(light_data.spot_size)
         light.spot_blend = float(light_data.spot_blend)

@@ -57,6 +57,8 @@ def _summary(material, compiled) -> Material:
     metal = any(spec.kind == CONDUCTOR and spec.fresnel in (FRESNEL_F82, FRESNEL_CONDUCTOR) for spec in closures)
     kind = "dielectric" if DIELECTRIC in kinds else ("conductor" if metal else "diffuse")
     exported = Material(name=material.name, kind=kind, shader=shader)
+    if shader is None:  # no Material Output (an add-on's node tree): black, as Cycles and the warning say
+        exported.base_color = (0.0, 0.0, 0.0)
     for spec in closures:
         if spec.kind in (DIELECTRIC, CONDUCTOR) and (kind != "diffuse"):
             exported.roughness = math.sqrt(max(spec.alpha, 0.0))

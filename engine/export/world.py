@@ -63,11 +63,14 @@ def _sky(world, node, exported: World, warnings) -> None:
         exported.to_texture = texture_matrix(vector, where, warnings)
 
 
-def export_world(scene, warnings: list[str] | None = None) -> World:
-    """The background of ``scene.world`` (a black one when there is no world)."""
+def export_world(scene, warnings: list[str] | None = None, view_layer=None) -> World:
+    """The background of ``scene.world`` (a black one when there is no world, or when ``view_layer``'s
+    Filter ▸ Environment is off: Cycles then neither shows nor samples the world, it lights nothing)."""
     world = scene.world
     if world is None:
         return World(color=(0.0, 0.0, 0.0), strength=0.0)
+    if view_layer is not None and not view_layer.use_sky:
+        return World(color=(0.0, 0.0, 0.0), strength=0.0, name=world.name)
     cycles = getattr(world, "cycles", None)
     sampled = getattr(cycles, "sampling_method", "AUTOMATIC") != "NONE"
     node = _background_node(world)

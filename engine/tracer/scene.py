@@ -116,7 +116,9 @@ class Light:
     area into the hemisphere (radiance P / (pi * area)), as in Cycles.
     ``irradiance_w_m2`` is a sun's Strength. ``direction`` is the light's local -Z
     (where spots, areas and suns point); ``axis_u``/``axis_v`` are its local X/Y.
-    ``radius_m`` is the soft radius of point/spot lights (0 = a true point).
+    ``radius_m`` is the soft radius of point/spot lights (0 = a true point); with
+    ``soft_falloff`` (Blender's Soft Falloff, on in new lights) that radius is a disc facing what it
+    lights, as Cycles, else a sphere (``lights.point``).
     ``spot_size_rad`` is the full cone angle, ``spot_blend`` Blender's blend.
     ``area_shape``: ``"rectangle"`` or ``"disk"`` with ``size_u_m`` x ``size_v_m``
     (full extents; a disk uses them as diameters); ``spread_rad`` (Cycles' Spread, π:
@@ -135,6 +137,7 @@ class Light:
     power_w: float = 0.0
     irradiance_w_m2: float = 0.0
     radius_m: float = 0.0
+    soft_falloff: bool = False
     spot_size_rad: float = np.pi / 4
     spot_blend: float = 0.15
     area_shape: str = "rectangle"
@@ -166,6 +169,9 @@ class Camera:
     sensor), as Cycles defines them (``stages.panorama``). Orthographic rays start ``ortho_start_m``
     behind the camera's plane (Blender's orthographic viewport sees half its clip range behind its
     centre); keeping the camera at the view's centre keeps the camera-relative geometry precise.
+    ``clip_start_m`` / ``clip_end_m``: Blender's Clip Start / Clip End; camera rays see only geometry at
+    depths between them (along the view axis; along the ray for panoramas), as in Cycles. Clip Start
+    beyond Clip End leaves camera rays no geometry to see (Cycles: the world only).
     """
 
     name: str
@@ -194,6 +200,8 @@ class Camera:
     longitude_min_rad: float = -np.pi
     longitude_max_rad: float = np.pi
     ortho_start_m: float = 0.0
+    clip_start_m: float = 0.0
+    clip_end_m: float = float("inf")
 
 
 @dataclass

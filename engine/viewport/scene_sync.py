@@ -16,6 +16,7 @@ import numpy as np
 from ..export import _check_something_to_see
 from ..export.lights import export_lights
 from ..export.meshes import export_meshes, read_geometry
+from ..export.missing_libraries import missing_libraries
 from ..export.world import export_world
 from ..tracer.scene import Camera, Scene, World
 
@@ -177,11 +178,12 @@ class SceneSync:
                 scene = replace(scene, lights=lights)
         if updates.world or updates.scene:
             self._world_warnings = []
-            world = export_world(depsgraph.scene, self._world_warnings)
+            world = export_world(depsgraph.scene, self._world_warnings, depsgraph.view_layer)
             if not same(world, scene.world):
                 scene = replace(scene, world=world)
         if scene is previous:
             return None, False
-        _check_something_to_see(depsgraph.scene.name, scene)
+        missing = missing_libraries(depsgraph.scene) if scene.triangle_count == 0 else ()
+        _check_something_to_see(depsgraph.scene.name, scene, missing)
         self.scene = scene
         return scene, geometry_changed

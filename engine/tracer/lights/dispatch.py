@@ -65,7 +65,7 @@ def light_distance(lights, index, o, d):
     """Distance along the ray to hittable light ``index`` (inf: missed)."""
     row = lights.rows[index]
     if int(row[L_KIND]) == SPHERE:
-        return point.sphere_hit_distance(row, o, d)
+        return point.hit_distance(row, o, d)
     return area.intersect(row, o, d)
 
 

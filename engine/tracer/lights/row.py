@@ -8,7 +8,8 @@ emits — or the direction toward the sun); ``L_U*``, ``L_V*`` (area axes); ``L_
 size), ``L_SMOOTH`` ((1 - cos_half) · blend); ``L_COS_MAX``, ``L_ONE_MINUS_COS`` (sun disc);
 ``L_LIMB`` (limb darkening of a sun disc: radiance × (1 - L_LIMB (1 - μ)), μ the cosine on the solar
 surface); ``L_CAMERA`` (1: seen by camera rays); ``L_SPREAD_TAN`` (tan of half an area light's spread,
-0: no spread limit), ``L_SPREAD_NORM`` (the spread falloff's normalisation).
+0: no spread limit), ``L_SPREAD_NORM`` (the spread falloff's normalisation); ``L_SOFT`` (1: a point or
+spot light with Blender's Soft Falloff, its radius a disc facing what it lights, ``lights.point``).
 """
 
 from __future__ import annotations
@@ -26,5 +27,5 @@ KIND_NAMES = {POINT: "point", SPHERE: "point", RECTANGLE: "area", DISK: "area", 
 
 (L_KIND, L_SPECTRUM, L_SCALE, L_PX, L_PY, L_PZ, L_NX, L_NY, L_NZ, L_UX, L_UY, L_UZ, L_VX, L_VY, L_VZ, L_HALF_U,
  L_HALF_V, L_AREA, L_RADIUS, L_SPOT, L_COS_HALF, L_SMOOTH, L_COS_MAX, L_ONE_MINUS_COS, L_LIMB, L_CAMERA, L_SPREAD_TAN,
- L_SPREAD_NORM) = range(28)
-LIGHT_ROW = 28
+ L_SPREAD_NORM, L_SOFT) = range(29)
+LIGHT_ROW = 29

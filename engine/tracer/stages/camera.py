@@ -45,11 +45,15 @@ PROJECTIONS = {"perspective": PERSPECTIVE, "orthographic": ORTHOGRAPHIC, "equire
 #: focus_distance_m, blades (0: a disc), blade_rotation (rad), aperture_ratio, panorama float64 [4]
 #: (``stages.panorama``), width, height (pixels), filter_kind, filter_width_px, filter_cdf_lo (Gaussian
 #: mass below -width), origin float64 [3] (the camera's position in the render's space, m), ortho_start_m
-#: (where orthographic rays start on the camera's +Z axis, m).
+#: (where orthographic rays start on the camera's +Z axis, m: Clip Start in front of the camera for a
+#: render), clip_start_m / clip_end_m (Blender's Clip Start / Clip End, m: camera rays see geometry between
+#: these depths along the view axis, along the ray for panoramas, as Cycles; orthographic rays start at
+#: Clip Start through ``ortho_start_m``, so their ``clip_start_m`` is 0; ``camera_clip`` applies Clip End).
 CameraData = namedtuple(
     "CameraData",
     "kind projection rotation tan_w tan_h shift_x shift_y aperture_radius_m focus_distance_m blades blade_rotation "
-    "aperture_ratio panorama width height filter_kind filter_width_px filter_cdf_lo origin ortho_start_m",
+    "aperture_ratio panorama width height filter_kind filter_width_px filter_cdf_lo origin ortho_start_m "
+    "clip_start_m clip_end_m",
 )
 
 
@@ -79,7 +83,8 @@ def camera_data(camera, settings, kind, origin_m=(0.0, 0.0, 0.0)) -> CameraData:
                       FILTER_GAUSSIAN if settings.pixel_filter == "gaussian" else FILTER_BOX,
                       float(settings.filter_width_px), float(ndtr(-settings.filter_width_px / sigma)),
                       np.ascontiguousarray(origin_m, dtype=np.float64),
-                      float(camera.ortho_start_m) if projection == ORTHOGRAPHIC else 0.0)
+                      float(camera.ortho_start_m - camera.clip_start_m) if projection == ORTHOGRAPHIC else 0.0,
+                      0.0 if projection == ORTHOGRAPHIC else float(camera.clip_start_m), float(camera.clip_end_m))
 
 
 @inlined
@@ -173,9 +178,22 @@ def camera_space_ray(camera, x, y, lens_u, lens_v):
 
 
 @inlined
+def near_clip_distance(camera, x, y):
+    """How far (m) along the unit camera ray through raster position (x, y) it starts: Clip Start on the
+    view axis (perspective: Clip Start over the cosine of the pinhole ray through (x, y), as Cycles, also
+    with depth of field), along the ray for panoramas, 0 for orthographic cameras (``ortho_start_m``)."""
+    if camera.clip_start_m <= 0.0:
+        return 0.0
+    if camera.projection == PERSPECTIVE:
+        f = film_direction(camera, x, y)
+        return camera.clip_start_m * math.sqrt(f[0] * f[0] + f[1] * f[1] + 1.0)
+    return camera.clip_start_m
+
+
+@inlined
 def camera_ray(camera, x, y, lens_u, lens_v):
     """(origin, unit direction) of the camera ray through raster position (x, y) (pixels from the
-    top-left corner) and lens sample (lens_u, lens_v), in the render's space; the direction is
+    top-left corner) and lens sample (lens_u, lens_v), in the render's space, starting at Clip Start; the direction is
     (0, 0, 0) where the camera sees nothing (outside a fisheye's circle)."""
     o, d = camera_space_ray(camera, x, y, lens_u, lens_v)
     if d[0] == 0.0 and d[1] == 0.0 and d[2] == 0.0:
@@ -189,7 +207,9 @@ def camera_ray(camera, x, y, lens_u, lens_v):
           r[1, 0] * d[0] + r[1, 1] * d[1] + r[1, 2] * d[2],
           r[2, 0] * d[0] + r[2, 1] * d[1] + r[2, 2] * d[2])
     n = math.sqrt(wd[0] * wd[0] + wd[1] * wd[1] + wd[2] * wd[2])
-    return wo, (wd[0] / n, wd[1] / n, wd[2] / n)
+    unit = (wd[0] / n, wd[1] / n, wd[2] / n)
+    near = near_clip_distance(camera, x, y)
+    return (wo[0] + near * unit[0], wo[1] + near * unit[1], wo[2] + near * unit[2]), unit
 
 
 @kernel

@@ -9,6 +9,7 @@ on whole queues in between, and the same image.
 
 from __future__ import annotations
 
+from ..camera_clip import clip_far_hits
 from ..jit import Launch
 from . import bounce_loop as _bounce_loop
 from . import camera as _camera
@@ -98,6 +99,8 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
             hit = tables.accel.intersect(current, queued)
         else:
             hit = tables.ray_classes.intersect(current, queued, state, depth)
+        if depth == 0:
+            hit = clip_far_hits(hit, current, queued, renderer.camera.data)
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, *hit, geometry, materials, lights, spectra, settings,
                                    depth, buffers.surface, passes, layout, buffers.scratch)
