@@ -57,3 +57,18 @@ def test_shadow_rays_through_films_are_the_stepwise_ones():
     from benchmarks import scenes
 
     _assert_same(scenes.soap_bubble((20, 20)), samples=4, samples_per_pass=4)
+
+
+def test_clip_end_in_the_compiled_loop_is_the_stepwise_one():
+    from dataclasses import replace
+
+    from benchmarks import scenes
+
+    scene = scenes.cornell_glass((20, 20))
+    scene.world = World((0.3, 0.4, 0.5), 1.0)
+    unclipped = _images(scene, True, samples=2, samples_per_pass=2)[0]
+    scene.camera = replace(scene.camera, clip_end_m=4.5)  # the back wall (4.8 m deep) is beyond it
+    clipped = _images(scene, True, samples=2, samples_per_pass=2)[0]
+    centre = (slice(8, 12), slice(8, 12))
+    assert not np.allclose(clipped[centre], unclipped[centre])  # the world shows where the wall was
+    _assert_same(scene, samples=2, samples_per_pass=2)

@@ -1,6 +1,6 @@
 """A chunk's whole bounce loop in one compiled call: Embree queries and the stage kernels in turn.
 
-    rays_cast = bounce_loop_kernel(loop, arrays, caster, passes, layout, count, queued, glass_clamps,
+    rays_cast = bounce_loop_kernel(loop, arrays, caster, camera, passes, layout, count, queued, glass_clamps,
                                    see_through, route_light)
 
 After the camera stage has queued the chunk's first rays, everything up to the film runs here without
@@ -21,8 +21,9 @@ from collections import namedtuple
 
 import numpy as np
 
+from ..camera_clip import clip_far_hits_kernel
 from ..embree.queries import closest_hits, occlusion
-from ..jit import kernel
+from ..jit import inlined, kernel
 from .emission import emission_kernel
 from .film import film_kernel
 from .passes import convert_kernel, route_kernel
@@ -42,7 +43,9 @@ LoopBuffers = namedtuple("LoopBuffers", "state rays surface shadows scratch hits
 ROUTE_FIRST_SHADOWS, ROUTE_SECOND_EMISSION, ROUTE_END = 0, 1, 2
 
 
-@kernel
+# Inlined: a kernel called from a kernel has its code linked into the caller and optimised and compiled
+# again there (numba links LLVM modules), so a middle layer of kernels would compile its callees a third time.
+@inlined
 def _trace_shadows(loop, arrays, caster, passes, layout, count, see_through):
     """Deliver the light of the first ``count`` shadow rays that reach their lights; returns rays cast."""
     shadows = loop.shadows
@@ -64,9 +67,11 @@ def _trace_shadows(loop, arrays, caster, passes, layout, count, see_through):
 
 
 @kernel
-def bounce_loop_kernel(loop, arrays, caster, passes, layout, count, queued, glass_clamps, see_through, route_light):
+def bounce_loop_kernel(loop, arrays, caster, camera, passes, layout, count, queued, glass_clamps, see_through,
+                       route_light):
     """Trace the ``count`` paths whose first ``queued`` rays are in ``loop.rays[0]`` until all have ended,
-    then write their colours to ``loop.rgb`` (and the passes' Rec.709 columns). ``route_light``: the
+    then write their colours to ``loop.rgb`` (and the passes' Rec.709 columns). ``camera``: the
+    ``stages.camera.CameraData`` whose Clip End ends the camera rays (``camera_clip``). ``route_light``: the
     passes split the light (``layout.light >= 0``); ``see_through``: shadow rays may cross films or
     cut-outs. Returns the rays cast."""
     state = loop.state
@@ -78,6 +83,8 @@ def bounce_loop_kernel(loop, arrays, caster, passes, layout, count, queued, glas
             break
         current = loop.rays[depth % 2]
         closest_hits(caster, current, queued, False, loop.hits)
+        if depth == 0:
+            clip_far_hits_kernel(camera, current, queued, loop.hits)
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, loop.hits.triangle, loop.hits.t, loop.hits.u, loop.hits.v,
                                    arrays.geometry, arrays.materials, arrays.lights, arrays.spectra, settings, depth,

@@ -87,8 +87,8 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     see_through = bool(tables.analysis.see_through_films or tables.analysis.see_through_cutouts)
     if tables.ray_classes is None and tables.accel.compiled_loops:
         accel = tables.accel  # held until the call returns: it owns the Embree scene the loop traces
-        rays_cast = bounce_loop_kernel(buffers.loop, tables.arrays, accel.caster(), passes, layout, count, queued,
-                                       glass_clamps, see_through, layout.light >= 0)
+        rays_cast = bounce_loop_kernel(buffers.loop, tables.arrays, accel.caster(), renderer.camera.data, passes,
+                                       layout, count, queued, glass_clamps, see_through, layout.light >= 0)
         return rays_cast, int(rejected[0])
     routed = 0 if layout.light >= 0 else _ROUTE_END + 1
     rays_cast = 0
