@@ -28,8 +28,8 @@ def _count_passes(prism_addon, monkeypatch) -> list:
     done = []
     original_pass = renderer_module.Renderer.render_pass
 
-    def counting_pass(self):
-        original_pass(self)
+    def counting_pass(self, samples_per_pixel=None):
+        original_pass(self, samples_per_pixel)
         done.append(self.samples_done)
 
     monkeypatch.setattr(renderer_module.Renderer, "render_pass", counting_pass)
