@@ -28,9 +28,10 @@ def _emits(material) -> bool:
     return material.emission is not None and material.emission_strength > 0
 
 
-def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=()) -> None:
+def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), world_filtered_by: str = "") -> None:
     """Raises when the image could only be black or empty; ``missing``: ``MissingLibrary``s, named when
-    nothing is left to see."""
+    nothing is left to see; ``world_filtered_by``: the view layer whose Filter ▸ Environment is off (its
+    world lights nothing), named when nothing else lights the scene."""
     if tracer_scene.triangle_count == 0 and missing:
         raise PrismInputError(f"Scene '{scene_name}' has no visible geometry: "
                               + "; ".join(library.sentence() for library in missing) + ".")
@@ -42,6 +43,12 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=()) ->
     world_lit = not tracer_scene.world.is_black()
     used = {int(i) for i in np.unique(tracer_scene.triangle_material)}
     emissive = any(_emits(tracer_scene.materials[i]) for i in used)
+    if not (tracer_scene.lights or world_lit or emissive) and world_filtered_by:
+        raise PrismInputError(
+            f"Scene '{scene_name}' has no light (no light with power, no emissive material, and View Layer "
+            f"'{world_filtered_by}' ▸ Filter ▸ Environment is off, so the world lights nothing, as in Cycles): "
+            "turn Environment on or add a light, or the image would be black."
+        )
     if not (tracer_scene.lights or world_lit or emissive):
         raise PrismInputError(
             f"Scene '{scene_name}' has no light (no light with power, no emissive material, a black world): "
@@ -80,5 +87,6 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     )
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.validate()
-    _check_something_to_see(scene.name, tracer_scene, missing)
+    filtered_by = depsgraph.view_layer.name if scene.world is not None and not depsgraph.view_layer.use_sky else ""
+    _check_something_to_see(scene.name, tracer_scene, missing, filtered_by)
     return tracer_scene

@@ -6,6 +6,7 @@ from __future__ import annotations
 import bpy
 import pytest
 
+from helpers.batch import run_batch
 from helpers.bpy_scenes import add_camera, add_plane, add_point_light
 from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
 
@@ -37,3 +38,20 @@ def test_environment_filter_as_in_cycles(prism_addon, fresh_scene, environment):
     assert cycles[0] == pytest.approx(WORLD if environment else 0.0, abs=1e-3)
     assert prism[0] == pytest.approx(WORLD if environment else 0.0, abs=1e-3)
     assert prism[1] == pytest.approx(cycles[1], rel=0.04), (prism, cycles)
+
+
+def test_a_scene_lit_by_its_world_alone_with_environment_off_names_the_filter(prism_addon, fresh_scene, tmp_path,
+                                                                             capsys, bad_input):
+    """Cycles renders it black; Prism refuses, naming the view layer's filter (not "a black world")."""
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = True
+    fresh_scene.world = world
+    add_plane("Card", 1.2)
+    add_camera((0.0, 0.0, 4.0), (0.0, 0.0, 0.0), resolution=(32, 16))
+    bpy.context.view_layer.use_sky = False
+    status, line = run_batch(capsys, "--samples", 1, "--output", tmp_path / "x.png")
+    assert status == 1
+    assert line == ("Prism: error: Scene 'Scene' has no light (no light with power, no emissive material, and View "
+                    "Layer 'ViewLayer' ▸ Filter ▸ Environment is off, so the world lights nothing, as in Cycles): "
+                    "turn Environment on or add a light, or the image would be black.")
+    bad_input("a scene lit by its world alone, with View Layer ▸ Filter ▸ Environment off", status, line)

@@ -25,7 +25,8 @@ def test_material_without_output_renders_black_as_in_cycles(prism_addon, fresh_s
     warnings = []
     export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
     export.export_scene(bpy.context.evaluated_depsgraph_get(), warnings)
-    assert [w for w in warnings if "Lost" in w] == ["Material 'Lost material': has no Material Output for Cycles; Prism renders it black."]
+    assert [w for w in warnings if "Lost" in w] == [
+        "Material 'Lost material': has no Material Output for Cycles; Prism renders it black."]
     cycles = luminance(render_cycles_rgba(fresh_scene, 4))
     prism = luminance(render_prism_rgba(fresh_scene, 4))
     for image in (cycles, prism):

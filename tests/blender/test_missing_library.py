@@ -29,9 +29,9 @@ def _shot_linking_a_lost_library(folder, with_floor: bool):
     bpy.ops.wm.save_as_mainfile(filepath=str(folder / "shot.blend"))
     (folder / "props.blend").rename(folder / "props_moved.blend")
     bpy.ops.wm.open_mainfile(filepath=str(folder / "shot.blend"))
-    return f"the linked library 'props.blend' is missing (no file at {folder / 'props.blend'}), so object 'Rock' " \
-        "from it is not rendered: relocate it (Outliner ▸ Blender File ▸ right-click the library ▸ Relocate) or " \
-        "restore the file."
+    return (f"the linked library 'props.blend' is missing (no file at {folder / 'props.blend'}), so object "
+            "'Rock' from it is not rendered: relocate it (Outliner ▸ Blender File ▸ right-click the library ▸ "
+            "Relocate) or restore the file.")
 
 
 def test_missing_library_with_nothing_else_names_the_file(prism_addon, tmp_path, capsys, bad_input):
