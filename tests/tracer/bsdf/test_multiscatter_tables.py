@@ -24,11 +24,11 @@ def test_reflection_entries_regenerate(rough_index, mu_index):
     assert TABLES.ggx_e[rough_index, mu_index] == pytest.approx(fresh, abs=1e-4)
 
 
-@pytest.mark.parametrize("rough_index, mu_index, z_index, inside", [(5, 2, 4, False), (15, 8, 10, False),
-                                                                    (10, 12, 6, True), (15, 15, 14, True)])
+@pytest.mark.parametrize("rough_index, mu_index, z_index, inside", [(5, 2, 8, False), (15, 8, 21, False),
+                                                                    (10, 12, 13, True), (15, 15, 28, True)])
 def test_glass_entries_regenerate(rough_index, mu_index, z_index, inside):
     rough, mu = generate.grid(16)[rough_index], generate.grid(16)[mu_index]
-    eta = float(generate.eta_of_z(generate.grid(16, 1e-4, 0.99)[z_index]))
+    eta = float(generate.eta_of_z(generate.grid(generate.GLASS_Z, 1e-4, 0.99)[z_index]))
     table = TABLES.glass_inv_e if inside else TABLES.glass_e
     fresh = generate.glass_albedo(rough, [mu], 1.0 / eta if inside else eta, strata=512)[0]
     assert table[rough_index, mu_index, z_index] == pytest.approx(fresh, abs=2e-4)
@@ -38,10 +38,10 @@ def test_averages_regenerate():
     rough = generate.grid(32)[24]
     fresh = generate.cosine_average(lambda mu: generate.reflection_albedo(rough, mu, 128), nodes=32)
     assert TABLES.ggx_e_avg[24] == pytest.approx(fresh, abs=2e-4)
-    rough, z = generate.grid(16)[12], generate.grid(16, 1e-4, 0.99)[9]
+    rough, z = generate.grid(16)[12], generate.grid(generate.GLASS_Z, 1e-4, 0.99)[19]
     eta = float(generate.eta_of_z(z))
-    fresh = generate.cosine_average(lambda mu: generate.glass_albedo(rough, mu, eta, 64), nodes=24)
-    assert TABLES.glass_e_avg[12, 9] == pytest.approx(fresh, abs=5e-4)
+    fresh = generate.cosine_average(lambda mu: generate.glass_albedo(rough, mu, eta, 128), nodes=32)
+    assert TABLES.glass_e_avg[12, 19] == pytest.approx(fresh, abs=5e-4)
 
 
 def test_an_entry_against_a_brute_force_hemisphere_integral():
@@ -80,10 +80,10 @@ def test_limits():
 def test_lookups_interpolate_the_tables():
     assert reflection_albedo(TABLES, generate.grid(32)[20], generate.grid(32)[7]) == pytest.approx(
         (TABLES.ggx_e[20, 7], TABLES.ggx_e_avg[20]), abs=1e-12)
-    z = generate.grid(16, 1e-4, 0.99)[6]
+    z = generate.grid(generate.GLASS_Z, 1e-4, 0.99)[13]
     eta = float(generate.eta_of_z(z))
     e, e_avg = glass_albedo(TABLES, generate.grid(16)[9], generate.grid(16)[3], 1.0 / eta)
-    assert (e, e_avg) == pytest.approx((TABLES.glass_inv_e[9, 3, 6], TABLES.glass_inv_e_avg[9, 6]), abs=1e-6)
+    assert (e, e_avg) == pytest.approx((TABLES.glass_inv_e[9, 3, 13], TABLES.glass_inv_e_avg[9, 13]), abs=1e-6)
 
 
 def _fss_numeric(fresnel, nodes=4000):
