@@ -13,8 +13,9 @@ into instructions the kernels run per hit (``materials.program``). Tests build p
   wavelength; ``s0``/``s1`` its spectral parameters (see ``bsdf.closure``); scalars that vary are bound
   by the program (``bindings``: the table appends ``opcodes.BIND`` instructions); a constant Principled
   specular layer above the closure is ``layer`` (applied per hit without a program); ``multiscatter`` asks for
-  Blender's Multiscatter GGX (energy compensation, ``bsdf.multiscatter``). ``selection`` estimates the closure's share of the reflected light
-  when nothing varies (one-sample MIS over closures); programs recompute it per hit.
+  Blender's Multiscatter GGX (energy compensation, ``bsdf.multiscatter``). ``selection`` estimates the
+  closure's share of the reflected light when nothing varies (one-sample MIS over closures); programs
+  recompute it per hit.
 - ``TextureImage``: an image's texels (row 0 at the bottom, as Blender stores them): scene-linear RGBA
   float32, or 8-bit levels with the table that decodes them (the image's colour space), with Blender's
   interpolation and extension.

@@ -33,8 +33,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..bsdf.closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C_FILM_NM, C_FRESNEL, C_GLASS,
-                            C_KIND, C_LAYER_ETA, C_LAYER_F0, C_LAYER_MULTISCATTER, C_LAYER_ROUGHNESS, C_MIRROR, C_MS_COLOUR,
-                            C_MULTISCATTER, C_S1, C_SPECTRUM, C_TINT,
+                            C_KIND, C_LAYER_ETA, C_LAYER_F0, C_LAYER_MULTISCATTER, C_LAYER_ROUGHNESS, C_MIRROR,
+                            C_MS_COLOUR, C_MULTISCATTER, C_S1, C_SPECTRUM, C_TINT,
                             C_TINT_SCALE, C_WEIGHT, CLOSURE_ROW,
                             CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT,
                             TRANSPARENT, register_source)
