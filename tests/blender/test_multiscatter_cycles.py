@@ -8,8 +8,8 @@ seed-to-seed noise 0.04-0.13 % a patch in either renderer at these sample counts
 The Glass is also held to the closed form: a lossless sphere in a white furnace renders as the sky (the
 glass ends the row, beside the white Glossy, which renders as the sky too). Prism's rough glass does, within
 1 % (0.998 over three seeds); Cycles' renders at 0.992, and at up to 2 % below Prism's elsewhere
-(docs/materials.md): our integral of a rough interface seen from inside, which Prism's glass tables hold,
-is darker near grazing than Cycles' table, so Cycles compensates less there."""
+(docs/materials.md), likely because our integral of a rough interface seen from inside, which Prism's
+glass tables hold, is darker near grazing than Cycles' table, so Cycles compensates less there."""
 
 from __future__ import annotations
 
