@@ -250,7 +250,8 @@ def test_constant_principled_materials_run_no_program_per_hit(prism_addon, basic
     shader = _material(_export(prism_addon)).shader
     assert len(shader.instructions) == 0 and shader.normal < 0
     layers = [spec.layer for spec in shader.closures]
-    assert layers[0] is None and layers[-1] == pytest.approx((1.5, 0.3, 0.04))  # specular, then diffuse under it
+    # specular, then diffuse under it (a Multiscatter GGX layer: Blender's default distribution)
+    assert layers[0] is None and layers[-1] == pytest.approx((1.5, 0.3, 0.04, 1.0))
 
     for inputs in ({"Metallic": 1.0}, {"Metallic": 0.0, "Transmission Weight": 1.0}):
         for name, value in inputs.items():

@@ -28,7 +28,7 @@ _MATH = {name: i for i, name in enumerate(op.MATH_OPERATIONS)}
 @dataclass
 class Weight:
     """A closure weight: ``scale`` (scalar) × ``colour`` (RGB), under a constant Principled specular layer
-    when ``layer`` is set ((index, roughness, largest f0): see ``ClosureSpec.layer``)."""
+    when ``layer`` is set ((index, roughness, largest f0, multiscatter): see ``ClosureSpec.layer``)."""
 
     scale: Value
     colour: Value
@@ -50,6 +50,8 @@ class PendingClosure:
     coat_ior: float = 1.0
     normal: Value | None = None
     measured: object = None  # a scene.ReflectanceSpec replacing the colour part of the tint (diffuse) or s0
+    multiscatter: bool = False  # Blender's Multiscatter GGX: energy-compensated (``bsdf.multiscatter``)
+    multiscatter_colour: Value | None = None  # the lobe's Fss where its Fresnel model does not set it
 
 
 @dataclass

@@ -61,6 +61,8 @@ def _closure(c, pending, normal_register):
     takes_s0 = pending.measured is not None and pending.kind == CONDUCTOR
     spec.s0 = Colour(spectrum=pending.measured) if takes_s0 else _colour(c, pending.s0)
     spec.s1 = _colour(c, pending.s1)
+    spec.multiscatter = pending.multiscatter
+    spec.multiscatter_colour = _colour(c, pending.multiscatter_colour)
     if pending.alpha is not None:
         alpha = c.known(pending.alpha)
         if alpha is None:

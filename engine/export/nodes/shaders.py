@@ -33,12 +33,15 @@ def _alpha(c, roughness):
     return c.math("MULTIPLY", roughness, roughness)
 
 
-def _distribution(c, node, what="GGX"):
+def _multiscatter(c, node) -> bool:
+    """Whether the node's distribution is Multiscatter GGX (energy-compensated GGX, as Cycles renders it);
+    other distributions than GGX get a warning (Prism renders them as single-scatter GGX)."""
     distribution = getattr(node, "distribution", "GGX")
     if distribution == "MULTI_GGX":
-        c.warn(node, "uses multiscatter GGX; Prism renders single-scatter GGX (slightly darker when rough).")
-    elif distribution not in ("GGX", "SHARP"):
+        return True
+    if distribution not in ("GGX", "SHARP"):
         c.warn(node, f"uses the {distribution.replace('_', ' ').title()} distribution; Prism renders GGX.")
+    return False
 
 
 def _cos_view(c, normal):
@@ -53,6 +56,11 @@ def _f0(c, eta):
 
 def _layer_albedo(c, roughness, cos, eta):
     return c.emit(op.LAYER_ALBEDO, [c.clamp01(roughness), cos, eta])
+
+
+def _darkening(c, roughness, cos, eta, f0):
+    """Factor on a Multiscatter GGX dielectric layer's albedo: what its energy compensation reflects."""
+    return c.emit(op.LAYER_DARKENING, [c.clamp01(roughness), cos, eta, f0])
 
 
 def _max_channel(c, colour):
@@ -70,8 +78,7 @@ def principled(c, node, context, weight: Weight):
     ior = c.math("MAXIMUM", _val(c, node, "IOR", context), c.const(1e-5))
     normal = _normal(c, node, context)
     specular_tint = c.vector_math("MAXIMUM", _val(c, node, "Specular Tint", context, COLOR), c.const(0.0, 0.0, 0.0))
-    if getattr(node, "distribution", "GGX") == "MULTI_GGX":
-        _distribution(c, node)
+    multiscatter = _multiscatter(c, node)
     for name in ("Anisotropic",):
         if c.known(_val(c, node, name, context)) != 0.0:
             c.warn(node, "is anisotropic; Prism renders it isotropic.")
@@ -92,11 +99,13 @@ def principled(c, node, context, weight: Weight):
         coat_normal = _normal(c, node, context, "Coat Normal")
         if coat_normal is not None and coat_normal != normal:
             c.warn(node, "has its own Coat Normal; Prism shades the coat with the base normal.")
+        # Cycles compensates the coat's energy whatever the distribution (bsdf_microfacet_setup_fresnel_dielectric)
         c.add_closure(PendingClosure(CONDUCTOR, c.weighted(weight, scale=coat), node, alpha=_alpha(c, coat_roughness),
-                                     eta=coat_ior, fresnel=FRESNEL_DIELECTRIC, normal=normal))
+                                     eta=coat_ior, fresnel=FRESNEL_DIELECTRIC, normal=normal, multiscatter=True))
         f0 = _f0(c, coat_ior)
         s = _layer_albedo(c, coat_roughness, cos, coat_ior)
         albedo = c.math("ADD", f0, c.math("MULTIPLY", c.one_minus(f0), s))
+        albedo = c.math("MULTIPLY", albedo, _darkening(c, coat_roughness, cos, coat_ior, f0))
         weight = c.weighted(weight, scale=c.clamp01(c.one_minus(c.math("MULTIPLY", coat, albedo))))
         tint = c.vector_math("MAXIMUM", _val(c, node, "Coat Tint", context, COLOR), c.const(0.0, 0.0, 0.0))
         if c.known(tint) != (1.0, 1.0, 1.0):
@@ -130,7 +139,7 @@ def principled(c, node, context, weight: Weight):
     if c.known(metallic) != 0.0:
         metal = PendingClosure(CONDUCTOR, c.weighted(weight, scale=metallic), node, alpha=alpha, fresnel=FRESNEL_F82,
                                s0=_saturate(c, base), s1=c.vector_math("MINIMUM", specular_tint, c.const(1.0, 1.0, 1.0)),
-                               normal=normal, measured=measured_base(c))
+                               normal=normal, measured=measured_base(c), multiscatter=multiscatter)
         conductor_override(c, metal)
         prism_coating(c, metal)
         c.add_closure(metal)
@@ -139,9 +148,11 @@ def principled(c, node, context, weight: Weight):
     transmission = c.clamp01(_val(c, node, "Transmission Weight", context))
     if c.known(transmission) != 0.0:
         keeps_own_colour(c, node, "its transmission is tinted by the Base Color as a transmittance")
+        through = c.vector_math("POWER", _saturate(c, base), c.const(0.5, 0.5, 0.5))
+        # Cycles' Fss of a glass is its transmission tint
         glass = PendingClosure(DIELECTRIC, c.weighted(weight, scale=transmission), node, alpha=alpha, eta=ior,
-                               fresnel=GLASS, s0=specular_tint,
-                               s1=c.vector_math("POWER", _saturate(c, base), c.const(0.5, 0.5, 0.5)), normal=normal)
+                               fresnel=GLASS, s0=specular_tint, s1=through, normal=normal, multiscatter=multiscatter,
+                               multiscatter_colour=through if multiscatter else None)
         if film_nm > 0.1:
             glass.coat_nm, glass.coat_ior = film_nm, film_ior
         glass_override(c, glass)
@@ -159,7 +170,7 @@ def principled(c, node, context, weight: Weight):
         eta = c.emit(op.MIX_FLOAT, [below, eta, c.math("DIVIDE", c.const(1.0), eta)])
     if c.known(eta) != 1.0 or film_nm > 0.1:
         specular = PendingClosure(CONDUCTOR, weight, node, alpha=alpha, eta=eta, fresnel=FRESNEL_DIELECTRIC,
-                                  s0=specular_tint, normal=normal)
+                                  s0=specular_tint, normal=normal, multiscatter=multiscatter)
         if film_nm > 0.1:
             specular.coat_nm, specular.coat_ior = film_nm, film_ior
         c.add_closure(specular)
@@ -168,12 +179,16 @@ def principled(c, node, context, weight: Weight):
         constant = (normal is None and weight.layer is None
                     and None not in (c.known(f0), c.known(roughness), c.known(eta)))
         if constant:  # applied per hit from the closure rows, without running a program
-            weight = Weight(weight.scale, weight.colour, (c.known(eta), c.known(roughness), max(c.known(f0))))
+            weight = Weight(weight.scale, weight.colour, (c.known(eta), c.known(roughness), max(c.known(f0)),
+                                                          1.0 if multiscatter else 0.0))
         else:
             s = _layer_albedo(c, roughness, cos, eta)
             one = c.const(1.0, 1.0, 1.0)
             albedo = c.vector_math("ADD", f0, c.vector_math("SCALE", c.vector_math("SUBTRACT", one, f0), s=s))
-            weight = c.weighted(weight, scale=c.clamp01(c.one_minus(_max_channel(c, albedo))))
+            largest = _max_channel(c, albedo)
+            if multiscatter:
+                largest = c.math("MULTIPLY", largest, _darkening(c, roughness, cos, eta, _max_channel(c, f0)))
+            weight = c.weighted(weight, scale=c.clamp01(c.one_minus(largest)))
 
     if c.known(_val(c, node, "Subsurface Weight", context)) != 0.0:
         c.warn(node, "has Subsurface Weight; Prism renders subsurface scattering as diffuse reflection.")
@@ -228,18 +243,20 @@ def diffuse(c, node, context, weight):
 
 
 def glossy(c, node, context, weight):
-    _distribution(c, node)
+    multiscatter = _multiscatter(c, node)
     keeps_own_colour(c, node, "its Color is a specular tint")
     if c.known(_val(c, node, "Anisotropy", context)) != 0.0:
         c.warn(node, "is anisotropic; Prism renders it isotropic.")
     colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
+    # Cycles' Fss of a Glossy BSDF is its colour
     c.add_closure(PendingClosure(CONDUCTOR, c.weighted(weight, colour=colour), node,
                                  alpha=_alpha(c, _val(c, node, "Roughness", context)), fresnel=FRESNEL_NONE,
-                                 normal=_normal(c, node, context)))
+                                 normal=_normal(c, node, context), multiscatter=multiscatter,
+                                 multiscatter_colour=colour if multiscatter else None))
 
 
 def metallic(c, node, context, weight):
-    _distribution(c, node)
+    multiscatter = _multiscatter(c, node)
     if c.known(_val(c, node, "Anisotropy", context)) != 0.0:
         c.warn(node, "is anisotropic; Prism renders it isotropic.")
     alpha = _alpha(c, _val(c, node, "Roughness", context))
@@ -261,20 +278,22 @@ def metallic(c, node, context, weight):
         keeps_own_colour(c, node, "its IOR and Extinction give its reflectance")
     measured = measured_base(c) if node.fresnel_type == "F82" else None
     metal = PendingClosure(CONDUCTOR, weight, node, alpha=alpha, fresnel=FRESNEL_F82, s0=s0, s1=s1,
-                           normal=_normal(c, node, context), measured=measured)
+                           normal=_normal(c, node, context), measured=measured, multiscatter=multiscatter)
     conductor_override(c, metal)
     prism_coating(c, metal)
     c.add_closure(metal)
 
 
 def _dielectric(c, node, context, weight, mode):
-    _distribution(c, node)
+    multiscatter = _multiscatter(c, node)  # Glass offers Multiscatter GGX; Refraction only GGX and Beckmann
     keeps_own_colour(c, node, "its Color is a transmittance")
     colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
     eta = c.math("MAXIMUM", _val(c, node, "IOR", context), c.const(1e-5))
+    # Cycles' Fss of a glass is its transmission tint, here the colour
     closure = PendingClosure(DIELECTRIC, c.weighted(weight, colour=colour), node,
                              alpha=_alpha(c, _val(c, node, "Roughness", context)), eta=eta, fresnel=mode,
-                             normal=_normal(c, node, context))
+                             normal=_normal(c, node, context), multiscatter=multiscatter,
+                             multiscatter_colour=colour if multiscatter else None)
     glass_override(c, closure)
     prism_coating(c, closure)
     c.add_closure(closure)

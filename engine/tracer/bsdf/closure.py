@@ -27,7 +27,13 @@ material's program (``register_source``).
 - ``C_LAYER_ETA``, ``C_LAYER_ROUGHNESS``, ``C_LAYER_F0``: a constant GGX dielectric layer above the closure
   (the Principled specular layer over diffuse, metal or glass): its index (0: no layer), Blender roughness and
   largest normal-incidence reflectance. The closure's tint is scaled per hit by what the layer lets through,
-  1 - its albedo seen from the view direction (``materials.layering.under_layer``).
+  1 - its albedo seen from the view direction (``materials.layering.under_layer``). ``C_LAYER_MULTISCATTER``: 1 when
+  that layer is Multiscatter GGX: its albedo is then what the energy-compensated lobe reflects.
+- ``C_MULTISCATTER``: 1 where the Blender node's distribution is Multiscatter GGX (and for the Principled coat,
+  which Cycles always compensates): the rough GGX lobe is energy-compensated per hit (``bsdf.multiscatter``,
+  applied by ``materials.energy``); 0 for single-scatter GGX.
+- ``C_MS_COLOUR``: a spectral source: the average single-scattering Fresnel Fss of a compensated lobe whose
+  Fresnel model does not set it (Glossy's colour, a glass's colour or transmission tint); -1 for 1.
 """
 
 from __future__ import annotations
@@ -59,7 +65,10 @@ C_MIRROR = 14
 C_LAYER_ETA = 15
 C_LAYER_ROUGHNESS = 16
 C_LAYER_F0 = 17
-CLOSURE_ROW = 18
+C_MULTISCATTER = 18
+C_MS_COLOUR = 19
+C_LAYER_MULTISCATTER = 20
+CLOSURE_ROW = 21
 
 #: Spectral sources and the ``spectral`` slot each fills.
 SPECTRAL_SOURCES = (C_SPECTRUM, C_S1, C_TINT)

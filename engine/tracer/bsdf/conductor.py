@@ -20,8 +20,8 @@ from .optics import dielectric_f0, fresnel_conductor, fresnel_dielectric, thin_f
 
 # F82-tint (Kutz et al., "Novel aspects of the Adobe Standard Material"): the Schlick curve less
 # b cos (1 - cos)^6, b fixed so that F(cos = 1/7, about 82°) is Schlick times the tint.
-_C82_5 = (6.0 / 7.0) ** 5
-_C82_WEIGHT = (1.0 / 7.0) * (6.0 / 7.0) ** 6
+C82_5 = (6.0 / 7.0) ** 5
+C82_WEIGHT = (1.0 / 7.0) * (6.0 / 7.0) ** 6
 
 
 @inlined
@@ -50,7 +50,7 @@ def reflectance(row, spectral, cos_i, wavelength_nm, k):
     c5 = c * c * c * c * c
     if mode == FRESNEL_F82:
         schlick = f0 + (1.0 - f0) * c5
-        b = (f0 + (1.0 - f0) * _C82_5) * (1.0 - spectral[1, k]) / _C82_WEIGHT
+        b = (f0 + (1.0 - f0) * C82_5) * (1.0 - spectral[1, k]) / C82_WEIGHT
         return min(max(schlick - b * cos_i * c5 * c, 0.0), 1.0)
     if coated:
         r = math.sqrt(min(max(f0, 0.0), 0.999))

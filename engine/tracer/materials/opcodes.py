@@ -78,6 +78,8 @@ EXTRA = 69  # operands of the previous instruction that did not fit in one row
 LAYER_ALBEDO = 80  # mode: LAYER_ALBEDO_KINDS; dst = albedo factor s(roughness a, cos b, ior c)
 BIND = 81  # rows[a, b] = register c (a scalar parameter of closure a, column b); mode 1 multiplies
 BIND_RGB = 82  # rows[a, b] = colour at register c (a spectral parameter: resolved per hit)
+LAYER_DARKENING = 83  # dst = factor on the albedo of a Multiscatter GGX dielectric layer: roughness a, cos b,
+#                       ior c, normal-incidence reflectance d (``layering.dielectric_darkening``)
 
 MATH_OPERATIONS = [
     "ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER", "LOGARITHM", "SQRT", "INVERSE_SQRT",

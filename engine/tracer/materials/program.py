@@ -25,7 +25,7 @@ from ..textures.patterns import brick, checker, gradient, magic, wave, white_noi
 from ..textures.voronoi import voronoi_texture
 from . import hit_inputs as hit
 from . import opcodes as op
-from .layering import dielectric_s
+from .layering import dielectric_darkening, dielectric_s
 
 #: Per material: instruction range ``start`` / ``count``, register-file range ``const_start`` /
 #: ``const_count`` in ``constants``; ``normal``, ``emission`` (colour) and ``emission_scale`` registers (-1:
@@ -296,6 +296,8 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
             _put3(regs, dst + 1, (r, gg, bb))
         elif code == op.LAYER_ALBEDO:
             regs[dst] = dielectric_s(tables, regs[a], regs[b], regs[c])
+        elif code == op.LAYER_DARKENING:
+            regs[dst] = dielectric_darkening(tables, regs[a], regs[b], regs[c], regs[d])
         elif code == op.BIND:
             if mode == 1:
                 rows[a, b] *= regs[c]

@@ -12,8 +12,10 @@ into instructions the kernels run per hit (``materials.program``). Tests build p
 - ``ClosureSpec``: one closure row. ``kind`` is a ``bsdf.closure`` kind; ``tint`` its weight per
   wavelength; ``s0``/``s1`` its spectral parameters (see ``bsdf.closure``); scalars that vary are bound
   by the program (``bindings``: the table appends ``opcodes.BIND`` instructions); a constant Principled
-  specular layer above the closure is ``layer`` (applied per hit without a program). ``selection`` estimates the closure's share of the reflected light
-  when nothing varies (one-sample MIS over closures); programs recompute it per hit.
+  specular layer above the closure is ``layer`` (applied per hit without a program); ``multiscatter`` asks for
+  Blender's Multiscatter GGX (energy compensation, ``bsdf.multiscatter``). ``selection`` estimates the
+  closure's share of the reflected light when nothing varies (one-sample MIS over closures); programs
+  recompute it per hit.
 - ``TextureImage``: an image's texels (row 0 at the bottom, as Blender stores them): scene-linear RGBA
   float32, or 8-bit levels with the table that decodes them (the image's colour space), with Blender's
   interpolation and extension.
@@ -54,7 +56,10 @@ class ClosureSpec:
     selection: float = 1.0
     scale: float = 1.0  # a constant factor of the tint
     bindings: list = field(default_factory=list)  # (column, register, multiply): scalars the program sets
-    layer: tuple | None = None  # (index, roughness, largest f0) of a constant dielectric layer above (C_LAYER_*)
+    layer: tuple | None = None  # (index, roughness, largest f0[, multiscatter 0/1]) of a constant dielectric layer
+    #                             above (C_LAYER_*)
+    multiscatter: bool = False  # energy-compensated GGX (Blender's Multiscatter GGX, ``C_MULTISCATTER``)
+    multiscatter_colour: Colour | None = None  # its Fss where the Fresnel model does not set it (``C_MS_COLOUR``)
 
 
 @dataclass

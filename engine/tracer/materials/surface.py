@@ -4,7 +4,9 @@ for shadow rays.
 Materials with a program (``MAT_PROGRAM``) start each hit from their constant register file, run their
 instructions (``program.run_program``) and then resolve their closures; the others are resolved from
 their constant rows (``resolve.resolve_material``). Closures under a constant layer (``MAT_LAYERED``) are
-then scaled by what the layer lets through from the view direction (``layering.under_layer``). Nothing here allocates: the register file
+then scaled by what the layer lets through from the view direction (``layering.under_layer``), and closures
+whose distribution is Multiscatter GGX by the energy their single scattering misses (``MAT_MULTISCATTER``,
+``energy.compensate_energy``). Nothing here allocates: the register file
 and closure rows are the caller's scratch memory.
 """
 
@@ -14,9 +16,10 @@ from ..bsdf.closure import C_KIND, C_MIRROR, C_TINT, C_TINT_SCALE, DIELECTRIC, T
 from ..jit import inlined
 from ..spectra.table import spectrum_value
 from .program import run_program
+from .energy import compensate_energy
 from .resolve import _fill, copy_rows, resolve_material, resolve_spectral, selection_weights
 from .layering import under_layer
-from .table import MAT_LAYERED, MAT_ONE_SIDED, MAT_PROGRAM
+from .table import MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED, MAT_PROGRAM
 
 
 @inlined
@@ -44,18 +47,23 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
     """Resolve ``material`` at a hit into ``rows`` / ``spectral`` / ``eta``: (closure count, shading normal).
     ``ng`` and ``n`` face ``wo``; the returned normal is the program's (Normal Map, Bump) or ``n``."""
     flags = materials.flags[material]
+    sources = regs
     if not flags & MAT_PROGRAM:
         count = resolve_material(materials, spectra, material, wavelength_nm, hero, rows, spectral, eta,
                                  glass_clamps)
         shading = n
+        sources = materials.programs.constants
     else:
         count = copy_rows(materials, material, rows)
         _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs)
         resolve_spectral(materials, spectra, count, wavelength_nm, hero, rows, spectral, eta, glass_clamps, regs)
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
-    if flags & (MAT_PROGRAM | MAT_LAYERED):
+    if flags & (MAT_PROGRAM | MAT_LAYERED | MAT_MULTISCATTER):
         cos_o = wo[0] * shading[0] + wo[1] * shading[1] + wo[2] * shading[2]
+        if flags & MAT_MULTISCATTER:
+            compensate_energy(materials, spectra, materials.programs.tables.energy, rows, spectral, eta, count, cos_o,
+                              backfacing, wavelength_nm, sources)
         if flags & MAT_LAYERED:
             _apply_layers(materials.programs.tables, rows, spectral, count, cos_o)
         if count > 1:

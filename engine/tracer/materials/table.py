@@ -20,6 +20,9 @@ the kernels decide without looking at kinds:
   selection);
 - ``MAT_LAYERED``: a closure lies under a constant dielectric layer (``C_LAYER_*``), whose albedo depends on
   the view direction: its tint and the closures' selection weights are computed per hit.
+- ``MAT_MULTISCATTER``: a closure is energy-compensated (Blender's Multiscatter GGX, ``C_MULTISCATTER``), by a
+  factor that depends on the view direction: its tint and the closures' selection weights are computed per
+  hit (``energy.compensate_energy``).
 """
 
 from __future__ import annotations
@@ -30,7 +33,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..bsdf.closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C_FILM_NM, C_FRESNEL, C_GLASS,
-                            C_KIND, C_LAYER_ETA, C_LAYER_F0, C_LAYER_ROUGHNESS, C_MIRROR, C_S1, C_SPECTRUM, C_TINT,
+                            C_KIND, C_LAYER_ETA, C_LAYER_F0, C_LAYER_MULTISCATTER, C_LAYER_ROUGHNESS, C_MIRROR,
+                            C_MS_COLOUR, C_MULTISCATTER, C_S1, C_SPECTRUM, C_TINT,
                             C_TINT_SCALE, C_WEIGHT, CLOSURE_ROW,
                             CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT,
                             TRANSPARENT, register_source)
@@ -50,6 +54,7 @@ MAT_PROGRAM = 32
 MAT_TRANSPARENT = 64
 MAT_EMISSION_VARIES = 128
 MAT_LAYERED = 256
+MAT_MULTISCATTER = 512
 
 MaterialArrays = namedtuple(
     "MaterialArrays",
@@ -110,11 +115,14 @@ def _row(spec, spectra, glasses, glass_index, name):
     row[C_ETA] = float(spec.eta)
     row[C_MIRROR] = 0.0
     layer = spec.layer if spec.layer is not None else (0.0, 0.0, 0.0)
-    row[C_LAYER_ETA], row[C_LAYER_ROUGHNESS], row[C_LAYER_F0] = (float(x) for x in layer)
+    row[C_LAYER_ETA], row[C_LAYER_ROUGHNESS], row[C_LAYER_F0] = (float(x) for x in layer[:3])
+    row[C_LAYER_MULTISCATTER] = float(layer[3]) if len(layer) > 3 else 0.0
     row[C_SPECTRUM], _ = _source(spec.s0, spectra, name)
     row[C_S1], _ = _source(spec.s1, spectra, name)
     row[C_TINT], row[C_TINT_SCALE] = _source(spec.tint, spectra, name, bounded=False)
     row[C_TINT_SCALE] *= float(spec.scale)
+    row[C_MULTISCATTER] = 1.0 if spec.multiscatter else 0.0
+    row[C_MS_COLOUR], _ = _source(spec.multiscatter_colour, spectra, name)
     if spec.kind == DIELECTRIC:
         glass = spec.glass
         if glass is None:
@@ -191,7 +199,10 @@ def build_materials(materials, used, spectra) -> MaterialTable:
                 flags[m] |= MAT_TRANSPARENT
             if spec.layer is not None:
                 flags[m] |= MAT_LAYERED
-            needs_lut = needs_lut or any(c is not None and c.varies for c in (spec.tint, spec.s0, spec.s1))
+            if spec.multiscatter and spec.kind in (CONDUCTOR, DIELECTRIC) and spec.alpha >= SMOOTH_ALPHA:
+                flags[m] |= MAT_MULTISCATTER
+            needs_lut = needs_lut or any(c is not None and c.varies
+                                         for c in (spec.tint, spec.s0, spec.s1, spec.multiscatter_colour))
         if closures and all(_is_delta(spec) for spec in closures):
             flags[m] |= MAT_DELTA
         binds = [[op.BIND, int(multiply), -1, c, column, register] + [-1] * (op.INSTRUCTION - 6)

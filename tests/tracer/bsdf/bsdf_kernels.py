@@ -1,8 +1,22 @@
-"""Compiled loops that run a material's BSDF over many inputs, for the statistical tests (not a test module)."""
+"""Compiled loops that run a material's BSDF over many inputs, for the statistical tests (not a test module).
+
+The material is resolved as the render resolves it: constant rows, then, for Multiscatter GGX closures,
+the energy compensation seen from ``wo`` (``materials.energy``; below the surface is inside a glass)."""
 
 from engine.tracer.bsdf.dispatch import bsdf_evaluate, bsdf_sample
-from engine.tracer.jit import kernel
+from engine.tracer.jit import inlined, kernel
+from engine.tracer.materials.energy import compensate_energy
 from engine.tracer.materials.resolve import resolve_material
+from engine.tracer.materials.table import MAT_MULTISCATTER
+
+
+@inlined
+def _resolve(materials, spectra, wo, lam, hero, rows, spectral, eta, clamps):
+    count = resolve_material(materials, spectra, 0, lam, hero, rows, spectral, eta, clamps)
+    if materials.flags[0] & MAT_MULTISCATTER:
+        compensate_energy(materials, spectra, materials.programs.tables.energy, rows, spectral, eta, count, wo[2],
+                          wo[2] < 0.0, lam, materials.programs.constants)
+    return count
 
 
 @kernel
@@ -10,7 +24,7 @@ def sample_many(materials, spectra, wo, lam, u, hero, collapsed, wi, weight, pdf
                 clamps):
     rows, spectral, eta, _, _, _, scratch, _, _ = work
     for i in range(wo.shape[0]):
-        count = resolve_material(materials, spectra, 0, lam[i], hero[i], rows, spectral, eta, clamps)
+        count = _resolve(materials, spectra, wo[i], lam[i], hero[i], rows, spectral, eta, clamps)
         eta_out[i] = eta[0]
         w, p, f, e = bsdf_sample(rows, spectral, eta, count, (wo[i, 0], wo[i, 1], wo[i, 2]), lam[i], hero[i],
                                  collapsed[i], u[i, 0], u[i, 1], u[i, 2], weight[i], scratch)
@@ -24,6 +38,6 @@ def sample_many(materials, spectra, wo, lam, u, hero, collapsed, wi, weight, pdf
 def evaluate_many(materials, spectra, wo, wi, lam, hero, collapsed, f, pdf, work, clamps):
     rows, spectral, eta, _, _, _, scratch, _, _ = work
     for i in range(wo.shape[0]):
-        count = resolve_material(materials, spectra, 0, lam[i], hero[i], rows, spectral, eta, clamps)
+        count = _resolve(materials, spectra, wo[i], lam[i], hero[i], rows, spectral, eta, clamps)
         pdf[i] = bsdf_evaluate(rows, spectral, eta, count, (wo[i, 0], wo[i, 1], wo[i, 2]),
                                (wi[i, 0], wi[i, 1], wi[i, 2]), lam[i], hero[i], collapsed[i], f[i], scratch)
