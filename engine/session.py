@@ -23,7 +23,6 @@ from .export import export_scene  # noqa: E402
 from .export.border import render_border  # noqa: E402
 from .export.settings import export_settings  # noqa: E402
 from .fingerprint import render_fingerprint  # noqa: E402
-from .negative_rgb import without_negative_rgb  # noqa: E402
 from .passes import bottom_up, denoising, enabled_passes, frame_plan, pass_request, write_passes  # noqa: E402
 from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
 from .stats import stats_line, timecode  # noqa: E402
@@ -155,8 +154,7 @@ class RenderSession:
         height, width = image.shape[:2]
         result = self.engine.begin_result(0, 0, width, height, layer=self.depsgraph.view_layer.name)
         try:
-            image = without_negative_rgb(np.asarray(image, np.float32))
-            result.layers[0].passes["Combined"].rect = bottom_up(image, alpha=True)
+            result.layers[0].passes["Combined"].rect = bottom_up(np.asarray(image, np.float32), alpha=True)
         finally:
             self.engine.end_result(result)
 
@@ -272,12 +270,11 @@ class RenderSession:
         image = renderer.film.mean().astype(np.float32)
         images = renderer.pass_images()
         if denoising(scene):
-            images["Noisy Image"] = without_negative_rgb(image)
-            if denoise:  # the unclamped mean in: the denoiser averages the noise itself
+            images["Noisy Image"] = image
+            if denoise:
                 prism = scene.prism
                 image = denoise_image(image, images["Denoising Albedo"], images["Denoising Normal"],
                                       prefilter=prism.denoising_prefilter, quality=prism.denoising_quality)
-        image = without_negative_rgb(image)
         alpha = renderer.film.alpha().astype(np.float32)[..., None]  # transparent film, holdouts (else 1)
         passes["Combined"].rect = bottom_up(np.concatenate([image, alpha], axis=2))
         if "Noise" in wanted:

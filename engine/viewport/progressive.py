@@ -25,8 +25,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..negative_rgb import without_negative_rgb
-
 #: Resolution dividers of the first images after a change, one sample each, coarsest first; a level
 #: whose image would be smaller than ``COARSE_MIN_PIXELS`` on its short side is skipped.
 COARSE_DIVIDERS = (4, 2)
@@ -93,7 +91,7 @@ class Frame:
 
 def rgba_bottom_up(renderer) -> np.ndarray:
     """The renderer's mean image as float32 RGBA, first row at the bottom (as GPU textures are)."""
-    rgb = without_negative_rgb(renderer.image_rgb())
+    rgb = renderer.image_rgb()
     rgba = np.empty((*rgb.shape[:2], 4), np.float32)
     rgba[..., :3] = rgb[::-1]
     rgba[..., 3] = renderer.sample_counts()[::-1] > 0
