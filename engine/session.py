@@ -149,7 +149,7 @@ class RenderSession:
         self._print(f"Prism: {kernel_cache.WAITING_MESSAGE}")
 
         def report(seconds: float) -> None:
-            self.engine.update_stats("", f"Prism | {kernel_cache.WAITING_MESSAGE} ({seconds:.0f} s)")
+            self.engine.update_stats("", f"Prism | {kernel_cache.WAITING_MESSAGE} | {seconds:.0f} s")
 
         if launch.wait(self.stop_requested, report):
             return True

@@ -68,8 +68,11 @@ def start() -> subprocess.Popen | None:
         return None
     _reap()
     lock_file = lock_path()
-    if not lock.acquire(lock_file, os.getpid()):
-        return None
+    try:
+        if not lock.acquire(lock_file, os.getpid()):
+            return None
+    except OSError:
+        return None  # a cache folder that cannot be written: the first render compiles, as before
     environment = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
     options = {"creationflags": _WINDOWS_FLAGS} if sys.platform == "win32" else {"start_new_session": True}
     try:
@@ -80,7 +83,10 @@ def start() -> subprocess.Popen | None:
     except OSError:
         lock.release(lock_file, os.getpid())
         return None
-    lock.hand_over(lock_file, process.pid)
+    try:
+        lock.hand_over(lock_file, process.pid)
+    except OSError:
+        pass  # the lock keeps this process's pid: held while Blender runs, stale after
     _started.append(process)
     return process
 
