@@ -183,3 +183,29 @@ def test_starting_a_warmup_imports_nothing_heavy_into_blender(tmp_path):
     assert completed.returncode == 0, completed.stderr
     assert "STARTED 1" in completed.stdout.splitlines(), completed.stdout
     assert "HEAVY []" in completed.stdout.splitlines(), completed.stdout
+
+
+def test_the_real_process_starts_and_a_killed_one_leaves_a_cold_cache_and_a_stale_lock(prism_addon, tmp_path,
+                                                                                       monkeypatch):
+    """The launcher's own command (no stand-in), stopped as soon as it has logged its start (~1 s)."""
+    launch = importlib.import_module(f"{prism_addon.__name__}.engine.warmup.launch")
+    kernel_folder = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.kernel_folder")
+    monkeypatch.setenv("PRISM_KERNEL_CACHE", str(tmp_path / "kernels"))
+    process = launch.start()
+    try:
+        deadline = time.monotonic() + 60
+        while process.poll() is None and time.monotonic() < deadline and "pid" not in launch.log_path().read_text():
+            time.sleep(0.1)
+        assert launch.running() == process.pid
+    finally:
+        process.kill()  # as a crash or a killed Blender session would
+        process.wait()
+    log = launch.log_path().read_text()
+    assert f"Prism kernel warm-up, pid {process.pid}, package {prism_addon.__name__}" in log, log
+    assert not kernel_folder.cache_is_warm()
+    assert launch.lock_path().exists() and launch.running() is None, "the dead process's lock is stale"
+    again = launch.start()
+    assert again is not None
+    again.kill()
+    again.wait()
+    launch._started.clear()
