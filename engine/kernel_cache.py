@@ -1,7 +1,8 @@
 """Where compiled tracer kernels are cached inside Blender, and the first-render notice.
 
-Imported by the render session only, never by ``register()``: it imports ``engine.tracer.jit``,
-which imports numba.
+Imports no numba (only ``engine.tracer.kernel_folder``): the render session calls it before any kernel
+module is imported, and the background warm-up (``engine.warmup``) asks it whether the cache is warm
+from Blender's process.
 
 - ``configure()`` points the kernel cache at the extension's own user folder,
   ``bpy.utils.extension_path_user(<package>, path="kernel_cache")`` (for example
@@ -22,6 +23,8 @@ from __future__ import annotations
 from pathlib import Path
 
 COMPILING_MESSAGE = "Compiling Prism kernels (first render only)"
+#: Said instead while the background warm-up (``engine.warmup``) compiles them and the render waits for it.
+WAITING_MESSAGE = "Waiting for the Prism kernels compiling in the background (first render only)"
 CACHE_SUBFOLDER = "kernel_cache"
 
 #: The add-on's package: ``bl_ext.<repository>.prism_spectral`` when installed as an extension.
@@ -49,32 +52,32 @@ def extension_cache_directory(package: str = ADDON_PACKAGE) -> Path | None:
 def configure() -> Path:
     """Choose the kernel cache directory (once per process) and return it."""
     global _configured
-    from .tracer import jit
+    from .tracer import kernel_folder
 
     if not _configured:
         _configured = True
         directory = extension_cache_directory()
         if directory is not None:
             try:
-                jit.configure_cache(directory)
+                kernel_folder.configure_cache(directory)
             except OSError:
                 pass  # keep the tracer's default folder
-    return jit.cache_directory()
+    return kernel_folder.cache_directory()
 
 
 def compiling_notice() -> str | None:
     """``COMPILING_MESSAGE`` if this render will compile the kernels (cold cache), else None."""
-    from .tracer import jit
+    from .tracer import kernel_folder
 
-    return None if jit.cache_is_warm() else COMPILING_MESSAGE
+    return None if kernel_folder.cache_is_warm() else COMPILING_MESSAGE
 
 
 def mark_compiled() -> None:
     """Record that a finished render compiled every kernel it needed into the cache."""
-    from .tracer import jit
+    from .tracer import kernel_folder
 
     try:
-        jit.cache_directory().mkdir(parents=True, exist_ok=True)
+        kernel_folder.cache_directory().mkdir(parents=True, exist_ok=True)
     except OSError:
         return  # a cache that cannot be written only costs the notice on the next render
-    jit.mark_cache_warm()
+    kernel_folder.mark_cache_warm()

@@ -89,6 +89,8 @@ class RenderSession:
         engine = self.engine
         scene = self.depsgraph.scene
         req = self.request
+        if not self._wait_for_warmup():
+            return
         compiling = kernel_cache.compiling_notice()
         notice = f" | {compiling}" if compiling else ""
         if compiling:
@@ -132,6 +134,29 @@ class RenderSession:
                     seed=settings.seed,
                     fingerprint=render_fingerprint(tracer_scene, settings, scene.frame_current + scene.frame_subframe),
                 )
+
+    def _wait_for_warmup(self) -> bool:
+        """While the kernels compile in a background warm-up (``engine.warmup``), wait for it instead of
+        compiling them a second time alongside it: waiting costs what the warm-up has left, never more
+        than a compile from scratch, and two compiles at once would share the same cores. False if
+        stopped meanwhile (Esc, Ctrl-C)."""
+        if kernel_cache.compiling_notice() is None:
+            return True
+        from .warmup import launch
+
+        if launch.running() is None:
+            return True
+        self._print(f"Prism: {kernel_cache.WAITING_MESSAGE}")
+
+        def report(seconds: float) -> None:
+            self.engine.update_stats("", f"Prism | {kernel_cache.WAITING_MESSAGE} | {seconds:.0f} s")
+
+        if launch.wait(self.stop_requested, report):
+            return True
+        self.cancelled = True
+        self.engine.update_stats("", "Prism | Cancelled while the kernels were compiling")
+        self._print("Prism: cancelled")
+        return False
 
     def _apply_overrides(self, settings, warnings) -> None:
         """The request's sampling overrides; a sample chunk samples every pixel alike."""

@@ -16,6 +16,9 @@ disk so only the first render on a machine pays for compilation:
   so the first render can say "Compiling Prism kernels (first render only)"; ``mark_cache_warm()`` records
   it after a render compiled everything.
 
+These cache functions live in ``kernel_folder`` (no numba there, so the add-on can ask whether the cache is
+warm at Blender start-up) and are re-exported here.
+
 ``Launch`` calls a kernel from Python without the dispatcher typing its arguments on every call (the
 stage kernels, called once per bounce of every chunk).
 
@@ -26,69 +29,21 @@ NaN checks must stay meaningful and the image must not depend on reassociation.
 
 from __future__ import annotations
 
-import hashlib
-import os
-import sys
-from pathlib import Path
-
 import numba
 import numpy as np
 from numba.core import types
 from numba.core.typing.typeof import Purpose
 
-_TRACER_ROOT = Path(__file__).resolve().parent
-_configured_directory: Path | None = None
-_STAMP_PREFIX = "prism-kernels-"
-
-
-def _default_cache_directory() -> Path:
-    for variable in ("PRISM_KERNEL_CACHE", "NUMBA_CACHE_DIR"):
-        if os.environ.get(variable):
-            return Path(os.environ[variable])
-    home = Path.home()
-    if sys.platform == "win32":
-        base = Path(os.environ.get("LOCALAPPDATA") or home / "AppData" / "Local")
-    elif sys.platform == "darwin":
-        base = home / "Library" / "Caches"
-    else:
-        base = Path(os.environ.get("XDG_CACHE_HOME") or home / ".cache")
-    return base / "prism-spectral" / "kernels"
-
-
-def cache_directory() -> Path:
-    """Where compiled kernels are cached (see the module docstring)."""
-    return _configured_directory or _default_cache_directory()
-
-
-def configure_cache(directory) -> None:
-    """Cache compiled kernels in ``directory`` (created if needed). Call before any kernel module is
-    imported; afterwards it only takes effect for kernels compiled from then on."""
-    global _configured_directory
-    path = Path(directory)
-    path.mkdir(parents=True, exist_ok=True)
-    _configured_directory = path
-
-
-# The package this copy of the tracer was imported as: "" for ``engine.tracer`` (tests, tools),
-# "prism_spectral" or "bl_ext.<repository>.prism_spectral" in Blender. numba's cache index pickles the
-# kernels' argument types by module name, so one source file imported under two names must not share
-# an index (the other name may not be importable in the next process): each name gets its folder.
-_PACKAGE = __name__[: -len("engine.tracer.jit")].rstrip(".") if __name__.endswith("engine.tracer.jit") else __name__
-
-
-def kernel_directory() -> Path:
-    """The folder this copy of the tracer caches its kernels in: ``cache_directory()`` / package name and
-    install location / source fingerprint. numba checks a cached function against its own file only, while kernels inline
-    functions from other files: one folder per version of the whole tracer keeps a change anywhere from
-    reusing stale machine code (older versions' folders are removed by ``mark_cache_warm``)."""
-    return _package_directory() / source_fingerprint()
-
-
-def _package_directory() -> Path:
-    # One folder per package name and per install location: cleaning up one checkout's old versions
-    # (``mark_cache_warm``) never removes another checkout's kernels.
-    location = hashlib.sha256(str(_TRACER_ROOT).encode()).hexdigest()[:8]
-    return cache_directory() / f"{_PACKAGE or 'engine'}-{location}"
+# The cache's folders and stamp live in a module without numba (the add-on asks them at Blender start-up).
+from .kernel_folder import (  # noqa: F401 - re-exported: jit is where kernel modules and tools look
+    _PACKAGE,
+    cache_directory,
+    cache_is_warm,
+    configure_cache,
+    kernel_directory,
+    mark_cache_warm,
+    source_fingerprint,
+)
 
 
 # No NRT (numba's reference-counted memory): every array belongs to the Python caller, kernels
@@ -178,44 +133,3 @@ class Launch:
                 return self.kernel(*args)
             found = self._compiled[key] = (argument_types, compiled.entry_point)  # the types stay alive
         return found[1](*args)
-
-
-_FINGERPRINT: list[str] = []
-
-
-def source_fingerprint() -> str:
-    """Hash of the tracer's sources and the numba/llvmlite versions: changes whenever kernels recompile."""
-    if not _FINGERPRINT:
-        import llvmlite
-
-        digest = hashlib.sha256()
-        digest.update(f"{numba.__version__} {llvmlite.__version__}".encode())
-        for path in sorted(_TRACER_ROOT.rglob("*.py")):
-            digest.update(str(path.relative_to(_TRACER_ROOT)).encode())
-            digest.update(path.read_bytes())
-        _FINGERPRINT.append(digest.hexdigest()[:16])
-    return _FINGERPRINT[0]
-
-
-def _stamp() -> Path:
-    return kernel_directory() / f"{_STAMP_PREFIX}{source_fingerprint()}.ok"
-
-
-def cache_is_warm() -> bool:
-    """True if this tracer source was compiled into the cache directory before (a warm start)."""
-    return _stamp().exists()
-
-
-def mark_cache_warm() -> None:
-    """Record that every kernel of this tracer source is in the cache; remove older versions' kernels."""
-    import shutil
-
-    current = kernel_directory()
-    try:
-        current.mkdir(parents=True, exist_ok=True)
-        for folder in _package_directory().iterdir():
-            if folder.is_dir() and folder != current and len(folder.name) == len(current.name):
-                shutil.rmtree(folder, ignore_errors=True)
-        _stamp().write_text("compiled\n", encoding="utf-8")
-    except OSError:
-        pass  # a read-only cache only costs the message on the next start

@@ -1,0 +1,132 @@
+"""Where compiled kernels are cached, and whether this tracer source's kernels are there: without numba.
+
+``jit`` (which imports numba) re-exports these functions; the add-on calls this module directly when it
+must know whether the cache is warm without importing numba into Blender's process (registering the
+add-on, a scene switching to Prism: the background kernel warm-up, ``engine.warmup``).
+
+- ``configure_cache(directory)`` chooses the cache directory (before the first kernel module is imported).
+  Without it the directory is ``$PRISM_KERNEL_CACHE``, else ``$NUMBA_CACHE_DIR``, else a per-user cache
+  folder (``~/.cache/prism-spectral/kernels`` on Linux, ``~/Library/Caches/...`` on macOS,
+  ``%LOCALAPPDATA%\\prism-spectral\\kernels`` on Windows).
+- ``kernel_directory()``: the subfolder of this copy of the tracer (its package name and install
+  location) and this version of its sources (``source_fingerprint()``).
+- ``cache_is_warm()`` / ``mark_cache_warm()``: the stamp file saying every kernel of this source is cached.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+from importlib import metadata
+from pathlib import Path
+
+_TRACER_ROOT = Path(__file__).resolve().parent
+_configured_directory: Path | None = None
+_STAMP_PREFIX = "prism-kernels-"
+
+# The package this copy of the tracer was imported as: "" for ``engine.tracer`` (tests, tools),
+# "prism_spectral" or "bl_ext.<repository>.prism_spectral" in Blender. numba's cache index pickles the
+# kernels' argument types by module name, so one source file imported under two names must not share
+# an index (the other name may not be importable in the next process): each name gets its folder.
+_SUFFIX = "engine.tracer.kernel_folder"
+_PACKAGE = __name__[: -len(_SUFFIX)].rstrip(".") if __name__.endswith(_SUFFIX) else __name__
+
+
+def package_name() -> str:
+    """The package the add-on was imported as ("" when the tracer is imported as ``engine.tracer``)."""
+    return _PACKAGE
+
+
+def _default_cache_directory() -> Path:
+    for variable in ("PRISM_KERNEL_CACHE", "NUMBA_CACHE_DIR"):
+        if os.environ.get(variable):
+            return Path(os.environ[variable])
+    home = Path.home()
+    if sys.platform == "win32":
+        base = Path(os.environ.get("LOCALAPPDATA") or home / "AppData" / "Local")
+    elif sys.platform == "darwin":
+        base = home / "Library" / "Caches"
+    else:
+        base = Path(os.environ.get("XDG_CACHE_HOME") or home / ".cache")
+    return base / "prism-spectral" / "kernels"
+
+
+def cache_directory() -> Path:
+    """Where compiled kernels are cached (see the module docstring)."""
+    return _configured_directory or _default_cache_directory()
+
+
+def configure_cache(directory) -> None:
+    """Cache compiled kernels in ``directory`` (created if needed). Call before any kernel module is
+    imported; afterwards it only takes effect for kernels compiled from then on."""
+    global _configured_directory
+    path = Path(directory)
+    path.mkdir(parents=True, exist_ok=True)
+    _configured_directory = path
+
+
+def kernel_directory() -> Path:
+    """The folder this copy of the tracer caches its kernels in: ``cache_directory()`` / package name and
+    install location / source fingerprint. numba checks a cached function against its own file only, while kernels inline
+    functions from other files: one folder per version of the whole tracer keeps a change anywhere from
+    reusing stale machine code (older versions' folders are removed by ``mark_cache_warm``)."""
+    return _package_directory() / source_fingerprint()
+
+
+def _package_directory() -> Path:
+    # One folder per package name and per install location: cleaning up one checkout's old versions
+    # (``mark_cache_warm``) never removes another checkout's kernels.
+    location = hashlib.sha256(str(_TRACER_ROOT).encode()).hexdigest()[:8]
+    return cache_directory() / f"{_PACKAGE or 'engine'}-{location}"
+
+
+def _version(distribution: str) -> str:
+    # From the installed distribution's metadata, so that no numba is imported to read it (Blender's
+    # extension wheels and pip installs both carry it); the module's own attribute where there is none.
+    try:
+        return metadata.version(distribution)
+    except metadata.PackageNotFoundError:
+        import importlib
+
+        return str(getattr(importlib.import_module(distribution), "__version__", "unknown"))
+
+
+_FINGERPRINT: list[str] = []
+
+
+def source_fingerprint() -> str:
+    """Hash of the tracer's sources and the numba/llvmlite versions: changes whenever kernels recompile
+    (hashing the ~1 MB of sources takes a few milliseconds, once per process)."""
+    if not _FINGERPRINT:
+        digest = hashlib.sha256()
+        digest.update(f"{_version('numba')} {_version('llvmlite')}".encode())
+        for path in sorted(_TRACER_ROOT.rglob("*.py")):
+            digest.update(str(path.relative_to(_TRACER_ROOT)).encode())
+            digest.update(path.read_bytes())
+        _FINGERPRINT.append(digest.hexdigest()[:16])
+    return _FINGERPRINT[0]
+
+
+def _stamp() -> Path:
+    return kernel_directory() / f"{_STAMP_PREFIX}{source_fingerprint()}.ok"
+
+
+def cache_is_warm() -> bool:
+    """True if this tracer source was compiled into the cache directory before (a warm start)."""
+    return _stamp().exists()
+
+
+def mark_cache_warm() -> None:
+    """Record that every kernel of this tracer source is in the cache; remove older versions' kernels."""
+    import shutil
+
+    current = kernel_directory()
+    try:
+        current.mkdir(parents=True, exist_ok=True)
+        for folder in _package_directory().iterdir():
+            if folder.is_dir() and folder != current and len(folder.name) == len(current.name):
+                shutil.rmtree(folder, ignore_errors=True)
+        _stamp().write_text("compiled\n", encoding="utf-8")
+    except OSError:
+        pass  # a read-only cache only costs the message on the next start
