@@ -59,7 +59,7 @@ def load_energy_tables() -> EnergyTables:
 
 
 @kernel
-def _axis(x, n):
+def grid_cell(x, n):
     """(cell, fraction) of ``x`` on a uniform grid of ``n`` points over 0-1 (clamped)."""
     x = min(max(x, 0.0), 1.0) * (n - 1)
     i = min(int(x), n - 2)
@@ -68,26 +68,26 @@ def _axis(x, n):
 
 @kernel
 def _lerp1(table, x):
-    i, f = _axis(x, table.shape[0])
+    i, f = grid_cell(x, table.shape[0])
     return (1.0 - f) * table[i] + f * table[i + 1]
 
 
 @kernel
 def _lerp2(table, x, y):
-    i, fi = _axis(x, table.shape[0])
-    j, fj = _axis(y, table.shape[1])
+    i, fi = grid_cell(x, table.shape[0])
+    j, fj = grid_cell(y, table.shape[1])
     return ((1.0 - fi) * ((1.0 - fj) * table[i, j] + fj * table[i, j + 1])
             + fi * ((1.0 - fj) * table[i + 1, j] + fj * table[i + 1, j + 1]))
 
 
 @kernel
 def _lerp3(table, x, y, z):
-    k, fk = _axis(z, table.shape[2])
+    k, fk = grid_cell(z, table.shape[2])
     s = 0.0
     for dk in range(2):
         w = fk if dk else 1.0 - fk
-        i, fi = _axis(x, table.shape[0])
-        j, fj = _axis(y, table.shape[1])
+        i, fi = grid_cell(x, table.shape[0])
+        j, fj = grid_cell(y, table.shape[1])
         s += w * ((1.0 - fi) * ((1.0 - fj) * table[i, j, k + dk] + fj * table[i, j + 1, k + dk])
                   + fi * ((1.0 - fj) * table[i + 1, j, k + dk] + fj * table[i + 1, j + 1, k + dk]))
     return s

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..bsdf.closure import C_LAYER_ETA, C_LAYER_F0, C_LAYER_MULTISCATTER, C_LAYER_ROUGHNESS
-from ..bsdf.multiscatter import dielectric_fss, energy_scale, load_energy_tables, reflection_albedo
+from ..bsdf.multiscatter import dielectric_fss, energy_scale, grid_cell, load_energy_tables, reflection_albedo
 from ..bsdf.optics import dielectric_f0
 from ..jit import kernel
 
@@ -43,22 +43,15 @@ def load_tables() -> LayerTables:
 
 
 @kernel
-def _axis(x, n):
-    x = min(max(x, 0.0), 1.0) * (n - 1)
-    i = min(int(x), n - 2)
-    return i, x - i
-
-
-@kernel
 def dielectric_s(tables, roughness, cos_view, eta):
     """s of a GGX dielectric reflection of Blender ``roughness`` seen at ``cos_view``."""
     table = tables.dielectric_s
     if not (math.isfinite(roughness) and math.isfinite(cos_view) and eta > 0.0):
         return 0.0
     z = math.sqrt(abs((eta - 1.0) / (eta + 1.0)))
-    i, fi = _axis(roughness, table.shape[0])
-    j, fj = _axis(abs(cos_view), table.shape[1])
-    k, fk = _axis(z, table.shape[2])
+    i, fi = grid_cell(roughness, table.shape[0])
+    j, fj = grid_cell(abs(cos_view), table.shape[1])
+    k, fk = grid_cell(z, table.shape[2])
     s = 0.0
     for di in range(2):
         wi = fi if di else 1.0 - fi
