@@ -12,37 +12,8 @@ import numpy as np
 from . import report
 from .findings_tables import (_ceiling_table, _demo_profile, _demo_section, _experiment_section, _sampler_table,
                               _stage_table, _startup_table)
-from .findings_values import _embree_share, _glass_ceiling, _largest_stage, _pct, _peer_ratio, _stage_rows
-from .scaling import scaling_table
-
-MIN_EMBREE_SCALING = 1.3  # below this, embreex's own speed-up says the other cores were busy
-
-
-def _scaling_target(case: dict, cores: int) -> str:
-    """The targets' row of one scaling case: >= 85 % of embreex's scaling at every T up to the cores,
-    and never slower with more threads (oversubscribed T no slower than T = 2)."""
-    rows = case["rows"]
-    inside = [r for r in rows if r["threads"] > 1 and not r["oversubscribed"]]
-    two = next((r for r in rows if r["threads"] == 2), None)
-    measurable = all(r["embree_speedup"] >= MIN_EMBREE_SCALING for r in inside)
-    kept_ok = all(r["kept"] >= report.TARGET_SCALING_KEPT for r in inside)
-    monotone = all(b["paths_per_second"] >= 0.95 * a["paths_per_second"] for a, b in zip(rows, rows[1:])
-                   if not b["oversubscribed"])
-    over_ok = two is None or all(r["paths_per_second"] >= 0.95 * two["paths_per_second"] for r in rows
-                                 if r["oversubscribed"])
-    least = min(inside, key=lambda r: r["kept"]) if inside else None
-    figures = "; ".join(f"T={r['threads']} x{r['prism_speedup']:.2f} / embreex x{r['embree_speedup']:.2f}"
-                        for r in rows if r["threads"] > 1)
-    status = (_status(kept_ok and monotone and over_ok) if measurable else
-              "not measurable in this run (embreex itself did not scale: the cores were busy)")
-    least_text = f"least {_pct(least['kept'])} of embreex's scaling; " if least else ""
-    return (f"| scaling >= {report.TARGET_SCALING_KEPT:.0%} of embreex's at every T <= {cores}, never slower with "
-            f"more threads ({case['scene']}, {case['label']} pass) | {least_text}{figures} | {status} |")
-
-
-def _status(ok):
-    return "**met**" if ok else "**not met**"
-
+from .findings_values import _embree_share, _glass_ceiling, _largest_stage, _pct, _peer_ratio, _stage_rows, _status
+from .scaling import scaling_table, target_row
 
 def _targets(results):
     lines = ["| target (issue 11) | measured in this run | status |", "|---|---|---|"]
@@ -76,7 +47,7 @@ def _targets(results):
                      f"{st['cold']['process_seconds']:.1f} s, warm {st['warm']['process_seconds']:.1f} s, import "
                      f"{st['warm']['import_seconds']:.2f} s | reported |")
     for case in results.get("scaling", {}).get("cases", []):
-        lines.append(_scaling_target(case, results["scaling"]["cores"]))
+        lines.append(target_row(case, results["scaling"]["cores"]))
     demo = results.get("demo")
     if demo and "speedup_process" in demo:
         ok = demo["speedup_process"] >= report.TARGET_DEMO_SPEEDUP and demo["spp"] == 64

@@ -1,11 +1,15 @@
 """Values the document reads out of one run's results, shared by its prose (``findings.py``) and its
-tables (``findings_tables.py``): a fraction as a percentage, the cornell_glass ceiling, a peer comparison's
+tables (``findings_tables.py``): a target met or not, a fraction as a percentage, the cornell_glass ceiling, a peer comparison's
 ratio, and a scene's stage split with Embree's share and its largest kernel.
 """
 
 from __future__ import annotations
 
 import numpy as np
+
+
+def _status(ok):
+    return "**met**" if ok else "**not met**"
 
 
 def _pct(x):

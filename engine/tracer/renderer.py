@@ -252,9 +252,8 @@ class Renderer:
         self._pool.cancel()
 
     def render_pass(self, samples_per_pixel: int | None = None) -> None:
-        """Add ``samples_per_pixel`` samples (default ``settings.samples_per_pass``; fewer on the last pass
-        or when a time limit is near) to every pixel. Callers that vary a pass's size (the first quick
-        pass of F12, the viewport, the benchmarks) pass it here; the settings stay as the user set them."""
+        """Add ``samples_per_pixel`` samples (default ``settings.samples_per_pass``, which callers never
+        rewrite; fewer on the last pass or near a time limit) to every pixel."""
         if self._pool.cancelled:
             self.cancelled = True
             return
