@@ -3,6 +3,7 @@ scene, the warnings Prism printed, the seed-to-seed noise and the findings."""
 
 from __future__ import annotations
 
+import inspect
 import platform
 from datetime import date
 
@@ -41,7 +42,7 @@ def _verdict_cell(result: ParityResult) -> str:
     if verdict == "silent":
         return "**no warning**"
     if verdict == "differs":
-        return "**differs** (finding)"
+        return "**differs**: known, xfail" if result.scene.known_difference else "**differs** (finding)"
     return verdict
 
 
@@ -60,7 +61,7 @@ def _table(results: list[ParityResult], noise: dict[str, NoiseEstimate]) -> list
 
 def _scene_section(result: ParityResult) -> list[str]:
     scene = result.scene
-    lines = [f"### {scene.name}", "", f"{scene.exercises}: {scene.build.__doc__.strip()}", ""]
+    lines = [f"### {scene.name}", "", f"*{scene.exercises}.* {' '.join(inspect.cleandoc(scene.build.__doc__).split())}", ""]
     if result.picture:
         lines += [f"![{scene.name}: Prism left, Cycles right]({result.picture})", ""]
     seconds = f"Render time Prism {result.prism.seconds:.1f} s, Cycles {result.cycles.seconds:.1f} s"
@@ -99,7 +100,7 @@ def write_report(path, results: list[ParityResult], noise: dict[str, NoiseEstima
     matched = sum(r.verdict == "match" for r in results)
     warned = sum(r.verdict == "warned" for r in results)
     lines += [f"{matched} of {len(results)} scenes within {LUMINANCE_TOLERANCE:.0%}; {warned} answered by the "
-              f"warning Prism prints; {len(results) - matched - warned} findings (below).", ""]
+              f"warning Prism prints; {len(results) - matched - warned} differ (see Findings).", ""]
     if "general" in FINDINGS:
         lines += ["## Findings", "", FINDINGS["general"].strip(), ""]
     lines += _noise_section(noise)

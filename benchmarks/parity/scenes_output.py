@@ -83,6 +83,23 @@ def frame_range():
     scene.frame_set(1)  # the current frame is outside the range: only the range is rendered
 
 
+def animated_shading():
+    """Frames 2, 4 and 6 again, now with keyframed shading: an emissive card's Strength and the world's
+    Strength change over the frames (node values, not object or light settings)."""
+    scene = bpy.context.scene
+    _ball_on_the_stage()
+    card = kit.plane("Glowing card", 1.0, location=(1.3, 0.6, 0.6), rotation=(kit.degrees(90.0), 0.0, 0.0),
+                     material=kit.emission("Glow", 1.0, (1.0, 0.6, 0.2)))
+    glow = card.data.materials[0].node_tree.nodes["Emission"].inputs["Strength"]
+    sky = scene.world.node_tree.nodes["Background"].inputs["Strength"]
+    for frame, glow_strength, sky_strength in ((1, 0.5, 0.1), (7, 6.0, 0.6)):
+        glow.default_value, sky.default_value = glow_strength, sky_strength
+        glow.keyframe_insert("default_value", frame=frame)
+        sky.keyframe_insert("default_value", frame=frame)
+    scene.frame_start, scene.frame_end, scene.frame_step = 2, 6, 2
+    scene.frame_set(1)
+
+
 SCENES = [
     ParityScene("film_transparent", "Film ▸ Transparent (alpha)", film_transparent),
     ParityScene("view_layers", "Two view layers (an excluded collection, a filter)", view_layers, output="layers"),
@@ -91,4 +108,8 @@ SCENES = [
     ParityScene("resolution_percentage", "Format ▸ Resolution % (50 %)", resolution_percentage),
     ParityScene("pixel_aspect", "Format ▸ Aspect X : Y = 2 : 1", pixel_aspect),
     ParityScene("frame_range", "Frame Start / End / Step (animation render)", frame_range, output="frames"),
+    ParityScene("animated_shading", "Keyframed node values over a frame range", animated_shading, output="frames",
+                known_difference="Render Animation: Prism reads materials and the world from the original data-blocks, "
+                                 "which stay at the current frame, so keyframed node values render at frame 1's "
+                                 "values in every frame (engine/export/materials.py, world.py)"),
 ]
