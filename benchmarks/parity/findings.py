@@ -15,9 +15,10 @@ FINDINGS: dict[str, str] = {
   Cycles' brighten). `engine/export/materials.py` exports `material.original` and `export/world.py` reads
   the original scene's world. Batch renders through `render.py --frames` set each frame on the scene
   (`frame_set`, which writes the animated values into the originals) and are not affected (checked: the
-  same scene's frames 2 … 6 brighten from mean luminance 0.24 to 0.59); Blender's own Render Animation (Ctrl F12, `render(animation=True)`)
-  is. Left for the owners of the material export (engine/export/nodes is being edited); the fix is the
-  lights' one: the evaluated copy where the node tree or world has animation data or drivers.
+  same scene's frames 2 … 6 brighten from mean luminance 0.24 to 0.59); Blender's own Render Animation
+  (Ctrl F12, `render(animation=True)`) is. Left for the owners of the material export (engine/export/nodes
+  is being edited); the fix is the lights' one: the evaluated copy where the node tree or world has
+  animation data or drivers.
 - **View Layer ▸ Filter ▸ Surfaces (warned).** Prism rendered every surface with the filter off (ratio
   0.94 here only because the floor and world happen to be similar greys); Cycles renders the world alone.
   Filtering is not a small change (Prism refuses a scene with no geometry), so the export now prints a

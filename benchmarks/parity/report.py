@@ -47,8 +47,9 @@ def _verdict_cell(result: ParityResult) -> str:
 
 
 def _table(results: list[ParityResult], noise: dict[str, NoiseEstimate]) -> list[str]:
-    lines = ["| scene | exercises | spp | Prism / Cycles mean Y | relMSE | mean \\|Δα\\| | ratio noise (1σ) | verdict |",
-             "|---|---|---:|---:|---:|---:|---:|---|"]
+    columns = ("scene", "exercises", "spp", "Prism / Cycles mean Y", "relMSE", "mean \\|Δα\\|", "ratio noise (1σ)",
+               "verdict")
+    lines = ["| " + " | ".join(columns) + " |", "|---|---|---:|---:|---:|---:|---:|---|"]
     for result in results:
         scene = result.scene
         spread = noise.get(scene.name)
@@ -61,7 +62,8 @@ def _table(results: list[ParityResult], noise: dict[str, NoiseEstimate]) -> list
 
 def _scene_section(result: ParityResult) -> list[str]:
     scene = result.scene
-    lines = [f"### {scene.name}", "", f"*{scene.exercises}.* {' '.join(inspect.cleandoc(scene.build.__doc__).split())}", ""]
+    description = " ".join(inspect.cleandoc(scene.build.__doc__).split())
+    lines = [f"### {scene.name}", "", f"*{scene.exercises}.* {description}", ""]
     if result.picture:
         lines += [f"![{scene.name}: Prism left, Cycles right]({result.picture})", ""]
     seconds = f"Render time Prism {result.prism.seconds:.1f} s, Cycles {result.cycles.seconds:.1f} s"
@@ -93,9 +95,10 @@ def _noise_section(noise: dict[str, NoiseEstimate]) -> list[str]:
 
 def write_report(path, results: list[ParityResult], noise: dict[str, NoiseEstimate], blender_version: str) -> None:
     """Write the whole document to ``path``."""
-    lines = [_INTRODUCTION.format(blender=f"Blender {blender_version}", tolerance=LUMINANCE_TOLERANCE), "## Results", "",
-             f"Measured {date.today().isoformat()} on {platform.machine()} ({platform.system()}), 2 threads per engine.",
-             ""]
+    introduction = _INTRODUCTION.format(blender=f"Blender {blender_version}", tolerance=LUMINANCE_TOLERANCE)
+    machine = f"{platform.machine()} ({platform.system()})"
+    lines = [introduction, "## Results", "",
+             f"Measured {date.today().isoformat()} on {machine}, 2 threads per engine.", ""]
     lines += _table(results, noise) + [""]
     matched = sum(r.verdict == "match" for r in results)
     warned = sum(r.verdict == "warned" for r in results)

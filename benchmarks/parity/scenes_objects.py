@@ -59,7 +59,8 @@ def instancing():
     props = bpy.data.collections.new("Props")
     kit.sphere("Prop ball", 0.35, (0.0, 0.0, 0.35), material=kit.diffuse("Prop red", (0.8, 0.2, 0.1)), collection=props)
     kit.cube("Prop box", 0.5, (0.6, 0.0, 0.25), material=kit.diffuse("Prop blue", (0.1, 0.3, 0.8)), collection=props)
-    for name, location, turn, scale in (("Left set", (-1.2, 0.3, 0.0), 30.0, 1.0), ("Right set", (0.9, -0.2, 0.0), -60.0, 1.4)):
+    placements = (("Left set", (-1.2, 0.3, 0.0), 30.0, 1.0), ("Right set", (0.9, -0.2, 0.0), -60.0, 1.4))
+    for name, location, turn, scale in placements:
         empty = bpy.data.objects.new(name, None)
         empty.instance_type, empty.instance_collection = "COLLECTION", props
         empty.location, empty.rotation_euler, empty.scale = location, (0.0, 0.0, kit.degrees(turn)), (scale,) * 3
@@ -132,7 +133,8 @@ def visibility_flags():
     a box disabled in renders (hide_render: neither seen nor shadowing)."""
     kit.stage()
     kit.sphere("Unseen ball", 0.5, (-1.0, 0.0, 0.5)).visible_camera = False
-    kit.sphere("Shadowless ball", 0.5, (0.4, -0.2, 0.5), material=kit.diffuse("Orange", (0.8, 0.4, 0.1))).visible_shadow = False
+    orange = kit.diffuse("Orange", (0.8, 0.4, 0.1))
+    kit.sphere("Shadowless ball", 0.5, (0.4, -0.2, 0.5), material=orange).visible_shadow = False
     kit.cube("Disabled box", 0.8, (1.3, 0.8, 0.4)).hide_render = True
 
 
