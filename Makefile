@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: render rainbow sky test extension bench venv clean inventory
+.PHONY: render rainbow sky test extension bench parity venv clean inventory
 
 # Creates .venv with the pinned requirements, once; re-running is a no-op.
 $(STAMP): requirements.txt
@@ -55,6 +55,13 @@ bench: $(STAMP)
 	  echo "note: install libllvm19 for Mitsuba's llvm variant (apt-get install libllvm19)"
 	$(PY) -m pip install --quiet -r benchmarks/requirements.txt
 	$(PY) -m benchmarks.run $(BENCH_ARGS)
+
+# Scene parity with Cycles: small scenes exercising Blender's scene settings, rendered by Prism and by Cycles;
+# writes docs/parity.md and docs/images/parity/. `make parity PARITY_ARGS="--scenes clip_range holdouts"` for
+# some scenes, `PARITY_ARGS="--seeds 4"` to measure each scene's noise too.
+PARITY_ARGS ?=
+parity: $(STAMP)
+	$(PY) -m benchmarks.parity.run $(PARITY_ARGS)
 
 clean:
 	rm -rf renders dist build .pytest_cache

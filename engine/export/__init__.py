@@ -66,7 +66,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     scene = depsgraph.scene
     missing = missing_libraries(scene)
     if warnings is not None:
-        warnings.extend(unrendered_setting_warnings(scene))
+        warnings.extend(unrendered_setting_warnings(scene, depsgraph.view_layer))
         warnings.extend(f"Scene '{scene.name}': {library.sentence()}." for library in missing)
     camera = export_camera(scene, depsgraph, warnings)
     geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])

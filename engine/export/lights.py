@@ -77,6 +77,18 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
     return light
 
 
+def _settings_source(obj):
+    """The light data-block to read the settings of (evaluated) ``obj`` from: the original, what a script set
+    last (see ``export_material``), unless its settings are animated or driven. Then the evaluated copy: an
+    animation render (Render ▸ Render Animation) evaluates its own depsgraph per frame and leaves the
+    original at the current frame, so only the copy holds the rendered frame's power or colour."""
+    original = obj.data.original
+    animation = original.animation_data
+    if animation is not None and (animation.action is not None or len(animation.drivers) > 0):
+        return obj.data
+    return original
+
+
 def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
     """Every visible light instance of the evaluated depsgraph (lights of power 0 are skipped)."""
     lights = []
@@ -98,8 +110,8 @@ def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
         if warnings is not None and obj.original.name not in warned_objects:
             warned_objects.add(obj.original.name)
             warnings.extend(light_warnings(obj))
-        # Settings from the original light (see ``export_material``), placement from the instance.
-        light = _export_light(obj.name, obj.data.original, instance.matrix_world)
+        # Settings from the original light (see ``export_material``) unless animated, placement from the instance.
+        light = _export_light(obj.name, _settings_source(obj), instance.matrix_world)
         light.visible_camera = bool(getattr(obj, "visible_camera", False))
         light.light_group = obj.lightgroup
         if light.power_w > 0 or light.irradiance_w_m2 > 0:
