@@ -24,11 +24,11 @@ def check_light_value(value: float, where: str, setting: str, unit: str = "") ->
     value = float(value)
     if not math.isfinite(value) or value > LARGEST:
         raise PrismInputError(
-            f"{where}: {setting} is {value:g}{unit}; Prism renders light values up to {LARGEST:g} (float32 overflows "
+            f"{where}: {setting} is {value:.3g}{unit}; Prism renders light values up to {LARGEST:g} (float32 overflows "
             "beyond, a white or black frame): lower it."
         )
     if 0.0 < value < SMALLEST:
         raise PrismInputError(
-            f"{where}: {setting} is {value:g}{unit}, below {SMALLEST:g}, which float32 renders as 0 (a black light "
+            f"{where}: {setting} is {value:.3g}{unit}, below {SMALLEST:g}, which float32 renders as 0 (a black light "
             f"that looks on): set it to 0 for no light, or to {SMALLEST:g} or more."
         )
