@@ -14,11 +14,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ...properties.node_links import invalid_links
 from ...tracer.bsdf.closure import TRANSPARENT
 from ...tracer.errors import PrismInputError
 from ...tracer.materials import opcodes as op
 from ...tracer.materials.program_builder import ProgramBuilder, Value
-from ...properties.node_links import invalid_links
 from .graph import Source, follow, output_node
 
 FLOAT, VECTOR, COLOR = "float", "vector", "color"
