@@ -13,6 +13,7 @@ import bpy
 import numpy as np
 import pytest
 
+from helpers.batch_outcome import batch_refusal, batch_warning
 from helpers.bpy_worlds import blender_image, environment_world
 from helpers.error_scenes import base_scene, light
 
@@ -61,16 +62,16 @@ def _spectrum_file(tmp_path, value):
      "spectrum file '{path}' peaks at 1e-320; Prism reads emission spectra peaking within 1e-30 to 1e+20: "
      "rescale the file (only its shape counts, the strength sets the brightness)."),
 ])
-def test_light_values_beyond_float32_are_refused(prism_addon, fresh_scene, tmp_path, bad_input, description, mutate,
-                                                 expected):
+def test_light_values_beyond_float32_are_refused(prism_addon, fresh_scene, tmp_path, bad_input, capsys, description,
+                                                 mutate, expected):
     base_scene()
     mutate(tmp_path)
     message = _export_error(prism_addon)
     assert message.endswith(expected.format(path=tmp_path / "lamp.csv"))
-    bad_input(description, 1, "Prism: error: " + message)
+    bad_input(description, *batch_refusal(capsys, tmp_path, message))
 
 
-def test_an_hdri_texel_near_float32s_limit_is_refused(prism_addon, fresh_scene, bad_input):
+def test_an_hdri_texel_near_float32s_limit_is_refused(prism_addon, fresh_scene, bad_input, capsys, tmp_path):
     base_scene()
     texels = np.full((4, 8, 3), 0.5, np.float32)
     texels[1, 2] = 1e38
@@ -78,10 +79,11 @@ def test_an_hdri_texel_near_float32s_limit_is_refused(prism_addon, fresh_scene, 
     message = _export_error(prism_addon)
     assert message.startswith("World 'HDRI', Environment Texture 'Environment Texture': the brightest texel of image "
                               "'hot' × the Background's Strength is 1e+38; Prism renders light values up to 1e+20")
-    bad_input("HDRI with a texel of 1e38", 1, "Prism: error: " + message)
+    bad_input("HDRI with a texel of 1e38", *batch_refusal(capsys, tmp_path, message))
 
 
-def test_nan_infinite_and_negative_hdri_texels_are_counted_and_their_light_told(prism_addon, fresh_scene, bad_input):
+def test_nan_infinite_and_negative_hdri_texels_are_counted_and_their_light_told(prism_addon, fresh_scene, bad_input,
+                                                                               capsys, tmp_path):
     base_scene()
     texels = np.full((4, 8, 3), 1.0, np.float32)
     texels[0, 0] = np.nan
@@ -101,4 +103,4 @@ def test_nan_infinite_and_negative_hdri_texels_are_counted_and_their_light_told(
                 f"image's light away (Cycles subtracts it): Prism's world emits {more:.2g} % more. Clamp the image at "
                 "0 and replace its NaN and infinite texels to match Cycles.")
     assert expected in found
-    bad_input("HDRI with NaN, infinite and negative texels", 0, expected)
+    bad_input("HDRI with NaN, infinite and negative texels", *batch_warning(capsys, tmp_path, expected))

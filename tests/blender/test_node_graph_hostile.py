@@ -11,6 +11,7 @@ import threading
 import bpy
 import pytest
 
+from helpers.batch_outcome import batch_refusal, batch_warning
 from helpers.error_scenes import base_scene
 
 
@@ -61,7 +62,7 @@ def _reroute_loop(material):
     return first, second
 
 
-def test_a_loop_of_reroutes_is_ignored_by_render_and_panel(prism_addon, fresh_scene, bad_input):
+def test_a_loop_of_reroutes_is_ignored_by_render_and_panel(prism_addon, fresh_scene, bad_input, capsys, tmp_path):
     base_scene()
     material = bpy.data.materials["Floor material"]
     _reroute_loop(material)
@@ -76,7 +77,8 @@ def test_a_loop_of_reroutes_is_ignored_by_render_and_panel(prism_addon, fresh_sc
     scene, warnings = _within(60, _export, prism_addon)
     found = [w for w in warnings if "invalid" in w]
     assert found and found[0].startswith("Material 'Floor material': the link from 'Reroute") and "loop" in found[0]
-    bad_input("material whose Surface comes from a loop of two Reroute nodes", 0, found[0])
+    bad_input("material whose Surface comes from a loop of two Reroute nodes",
+              *batch_warning(capsys, tmp_path, found[0]))
 
 
 def test_a_loop_of_reroutes_in_a_world_is_ignored(prism_addon, fresh_scene):
@@ -131,8 +133,8 @@ def test_a_tree_just_within_the_limit_compiles(prism_addon, fresh_scene):
     (_mix_chain, 500, "a chain of 500 Mix Shader nodes"),
     (_math_chain, 1000, "a chain of 1000 Math nodes into Roughness"),
 ])
-def test_a_tree_deeper_than_the_limit_is_refused_naming_node_and_limit(prism_addon, fresh_scene, bad_input, build,
-                                                                       length, description):
+def test_a_tree_deeper_than_the_limit_is_refused_naming_node_and_limit(prism_addon, fresh_scene, bad_input, capsys,
+                                                                       tmp_path, build, length, description):
     base_scene()
     limit = _module(prism_addon, "engine.export.nodes.compiler").MAX_NODE_DEPTH
     material = bpy.data.materials["Floor material"]
@@ -142,7 +144,7 @@ def test_a_tree_deeper_than_the_limit_is_refused_naming_node_and_limit(prism_add
     assert f"Prism compiles trees up to {limit} deep: simplify it" in message
     named = message.split(" at '")[1].split("'")[0]
     assert named in material.node_tree.nodes
-    bad_input(description, 1, "Prism: error: " + message)
+    bad_input(description, *batch_refusal(capsys, tmp_path, message))
     # the Material panel's compile says the same, without a traceback
     nodes = _module(prism_addon, "engine.export.nodes")
     errors = _module(prism_addon, "engine.tracer.errors")

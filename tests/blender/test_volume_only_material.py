@@ -8,7 +8,9 @@ import importlib
 import bpy
 import pytest
 
+from helpers.batch_outcome import batch_warning
 from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+from helpers.error_scenes import base_scene
 from helpers.node_scenes import black_world
 
 
@@ -31,16 +33,18 @@ EXPECTED_WARNING = ("Material 'Fog': the 'Material Output' node (Material Output
                     "leaves the volume inside it out.")
 
 
-def test_a_volume_only_material_compiles_to_a_transparent_surface(prism_addon, fresh_scene, bad_input):
-    card = add_plane("Card", 1.0)
-    material = _volume_only(card)
+def test_a_volume_only_material_compiles_to_a_transparent_surface(prism_addon, fresh_scene, bad_input, capsys,
+                                                                  tmp_path):
+    base_scene()
+    material = _volume_only(bpy.data.objects["Floor"])
     nodes = importlib.import_module(f"{prism_addon.__name__}.engine.export.nodes")
     closure = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.bsdf.closure")
     compiled = nodes.compile_material(material, load_pixels=False)
     assert [spec.kind for spec in compiled.shader.closures] == [closure.TRANSPARENT]
     assert tuple(compiled.shader.closures[0].tint.rgb) == (1.0, 1.0, 1.0)
     assert compiled.warnings == [EXPECTED_WARNING]
-    bad_input("material with only a Principled Volume on its Material Output", 0, EXPECTED_WARNING)
+    bad_input("material with only a Principled Volume on its Material Output",
+              *batch_warning(capsys, tmp_path, EXPECTED_WARNING))
 
 
 def test_a_volume_only_card_lets_the_floor_show_through_as_in_cycles(prism_addon, fresh_scene):

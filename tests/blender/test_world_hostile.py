@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from helpers.bpy_scenes import add_camera, add_plane
+from helpers.batch_outcome import batch_refusal, batch_warning
 from helpers.bpy_worlds import blender_image, environment_world, sky_world
 from helpers.error_scenes import base_scene
 
@@ -89,7 +90,7 @@ def test_a_constant_background_added_to_an_hdri_is_added_to_its_texels(prism_add
     assert np.allclose(seen, 2.0 * 0.5 + np.array(ORANGE), rtol=1e-5)
 
 
-def test_a_sky_summed_with_another_background_is_refused(prism_addon, fresh_scene, bad_input):
+def test_a_sky_summed_with_another_background_is_refused(prism_addon, fresh_scene, bad_input, capsys, tmp_path):
     base_scene()
     world = sky_world()
     nodes, links = world.node_tree.nodes, world.node_tree.links
@@ -99,17 +100,18 @@ def test_a_sky_summed_with_another_background_is_refused(prism_addon, fresh_scen
     links.new(add.outputs[0], nodes["World Output"].inputs["Surface"])
     message = _export_error(prism_addon)
     assert message.startswith("World 'Sky': a Sky Texture is summed with another Background")
-    bad_input("world: Add Shader of a Sky Texture's Background and a grey Background", 1, "Prism: error: " + message)
+    bad_input("world: Add Shader of a Sky Texture's Background and a grey Background",
+              *batch_refusal(capsys, tmp_path, message))
 
 
 @pytest.mark.parametrize("setting, label", [("sun_elevation", "Sun Elevation"), ("air_density", "Air")])
-def test_a_sky_with_a_nan_setting_is_refused(prism_addon, fresh_scene, bad_input, setting, label):
+def test_a_sky_with_a_nan_setting_is_refused(prism_addon, fresh_scene, bad_input, capsys, tmp_path, setting, label):
     base_scene()
     sky_world(**{setting: math.nan})
     message = _export_error(prism_addon)
     assert message == (f"World 'Sky', Sky Texture 'Sky Texture': {label} is nan; enter a finite number "
                        f"(Sky Texture ▸ {label}).")
-    bad_input(f"Nishita sky with {label} NaN", 1, "Prism: error: " + message)
+    bad_input(f"Nishita sky with {label} NaN", *batch_refusal(capsys, tmp_path, message))
 
 
 def _strength_from(kind, own_strength):
@@ -136,7 +138,8 @@ def test_a_value_node_driving_the_strength_is_folded(prism_addon, fresh_scene):
     assert not [w for w in warnings if w.startswith("World")]
 
 
-def test_a_link_prism_cannot_evaluate_is_reported_where_it_is_ignored(prism_addon, fresh_scene, bad_input):
+def test_a_link_prism_cannot_evaluate_is_reported_where_it_is_ignored(prism_addon, fresh_scene, bad_input, capsys,
+                                                                      tmp_path):
     base_scene()
     _strength_from("ShaderNodeLightPath", own_strength=0.5)
     scene, warnings = _export(prism_addon)
@@ -144,15 +147,15 @@ def test_a_link_prism_cannot_evaluate_is_reported_where_it_is_ignored(prism_addo
                 "folds only Value and RGB nodes there and uses the socket's own value 0.5.")
     assert expected in warnings
     assert scene.world.strength == pytest.approx(0.5)
-    bad_input("world Background Strength driven by a Light Path node", 0, expected)
+    bad_input("world Background Strength driven by a Light Path node", *batch_warning(capsys, tmp_path, expected))
     # without other light, the refusal tells why the world is black (a refused render prints no warnings)
     bpy.data.objects.remove(bpy.data.objects["Bulb"])
     bpy.data.worlds["Driven"].node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
     message = _export_error(prism_addon)
     assert message.startswith("Scene 'Scene' has no light")
     assert "the link from 'Light Path' into Background 'Background' Strength is ignored" in message
-    bad_input("world lit only through a Light Path node into Strength (own value 0), no light", 1,
-              "Prism: error: " + message)
+    bad_input("world lit only through a Light Path node into Strength (own value 0), no light",
+              *batch_refusal(capsys, tmp_path, message))
 
 
 def test_added_backgrounds_render_as_in_cycles(prism_addon, fresh_scene):
