@@ -1,16 +1,21 @@
 """Write ``docs/bad_input.md``: every bad input the tests feed Prism, with the message and exit status seen.
 
     .venv/bin/python tools/bad_input_inventory.py        (or: make inventory)
+    .venv/bin/python tools/bad_input_inventory.py --only tests/blender/test_x.py ...
+
 
 Runs the test files that use the ``bad_input`` fixture (``tests/conftest.py``) with
 ``PRISM_BAD_INPUT_INVENTORY`` set, so each such test records the input it gave,
 the exit status and the message it observed, and turns the records into one
 table per test file. The tests assert those messages; this only collects them.
-Fails (and writes nothing) if a test fails.
+Fails (and writes nothing) if a test fails. ``--only`` runs the given test files alone and replaces their
+sections of the existing page (adding new ones at the end), keeping every other section as it was: for a
+change to a few files, without running every bad-input test again.
 """
 
 from __future__ import annotations
 
+import argparse
 import ast
 import json
 import os
@@ -77,8 +82,46 @@ def render(records: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _records_on_page(text: str) -> list[dict]:
+    """The rows of an existing page back as records (test = the section's file), in page order."""
+    records, current = [], None
+    for line in text.splitlines():
+        if line.startswith("`tests/") and line.endswith("`"):
+            current = line.strip("`")
+        elif current and line.startswith("| ") and not line.startswith("| Input |"):
+            cells = re.split(r"(?<!\\)\|", line)[1:-1]
+            text_cells = [cell.strip().replace("\\|", "|") for cell in cells]
+            records.append({"test": current, "input": text_cells[0], "status": int(text_cells[1]),
+                            "message": text_cells[2]})
+    return records
+
+
+def _replace_sections(page: list[dict], fresh: list[dict], names: set[str]) -> list[dict]:
+    """``page``'s records with the sections of the files ``names`` replaced by ``fresh`` ones, in place (a
+    file new to the page goes at the end)."""
+    by_file: dict[str, list[dict]] = {}
+    for record in fresh:
+        by_file.setdefault(record["test"].split("::")[0], []).append(record)
+    records = []
+    for record in page:
+        name = record["test"]
+        if name not in names:
+            records.append(record)
+        elif name in by_file:
+            records += by_file.pop(name)
+    return records + [record for rows in by_file.values() for record in rows]
+
+
 def main() -> int:
-    records = collect(test_files())
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--only", nargs="+", type=Path, help="test files whose sections are regenerated")
+    arguments = parser.parse_args()
+    if not arguments.only:
+        records = collect(test_files())
+    else:
+        files = [path.resolve() for path in arguments.only]
+        names = {str(path.relative_to(ROOT)) for path in files}
+        records = _replace_sections(_records_on_page(OUTPUT.read_text()), collect(files), names)
     OUTPUT.write_text(render(records))
     print(f"wrote {OUTPUT} ({len(records)} cases)")
     return 0

@@ -28,10 +28,13 @@ def _emits(material) -> bool:
     return material.emission is not None and material.emission_strength > 0
 
 
-def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), world_filtered_by: str = "") -> None:
+def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), world_filtered_by: str = "",
+                            world_notes=()) -> None:
     """Raises when the image could only be black or empty; ``missing``: ``MissingLibrary``s, named when
     nothing is left to see; ``world_filtered_by``: the view layer whose Filter ▸ Environment is off (its
-    world lights nothing), named when nothing else lights the scene."""
+    world lights nothing), named when nothing else lights the scene; ``world_notes``: the warnings about
+    the world (a link Prism ignored may be why it is black), told with the refusal since the warnings of a
+    refused render are not printed."""
     if tracer_scene.triangle_count == 0 and missing:
         raise PrismInputError(f"Scene '{scene_name}' has no visible geometry: "
                               + "; ".join(library.sentence() for library in missing) + ".")
@@ -53,6 +56,7 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
         raise PrismInputError(
             f"Scene '{scene_name}' has no light (no light with power, no emissive material, a black world): "
             "add a light or give the world a colour, or the image would be black."
+            + "".join(f" ({note})" for note in world_notes)
         )
 
 
@@ -88,5 +92,6 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.validate()
     filtered_by = depsgraph.view_layer.name if scene.world is not None and not depsgraph.view_layer.use_sky else ""
-    _check_something_to_see(scene.name, tracer_scene, missing, filtered_by)
+    world_notes = [w for w in warnings or () if scene.world is not None and w.startswith(f"World '{scene.world.name}'")]
+    _check_something_to_see(scene.name, tracer_scene, missing, filtered_by, world_notes)
     return tracer_scene

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 
+from ..properties.node_links import is_linked
 from ..tracer.errors import PrismInputError
 
 
@@ -22,7 +23,7 @@ def read_aovs(material, warnings: list[str] | None = None) -> dict[str, tuple[fl
             continue
         colour, value = node.inputs["Color"], node.inputs["Value"]
         for socket in (colour, value):
-            if socket.is_linked and warnings is not None:
+            if is_linked(socket) and warnings is not None:
                 warnings.append(f"Material '{material.name}': the link into AOV Output '{node.aov_name}' "
                                 f"{socket.name} is ignored; Prism writes the socket's own value.")
         values = (*(float(c) for c in colour.default_value[:3]), float(value.default_value))

@@ -52,3 +52,40 @@ def _load(image) -> bool:
     except (RuntimeError, IndexError):
         return False
     return bool(image.has_data)
+
+
+def _luminance(rgb: np.ndarray) -> np.ndarray:
+    return rgb @ np.array([0.2126, 0.7152, 0.0722])
+
+
+def replace_bad_texels(rgb: np.ndarray, where: str, image_name: str, warnings) -> np.ndarray:
+    """``rgb`` with NaN, infinite and negative values replaced by 0, which is what Prism renders for them; a
+    warning counts them and says how much light the negative ones hold (Cycles subtracts it, Prism does
+    not), measured by solid angle over the sphere."""
+    finite = np.isfinite(rgb)
+    negative = finite & (rgb < 0)
+    if finite.all() and not negative.any():
+        return rgb
+    nan_texels = int(np.isnan(rgb).any(axis=2).sum())
+    infinite_texels = int((np.isinf(rgb) & ~np.isnan(rgb)).any(axis=2).sum())
+    negative_texels = int(negative.any(axis=2).sum())
+    whole = finite.all(axis=2, keepdims=True)  # a NaN or infinite channel blackens its texel
+    cleaned = np.where(whole & ~negative, rgb, 0.0).astype(np.float32)
+    counts = [f"{count} {what}" for count, what in ((nan_texels, "NaN"), (infinite_texels, "infinite"),
+                                                    (negative_texels, "negative")) if count]
+    counted = ", ".join(counts[:-1]) + (" and " if len(counts) > 1 else "") + counts[-1]
+    message = (f"{where}: image '{image_name}' has {counted} texels (of {rgb.shape[0] * rgb.shape[1]}); Prism renders "
+               "NaN and infinite texels black and negative values as 0.")
+    if negative_texels:
+        height = rgb.shape[0]
+        solid_angle = np.sin((np.arange(height) + 0.5) / height * np.pi)[:, None]  # equirectangular rows
+        light = float((solid_angle * _luminance(cleaned.astype(np.float64))).sum())
+        taken = -float((solid_angle * _luminance(np.where(negative, rgb, 0.0).astype(np.float64))).sum())
+        if light > taken > 0:
+            message += (f" The negative values would take {100 * taken / light:.2g} % of the image's light away "
+                        f"(Cycles subtracts it): Prism's world emits {100 * taken / (light - taken):.2g} % more.")
+        elif taken > 0:
+            message += " The negative values outweigh the positive ones (Cycles' world would be black or negative)."
+    if warnings is not None:
+        warnings.append(message + " Clamp the image at 0 and replace its NaN and infinite texels to match Cycles.")
+    return cleaned

@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from ..tracer.errors import PrismInputError
+from .float_range import check_light_value
 from ..tracer.scene import Light, SpectrumSpec
 from .light_settings import is_portal, light_warnings
 from .spectra import light_emission_source
@@ -38,6 +39,9 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
             f"Light '{name}' has {'Strength' if light_data.type == 'SUN' else 'Power'} {energy:g}: "
             "Prism needs a finite value of 0 or more (negative light does not exist)."
         )
+    setting = "Strength" if light_data.type == "SUN" else "Power"
+    exposed = f"{setting} × 2^Exposure" if float(getattr(light_data, "exposure", 0.0)) else setting
+    check_light_value(energy, f"Light '{name}'", exposed, " W/m²" if light_data.type == "SUN" else " W")
     axes = matrix[:3, :3]
     scale = np.linalg.norm(axes, axis=0)
     safe_scale = np.where(scale > 0, scale, 1.0)

@@ -29,6 +29,18 @@ def _only_used(cls, fields_of_source, owner, panel, source, values):
     return cls(owner, panel, source, **{key: value for key, value in values.items() if key in used})
 
 
+def _check_spectrum_scale(table, what: str) -> None:
+    """An emission spectrum is scaled to luminance 1 (its strength sets the brightness), so only its shape
+    counts; a peak near float64's limits (1e308, 1e-320) overflows or underflows in that scaling (a black
+    light, numpy warnings): refuse it, saying to rescale the file."""
+    from .float_range import LARGEST, SMALLEST
+
+    peak = max(table.values)
+    if not SMALLEST <= peak <= LARGEST:
+        raise PrismInputError(f"{what} peaks at {peak:.3g}; Prism reads emission spectra peaking within {SMALLEST:g} to "
+                              f"{LARGEST:g}: rescale the file (only its shape counts, the strength sets the brightness).")
+
+
 @dataclass(frozen=True)
 class EmissionSource:
     """What a light's or emissive material's spectrum is made of. ``owner`` names it in messages
@@ -79,6 +91,7 @@ class EmissionSource:
             if not self.path:
                 raise PrismInputError(f"{self.owner}: no spectrum file is chosen; set {self.panel} ▸ Spectrum File.")
             table = read_spectrum_file(self.path, f"{where}: spectrum file")
+            _check_spectrum_scale(table, f"{where}: spectrum file '{self.path}'")
             return SpectrumSpec(kind="tabulated", table=table)
         if not all(math.isfinite(c) and c >= 0 for c in self.rgb):
             raise PrismInputError(

@@ -11,20 +11,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..properties.node_links import is_linked, upstream
+
 
 def linked_source(socket):
-    """(node, output socket) feeding ``socket`` through reroutes, or (None, None)."""
-    for link in socket.links:
-        if not link.is_valid or link.is_muted:
-            continue
-        node, output = link.from_node, link.from_socket
-        while node.bl_idname == "NodeReroute":
-            if not node.inputs[0].is_linked:
-                return None, None
-            upstream = node.inputs[0].links[0]
-            node, output = upstream.from_node, upstream.from_socket
-        return node, output
-    return None, None
+    """(node, output socket) feeding ``socket`` through reroutes, or (None, None) (invalid links and reroute
+    loops feed nothing: ``node_links``)."""
+    return upstream(socket)
 
 
 def _euler_matrix(angles) -> np.ndarray:
@@ -36,7 +29,7 @@ def _euler_matrix(angles) -> np.ndarray:
 def _mapping_matrix(node, where: str, warnings) -> np.ndarray:
     for name in ("Location", "Rotation", "Scale"):
         socket = node.inputs.get(name)
-        if socket is not None and socket.is_linked and warnings is not None:
+        if socket is not None and is_linked(socket) and warnings is not None:
             warnings.append(f"{where}: the link into Mapping '{node.name}' {name} is ignored; its own value is used.")
     rotation = _euler_matrix(node.inputs["Rotation"].default_value)
     scale = np.array(node.inputs["Scale"].default_value, dtype=np.float64)

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from .node_links import is_linked, upstream_node
+
 PRINCIPLED_IDNAME = "ShaderNodeBsdfPrincipled"
 
 # Sockets Prism reads (present since Blender 4.0; the thin-film ones since 4.2).
@@ -58,16 +60,6 @@ class PrincipledReading:
     ignored: list[str] = field(default_factory=list)
 
 
-def _linked_from(socket):
-    for link in socket.links:
-        if link.is_valid and not link.is_muted:
-            node = link.from_node
-            while node.bl_idname == "NodeReroute" and node.inputs[0].is_linked:
-                node = node.inputs[0].links[0].from_node
-            return node
-    return None
-
-
 def surface_node(material):
     """The node wired into the active Material Output's Surface, or None."""
     tree = material.node_tree if material.use_nodes else None
@@ -77,9 +69,9 @@ def surface_node(material):
     if output is None:
         outputs = [n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial"]
         output = outputs[0] if outputs else None
-    if output is None or not output.inputs["Surface"].is_linked:
+    if output is None:
         return None
-    return _linked_from(output.inputs["Surface"])
+    return upstream_node(output.inputs["Surface"])
 
 
 def find_principled(material):
@@ -124,8 +116,8 @@ def read_principled(material) -> PrincipledReading:
         socket = inputs.get(socket_name)
         if socket is None:
             continue
-        if socket.is_linked:
-            source = _linked_from(socket)
+        if is_linked(socket):
+            source = upstream_node(socket)
             what = f"'{source.name}'" if source is not None else "a link"
             reading.ignored.append(
                 f"Material '{name}': {what} linked into '{socket_name}' is ignored; "
@@ -146,7 +138,7 @@ def read_principled(material) -> PrincipledReading:
         socket = inputs.get(socket_name)
         if socket is None:
             continue
-        if socket.is_linked:
+        if is_linked(socket):
             reading.ignored.append(f"Material '{name}': the link into '{socket_name}' is ignored (not modelled by Prism).")
         elif _differs(socket.default_value, neutral):
             reading.ignored.append(
@@ -155,7 +147,7 @@ def read_principled(material) -> PrincipledReading:
             )
     for socket_name in LINK_ONLY_SOCKETS:
         socket = inputs.get(socket_name)
-        if socket is not None and socket.is_linked:
+        if socket is not None and is_linked(socket):
             reading.ignored.append(f"Material '{name}': the map linked into '{socket_name}' is ignored (no bump or tangent maps).")
     return reading
 

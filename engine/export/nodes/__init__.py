@@ -10,9 +10,11 @@ is folded and without ``load_pixels`` no image is read: enough for the material 
 
 from __future__ import annotations
 
+import sys
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
-from .compiler import MaterialCompiler
+from .compiler import MAX_NODE_DEPTH, MaterialCompiler
 from .finish import finish
 from .measured_base import check_measured_used
 from .slots import AttributeSlots
@@ -37,13 +39,31 @@ def compile_material(material, slots=None, image_cache=None, evaluate=None, load
     compiler = MaterialCompiler(material, getattr(material, "prism", None), slots, evaluate, load_pixels,
                                 image_cache=image_cache if image_cache is not None else {},
                                 overrides=dict(overrides or {}))
-    if not compiler.compile_surface():
-        compiler.warn(None, "has no Material Output for Cycles; Prism renders it black.")
-        return CompiledMaterial(None, compiler.warnings, compiler.needs)
-    check_measured_used(compiler, compiler.measured_nodes)
-    shader = finish(compiler)
+    with _room_to_recurse():
+        if not compiler.compile_surface():
+            compiler.warn(None, "has no Material Output for Cycles; Prism renders it black.")
+            return CompiledMaterial(None, compiler.warnings, compiler.needs)
+        check_measured_used(compiler, compiler.measured_nodes)
+        shader = finish(compiler)
     return CompiledMaterial(shader, compiler.warnings, compiler.needs, compiler.glass_description, compiler.conductor,
                             {p.kind for p in compiler.closures}, list(compiler.measured_nodes))
+
+
+#: Python frames the walk takes per node at most (value → output → handler → helper → value, and the
+#: shader walk's shader → handler → shader): the recursion limit must leave room for MAX_NODE_DEPTH nodes.
+_FRAMES_PER_NODE = 8
+
+
+@contextmanager
+def _room_to_recurse():
+    """Raise Python's recursion limit (never lower it) for the walk, so a tree ``MAX_NODE_DEPTH`` deep meets
+    the compiler's own depth guard, with its message, and never a RecursionError."""
+    previous = sys.getrecursionlimit()
+    sys.setrecursionlimit(max(previous, previous + MAX_NODE_DEPTH * _FRAMES_PER_NODE))
+    try:
+        yield
+    finally:
+        sys.setrecursionlimit(previous)
 
 
 __all__ = ["AttributeSlots", "CompiledMaterial", "compile_material"]

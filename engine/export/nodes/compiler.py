@@ -14,6 +14,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ...properties.node_links import invalid_links
+from ...tracer.bsdf.closure import TRANSPARENT
 from ...tracer.errors import PrismInputError
 from ...tracer.materials import opcodes as op
 from ...tracer.materials.program_builder import ProgramBuilder, Value
@@ -23,6 +25,9 @@ FLOAT, VECTOR, COLOR = "float", "vector", "color"
 _SOCKET_KINDS = {"VALUE": FLOAT, "INT": FLOAT, "BOOLEAN": FLOAT, "VECTOR": VECTOR, "RGBA": COLOR, "ROTATION": VECTOR}
 _VECTOR_MATH = {name: i for i, name in enumerate(op.VECTOR_MATH_OPERATIONS)}
 _MATH = {name: i for i, name in enumerate(op.MATH_OPERATIONS)}
+#: The deepest chain of nodes (from the Material Output, through values and shaders) Prism compiles. The
+#: walk recurses a few Python frames per node; ``compile_material`` makes room for this many.
+MAX_NODE_DEPTH = 200
 
 
 @dataclass
@@ -87,6 +92,7 @@ class MaterialCompiler:
     measured_nodes: list = field(default_factory=list)  # names of the nodes whose colour ``reflectance`` replaced
     _outputs: dict = field(default_factory=dict)
     _warned: set = field(default_factory=set)
+    _depth: int = 0  # nodes between the Material Output and the node being compiled
 
     def __post_init__(self):
         if self.builder is None:
@@ -226,7 +232,11 @@ class MaterialCompiler:
                                 "an image texture.")
                 computed = {}
             else:
-                computed = handler(self, node, source.context, variant, source.identifier)
+                self._enter(node)
+                try:
+                    computed = handler(self, node, source.context, variant, source.identifier)
+                finally:
+                    self._depth -= 1
             outputs = {**(outputs or {}), **computed}
             self._outputs[key] = outputs
         if source.identifier not in outputs:
@@ -266,7 +276,21 @@ class MaterialCompiler:
             self.warn(source.node, "is not a shader Prism renders; it is left out (black). Use a Principled BSDF or "
                                    "another supported BSDF.")
             return
-        handler(self, source.node, source.context, weight)
+        self._enter(source.node)
+        try:
+            handler(self, source.node, source.context, weight)
+        finally:
+            self._depth -= 1
+
+    def _enter(self, node) -> None:
+        """One node deeper; a tree deeper than ``MAX_NODE_DEPTH`` (or a loop of links Blender has not marked
+        invalid) is refused here, naming the node, before Python's recursion limit is reached."""
+        self._depth += 1
+        if self._depth > MAX_NODE_DEPTH:
+            raise PrismInputError(
+                f"Material '{self.material.name}': node tree deeper than {MAX_NODE_DEPTH} nodes at '{node.name}'; "
+                f"Prism compiles trees up to {MAX_NODE_DEPTH} deep: simplify it (bake part of it to an image "
+                "texture, or shorten the chain).")
 
     def weighted(self, weight: Weight, scale: Value | None = None, colour: Value | None = None) -> Weight:
         return Weight(self.multiply(weight.scale, scale) if scale is not None else weight.scale,
@@ -279,13 +303,22 @@ class MaterialCompiler:
         if closure.measured is not None and closure.node.name not in self.measured_nodes:
             self.measured_nodes.append(closure.node.name)
 
-    def add_emission(self, weight: Weight, colour: Value | None, strength: Value, spectrum=None) -> None:
+    def add_emission(self, weight: Weight, colour: Value | None, strength: Value, spectrum=None, node=None,
+                     setting="Strength") -> None:
+        """Add ``weight`` × ``strength`` × ``colour`` (or ``spectrum``) to the emission; a constant radiance
+        float32 cannot carry is refused naming ``node`` and ``setting``."""
         if weight.layer is not None:  # Principled adds its emission above its specular layer
             raise ValueError("an emission under a constant specular layer is not compiled")
         scale = self.multiply(weight.scale, strength)
         if 0.0 in (self.known(strength), self.known(weight.scale), self.known(scale)):
             return
         colour = self.multiply(weight.colour, colour) if colour is not None else weight.colour
+        known_scale, known_colour = self.known(scale), self.known(colour)
+        if known_scale is not None and known_colour is not None and node is not None:
+            from ..float_range import check_light_value
+
+            where = f"Material '{self.material.name}', {node.bl_label} '{node.name}'"
+            check_light_value(abs(known_scale) * max(abs(x) for x in known_colour), where, setting)
         if spectrum is not None and self.known(weight.colour) != (1.0, 1.0, 1.0):
             spectrum = None
         if self.known(colour) == (0.0, 0.0, 0.0) and spectrum is None:
@@ -298,14 +331,25 @@ class MaterialCompiler:
         out = output_node(tree) if tree is not None else None
         if out is None:
             return False
-        for name in ("Volume",):
-            socket = out.inputs.get(name)
-            if socket is not None and follow(socket)[0] is not None:
-                self.warn(out, f"has a {name} shader; Prism renders surfaces only and leaves it out.")
+        for link in invalid_links(tree):
+            self.warn(None, f"the link from '{link.from_node.name}' to '{link.to_node.name}' is invalid (a loop, or "
+                            "sockets that cannot connect: Blender draws it red); Prism ignores it, as Cycles does. "
+                            "Remove it.")
+        surface, volume = out.inputs["Surface"], out.inputs.get("Volume")
+        has_volume = volume is not None and follow(volume)[0] is not None
+        volume_only = has_volume and follow(surface)[0] is None
+        if volume_only:
+            self.warn(out, "has a Volume shader and no Surface; Prism does not render volumes yet, so it renders the "
+                           "surface transparent, as Cycles does, and leaves the volume inside it out.")
+        elif has_volume:
+            self.warn(out, "has a Volume shader; Prism renders surfaces only and leaves it out.")
         socket = out.inputs.get("Displacement")
         if socket is not None and follow(socket)[0] is not None:
             self.displacement = socket
         self.output_node = out
         one = Weight(self.const(1.0), self.const(1.0, 1.0, 1.0))
-        self.shader(out.inputs["Surface"], (), one)
+        if volume_only:  # Cycles: a volume's missing surface lets light through unchanged
+            self.add_closure(PendingClosure(TRANSPARENT, one, out))
+        else:
+            self.shader(surface, (), one)
         return True

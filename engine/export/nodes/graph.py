@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ...properties.node_links import valid_link
+
 STRUCTURAL = {"NodeReroute", "NodeGroupInput", "NodeGroupOutput", "ShaderNodeGroup", "NodeFrame"}
 
 
@@ -32,10 +34,6 @@ def output_node(tree):
     return outputs[0] if outputs else None
 
 
-def _link(socket):
-    return next((link for link in socket.links if link.is_valid and not link.is_muted), None)
-
-
 def _group_output(tree):
     nodes = [n for n in tree.nodes if n.bl_idname == "NodeGroupOutput"]
     active = [n for n in nodes if n.is_active_output]
@@ -52,8 +50,8 @@ def follow(socket, context=()):
     through, as in Blender), groups and group inputs (a group input left unlinked outside takes the
     value set on the Group node)."""
     value_socket = socket
-    for _ in range(10000):
-        link = _link(socket)
+    for _ in range(10000):  # bounded: a loop of links Blender has not marked invalid yet ends here
+        link = valid_link(socket)
         if link is None:
             return None, value_socket
         node, out = link.from_node, link.from_socket

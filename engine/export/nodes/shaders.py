@@ -120,7 +120,8 @@ def principled(c, node, context, weight: Weight):
     strength = _val(c, node, "Emission Strength", context)
     _non_negative(c, node, "Emission Strength", strength)
     spectrum = c.overrides.get("emission") or _blackbody_spectrum(c, node, "Emission Color", context)
-    c.add_emission(weight, None if "emission" in c.overrides else emission_colour, strength, spectrum=spectrum)
+    c.add_emission(weight, None if "emission" in c.overrides else emission_colour, strength, spectrum=spectrum,
+                   node=node, setting="Emission Strength × Emission Color")
 
     film = _val(c, node, "Thin Film Thickness", context)
     film_nm = c.known(film)
@@ -325,7 +326,7 @@ def emission(c, node, context, weight):
     colour = None if spectrum is not None else _val(c, node, "Color", context, COLOR)
     strength = _val(c, node, "Strength", context)
     _non_negative(c, node, "Strength", strength)
-    c.add_emission(weight, colour, strength, spectrum=spectrum)
+    c.add_emission(weight, colour, strength, spectrum=spectrum, node=node, setting="Strength × Color")
 
 
 def holdout(c, node, context, weight):
