@@ -56,6 +56,14 @@ class RenderSession:
         if self.request.progress_stream is None:  # a batch script prints the message once itself
             self.engine.report({"ERROR"}, message)
 
+    def _report(self, kind: str, message: str) -> None:
+        """One line per message: a batch render prints it on its progress stream, F12 reports it to Blender.
+        Not both: in background mode Blender prints every report on stdout as well (``BKE_report``)."""
+        if self.request.progress_stream is not None:
+            self._print(f"Prism: {kind.lower()}: {message}")
+        else:
+            self.engine.report({kind}, message)
+
     def _print(self, line: str) -> None:
         stream = self.request.progress_stream
         if stream is not None:
@@ -89,6 +97,7 @@ class RenderSession:
         engine = self.engine
         scene = self.depsgraph.scene
         req = self.request
+        kernel_cache.check_directory()
         if not self._wait_for_warmup():
             return
         compiling = kernel_cache.compiling_notice()
@@ -102,6 +111,8 @@ class RenderSession:
         border = render_border(scene, width, height)
         view_layer = self.depsgraph.view_layer
         spectral_path = spectral_exr.requested_path(scene, req, engine.is_preview)
+        if spectral_path is not None:  # before rendering: a path that cannot be written fails in seconds
+            spectral_exr.check_writable(spectral_path)
         settings = export_settings(
             scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border,
             passes=pass_request(scene, view_layer, for_render=True), spectral=spectral_path is not None,
@@ -109,8 +120,7 @@ class RenderSession:
         self._apply_overrides(settings, warnings)
         self.report.warnings = warnings
         for message in warnings if not engine.is_preview else ():  # Blender's preview scene: not the user's to fix
-            engine.report({"WARNING"}, message)
-            self._print(f"Prism: warning: {message}")
+            self._report("WARNING", message)
         engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
         with Renderer(tracer_scene, settings) as renderer:
             # The spectral film and the spectral EXR's RGB cover the whole frame: no tiles then.
@@ -281,8 +291,19 @@ class RenderSession:
             self._print("Prism: cancelled")
 
     def _write_spectral(self, renderer, path) -> None:
+        """The multispectral EXR; when it cannot be written the render itself stands (its image is kept, the
+        failure is in ``report.output_errors``)."""
         film = renderer.spectral_film
-        written = spectral_exr.write_spectral_exr(path, film.centres_nm, film.mean(), renderer.image_rgb())
+        try:
+            written = spectral_exr.write_spectral_exr(path, film.centres_nm, film.mean(), renderer.image_rgb())
+        except Exception as error:  # noqa: BLE001 - a secondary output never costs the render
+            if not isinstance(error, PrismInputError):
+                traceback.print_exc()
+            message = f"The spectral EXR was not written ({error}); the rendered image is kept."
+            self.report.output_errors.append(message)
+            if self.request.progress_stream is None:  # a batch script prints it once itself, as ``fail``
+                self.engine.report({"ERROR"}, message)
+            return
         self.report.spectral_output = str(written)
         if self.request.progress_stream is None:  # a batch script names the files it wrote itself
             self.engine.report({"INFO"}, f"Prism: spectral image ({film.bands} bands of {film.band_nm:.3g} nm) "
