@@ -1,6 +1,11 @@
 """Write ``docs/bad_input.md``: every bad input the tests feed Prism, with the message and exit status seen.
 
     .venv/bin/python tools/bad_input_inventory.py        (or: make inventory)
+    .venv/bin/python tools/bad_input_inventory.py tests/blender/test_x.py ...
+
+With test files named, only those run and only their sections are rewritten (or added); the other
+sections are kept as the document has them, so one area's cases can be refreshed without running every
+test that renders.
 
 Runs the test files that use the ``bad_input`` fixture (``tests/conftest.py``) with
 ``PRISM_BAD_INPUT_INVENTORY`` set, so each such test records the input it gave,
@@ -77,12 +82,52 @@ def render(records: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def main() -> int:
-    records = collect(test_files())
+_SECTION_PATH = re.compile(r"^`(tests/[^`]+\.py)`$")
+_ROW = re.compile(r"^\| (.*) \| (\d+) \| (.*) \|$")
+
+
+def recorded(text: str) -> list[dict]:
+    """The records of a document ``render`` wrote (test file, input, status, message), in its order."""
+    records, current = [], None
+    for line in text.splitlines():
+        path = _SECTION_PATH.match(line)
+        if path:
+            current = path.group(1)
+            continue
+        row = _ROW.match(line)
+        if current and row and row.group(1) != "Input":
+            cells = [cell.replace("\\|", "|") for cell in (row.group(1), row.group(3))]
+            records.append({"test": f"{current}::", "input": cells[0], "status": int(row.group(2)),
+                            "message": cells[1]})
+    return records
+
+
+def merged(kept: list[dict], fresh: list[dict]) -> list[dict]:
+    """``kept`` with the sections of the files ``fresh`` covers replaced by ``fresh`` (new files last)."""
+    fresh_by_file: dict[str, list[dict]] = {}
+    for record in fresh:
+        fresh_by_file.setdefault(record["test"].split("::")[0], []).append(record)
+    out, placed = [], set()
+    for record in kept:
+        name = record["test"].split("::")[0]
+        if name not in fresh_by_file:
+            out.append(record)
+        elif name not in placed:
+            out += fresh_by_file[name]
+            placed.add(name)
+    return out + [r for name, rows in fresh_by_file.items() if name not in placed for r in rows]
+
+
+def main(arguments: list[str]) -> int:
+    if arguments:
+        files = [Path(a).resolve() for a in arguments]
+        records = merged(recorded(OUTPUT.read_text()), collect(files))
+    else:
+        records = collect(test_files())
     OUTPUT.write_text(render(records))
     print(f"wrote {OUTPUT} ({len(records)} cases)")
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(sys.argv[1:]))
