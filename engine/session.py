@@ -132,6 +132,7 @@ class RenderSession:
             finally:
                 if self.cancelled:
                     renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
+            self._report_tracer_warnings(renderer, warnings)
             if compiling and not self.cancelled:
                 kernel_cache.mark_compiled()
             if spectral_path is not None and not self.cancelled:
@@ -276,7 +277,8 @@ class RenderSession:
                 shown, shown_pass = time.perf_counter(), pass_index
             done = renderer.samples_done - start_done
             engine.update_progress(overall(done / target))
-            line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings, tile)
+            line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings, tile,
+                              quote_warning=False)
             engine.update_stats("", line)
             self.report.stats = line
             # Blender's "Time: …" line, once per pass: render farms (Flamenco) count these as steps.
@@ -289,6 +291,14 @@ class RenderSession:
         if self.cancelled:
             engine.update_stats("", f"Prism | Cancelled at {renderer.samples_done - start_done}/{target} spp")
             self._print("Prism: cancelled")
+
+    def _report_tracer_warnings(self, renderer, exported: list[str]) -> None:
+        """The tracer's own warnings (a lens, a glass used outside its range), once each, as they stand at the
+        end of the render; the status line only counts them."""
+        found = [m for m in renderer.stats.get("warnings") or [] if m not in exported]
+        self.report.warnings = exported + found
+        for message in found if not self.engine.is_preview else ():
+            self._report("WARNING", message)
 
     def _write_spectral(self, renderer, path) -> None:
         """The multispectral EXR; when it cannot be written the render itself stands (its image is kept, the
