@@ -32,7 +32,8 @@ def test_expect_samples_of_two_to_the_32_answers_at_once(prism_addon, tmp_path, 
                              "--output", tmp_path / "m.exr")
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
-    assert time.perf_counter() - began < 10 and peak < 50e6  # was 8 GB in 60 s: a string per missing chunk
+    # Was 8 GB in 60 s (a string per missing chunk); the time bound leaves room for a loaded machine.
+    assert peak < 50e6 and time.perf_counter() - began < 60
     assert (status, line) == (1, "Prism: error: The chunk holds 1 of the 4294967296 samples --expect-samples asks "
                                  "for: samples 1..4294967295 are missing (render the 4294967295 chunks from "
                                  "--chunk-seed 1 to 4294967295 with --samples 1).")
