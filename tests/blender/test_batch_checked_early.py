@@ -43,7 +43,7 @@ def test_a_spectral_output_in_proc_is_refused_before_rendering(card, tmp_path, c
                                            "--spectral-output): Cannot write '/proc/bands.exr': "), line
     assert line.endswith("Choose a folder that exists and that you can write to.")
     assert not (tmp_path / "out.png").exists()
-    bad_input("--spectral-output /proc/bands.exr", status, line)
+    bad_input("--spectral-output into the /proc file system (no file can be created there)", status, line)
 
 
 def test_a_band_width_of_0_is_refused_before_rendering(card, tmp_path, capsys, bad_input):

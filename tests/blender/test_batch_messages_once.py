@@ -1,6 +1,6 @@
-"""What a finished batch render says: each warning once (not again through Blender's report, which
-background mode prints on stdout), and a secondary output that fails after the render costs neither the
-main image nor a clear exit status."""
+"""What a finished batch render says: each warning once (the status line, which Blender and Prism print
+every pass, counts warnings instead of quoting one), and a secondary output that fails after the render
+costs neither the main image nor a clear exit status."""
 
 from __future__ import annotations
 
