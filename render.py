@@ -103,6 +103,8 @@ class Prism:
 def open_blend_file(path: str, prism: Prism) -> None:
     import bpy
 
+    if Path(path).is_dir():
+        raise prism.errors.PrismInputError(f"Blend file '{path}' is a folder: give the .blend file itself.")
     if not Path(path).is_file():
         raise prism.errors.PrismInputError(f"Blend file '{path}' does not exist: check the path.")
     try:
@@ -193,6 +195,9 @@ def render_frame(arguments, output: Path, prism: Prism, signals, frame: int | No
             save_render_result(scene, temporary, output, prism)
     if report.spectral_output:
         _wrote(Path(report.spectral_output))
+    if report.output_errors:  # the main image is written; a secondary output failed: say so, exit 1
+        _wrote(output)
+        raise prism.errors.PrismInputError(" ".join(report.output_errors))
     return output
 
 

@@ -279,18 +279,29 @@ def _samples_text(ranges) -> str:
 
 
 def _chunks_to_render(chunks: list[Chunk], missing) -> str:
-    """`` (render --chunk-seed 1 and 3 with --samples 2)`` when every chunk is one block of the same size."""
+    """`` (render --chunk-seed 1 and 3 with --samples 2)`` when every chunk is one block of the same size.
+
+    Counted from the ranges, never listed one by one: ``--expect-samples`` may ask for 2**32 samples."""
     sizes = {chunk.samples for chunk in chunks}
     if len(sizes) != 1 or any(len(chunk.sample_ranges) != 1 for chunk in chunks):
         return ""
     size = sizes.pop()
     if any(start % size or end % size for start, end in missing):
         return ""
-    seeds = [str(seed) for start, end in missing for seed in range(start // size, end // size)]
-    if len(seeds) > 8:
-        return f" (render the {len(seeds)} chunks from --chunk-seed {seeds[0]} to {seeds[-1]} with --samples {size})"
-    listed = seeds[0] if len(seeds) == 1 else ", ".join(seeds[:-1]) + " and " + seeds[-1]
-    return f" (render --chunk-seed {listed} with --samples {size})"
+    seed_ranges = [(start // size, end // size) for start, end in missing]  # chunk seeds, end exclusive
+    count = sum(end - start for start, end in seed_ranges)
+    if count <= 8:
+        seeds = [str(seed) for start, end in seed_ranges for seed in range(start, end)]
+        listed = seeds[0] if len(seeds) == 1 else ", ".join(seeds[:-1]) + " and " + seeds[-1]
+        return f" (render --chunk-seed {listed} with --samples {size})"
+    if len(seed_ranges) == 1:
+        (start, end), = seed_ranges
+        return f" (render the {count} chunks from --chunk-seed {start} to {end - 1} with --samples {size})"
+    shown = [f"{start}" if end - start == 1 else f"{start}..{end - 1}" for start, end in seed_ranges[:4]]
+    if len(seed_ranges) > 4:
+        shown.append(f"{len(seed_ranges) - 4} more range(s)")
+    return (f" (render the {count} chunks --chunk-seed {', '.join(shown[:-1])} and {shown[-1]} "
+            f"with --samples {size})")
 
 
 def _check_same_render(first: Chunk, chunk: Chunk) -> None:

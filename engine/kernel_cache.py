@@ -65,6 +65,14 @@ def configure() -> Path:
     return kernel_folder.cache_directory()
 
 
+def check_directory() -> None:
+    """``PrismInputError`` naming ``$PRISM_KERNEL_CACHE`` (or ``$NUMBA_CACHE_DIR``) when the folder it
+    names cannot hold the kernels; a render calls it before exporting anything."""
+    from .tracer import kernel_folder
+
+    kernel_folder.prepare_kernel_directory()
+
+
 def compiling_notice() -> str | None:
     """``COMPILING_MESSAGE`` if this render will compile the kernels (cold cache), else None."""
     from .tracer import kernel_folder

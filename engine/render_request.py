@@ -83,7 +83,8 @@ class RenderReport:
     the Render Result then holds a partial image. ``warnings``: inputs Prism
     ignored or approximated. ``stats``: the status-bar line of the last pass.
     ``film``: set when the request asked for it and the render finished.
-    ``spectral_output``: the multispectral EXR written, if any.
+    ``spectral_output``: the multispectral EXR written, if any. ``output_errors``: secondary outputs that
+    could not be written (the render and its image stand).
     """
 
     started: bool = False
@@ -93,6 +94,7 @@ class RenderReport:
     stats: str = ""
     film: FilmSnapshot | None = None
     spectral_output: str | None = None
+    output_errors: list[str] = field(default_factory=list)
 
 
 _handover: ContextVar[tuple[RenderRequest, RenderReport] | None] = ContextVar("prism_render_request", default=None)

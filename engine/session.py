@@ -56,6 +56,14 @@ class RenderSession:
         if self.request.progress_stream is None:  # a batch script prints the message once itself
             self.engine.report({"ERROR"}, message)
 
+    def _report(self, kind: str, message: str) -> None:
+        """One line per message: a batch render prints it on its progress stream, F12 reports it to Blender.
+        Not both: in background mode Blender prints every report on stdout as well (``BKE_report``)."""
+        if self.request.progress_stream is not None:
+            self._print(f"Prism: {kind.lower()}: {message}")
+        else:
+            self.engine.report({kind}, message)
+
     def _print(self, line: str) -> None:
         stream = self.request.progress_stream
         if stream is not None:
@@ -89,6 +97,7 @@ class RenderSession:
         engine = self.engine
         scene = self.depsgraph.scene
         req = self.request
+        kernel_cache.check_directory()
         if not self._wait_for_warmup():
             return
         compiling = kernel_cache.compiling_notice()
@@ -102,6 +111,8 @@ class RenderSession:
         border = render_border(scene, width, height)
         view_layer = self.depsgraph.view_layer
         spectral_path = spectral_exr.requested_path(scene, req, engine.is_preview)
+        if spectral_path is not None:  # before rendering: a path that cannot be written fails in seconds
+            spectral_exr.check_writable(spectral_path)
         settings = export_settings(
             scene, samples=req.samples, seed=req.seed, threads=req.threads, preview=engine.is_preview, border=border,
             passes=pass_request(scene, view_layer, for_render=True), spectral=spectral_path is not None,
@@ -109,8 +120,7 @@ class RenderSession:
         self._apply_overrides(settings, warnings)
         self.report.warnings = warnings
         for message in warnings if not engine.is_preview else ():  # Blender's preview scene: not the user's to fix
-            engine.report({"WARNING"}, message)
-            self._print(f"Prism: warning: {message}")
+            self._report("WARNING", message)
         engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
         with Renderer(tracer_scene, settings) as renderer:
             # The spectral film and the spectral EXR's RGB cover the whole frame: no tiles then.
@@ -122,6 +132,7 @@ class RenderSession:
             finally:
                 if self.cancelled:
                     renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
+            self._report_tracer_warnings(renderer, warnings)
             if compiling and not self.cancelled:
                 kernel_cache.mark_compiled()
             if spectral_path is not None and not self.cancelled:
@@ -266,7 +277,8 @@ class RenderSession:
                 shown, shown_pass = time.perf_counter(), pass_index
             done = renderer.samples_done - start_done
             engine.update_progress(overall(done / target))
-            line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings, tile)
+            line = stats_line(renderer, pass_index, done, target, time.perf_counter() - started, warnings, tile,
+                              quote_warning=False)
             engine.update_stats("", line)
             self.report.stats = line
             # Blender's "Time: …" line, once per pass: render farms (Flamenco) count these as steps.
@@ -280,9 +292,28 @@ class RenderSession:
             engine.update_stats("", f"Prism | Cancelled at {renderer.samples_done - start_done}/{target} spp")
             self._print("Prism: cancelled")
 
+    def _report_tracer_warnings(self, renderer, exported: list[str]) -> None:
+        """The tracer's own warnings (a lens, a glass used outside its range), once each, as they stand at the
+        end of the render; the status line only counts them."""
+        found = [m for m in renderer.stats.get("warnings") or [] if m not in exported]
+        self.report.warnings = exported + found
+        for message in found if not self.engine.is_preview else ():
+            self._report("WARNING", message)
+
     def _write_spectral(self, renderer, path) -> None:
+        """The multispectral EXR; when it cannot be written the render itself stands (its image is kept, the
+        failure is in ``report.output_errors``)."""
         film = renderer.spectral_film
-        written = spectral_exr.write_spectral_exr(path, film.centres_nm, film.mean(), renderer.image_rgb())
+        try:
+            written = spectral_exr.write_spectral_exr(path, film.centres_nm, film.mean(), renderer.image_rgb())
+        except Exception as error:  # noqa: BLE001 - a secondary output never costs the render
+            if not isinstance(error, PrismInputError):
+                traceback.print_exc()
+            message = f"The spectral EXR was not written ({error}); the rendered image is kept."
+            self.report.output_errors.append(message)
+            if self.request.progress_stream is None:  # a batch script prints it once itself, as ``fail``
+                self.engine.report({"ERROR"}, message)
+            return
         self.report.spectral_output = str(written)
         if self.request.progress_stream is None:  # a batch script names the files it wrote itself
             self.engine.report({"INFO"}, f"Prism: spectral image ({film.bands} bands of {film.band_nm:.3g} nm) "

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .batch.output_files import atomic_output
+from .batch.output_files import atomic_output, check_writable as _check_output_writable
 from .openimageio import import_openimageio
 
 UNITS_ATTRIBUTE = "prism:spectralRadiance"
@@ -37,6 +37,16 @@ def requested_path(scene, request, preview: bool) -> Path | None:
     from .batch.output_files import numbered_output
 
     return numbered_output(Path(bpy.path.abspath(prism.spectral_output_path) or "spectral.exr"), scene.frame_current)
+
+
+def check_writable(path) -> None:
+    """``PrismInputError`` now, before a render, when the spectral EXR could not be written to ``path``."""
+    from .tracer.errors import PrismInputError
+
+    try:
+        _check_output_writable(Path(path))
+    except PrismInputError as error:
+        raise PrismInputError(f"Spectral output (Render ▸ Prism ▸ Spectral Output, or --spectral-output): {error}") from None
 
 
 def write_spectral_exr(path, centres_nm, bands, rgb) -> Path:

@@ -5,10 +5,12 @@ from __future__ import annotations
 
 
 def stats_line(renderer, pass_index: int, done: int, target: int | None, seconds: float, warnings,
-               tile=(0, 1)) -> str:
+               tile=(0, 1), quote_warning: bool = True) -> str:
     """``Prism | Pass 3 | 12/64 spp | 1.30 M rays/s | <strategy> | ...`` (``12 spp`` when ``target`` is
     None: a viewport rendering until stopped); ``Prism | Tile 2/9 | ...`` when ``tile`` (index, count)
-    is one of several, and how adaptive sampling and the time limit stand."""
+    is one of several, and how adaptive sampling and the time limit stand. ``quote_warning``: the first
+    warning's text too (the viewport header, where nothing else shows it); F12 and batch renders report
+    each warning once by itself, and their line (printed every pass) only counts them."""
     stats = renderer.stats
     rays_per_second = stats.get("rays_cast", 0) / seconds if seconds > 0 else 0.0
     head = f"Prism | Tile {tile[0] + 1}/{tile[1]}" if tile[1] > 1 else "Prism"
@@ -27,7 +29,7 @@ def stats_line(renderer, pass_index: int, done: int, target: int | None, seconds
         parts.append(f"{stats['nan_samples']} NaN samples dropped")
     notes = list(warnings) + list(stats.get("warnings") or [])
     if notes:
-        parts.append(f"{len(notes)} warning(s): {notes[0]}")
+        parts.append(f"{len(notes)} warning(s): {notes[0]}" if quote_warning else f"{len(notes)} warning(s)")
     return " | ".join(parts)
 
 

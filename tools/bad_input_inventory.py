@@ -1,21 +1,21 @@
 """Write ``docs/bad_input.md``: every bad input the tests feed Prism, with the message and exit status seen.
 
     .venv/bin/python tools/bad_input_inventory.py        (or: make inventory)
-    .venv/bin/python tools/bad_input_inventory.py --only tests/blender/test_x.py ...
+    .venv/bin/python tools/bad_input_inventory.py tests/blender/test_x.py ...
 
+With test files named, only those run and only their sections are rewritten (or added); the other
+sections are kept as the document has them, so one area's cases can be refreshed without running every
+test that renders.
 
 Runs the test files that use the ``bad_input`` fixture (``tests/conftest.py``) with
 ``PRISM_BAD_INPUT_INVENTORY`` set, so each such test records the input it gave,
 the exit status and the message it observed, and turns the records into one
 table per test file. The tests assert those messages; this only collects them.
-Fails (and writes nothing) if a test fails. ``--only`` runs the given test files alone and replaces their
-sections of the existing page (adding new ones at the end), keeping every other section as it was: for a
-change to a few files, without running every bad-input test again.
+Fails (and writes nothing) if a test fails.
 """
 
 from __future__ import annotations
 
-import argparse
 import ast
 import json
 import os
@@ -82,50 +82,52 @@ def render(records: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _records_on_page(text: str) -> list[dict]:
-    """The rows of an existing page back as records (test = the section's file), in page order."""
+_SECTION_PATH = re.compile(r"^`(tests/[^`]+\.py)`$")
+_ROW = re.compile(r"^\| (.*) \| (\d+) \| (.*) \|$")
+
+
+def recorded(text: str) -> list[dict]:
+    """The records of a document ``render`` wrote (test file, input, status, message), in its order."""
     records, current = [], None
     for line in text.splitlines():
-        if line.startswith("`tests/") and line.endswith("`"):
-            current = line.strip("`")
-        elif current and line.startswith("| ") and not line.startswith("| Input |"):
-            cells = re.split(r"(?<!\\)\|", line)[1:-1]
-            text_cells = [cell.strip().replace("\\|", "|") for cell in cells]
-            records.append({"test": current, "input": text_cells[0], "status": int(text_cells[1]),
-                            "message": text_cells[2]})
+        path = _SECTION_PATH.match(line)
+        if path:
+            current = path.group(1)
+            continue
+        row = _ROW.match(line)
+        if current and row and row.group(1) != "Input":
+            cells = [cell.replace("\\|", "|") for cell in (row.group(1), row.group(3))]
+            records.append({"test": f"{current}::", "input": cells[0], "status": int(row.group(2)),
+                            "message": cells[1]})
     return records
 
 
-def _replace_sections(page: list[dict], fresh: list[dict], names: set[str]) -> list[dict]:
-    """``page``'s records with the sections of the files ``names`` replaced by ``fresh`` ones, in place (a
-    file new to the page goes at the end)."""
-    by_file: dict[str, list[dict]] = {}
+def merged(kept: list[dict], fresh: list[dict]) -> list[dict]:
+    """``kept`` with the sections of the files ``fresh`` covers replaced by ``fresh`` (new files last)."""
+    fresh_by_file: dict[str, list[dict]] = {}
     for record in fresh:
-        by_file.setdefault(record["test"].split("::")[0], []).append(record)
-    records = []
-    for record in page:
-        name = record["test"]
-        if name not in names:
-            records.append(record)
-        elif name in by_file:
-            records += by_file.pop(name)
-    return records + [record for rows in by_file.values() for record in rows]
+        fresh_by_file.setdefault(record["test"].split("::")[0], []).append(record)
+    out, placed = [], set()
+    for record in kept:
+        name = record["test"].split("::")[0]
+        if name not in fresh_by_file:
+            out.append(record)
+        elif name not in placed:
+            out += fresh_by_file[name]
+            placed.add(name)
+    return out + [r for name, rows in fresh_by_file.items() if name not in placed for r in rows]
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--only", nargs="+", type=Path, help="test files whose sections are regenerated")
-    arguments = parser.parse_args()
-    if not arguments.only:
-        records = collect(test_files())
+def main(arguments: list[str]) -> int:
+    if arguments:
+        files = [Path(a).resolve() for a in arguments]
+        records = merged(recorded(OUTPUT.read_text()), collect(files))
     else:
-        files = [path.resolve() for path in arguments.only]
-        names = {str(path.relative_to(ROOT)) for path in files}
-        records = _replace_sections(_records_on_page(OUTPUT.read_text()), collect(files), names)
+        records = collect(test_files())
     OUTPUT.write_text(render(records))
     print(f"wrote {OUTPUT} ({len(records)} cases)")
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(sys.argv[1:]))

@@ -63,6 +63,18 @@ def _check_folders(output: Path) -> None:
             )
 
 
+def check_writable(output: Path) -> None:
+    """``PrismInputError`` naming ``output`` unless a file can be written there (its folder is created)."""
+    temporary = temporary_sibling(output)
+    _check_folders(output)
+    try:
+        output.parent.mkdir(parents=True, exist_ok=True)
+        temporary.touch()
+        temporary.unlink()
+    except OSError as error:
+        raise _cannot_write(output, error) from None
+
+
 @contextmanager
 def atomic_output(output: Path, signals=None) -> Iterator[Path]:
     """Yield a temporary path for ``output``; when the block ends normally, move it onto ``output``.
@@ -74,16 +86,10 @@ def atomic_output(output: Path, signals=None) -> Iterator[Path]:
     """
     output = Path(output)
     temporary = temporary_sibling(output)
-    _check_folders(output)
-    try:
-        output.parent.mkdir(parents=True, exist_ok=True)
-        temporary.touch()
-    except OSError as error:
-        raise _cannot_write(output, error) from None
+    check_writable(output)
     if signals is not None:
         signals.temporary_files.add(temporary)
     try:
-        temporary.unlink()
         yield temporary
         if not temporary.is_file():
             raise PrismInputError(f"Prism rendered but Blender wrote no image for '{output}': see Blender's message above.")

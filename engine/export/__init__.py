@@ -17,6 +17,7 @@ from .meshes import export_meshes
 from .missing_libraries import missing_libraries
 from .unrendered_settings import unrendered_setting_warnings
 from .world import export_world
+from .zero_area import zero_area_objects, zero_area_sentence
 
 __all__ = ["PrismInputError", "export_camera", "export_scene", "render_border", "render_resolution"]
 
@@ -42,6 +43,13 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
         raise PrismInputError(
             f"Scene '{scene_name}' has no visible geometry: add a mesh object, or enable an object for "
             "rendering (Outliner ▸ camera icon), before rendering."
+        )
+    flat = zero_area_objects(tracer_scene.vertices, tracer_scene.triangles, tracer_scene.triangle_object,
+                             tracer_scene.object_names)
+    if flat:
+        raise PrismInputError(
+            f"Scene '{scene_name}' has no visible geometry: {zero_area_sentence(flat)}, so no ray can hit them: "
+            "give the mesh some size (Edit Mode: check for merged vertices and a zero Scale), or add a mesh."
         )
     world_lit = not tracer_scene.world.is_black()
     used = {int(i) for i in np.unique(tracer_scene.triangle_material)}

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 _RAY_FLAGS = (("visible_diffuse", "Diffuse"), ("visible_glossy", "Glossy"), ("visible_transmission", "Transmission"))
 _DEFAULT_MAX_BOUNCES = 1024
 
@@ -28,7 +30,25 @@ def light_warnings(obj) -> list[str]:
         warnings.append(f"Light '{name}': Max Bounces {cycles.max_bounces} is ignored; the scene's bounce limit applies.")
     if getattr(data, "use_nodes", False) and data.node_tree is not None and len(data.node_tree.nodes) > 2:
         warnings.append(f"Light '{name}': its node tree is ignored; Prism uses the light's colour and power.")
+    warnings += _collimated_area_warning(name, data)
     linking = getattr(obj, "light_linking", None)
     if linking is not None and (linking.receiver_collection is not None or linking.blocker_collection is not None):
         warnings.append(f"Light '{name}': light and shadow linking are ignored; the light reaches every object.")
     return warnings
+
+
+def _collimated_area_warning(name: str, data) -> list[str]:
+    """An area light narrower than Prism samples (Spread 0: a collimated beam). Cycles lights the patch
+    straight in front of it (its light arrives along the normal only: ``area_light_spread_attenuation``'s
+    zero-spread branch); Prism widens the beam to its narrowest spread, whose light reaches the same patch."""
+    if data.type != "AREA":
+        return []
+    from ..tracer.lights.area import MIN_HALF_SPREAD
+
+    spread = float(getattr(data, "spread", math.pi))
+    if spread >= 2 * MIN_HALF_SPREAD:
+        return []
+    return [f"Light '{name}': Spread {math.degrees(spread):g}° makes a collimated beam (Cycles lights only the patch "
+            f"straight in front of the light); Prism renders it with a Spread of {math.degrees(2 * MIN_HALF_SPREAD):.2g}°, "
+            "the narrowest it samples, which lights the same patch but so noisily that it looks black at ordinary "
+            "sample counts: set Spread to 1° or more (Object Data ▸ Light ▸ Spread)."]

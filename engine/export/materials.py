@@ -19,6 +19,7 @@ from .aovs import read_aovs
 from .nodes import AttributeSlots, compile_material
 from .nodes.overrides import check_film
 from .spectra import material_emission_source, material_reflectance_source
+from .texture_memory import TextureCache
 
 DEFAULT_MATERIAL = Material(name="Default", kind="diffuse", base_color=(0.8, 0.8, 0.8))
 
@@ -88,10 +89,11 @@ def _summary(material, compiled) -> Material:
 class MaterialExporter:
     """Exports the materials of one render; ``slots`` says which mesh data their programs read."""
 
-    def __init__(self, warnings: list[str] | None = None, fold: bool = True):
+    def __init__(self, warnings: list[str] | None = None, fold: bool = True, texture_budget=None):
         self.warnings = warnings
         self.slots = AttributeSlots()
-        self.image_cache: dict = {}
+        # Image textures are counted against the memory left beside the frame (``texture_memory``).
+        self.image_cache: dict = TextureCache(texture_budget) if texture_budget is not None else {}
         self.needs: dict[str, set] = {}  # material name → what its program reads
         self._fold = fold
         self._evaluate = None

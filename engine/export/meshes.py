@@ -26,6 +26,7 @@ from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
 from .surface_attributes import SurfaceCollector
+from .texture_memory import TextureBudget
 from .unrendered import particle_hair_warnings, unrendered_type_warning
 from .visibility import object_flags
 
@@ -62,9 +63,9 @@ class _Instances:
 class _Materials:
     """Blender materials → indices into one list of tracer materials, each exported once."""
 
-    def __init__(self, warnings):
+    def __init__(self, warnings, texture_budget=None):
         self.warnings = warnings
-        self.exporter = MaterialExporter(warnings)
+        self.exporter = MaterialExporter(warnings, texture_budget=texture_budget)
         self.index: dict[str | None, int] = {}
         self.materials: list[Material] = []
 
@@ -151,7 +152,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     returns a piece's geometry (the viewport passes one that keeps what did not change).
     Material warnings and geometry Prism skips are appended to ``warnings``.
     """
-    materials = _Materials(warnings)
+    materials = _Materials(warnings, TextureBudget.for_scene(depsgraph.scene))
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
     flags: list[int] = []

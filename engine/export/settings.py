@@ -33,6 +33,13 @@ def export_settings(
     EXR (bands of the scene's Spectral Output width).
     """
     prism = scene.prism
+    if spectral:  # checked here: a width of 0 would mean "no spectral film" and the EXR could not be written
+        from ..tracer.spectral_film import band_edges_nm
+
+        try:
+            band_edges_nm(float(prism.spectral_band_nm))
+        except PrismInputError as error:
+            raise PrismInputError(f"Scene '{scene.name}': {error}") from None
     if samples is None:
         samples = PREVIEW_SAMPLES if preview else prism.samples
     settings = RenderSettings(

@@ -42,6 +42,7 @@ from .kernel_folder import (  # noqa: F401 - re-exported: jit is where kernel mo
     configure_cache,
     kernel_directory,
     mark_cache_warm,
+    prepare_kernel_directory,
     source_fingerprint,
 )
 
@@ -55,12 +56,10 @@ _njit_inline = numba.njit(inline="always", **_OPTIONS)
 
 
 def _use_cache_directory():
-    directory = kernel_directory()
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-        numba.config.CACHE_DIR = str(directory)  # read by numba when a function is decorated
-    except OSError:
-        pass  # numba falls back to __pycache__ next to the sources, or compiles in memory
+    # A folder chosen through $PRISM_KERNEL_CACHE that cannot be used is an error naming it; an unusable
+    # default leaves numba its own fallback (``__pycache__`` next to the sources, or no cache).
+    if prepare_kernel_directory():
+        numba.config.CACHE_DIR = str(kernel_directory())  # read by numba when a function is decorated
 
 
 def kernel(function):

@@ -7,7 +7,8 @@ add-on, a scene switching to Prism: the background kernel warm-up, ``engine.warm
 - ``configure_cache(directory)`` chooses the cache directory (before the first kernel module is imported).
   Without it the directory is ``$PRISM_KERNEL_CACHE``, else ``$NUMBA_CACHE_DIR``, else a per-user cache
   folder (``~/.cache/prism-spectral/kernels`` on Linux, ``~/Library/Caches/...`` on macOS,
-  ``%LOCALAPPDATA%\\prism-spectral\\kernels`` on Windows).
+  ``%LOCALAPPDATA%\\prism-spectral\\kernels`` on Windows). ``prepare_kernel_directory()`` creates it and
+  refuses, naming the variable, a folder chosen through one of those variables that cannot be used.
 - ``kernel_directory()``: the subfolder of this copy of the tracer (its package name and install
   location) and this version of its sources (``source_fingerprint()``).
 - ``cache_is_warm()`` / ``mark_cache_warm()``: the stamp file saying every kernel of this source is cached.
@@ -38,10 +39,24 @@ def package_name() -> str:
     return _PACKAGE
 
 
+CACHE_VARIABLES = ("PRISM_KERNEL_CACHE", "NUMBA_CACHE_DIR")
+
+
+def _chosen_variable() -> str | None:
+    """The environment variable the cache directory comes from, or None (configured, or the default)."""
+    if _configured_directory is not None:
+        return None
+    return next((variable for variable in CACHE_VARIABLES if os.environ.get(variable)), None)
+
+
 def _default_cache_directory() -> Path:
-    for variable in ("PRISM_KERNEL_CACHE", "NUMBA_CACHE_DIR"):
+    for variable in CACHE_VARIABLES:
         if os.environ.get(variable):
             return Path(os.environ[variable])
+    return _per_user_directory()
+
+
+def _per_user_directory() -> Path:
     home = Path.home()
     if sys.platform == "win32":
         base = Path(os.environ.get("LOCALAPPDATA") or home / "AppData" / "Local")
@@ -55,6 +70,36 @@ def _default_cache_directory() -> Path:
 def cache_directory() -> Path:
     """Where compiled kernels are cached (see the module docstring)."""
     return _configured_directory or _default_cache_directory()
+
+
+def prepare_kernel_directory() -> bool:
+    """Create ``kernel_directory()``; True if kernels can be cached there. A folder the user chose through
+    ``$PRISM_KERNEL_CACHE`` (or ``$NUMBA_CACHE_DIR``) that cannot be used raises ``PrismInputError`` naming
+    the variable and the path: the kernels would otherwise land somewhere else without a word (numba falls
+    back to ``__pycache__`` beside the sources). False for an unusable default folder (kernels compile
+    every time, the first-render notice says so)."""
+    directory = kernel_directory()
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+        if os.access(directory, os.W_OK):
+            return True
+        problem = "it is not writable"
+    except OSError as error:
+        problem = error.strerror or str(error)
+    variable = _chosen_variable()
+    if variable is None:
+        return False
+    from .errors import PrismInputError
+
+    chosen = Path(os.environ[variable])
+    if chosen.exists() and not chosen.is_dir():
+        problem = "it is a file, not a folder"
+    elif any(parent.exists() and not parent.is_dir() for parent in chosen.parents):
+        problem = "a file stands where one of its folders should be"
+    raise PrismInputError(
+        f"{variable} is '{chosen}', where Prism cannot keep its compiled kernels ({problem}): point {variable} at "
+        f"a folder you can write to (it is created if missing), or unset it to use {_per_user_directory()}."
+    )
 
 
 def configure_cache(directory) -> None:

@@ -53,9 +53,7 @@ REBASE_DISTANCE_M = 1000.0
 
 
 def _check_settings(settings) -> None:
-    settings.validate()
-    if settings.pixel_filter not in ("box", "gaussian") or not settings.filter_width_px > 0:
-        raise PrismInputError(f"Pixel filter '{settings.pixel_filter}' is not supported: use box or gaussian.")
+    settings.validate()  # the pixel filter and its width too
     if settings.sampler not in SAMPLERS:
         raise PrismInputError(f"Sampler '{settings.sampler}' is unknown: use one of {', '.join(SAMPLERS)}.")
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from .errors import PrismInputError
@@ -9,6 +10,7 @@ from .passes import PassRequest
 
 WAVELENGTH_MODES = ("cie", "gaussian_rgb")
 LIGHT_TRACING_MODES = ("auto", "off", "on")
+PIXEL_FILTERS = ("box", "gaussian")
 
 
 @dataclass
@@ -72,6 +74,13 @@ class RenderSettings:
         if self.light_tracing not in LIGHT_TRACING_MODES:
             raise PrismInputError(
                 f"Unknown light tracing mode '{self.light_tracing}': use one of {', '.join(LIGHT_TRACING_MODES)}."
+            )
+        if self.pixel_filter not in PIXEL_FILTERS:
+            raise PrismInputError(f"Pixel filter '{self.pixel_filter}' is unknown: use one of {', '.join(PIXEL_FILTERS)}.")
+        if not (math.isfinite(self.filter_width_px) and self.filter_width_px > 0):
+            raise PrismInputError(
+                f"Filter Width must be above 0 pixels (got {self.filter_width_px:g}): set it to e.g. 1.5 (the pixel "
+                "filter's reach in pixels; Blender's smallest is 0.01)."
             )
         if self.samples < 1:
             raise PrismInputError(f"Samples must be at least 1 (got {self.samples}).")

@@ -12,9 +12,11 @@ from helpers.bpy_scenes import build_lit_card_scene
 def test_blend_files_that_cannot_open(prism_addon, capsys, tmp_path, bad_input):
     text = tmp_path / "notes.blend"
     text.write_text("not a blend file")
+    (tmp_path / "shots.blend").mkdir()
     cases = [
         ("a .blend file that does not exist", tmp_path / "nope.blend", "nope.blend' does not exist: check the path."),
         ("a text file named .blend", text, "notes.blend' cannot be opened ("),
+        ("a folder named .blend", tmp_path / "shots.blend", "shots.blend' is a folder: give the .blend file itself."),
     ]
     for description, path, message in cases:
         status, line = run_batch(capsys, path, "--output", tmp_path / "x.png", in_blender=False)

@@ -110,7 +110,26 @@ CASES = {
     "reflectance file in percent": (
         _file("pct.csv", "400,12\n500,48\n600,80\n"),
         _material(reflectance_source="FILE", reflectance_file="{tmp}/pct.csv"),
-        "reaches 80, but a reflectance must lie within 0-1 (it looks like percent: divide by 100)",
+        "reaches 80 at 600 nm (3 of 3 values above 1): a reflectance lies within 0-1, and these values look "
+        "like percent: divide them by 100.",
+    ),
+    "reflectance file just above 1 (1.0001)": (
+        _file("over.csv", "400,0.2\n500,1.0001\n600,0.9\n"),
+        _material(reflectance_source="FILE", reflectance_file="{tmp}/over.csv"),
+        "reflectance file '{tmp}/over.csv' reaches 1.0001 at 500 nm (1 of 3 values above 1): a reflectance lies "
+        "within 0-1 (a surface cannot reflect more light than reaches it), so this is not a reflectance: check the "
+        "file's second column, or clip it to 1.",
+    ),
+    "reflectance file at 1.2": (
+        _file("bright.csv", "400,1.2\n500,1.1\n600,0.9\n"),
+        _material(reflectance_source="FILE", reflectance_file="{tmp}/bright.csv"),
+        "reaches 1.2 at 400 nm (2 of 3 values above 1): a reflectance lies within 0-1 (a surface cannot reflect",
+    ),
+    "spectrum file saved as UTF-16": (
+        lambda tmp_path: (tmp_path / "u16.csv").write_bytes("400,1\n500,2\n600,1\n".encode("utf-16")),
+        _light(color_source="FILE", spectrum_file="{tmp}/u16.csv"),
+        "spectrum file '{tmp}/u16.csv' is UTF-16 (little-endian) text, which Prism does not read: save it as "
+        "UTF-8 (e.g. Notepad ▸ Save As ▸ Encoding UTF-8).",
     ),
     "unknown colour-checker patch": (
         None, _material(reflectance_source="MEASURED", measured_reflectance="ColorChecker N Ohta: dark skn"),

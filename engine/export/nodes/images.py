@@ -16,6 +16,7 @@ import sys
 import numpy as np
 
 from ...tracer.materials.shader import TextureImage
+from ..texture_memory import DECODED, FLOAT, LEVELS, budget_of
 
 #: Colour spaces whose levels are the values themselves.
 _RAW = {"Non-Color", "Raw", "Linear Rec.709", "Linear", "Linear CIE-XYZ E"}
@@ -88,6 +89,15 @@ def _level_table(colour_space):
     return grey.astype(np.float32)
 
 
+def _levels(pixels):
+    """The 8-bit levels of ``pixels`` (float32 0-1), worked out in place: no float copy of a large image
+    (``export.texture_memory`` counts what reading an image costs)."""
+    np.multiply(pixels, 255.0, out=pixels)
+    np.rint(pixels, out=pixels)
+    np.clip(pixels, 0.0, 255.0, out=pixels)
+    return pixels.astype(np.uint8)
+
+
 def read_image(image, node, warn, cache):
     """The ``TextureImage`` of ``image`` for Image Texture ``node`` (shared through ``cache``), or None when
     it cannot be read (Blender renders such images magenta)."""
@@ -108,6 +118,10 @@ def read_image(image, node, warn, cache):
         warn(node, f"cannot read image '{image.name}' (missing file?); Prism renders it magenta, as Blender does.")
         cache[key] = None
         return None
+    colour_space = image.colorspace_settings.name
+    table = None if image.is_float else _level_table(colour_space)
+    cost = FLOAT if image.is_float else LEVELS if colour_space == "sRGB" or table is not None else DECODED
+    budget_of(cache).admit(image.name, node.name, width, height, cost, image.alpha_mode == "PREMUL")
     pixels = np.empty(width * height * 4, np.float32)
     image.pixels.foreach_get(pixels)
     pixels = pixels.reshape(height, width, 4)
@@ -116,19 +130,16 @@ def read_image(image, node, warn, cache):
         pixels[..., :3] = np.where(alpha > 0, pixels[..., :3] / np.where(alpha > 0, alpha, 1.0), pixels[..., :3])
     if image.alpha_mode == "NONE":
         pixels[..., 3] = 1.0
-    colour_space = image.colorspace_settings.name
     interpolation = node.interpolation if node.interpolation in ("Closest", "Linear", "Cubic") else "Linear"
     if node.interpolation == "Smart":
         interpolation = "Cubic"
     if image.is_float:
         result = TextureImage(image.name, np.ascontiguousarray(pixels), None, interpolation, node.extension)
     else:
-        table = _level_table(colour_space)
-        levels = np.clip(np.rint(pixels * 255.0), 0, 255).astype(np.uint8)
         if colour_space == "sRGB":  # Blender filters sRGB levels and decodes after
-            result = TextureImage(image.name, levels, None, interpolation, node.extension, srgb_levels=True)
+            result = TextureImage(image.name, _levels(pixels), None, interpolation, node.extension, srgb_levels=True)
         elif table is not None:
-            result = TextureImage(image.name, levels, table, interpolation, node.extension)
+            result = TextureImage(image.name, _levels(pixels), table, interpolation, node.extension)
         else:
             decoded = _to_linear(colour_space, pixels[..., :3].reshape(-1, 3))
             if decoded is None:

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from ...tracer.materials import opcodes as op
 from .compiler import COLOR, FLOAT, VECTOR
+from ..texture_memory import TextureMemoryError
 from .images import MISSING_COLOUR, read_image
 from .inputs import generated, uv
 
@@ -32,7 +33,10 @@ def image_texture(c, node, context, variant, identifier):
     _mapping_warning(c, node)
     if node.projection != "FLAT":
         c.warn(node, f"uses {node.projection.lower()} projection; Prism projects it flat.")
-    image = read_image(node.image, node, c.warn, c.image_cache) if c.load_pixels else None
+    try:
+        image = read_image(node.image, node, c.warn, c.image_cache) if c.load_pixels else None
+    except TextureMemoryError as error:
+        raise TextureMemoryError(f"Material '{c.material.name}': {error}") from None
     if image is None and c.load_pixels:
         return {"Color": (c.const(*MISSING_COLOUR[:3]), COLOR), "Alpha": (c.const(1.0), FLOAT)}
     vector = c.value(node, "Vector", context, VECTOR, variant, default=lambda: uv(c, "", variant))

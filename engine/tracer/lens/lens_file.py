@@ -20,8 +20,10 @@ import re
 from functools import lru_cache
 
 from ..errors import LensFileError, UnknownGlassError
+from ..text_encoding import utf16_advice
 from . import media
 from .system import LensSystem, Surface
+from .toml_depth import MAX_DEPTH, deepest_nesting
 from .validate import validate_surfaces, where
 
 DAT_FIELDS = ("radius", "thickness", "index", "aperture diameter")
@@ -70,6 +72,9 @@ def _load(path, resolver) -> LensSystem:
     except OSError as exc:
         raise LensFileError(f"Lens file '{path}' cannot be read: {exc.strerror or exc}.") from exc
     except UnicodeDecodeError as exc:
+        utf16 = utf16_advice(data)
+        if utf16:
+            raise LensFileError(f"Lens file '{path}' {utf16}.") from exc
         raise LensFileError(
             f"Lens file '{path}' is not UTF-8 text (byte {exc.start}): give a .lens or .dat text file."
         ) from exc
@@ -171,10 +176,18 @@ def parse_prism_lens(text: str, path: str = "<lens>", resolver=None) -> LensSyst
     import tomllib
 
     resolver = resolver or CatalogueResolver()
+    depth, depth_line = deepest_nesting(text)
+    if depth > MAX_DEPTH:
+        raise LensFileError(
+            f"{where(path, depth_line)}: arrays or inline tables nested {depth} deep; a lens file nests 2 deep at "
+            f"most ([[surface]] tables, the notes list) and Prism reads up to {MAX_DEPTH}: remove the extra brackets."
+        )
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise LensFileError(f"{path}: not valid TOML: {exc}.") from exc
+    except RecursionError:  # a nesting the count above missed: still one message, not a traceback
+        raise LensFileError(f"{path}: nested too deeply for Python's TOML reader: remove the extra brackets.") from None
     lines = _key_lines(text)
     for key in doc:
         if key not in TOP_KEYS:
@@ -222,6 +235,12 @@ def _prism_surface(k, row, lines, path, resolver, count) -> Surface:
     if not isinstance(is_stop, bool):
         raise LensFileError(f"{at('stop')}: must be true or false.")
     radius = number("radius_mm", math.inf if is_stop else None)
+    if is_stop and math.isfinite(radius):
+        raise LensFileError(
+            f"{at('radius_mm')}: the aperture stop is a flat opening, so it takes no radius of curvature "
+            f"(got {radius:g} mm): leave 'radius_mm' out of the stop (or write inf); its opening is 'aperture_mm', "
+            "a diameter."
+        )
     if radius == 0.0:
         raise LensFileError(f"{at('radius_mm')}: radius 0 is not a surface; use inf for a flat surface.")
     thickness = number("thickness_mm", 0.0 if k == count - 1 else None)
@@ -245,6 +264,10 @@ def _prism_medium(row, at, resolver):
         n_d, v_d = row["nd"], row["vd"]
         if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in (n_d, v_d)):
             raise LensFileError(f"{at('nd')}: nd and vd must be numbers.")
+        for key, value in (("nd", n_d), ("vd", v_d)):
+            if not math.isfinite(value):
+                raise LensFileError(f"{at(key)}: {key} = {value} is not a finite number: give the glass's "
+                                    f"{'index at 587.56 nm, e.g. 1.5168' if key == 'nd' else 'Abbe number, e.g. 64.17'}.")
         if not (n_d > 1.0 and v_d > 0.0):
             raise LensFileError(f"{at('nd')}: need nd > 1 and vd > 0 (got {n_d}, {v_d}).")
         return resolver.by_abbe(float(n_d), float(v_d))

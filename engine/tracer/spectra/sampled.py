@@ -20,6 +20,8 @@ from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 PLAUSIBLE_RANGE_NM = (100.0, 3000.0)
 #: Reflectances above 1 (fluorescent whites reach ~1.05 but Prism conserves energy) are refused.
 MAX_REFLECTANCE = 1.0
+#: Peaks (exclusive, inclusive) that look like a reflectance written in percent.
+PERCENT_PEAK = (1.5, 100.0)
 
 
 def check_sampled(wavelength_nm, values, what: str, reflectance: bool = False):
@@ -56,15 +58,26 @@ def check_sampled(wavelength_nm, values, what: str, reflectance: bool = False):
             "cannot be negative; clip the measurement noise to 0."
         )
     if reflectance and np.any(values > MAX_REFLECTANCE):
-        peak = float(values.max())
-        hint = " (it looks like percent: divide by 100)" if peak <= 100.0 else ""
-        raise PrismInputError(
-            f"{what} reaches {peak:g}, but a reflectance must lie within 0-1{hint}."
-        )
+        raise PrismInputError(_above_one(what, wavelength_nm, values))
     if not reflectance and not np.any(values[inside] > 0.0) and not _positive_between(wavelength_nm, values):
         raise PrismInputError(f"{what} emits nothing within {VISIBLE_MIN_NM:.0f}-{VISIBLE_MAX_NM:.0f} nm: "
                               "it would render black.")
     return wavelength_nm, values
+
+
+def _above_one(what, wavelength_nm, values) -> str:
+    """The message for a reflectance above 1. Percent is suggested only when the values look like percent
+    (a peak between 1.5 and 100: a white measured in percent reaches 80-100, and a reflectance measured in
+    fractions does not pass 1.5); a peak just above 1 is a reflectance that is not one."""
+    peak_at = int(np.argmax(values))
+    peak = float(values[peak_at])
+    above = int(np.count_nonzero(values > MAX_REFLECTANCE))
+    where = f"{peak:g} at {wavelength_nm[peak_at]:g} nm ({above} of {len(values)} values above 1)"
+    if PERCENT_PEAK[0] < peak <= PERCENT_PEAK[1]:
+        return (f"{what} reaches {where}: a reflectance lies within 0-1, and these values look like percent: "
+                "divide them by 100.")
+    return (f"{what} reaches {where}: a reflectance lies within 0-1 (a surface cannot reflect more light than "
+            "reaches it), so this is not a reflectance: check the file's second column, or clip it to 1.")
 
 
 def _positive_between(wavelength_nm, values):

@@ -16,6 +16,7 @@ import numpy as np
 
 from ..errors import PrismInputError
 from ..scene import SampledSpectrum
+from ..text_encoding import utf16_advice
 from .cie import import_colour
 from .sampled import check_sampled
 
@@ -36,6 +37,9 @@ def read_spectrum_file(path, what: str, reflectance: bool = False) -> SampledSpe
         head = path.open("rb").read(_SNIFF_BYTES)
     except OSError as error:
         raise PrismInputError(f"{label} cannot be read ({error.strerror or error}): check its permissions.") from None
+    utf16 = utf16_advice(head)
+    if utf16:
+        raise PrismInputError(f"{label} {utf16}.")
     if b"\0" in head:
         raise PrismInputError(f"{label} is a binary file, not a spectrum: export it as CSV (wavelength_nm, value).")
     text = head.decode("utf-8", errors="replace")

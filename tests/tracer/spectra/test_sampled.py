@@ -36,7 +36,12 @@ def test_unsorted_rows_are_sorted():
     ([0.38, 0.78], [1.0, 1.0], False, "first column must be the wavelength in nanometres"),
     ([900.0, 1000.0], [1.0, 1.0], False, "misses the visible range"),
     ([400.0, 500.0], [1.0, -0.01], False, "is negative \\(-0.01 at 500 nm\\)"),
-    ([400.0, 500.0], [40.0, 87.5], True, "reflectance must lie within 0-1 \\(it looks like percent"),
+    ([400.0, 500.0], [40.0, 87.5], True, "reaches 87.5 at 500 nm \\(2 of 2 values above 1\\): a reflectance lies "
+     "within 0-1, and these values look like percent: divide them by 100\\.$"),
+    ([400.0, 500.0], [0.5, 1.0001], True, "reaches 1.0001 at 500 nm \\(1 of 2 values above 1\\): .* so this is not "
+     "a reflectance: check the file's second column, or clip it to 1\\.$"),
+    ([400.0, 500.0], [1.2, 0.5], True, "reaches 1.2 at 400 nm .* so this is not a reflectance"),
+    ([400.0, 500.0], [0.5, 250.0], True, "reaches 250 at 500 nm .* so this is not a reflectance"),
     ([400.0, 500.0], [0.0, 0.0], False, "emits nothing within 360-830 nm"),
 ])
 def test_bad_spectra_are_refused_with_the_fix(wavelength_nm, values, reflectance, message):

@@ -49,6 +49,9 @@ def test_csv_with_or_without_header_and_common_delimiters(tmp_path, text):
 @pytest.mark.parametrize("content, message", [
     (None, "does not exist: choose a spectrum file"),
     (b"\x89PNG\r\n\x1a\n\0\0\0", "is a binary file, not a spectrum"),
+    ("400,0.1\n500,0.5\n".encode("utf-16"), "is UTF-16 \\(little-endian\\) text, which Prism does not read: save it "
+     "as UTF-8"),
+    ("400,0.1\n500,0.5\n".encode("utf-16-be"), "is UTF-16 \\(big-endian\\) text"),
     ("hello world\nthis is not a spectrum\n", "row 2 \\('this is not a spectrum'\\) is not numbers, so this is not a spectrum"),
     ("400,0.1\n500,abc\n", "some rows are not numbers"),
     ("400,0.1,0.2\n500,0.5,0.3\n", "exactly two columns"),
