@@ -55,16 +55,22 @@ ADDON_ROOT = Path(__file__).resolve().parent
 OUTPUT_FORMATS = {".png": "PNG", ".exr": "OPEN_EXR"}
 
 
+def addon_package_shell():
+    """This directory as the package ``prism_spectral`` without running its ``__init__`` (which
+    imports bpy): enough to import ``prism_spectral.engine...`` in a process without Blender."""
+    if ADDON_PACKAGE not in sys.modules:
+        spec = importlib.util.spec_from_file_location(
+            ADDON_PACKAGE, ADDON_ROOT / "__init__.py", submodule_search_locations=[str(ADDON_ROOT)]
+        )
+        sys.modules[ADDON_PACKAGE] = importlib.util.module_from_spec(spec)
+    return sys.modules[ADDON_PACKAGE]
+
+
 def load_addon_package():
     """Import this directory as the add-on package ``prism_spectral`` (once)."""
-    if ADDON_PACKAGE in sys.modules:
-        return sys.modules[ADDON_PACKAGE]
-    spec = importlib.util.spec_from_file_location(
-        ADDON_PACKAGE, ADDON_ROOT / "__init__.py", submodule_search_locations=[str(ADDON_ROOT)]
-    )
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[ADDON_PACKAGE] = module
-    spec.loader.exec_module(module)
+    module = addon_package_shell()
+    if not hasattr(module, "register"):  # a shell until now: run the add-on's ``__init__`` in it
+        module.__spec__.loader.exec_module(module)
     return module
 
 

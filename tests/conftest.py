@@ -3,7 +3,8 @@ an initialised GPU for overlay tests, and the bpy exit workaround.
 
 Pure tracer tests import ``engine.tracer...`` directly (pytest.ini puts the
 repository root on sys.path); Blender tests use the add-on as the package
-``prism_spectral`` returned by the ``prism_addon`` fixture.
+``prism_spectral`` returned by the ``prism_addon`` fixture. Both are one package
+(``helpers.one_package``), so kernels compile once per run.
 """
 
 from __future__ import annotations
@@ -16,7 +17,10 @@ from pathlib import Path
 
 import pytest
 
+from helpers import one_package
 from render import exit_now, load_addon_package
+
+one_package.install()
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 
@@ -97,6 +101,14 @@ def gpu_ready(prism_addon):
             pytest.fail(message)
         pytest.skip(message)
     return True
+
+
+#: Runs first: on a cold cache it is the run's one compile of the render kernels (see its docstring).
+FIRST_TEST = "test_warmup_child.py::test_the_warmup_leaves_the_cache_warm_and_the_next_f12_compiles_nothing"
+
+
+def pytest_collection_modifyitems(session, config, items):
+    items.sort(key=lambda item: not item.nodeid.endswith(FIRST_TEST))  # stable: the rest keep their order
 
 
 def pytest_sessionfinish(session, exitstatus):
