@@ -9,16 +9,13 @@ FINDINGS: dict[str, str] = {
   it), but Render Animation evaluates its own depsgraph per frame and leaves the original at the current
   frame; Cycles reads the evaluated copy and is right. `engine/export/lights.py` now reads an animated or
   driven light from the evaluated copy (the original otherwise): 0.9999.
-- **Animated node values in Render Animation (open, xfail).** The same cause for materials and the world:
-  in `animated_shading` an emissive card's Strength and the world's Strength are keyframed; Prism renders
-  every frame with frame 1's values (ratio about 0.5; the pictures show the card and sky constant while
-  Cycles' brighten). `engine/export/materials.py` exports `material.original` and `export/world.py` reads
-  the original scene's world. Batch renders through `render.py --frames` set each frame on the scene
-  (`frame_set`, which writes the animated values into the originals) and are not affected (checked: the
-  same scene's frames 2 … 6 brighten from mean luminance 0.24 to 0.59); Blender's own Render Animation
-  (Ctrl F12, `render(animation=True)`) is. Left for the owners of the material export (engine/export/nodes
-  is being edited); the fix is the lights' one: the evaluated copy where the node tree or world has
-  animation data or drivers.
+- **Animated node values in Render Animation (fixed).** The same cause for materials and the world:
+  in `animated_shading` an emissive card's Strength and the world's Strength are keyframed, and Prism
+  rendered every frame with frame 1's values (ratio 0.495). Batch renders through `render.py --frames`
+  were not affected (they `frame_set` each frame, which writes the animated values into the originals);
+  Blender's own Render Animation (Ctrl F12) was. Lights, materials and the world now share one rule
+  (`engine/export/animated.py`): the evaluated copy where the data-block or its node tree is animated or
+  driven, the original otherwise; the world is read from the evaluated scene.
 - **View Layer ▸ Filter ▸ Surfaces (warned).** Prism rendered every surface with the filter off (ratio
   0.94 here only because the floor and world happen to be similar greys); Cycles renders the world alone.
   Filtering is not a small change (Prism refuses a scene with no geometry), so the export now prints a
@@ -40,5 +37,5 @@ near 1 because blurring moves light, it does not add any.""",
 Cycles shows the world alone (no surface is seen or casts a shadow); Prism renders the surfaces and
 prints the warning above.""",
     "animated_shading": """\
-Known difference (the test is xfail, strict): see Findings, "Animated node values in Render Animation".""",
+Fixed: see Findings, "Animated node values in Render Animation".""",
 }

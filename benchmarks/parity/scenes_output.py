@@ -108,8 +108,5 @@ SCENES = [
     ParityScene("resolution_percentage", "Format ▸ Resolution % (50 %)", resolution_percentage),
     ParityScene("pixel_aspect", "Format ▸ Aspect X : Y = 2 : 1", pixel_aspect),
     ParityScene("frame_range", "Frame Start / End / Step (animation render)", frame_range, output="frames"),
-    ParityScene("animated_shading", "Keyframed node values over a frame range", animated_shading, output="frames",
-                known_difference="Render Animation: Prism reads materials and the world from the original data-blocks, "
-                                 "which stay at the current frame, so keyframed node values render at frame 1's "
-                                 "values in every frame (engine/export/materials.py, world.py)"),
+    ParityScene("animated_shading", "Keyframed node values over a frame range", animated_shading, output="frames"),
 ]

@@ -95,7 +95,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         materials=geometry.materials,
         camera=camera,
         lights=export_lights(depsgraph, warnings),
-        world=export_world(scene, warnings, depsgraph.view_layer),
+        world=export_world(depsgraph.scene_eval, warnings, depsgraph.view_layer),  # its world: evaluated
     )
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.validate()

@@ -17,6 +17,7 @@ import numpy as np
 from ..tracer.errors import PrismInputError
 from .float_range import check_light_value
 from ..tracer.scene import Light, SpectrumSpec
+from .animated import settings_source
 from .light_settings import is_portal, light_warnings
 from .spectra import light_emission_source
 
@@ -81,18 +82,6 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
     return light
 
 
-def _settings_source(obj):
-    """The light data-block to read the settings of (evaluated) ``obj`` from: the original, what a script set
-    last (see ``export_material``), unless its settings are animated or driven. Then the evaluated copy: an
-    animation render (Render ▸ Render Animation) evaluates its own depsgraph per frame and leaves the
-    original at the current frame, so only the copy holds the rendered frame's power or colour."""
-    original = obj.data.original
-    animation = original.animation_data
-    if animation is not None and (animation.action is not None or len(animation.drivers) > 0):
-        return obj.data
-    return original
-
-
 def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
     """Every visible light instance of the evaluated depsgraph (lights of power 0 are skipped)."""
     lights = []
@@ -114,8 +103,8 @@ def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
         if warnings is not None and obj.original.name not in warned_objects:
             warned_objects.add(obj.original.name)
             warnings.extend(light_warnings(obj))
-        # Settings from the original light (see ``export_material``) unless animated, placement from the instance.
-        light = _export_light(obj.name, _settings_source(obj), instance.matrix_world)
+        # Settings from the original light unless animated (``animated``), placement from the instance.
+        light = _export_light(obj.name, settings_source(obj.data), instance.matrix_world)
         light.visible_camera = bool(getattr(obj, "visible_camera", False))
         light.light_group = obj.lightgroup
         if light.power_w > 0 or light.irradiance_w_m2 > 0:

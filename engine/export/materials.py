@@ -15,6 +15,7 @@ from ..properties.principled import surface_node
 from ..tracer.bsdf.closure import CONDUCTOR, DIELECTRIC, FRESNEL_CONDUCTOR, FRESNEL_F82
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Material, SpectrumSpec
+from .animated import settings_source
 from .aovs import read_aovs
 from .nodes import AttributeSlots, compile_material
 from .nodes.overrides import check_film
@@ -109,9 +110,8 @@ class MaterialExporter:
         """The tracer material for a Blender material (None → the default grey diffuse)."""
         if material is None:
             return DEFAULT_MATERIAL
-        # The original data-block: what the user (or a script) set last, even when the depsgraph has not
-        # re-copied it (Python edits to settings do not tag the material for evaluation).
-        material = material.original
+        # The original data-block (what a script set last), or the evaluated one where animated: ``animated``.
+        material = settings_source(material)
         settings = getattr(material, "prism", None)
         if settings is not None and settings.is_thin_film:
             if settings.reflectance_source != "COLOR" and self.warnings is not None:

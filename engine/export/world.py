@@ -14,6 +14,7 @@ import math
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Sky, World
 from ..properties.node_links import is_linked
+from .animated import settings_source
 from .environment_image import image_rgb, replace_bad_texels
 from .float_range import check_light_value
 from .world_background import BackgroundTerm, background_term, background_terms
@@ -124,6 +125,7 @@ def export_world(scene, warnings: list[str] | None = None, view_layer=None) -> W
     world = scene.world
     if world is None:
         return World(color=(0.0, 0.0, 0.0), strength=0.0)
+    world = settings_source(world)  # the evaluated copy where animated: ``animated``
     if view_layer is not None and not view_layer.use_sky:
         return World(color=(0.0, 0.0, 0.0), strength=0.0, name=world.name)
     cycles = getattr(world, "cycles", None)
