@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import PrismInputError
+from .trapezoid import trapezoid
 
 _CMF_TABLE = None  # (wavelength_nm [M], xyz [M, 3]) once loaded
 _LAZY = {}
@@ -46,7 +47,7 @@ def _cmf_table():
 
 def _cmf_y_integral():
     wavelength_nm, xyz = _cmf_table()
-    return float(np.trapz(xyz[:, 1], wavelength_nm))
+    return float(trapezoid(xyz[:, 1], wavelength_nm))
 
 
 def _xyz_to_linear_rec709():
@@ -172,14 +173,14 @@ def spectrum_luminance(spectrum_fn):
     """
     table_nm, xyz = _cmf_table()
     values = np.asarray(spectrum_fn(table_nm), dtype=np.float64)
-    return np.trapz(values * xyz[:, 1], table_nm, axis=-1) / __getattr__("CMF_Y_INTEGRAL")
+    return trapezoid(values * xyz[:, 1], table_nm, axis=-1) / __getattr__("CMF_Y_INTEGRAL")
 
 
 def spectrum_to_xyz(spectrum_fn):
     """XYZ [..., 3] of a spectrum given as a callable of wavelength (nm) (trapezoid on the 1 nm grid; smooth spectra)."""
     table_nm, xyz = _cmf_table()
     values = np.asarray(spectrum_fn(table_nm), dtype=np.float64)
-    return np.trapz(values[..., None] * xyz, table_nm, axis=-2) / __getattr__("CMF_Y_INTEGRAL")
+    return trapezoid(values[..., None] * xyz, table_nm, axis=-2) / __getattr__("CMF_Y_INTEGRAL")
 
 
 def check_rgb(rgb, what):

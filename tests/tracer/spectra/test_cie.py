@@ -3,6 +3,7 @@ import pytest
 
 from engine.tracer.spectra import cie
 from engine.tracer.spectra.wavelengths import GaussianChannels, sample_visible_wavelengths
+from engine.tracer.spectra.trapezoid import trapezoid
 
 
 def test_cmf_table_values_and_range():
@@ -26,7 +27,7 @@ def test_constant_spectrum_estimate_converges_to_cmf_integral():
     wavelength_nm, pdf = sample_visible_wavelengths(rng.random(n), 4)
     xyz = cie.spectral_samples_to_xyz(np.ones_like(wavelength_nm), wavelength_nm, pdf)
     table_nm = np.arange(360.0, 830.5, 1.0)
-    expected = np.trapz(cie.cie_xyz_cmf(table_nm), table_nm, axis=0) / cie.CMF_Y_INTEGRAL
+    expected = trapezoid(cie.cie_xyz_cmf(table_nm), table_nm, axis=0) / cie.CMF_Y_INTEGRAL
     assert expected[1] == pytest.approx(1.0)
     mean = xyz.mean(axis=0)
     stderr = xyz.std(axis=0, ddof=1) / np.sqrt(n)
