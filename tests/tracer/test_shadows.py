@@ -7,7 +7,7 @@ from engine.tracer.spectra import cie
 from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Light, Material, SpectrumSpec
-from engine.tracer.spectra.thin_film import thin_film_reflectance
+from helpers.thin_film import thin_film_reflectance
 from engine.tracer.spectra.trapezoid import trapezoid
 
 from .tracer_scenes import look_at, make_scene, quad, settings

@@ -61,10 +61,6 @@ class EmissionTerm:
     spectrum: object = None  # a scene.SpectrumSpec (Blackbody feeding an emission)
 
 
-class Unsupported(Exception):
-    """Raised by a handler for a configuration it cannot compile; the message says what Prism did."""
-
-
 @dataclass
 class MaterialCompiler:
     material: object

@@ -136,21 +136,6 @@ def spectral_samples_to_xyz(radiance, wavelength_nm, pdf):
     return xyz / __getattr__("CMF_Y_INTEGRAL")
 
 
-def gaussian_channel_samples_to_rgb(radiance, wavelength_nm, pdf, channels):
-    """RGB estimate for ``gaussian_rgb`` mode: one wavelength per channel.
-
-    ``radiance``, ``wavelength_nm``, ``pdf``: [N, 3], column c sampled for
-    channel c. The channel response is the channel's own truncated Gaussian
-    (``channels.pdf``), so the weight is response / pdf and a constant
-    spectrum of 1 gives exactly RGB (1, 1, 1). Returns [N, 3].
-    """
-    radiance = np.asarray(radiance, dtype=np.float64)
-    pdf = np.asarray(pdf, dtype=np.float64)
-    response = channels.pdf(wavelength_nm)
-    safe_pdf = np.where(pdf > 0.0, pdf, 1.0)
-    return np.where(pdf > 0.0, radiance * (response / safe_pdf), 0.0)
-
-
 def monochromatic_rgb(wavelength_nm):
     """Display colour of monochromatic light, for overlays: linear Rec.709 [..., 3].
 
