@@ -42,7 +42,7 @@ test-fast: $(STAMP)
 	$(PY) -m pytest -q --durations=10 $(FAST_TESTS)
 
 # The tracer's physics on both numpy lines Prism meets: numpy 1.26 (Blender 4.2-5.0, .venv) and
-# numpy 2.x (.venv-numpy2, the same pins without bpy, which needs numpy<2). numba 0.68 accepts
+# numpy 2.x (.venv-numpy2, the same pins without bpy, which needs numpy<2: helpers/without_bpy.py). numba 0.68 accepts
 # numpy 1.22-2.5. numpy 2.5 needs Python >= 3.12: `make test-numpy NUMPY2=2.5.2 NUMPY2_PYTHON=python3.12`.
 # A call of the removed np.trapz fails the numpy 2 run (-W error: the name is deprecated up to 2.4).
 NUMPY2 ?= 2.4.6
@@ -59,8 +59,8 @@ $(NUMPY2_STAMP): requirements.txt
 
 test-numpy: $(STAMP) $(NUMPY2_STAMP)
 	$(PY) -m pytest -q -p no:cacheprovider $(PHYSICS_TESTS)
-	PRISM_KERNEL_CACHE=$(CURDIR)/build/kernels-numpy2 $(VENV_NUMPY2)/bin/python -m pytest -q -p no:cacheprovider \
-	  -W "error:.*trapz:DeprecationWarning" $(PHYSICS_TESTS)
+	PYTHONPATH=tests PRISM_KERNEL_CACHE=$(CURDIR)/build/kernels-numpy2 $(VENV_NUMPY2)/bin/python -m pytest -q \
+	  -p no:cacheprovider -p helpers.without_bpy -W "error:.*trapz:DeprecationWarning" $(PHYSICS_TESTS)
 
 # Regenerates docs/bad_input.md from the tests that feed Prism bad input.
 inventory: $(STAMP)
