@@ -42,9 +42,10 @@ test-fast: $(STAMP)
 	$(PY) -m pytest -q --durations=10 $(FAST_TESTS)
 
 # The tracer's physics on both numpy lines Prism meets: numpy 1.26 (Blender 4.2-5.0, .venv) and
-# numpy 2.x (.venv-numpy2, the same pins without bpy, which needs numpy<2: helpers/without_bpy.py). numba 0.68 accepts
-# numpy 1.22-2.5. numpy 2.5 needs Python >= 3.12: `make test-numpy NUMPY2=2.5.2 NUMPY2_PYTHON=python3.12`.
-# A call of the removed np.trapz fails the numpy 2 run (-W error: the name is deprecated up to 2.4).
+# numpy 2.x (.venv-numpy2: the same pins without bpy, which needs numpy<2; helpers/without_bpy.py).
+# numba 0.68 accepts numpy 1.22-2.5. numpy 2.5 (no np.trapz at all) needs Python >= 3.12:
+#   make test-numpy NUMPY2=2.5.5 NUMPY2_PYTHON=python3.12
+# Up to 2.4 np.trapz is only deprecated: -W error makes a call of it fail the numpy 2 run.
 NUMPY2 ?= 2.4.6
 NUMPY2_PYTHON ?= $(PYTHON)
 VENV_NUMPY2 := .venv-numpy2
