@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: render rainbow sky test extension bench parity venv clean inventory
+.PHONY: render rainbow sky test test-fast test-numpy extension bench parity venv clean inventory
 
 # Creates .venv with the pinned requirements, once; re-running is a no-op.
 $(STAMP): requirements.txt
@@ -31,9 +31,40 @@ sky: $(STAMP)
 	$(PY) render.py renders/sky.blend --samples 256 --output renders/sky.png
 	$(PY) demo/render_cycles.py renders/sky.blend renders/sky_cycles.png --samples 128
 
-# Runs the test suite.
+# Runs the test suite; the 25 slowest tests close the output (where the time goes).
 test: $(STAMP)
-	$(PY) -m pytest
+	$(PY) -m pytest --durations=25
+
+# The physics and tracer tests alone (no bpy, no renders through Blender): tests/tracer and
+# tests/benchmarks. Under two minutes once the kernels are compiled (README, "Tests").
+FAST_TESTS := tests/tracer tests/benchmarks
+test-fast: $(STAMP)
+	$(PY) -m pytest -q --durations=10 $(FAST_TESTS)
+
+# The tracer's physics on both numpy lines Prism meets: numpy 1.26 (Blender 4.2-5.0, .venv) and
+# numpy 2.x (.venv-numpy2: the same pins without bpy, which needs numpy<2; helpers/without_bpy.py).
+# numba 0.68 accepts numpy 1.22-2.5. numpy 2.5 (no np.trapz at all) needs Python >= 3.12:
+#   make test-numpy NUMPY2=2.5.5 NUMPY2_PYTHON=python3.12
+# Up to 2.4 np.trapz is only deprecated: -W error makes a call of it fail the numpy 2 run.
+NUMPY2 ?= 2.4.6
+NUMPY2_PYTHON ?= $(PYTHON)
+VENV_NUMPY2 := .venv-numpy2
+NUMPY2_STAMP := $(VENV_NUMPY2)/.installed-$(NUMPY2)
+# Closed forms and samplers only: the three test files that render a scene stay in test-fast.
+PHYSICS_TESTS := tests/tracer/spectra tests/tracer/bsdf tests/tracer/lens \
+  --ignore=tests/tracer/lens/test_camera.py --ignore=tests/tracer/lens/test_render_chromatic.py \
+  --ignore=tests/tracer/spectra/test_atmosphere.py
+$(NUMPY2_STAMP): requirements.txt
+	@test -x $(VENV_NUMPY2)/bin/python || $(NUMPY2_PYTHON) -m venv $(VENV_NUMPY2)
+	grep -vE '^(bpy|numpy|flip-evaluator)==' requirements.txt > $(VENV_NUMPY2)/requirements.txt
+	$(VENV_NUMPY2)/bin/python -m pip install --quiet --upgrade pip
+	$(VENV_NUMPY2)/bin/python -m pip install --quiet -r $(VENV_NUMPY2)/requirements.txt numpy==$(NUMPY2)
+	@touch $@
+
+test-numpy: $(STAMP) $(NUMPY2_STAMP)
+	$(PY) -m pytest -q -p no:cacheprovider $(PHYSICS_TESTS)
+	PYTHONPATH=tests PRISM_KERNEL_CACHE=$(CURDIR)/build/kernels-numpy2 $(VENV_NUMPY2)/bin/python -m pytest -q \
+	  -p no:cacheprovider -p helpers.without_bpy -W "error:.*trapz:DeprecationWarning" $(PHYSICS_TESTS)
 
 # Regenerates docs/bad_input.md from the tests that feed Prism bad input.
 inventory: $(STAMP)
@@ -64,4 +95,4 @@ parity: $(STAMP)
 	$(PY) -m benchmarks.parity.run $(PARITY_ARGS)
 
 clean:
-	rm -rf renders dist build .pytest_cache
+	rm -rf renders dist build .pytest_cache $(VENV_NUMPY2)

@@ -136,12 +136,3 @@ class Replayer:
     def close(self):
         if self.pool is not None:
             self.pool.shutdown()
-
-
-def replay_seconds(geometry, batches, threads: int, repeats: int = 3) -> float:
-    """Median wall time for bare embreex to cast ``batches`` with ``threads`` threads."""
-    replayer = Replayer(geometry, batches, threads)
-    try:
-        return float(np.median([replayer.seconds() for _ in range(repeats)]))
-    finally:
-        replayer.close()

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import report
+from . import targets
 from .findings_tables import (_ceiling_table, _demo_profile, _demo_section, _experiment_section, _sampler_table,
                               _stage_table, _startup_table)
 from .findings_values import _embree_share, _glass_ceiling, _largest_stage, _pct, _peer_ratio, _stage_rows, _status
@@ -20,15 +20,15 @@ def _targets(results):
     ceil = _glass_ceiling(results)
     if ceil:
         f = ceil["fraction"]
-        gap = "" if f >= report.TARGET_CEILING else f"; a pass must get {report.TARGET_CEILING / f:.1f}x faster"
+        gap = "" if f >= targets.TARGET_CEILING else f"; a pass must get {targets.TARGET_CEILING / f:.1f}x faster"
         lines.append(f"| path throughput >= 60 % of the embreex ceiling, cornell_glass, 2 threads | {_pct(f)} "
                      f"({ceil['samples_per_second']:,.0f} of {ceil['ceiling_samples_per_second']:,.0f} samples/s{gap}) | "
-                     f"{_status(f >= report.TARGET_CEILING)} |")
+                     f"{_status(f >= targets.TARGET_CEILING)} |")
     else:
         lines.append("| path throughput >= 60 % of the embreex ceiling, cornell_glass, 2 threads | not measured | - |")
     comps = results.get("peer_comparisons", [])
     for c in comps:
-        target = report.peer_target(c["peer"])
+        target = targets.peer_target(c["peer"])
         ratio, note, measured = _peer_ratio(c)
         bound = "no worse than" if target == 1.0 else f"within {target:g}x of"
         value = f"Prism / peer = {ratio:.3g}{note}" if measured else "the two curves do not overlap in time"
@@ -50,7 +50,7 @@ def _targets(results):
         lines.append(target_row(case, results["scaling"]["cores"]))
     demo = results.get("demo")
     if demo and "speedup_process" in demo:
-        ok = demo["speedup_process"] >= report.TARGET_DEMO_SPEEDUP and demo["spp"] == 64
+        ok = demo["speedup_process"] >= targets.TARGET_DEMO_SPEEDUP and demo["spp"] == 64
         noise = "" if "noise" not in demo["now"] else (
             f"; noise {demo['before']['noise']:.2f} -> {demo['now']['noise']:.2f} display levels")
         lines.append(f"| `make render` (480 x 320, {demo['spp']} spp) >= 5x faster than the numpy tracer, with less "
@@ -66,7 +66,7 @@ def _targets(results):
         lines += ["", "| earlier target | measured in this run | status |", "|---|---|---|",
                   f"| cie hero reaches relMSE 1e-2 on the prism >= 4x faster than gaussian_rgb | "
                   f"{row['ratio']:.2f}x ({row['seconds']:.2f} s vs {hero['gaussian_seconds']:.2f} s){ext} | "
-                  f"{_status(row['ratio'] >= report.TARGET_HERO_SPEEDUP)} |"]
+                  f"{_status(row['ratio'] >= targets.TARGET_HERO_SPEEDUP)} |"]
     return "\n".join(lines)
 
 
@@ -226,10 +226,10 @@ def _dominates(results):
                      "is no chunk's CPU time")
         out.append(line + ".")
     ceil = _glass_ceiling(results)
-    if ceil and ceil["fraction"] < report.TARGET_CEILING:
-        out.append(f"- To reach {_pct(report.TARGET_CEILING)} of the ceiling on cornell_glass with the same rays, a "
+    if ceil and ceil["fraction"] < targets.TARGET_CEILING:
+        out.append(f"- To reach {_pct(targets.TARGET_CEILING)} of the ceiling on cornell_glass with the same rays, a "
                    f"pass has to fall from {ceil['pass_seconds'] * 1000:.1f} ms to "
-                   f"{ceil['embree_seconds'] / report.TARGET_CEILING * 1000:.1f} ms (2 threads, wall clock).")
+                   f"{ceil['embree_seconds'] / targets.TARGET_CEILING * 1000:.1f} ms (2 threads, wall clock).")
     return "\n".join(out) if out else "- (no stage split in this run)"
 
 

@@ -46,7 +46,6 @@ QUICK = dict(resolution=32, checkpoints=[2, 4, 8, 16], repeats=2, ref_spp=256, r
              peer_ref_spp={"mitsuba": 2048, "cycles": 512}, ceiling_passes=2, scaling_rounds=2,
              per_scene={"prism": dict(resolution=24, checkpoints=[8, 16, 32, 64, 128], ref_spp=1024,
                                       ref_max_seconds=40.0)})
-CEILING_SCENE = "cornell_glass"
 
 
 def _section(results, name):

@@ -30,6 +30,7 @@ import numpy as np
 from . import ceiling, scenes
 from .findings_values import _pct, _status
 from .prism_runs import settings_for
+from .targets import TARGET_SCALING_KEPT
 
 #: (scene, pass name, resolution, samples per pixel of a pass)
 FULL_CASES = [("cornell_glass", "small", 384, 1), ("cornell_glass", "large", 1024, 4),
@@ -151,13 +152,11 @@ MIN_EMBREE_SCALING = 1.3  # below this, embreex's own speed-up says the other co
 def target_row(case: dict, cores: int) -> str:
     """The targets' row of one scaling case: >= 85 % of embreex's scaling at every T up to the cores,
     and never slower with more threads (oversubscribed T no slower than T = 2)."""
-    from . import report  # report imports findings, which imports this module
-
     rows = case["rows"]
     inside = [r for r in rows if r["threads"] > 1 and not r["oversubscribed"]]
     two = next((r for r in rows if r["threads"] == 2), None)
     measurable = all(r["embree_speedup"] >= MIN_EMBREE_SCALING for r in inside)
-    kept_ok = all(r["kept"] >= report.TARGET_SCALING_KEPT for r in inside)
+    kept_ok = all(r["kept"] >= TARGET_SCALING_KEPT for r in inside)
     monotone = all(b["paths_per_second"] >= 0.95 * a["paths_per_second"] for a, b in zip(rows, rows[1:])
                    if not b["oversubscribed"])
     over_ok = two is None or all(r["paths_per_second"] >= 0.95 * two["paths_per_second"] for r in rows
@@ -168,7 +167,7 @@ def target_row(case: dict, cores: int) -> str:
     status = (_status(kept_ok and monotone and over_ok) if measurable else
               "not measurable in this run (embreex itself did not scale: the cores were busy)")
     least_text = f"least {_pct(least['kept'])} of embreex's scaling; " if least else ""
-    return (f"| scaling >= {report.TARGET_SCALING_KEPT:.0%} of embreex's at every T <= {cores}, never slower with "
+    return (f"| scaling >= {TARGET_SCALING_KEPT:.0%} of embreex's at every T <= {cores}, never slower with "
             f"more threads ({case['scene']}, {case['label']} pass) | {least_text}{figures} | {status} |")
 
 

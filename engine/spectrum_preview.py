@@ -18,7 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-WAVELENGTHS_NM = np.arange(360.0, 831.0, 1.0)
+from .tracer.spectra.trapezoid import trapezoid
+from .tracer.spectra.wavelengths import VISIBLE_NM_GRID as WAVELENGTHS_NM
 _FINE_PER_NM = 10
 _CACHE_SIZE = 64
 #: Beyond this distance from the Planckian locus, CCT and colour rendering indices mean nothing.
@@ -116,7 +117,7 @@ def _emission(source) -> SpectrumPreview:
     spectrum = emission_spectrum(source.spec())
     fine = _fine_grid()
     values = spectrum.evaluate(fine)
-    xyz = np.trapz(values[:, None] * cie.cie_xyz_cmf(fine), fine, axis=0)
+    xyz = trapezoid(values[:, None] * cie.cie_xyz_cmf(fine), fine, axis=0)
     rgb = np.clip(cie.xyz_to_linear_rec709(xyz), 0.0, None)
     display = tuple(float(c) for c in rgb / rgb.max()) if rgb.max() > 0 else (0.0, 0.0, 0.0)
     # Means over each nanometre: a line narrower than a nanometre keeps its energy (plot and indices).

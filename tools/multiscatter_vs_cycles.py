@@ -70,7 +70,7 @@ def main():
     for name, cells in table.items():
         print(f"| {name} | " + " | ".join(cells) + " |")
     sys.stdout.flush()
-    os._exit(0)  # the bpy module can hang in a destructor at exit (ENVIRONMENT.md)
+    os._exit(0)  # the bpy module can hang in a destructor at exit (engine/batch/process_exit.py)
 
 
 if __name__ == "__main__":

@@ -117,7 +117,7 @@ def main(argv=None) -> int:
         report["stages"] = split
     if args.json:
         Path(args.json).write_text(json.dumps(report, indent=1))
-    if args.blend:  # the bpy module can hang at exit after a render (../shared/ENVIRONMENT.md)
+    if args.blend:  # the bpy module can hang at exit after a render (engine/batch/process_exit.py)
         from render import exit_now
 
         exit_now(0)

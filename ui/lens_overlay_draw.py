@@ -11,7 +11,7 @@ add-on unregisters:
   Display Size in front of the origin (the camera gizmo's own size), whatever the lens's
   millimetres.
 - ``POST_PIXEL``: the spot diagram inset (bottom right, drawn by
-  ``lens_overlay_export.draw_spot_inset``) with RMS radii, and the reason
+  ``lens_spot_inset.draw_spot_inset``) with RMS radii, and the reason
   when nothing can be drawn.
 
 Line widths follow Preferences > Interface > Line Width through
@@ -22,23 +22,16 @@ lens, focus, f-stop or overlay settings and cached); this module only draws poly
 
 from __future__ import annotations
 
-import functools
 import os
 import traceback
 
 import bpy
 
 from ..engine.tracer.errors import PrismInputError
+from .lens_overlay_colours import AXIS_RGBA, BLOCKED_ALPHA, OUTLINE_RGBA, SENSOR_RGBA, STOP_RGBA, display_colours
+from .lens_spot_inset import draw_spot_inset
 
 LENGTH_IN_DISPLAY_SIZES = 1.0
-BLOCKED_ALPHA = 0.25
-OUTLINE_RGBA = (0.62, 0.78, 0.95, 0.9)
-STOP_RGBA = (0.95, 0.95, 0.95, 0.95)
-SENSOR_RGBA = (0.75, 0.75, 0.75, 0.9)
-AXIS_RGBA = (0.5, 0.5, 0.5, 0.5)
-TEXT_RGBA = (0.92, 0.92, 0.92, 1.0)
-SPOT_BACKGROUND_RGBA = (0.04, 0.04, 0.05, 0.8)
-SPOT_POINT_SIZE = 3.0
 
 _handles: dict = {}
 _batch_cache: dict = {"key": None, "batches": None}
@@ -51,23 +44,6 @@ _diagram_cache: dict = {"key": None, "diagram": None, "message": ""}
 def overlay_settings(scene):
     """``Scene.prism.lens_overlay`` or None (settings not registered)."""
     return getattr(getattr(scene, "prism", None), "lens_overlay", None)
-
-
-def display_colours(wavelengths_nm):
-    """Display (sRGB-encoded) RGB per wavelength: the CIE colour of the monochromatic light,
-    scene-linear Rec.709 with its largest channel 1, through the sRGB transfer function."""
-    return [_display_colour(float(w)) for w in wavelengths_nm]
-
-
-@functools.lru_cache(maxsize=256)
-def _display_colour(wavelength_nm):
-    import numpy as np
-
-    from ..engine.tracer.spectra.cie import monochromatic_rgb
-
-    linear = np.clip(np.asarray(monochromatic_rgb(np.array([wavelength_nm])), dtype=np.float64)[0], 0.0, 1.0)
-    encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1.0 / 2.4) - 0.055)
-    return tuple(float(c) for c in encoded)
 
 
 def sensor_half_height_mm(scene, camera_data):
@@ -290,8 +266,6 @@ def _draw_pixel():
     if settings.show_spot_diagram:
         size = 160 * scale
         right = context.region.width - _sidebar_width(context) - margin
-        from .lens_overlay_export import draw_spot_inset
-
         draw_spot_inset(diagram, right - size, margin, size, 11 * scale)
 
 

@@ -16,6 +16,8 @@ import bpy
 
 from ..engine.tracer.errors import PrismInputError
 from . import lens_overlay_draw as draw
+from .lens_overlay_colours import TEXT_RGBA
+from .lens_spot_inset import draw_spot_inset
 
 BACKGROUND_RGBA = (0.06, 0.06, 0.07, 1.0)
 
@@ -62,81 +64,6 @@ def ensure_gpu():
             f"{' (' + failure + ')' if failure else ''}. On a headless Linux machine install Mesa EGL "
             "(apt-get install -y libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1), or export from the Blender UI."
         )
-
-
-def nice_extent_um(value_um):
-    """The smallest 1, 2 or 5 x 10^k micrometres not below ``value_um``."""
-    import math
-
-    if not value_um > 0.0 or not math.isfinite(value_um):
-        return 1.0
-    power = 10.0 ** math.floor(math.log10(value_um))
-    return next(m * power for m in (1.0, 2.0, 5.0, 10.0) if m * power >= value_um * (1 - 1e-9))
-
-
-def _rectangle(shader, x0, y0, x1, y1, rgba, filled):
-    from gpu_extras.batch import batch_for_shader
-
-    corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
-    shader.uniform_float("color", rgba)
-    if filled:
-        batch_for_shader(shader, "TRIS", {"pos": corners}, indices=((0, 1, 2), (0, 2, 3))).draw(shader)
-    else:
-        batch_for_shader(shader, "LINE_STRIP", {"pos": corners + corners[:1]}).draw(shader)
-
-
-def _spot_legend(diagram, colours, half_um):
-    lines = [(f"Spot diagram (box {2 * half_um:g} µm)", draw.TEXT_RGBA)]
-    for wavelength, rgb, spot in zip(diagram.wavelengths_nm, colours, diagram.spots):
-        rms = "no rays reach the sensor" if not len(spot.hits_mm) else f"RMS {1000.0 * spot.rms_radius_mm:.1f} µm"
-        lines.append((f"{wavelength:g} nm  {rms}", (*(0.7 * c + 0.3 for c in rgb), 1.0)))  # lifted to read on dark
-    return lines
-
-
-def draw_spot_inset(diagram, x0, y0, size, font_size, point_size=draw.SPOT_POINT_SIZE):
-    """Spot diagram in pixel space: a ``size`` px square at (``x0``, ``y0``) (bottom left), one
-    colour per wavelength, around the centroid of all hits, with its legend (RMS radii) above
-    it, all on a dark panel so it reads over any background. Returns the panel's height."""
-    import blf
-    import gpu
-    import numpy as np
-    from gpu_extras.batch import batch_for_shader
-
-    spots = [s for s in diagram.spots if len(s.hits_mm)]
-    colours = draw.display_colours(diagram.wavelengths_nm)
-    half_um, centre = 1.0, np.zeros(2)
-    if spots:
-        all_hits = np.concatenate([s.hits_mm for s in spots])
-        centre = all_hits.mean(axis=0)
-        half_um = nice_extent_um(1000.0 * 1.05 * float(np.abs(all_hits - centre).max()))
-    font, line, pad = 0, 1.4 * font_size, 0.5 * font_size
-    blf.size(font, font_size)
-    legend = _spot_legend(diagram, colours, half_um)
-    width = max(size, max(blf.dimensions(font, text)[0] for text, _ in legend))
-    top = y0 + size + pad + len(legend) * line
-    gpu.state.blend_set("ALPHA")
-    flat = gpu.shader.from_builtin("UNIFORM_COLOR")
-    flat.bind()
-    _rectangle(flat, x0 - pad, y0 - pad, x0 + width + pad, top + pad, draw.SPOT_BACKGROUND_RGBA, True)
-    _rectangle(flat, x0, y0, x0 + size, y0 + size, draw.SENSOR_RGBA, False)
-    if spots:
-        pos, col = [], []
-        for spot in spots:
-            rgb = colours[diagram.wavelengths_nm.index(spot.wavelength_nm)]
-            xy = (spot.hits_mm - centre) * (1000.0 / half_um) * (0.5 * size) + (x0 + 0.5 * size, y0 + 0.5 * size)
-            pos.append(xy)
-            col.append(np.tile((*rgb, 0.85), (len(xy), 1)))
-        shader = gpu.shader.from_builtin("POINT_FLAT_COLOR")
-        gpu.state.point_size_set(point_size)
-        gpu.state.blend_set("ADDITIVE")
-        points = {"pos": np.concatenate(pos).astype(np.float32), "color": np.concatenate(col).astype(np.float32)}
-        batch_for_shader(shader, "POINTS", points).draw(shader)
-    for k, (text, rgba) in enumerate(reversed(legend)):
-        blf.color(font, *rgba)
-        blf.position(font, x0, y0 + size + pad + k * line + 0.3 * font_size, 0)
-        blf.draw(font, text)
-    gpu.state.blend_set("NONE")
-    return top + pad - (y0 - pad)
 
 
 def diagram_layout(diagram, width, height):
@@ -200,7 +127,7 @@ def render_diagram_pixels(diagram, width, height, focus_mm=math.inf, fstop=None)
                 if inset is not None:
                     draw_spot_inset(diagram, *inset, font_size, point_size=max(2.0, height / 250.0))
                 blf.size(0, font_size)
-                blf.color(0, *draw.TEXT_RGBA)
+                blf.color(0, *TEXT_RGBA)
                 blf.position(0, 0.04 * height, height - 0.06 * height, 0)
                 blf.draw(0, _title(diagram, focus_mm, fstop))
             buffer = framebuffer.read_color(0, 0, width, height, 4, 0, "FLOAT")

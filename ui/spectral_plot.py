@@ -11,9 +11,10 @@ import sys
 
 import numpy as np
 
+from ..engine.tracer.spectra.wavelengths import VISIBLE_RANGE_NM as PLOT_RANGE_NM
+
 PLOT_WIDTH_PX = 240
 PLOT_HEIGHT_PX = 120
-PLOT_RANGE_NM = (360.0, 830.0)
 _MARGIN_PX = 4
 _BACKGROUND = (0.12, 0.12, 0.12)
 _CMF_COLOURS = ((0.75, 0.55, 0.55), (0.55, 0.75, 0.55), (0.55, 0.6, 0.8))

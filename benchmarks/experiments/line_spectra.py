@@ -15,6 +15,8 @@ from engine.tracer.renderer import Renderer
 from engine.tracer.scene import SampledSpectrum, SpectrumSpec
 from engine.tracer.spectra import cie
 from engine.tracer.spectra.emission_spectrum import emission_spectrum
+from engine.tracer.spectra.trapezoid import trapezoid
+from engine.tracer.spectra.wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM, VISIBLE_NM_GRID
 
 TITLE = "Spiky light spectra: colour noise at equal samples"
 
@@ -23,7 +25,7 @@ LINES_NM = (460, 580)  # a blue and a yellow line: a white-ish lamp no smooth sp
 
 def _two_lines() -> SpectrumSpec:
     """Two emission lines 1 nm wide (full width at half maximum), as a tabulated spectrum."""
-    wavelength_nm = np.arange(360.0, 831.0)
+    wavelength_nm = VISIBLE_NM_GRID
     values = np.zeros(len(wavelength_nm))
     for line in LINES_NM:
         values[wavelength_nm == line] = 1.0
@@ -55,8 +57,8 @@ def _unguided():
 
 def _lamp_white(spec):
     """The lamp's XYZ per unit luminance: the colour every lit pixel of the grey box converges to."""
-    grid = np.linspace(360.0, 830.0, 47001)
-    xyz = np.trapz(emission_spectrum(spec).evaluate(grid)[:, None] * cie.cie_xyz_cmf(grid), grid, axis=0)
+    grid = np.linspace(VISIBLE_MIN_NM, VISIBLE_MAX_NM, 47001)
+    xyz = trapezoid(emission_spectrum(spec).evaluate(grid)[:, None] * cie.cie_xyz_cmf(grid), grid, axis=0)
     return xyz / xyz[1]
 
 

@@ -14,8 +14,7 @@ from dataclasses import dataclass
 from ..properties.spectrum_sources import TEMPERATURE_RANGE_K
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import ReflectanceSpec, SpectrumSpec
-
-VISIBLE_RANGE_NM = (360.0, 830.0)
+from ..tracer.spectra.wavelengths import VISIBLE_RANGE_NM
 
 
 _EMISSION_FIELDS = {"BLACKBODY": ("temperature_k",), "MONOCHROMATIC": ("wavelength_nm", "width_nm"),

@@ -6,9 +6,8 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 from ..tracer.errors import PrismInputError
+from ..tracer.spectra.wavelengths import VISIBLE_RANGE_NM
 from ._common import tag_3d_views_for_redraw
-
-VISIBLE_RANGE_NM = (360.0, 830.0)
 
 
 def parse_wavelengths_nm(text: str) -> tuple[float, ...]:

@@ -74,12 +74,6 @@ def surface_node(material):
     return upstream_node(output.inputs["Surface"])
 
 
-def find_principled(material):
-    """The Principled BSDF node Prism reads, or None."""
-    node = surface_node(material)
-    return node if node is not None and node.bl_idname == PRINCIPLED_IDNAME else None
-
-
 def _differs(value, neutral) -> bool:
     if isinstance(neutral, tuple):
         return any(abs(a - b) > 1e-6 for a, b in zip(value, neutral))
@@ -150,19 +144,3 @@ def read_principled(material) -> PrincipledReading:
         if socket is not None and is_linked(socket):
             reading.ignored.append(f"Material '{name}': the map linked into '{socket_name}' is ignored (no bump or tangent maps).")
     return reading
-
-
-def material_kind(reading: PrincipledReading, settings) -> str:
-    """The tracer material kind for a reading and its ``Material.prism`` settings:
-    ``"thin_film"``, ``"dielectric"``, ``"conductor"`` or ``"diffuse"``.
-
-    Principled weights are blended in Blender; Prism picks the dominant lobe
-    (transmission or metallic at 0.5 or more).
-    """
-    if settings is not None and settings.is_thin_film:
-        return "thin_film"
-    if reading.transmission >= 0.5:
-        return "dielectric"
-    if reading.metallic >= 0.5:
-        return "conductor"
-    return "diffuse"

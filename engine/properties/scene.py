@@ -3,6 +3,7 @@
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
+from ..tracer.spectra.wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 from ._common import WAVELENGTH_SUBTYPE, register_group, unregister_group
 from .file_path import BLEND_RELATIVE_PATH_OPTIONS
 from .farm import PrismFarmSettings
@@ -37,8 +38,8 @@ def _mean(channel: str, default: float):
         name=f"{channel} Mean",
         description=f"Centre wavelength in nm of the {channel} channel's Gaussian (Gaussian RGB mode)",
         default=default,
-        min=360.0,
-        max=830.0,
+        min=VISIBLE_MIN_NM,
+        max=VISIBLE_MAX_NM,
         subtype=WAVELENGTH_SUBTYPE,
     )
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-WAVELENGTHS_NM = np.arange(360.0, 831.0, 1.0)
+from ..tracer.spectra.wavelengths import VISIBLE_NM_GRID as WAVELENGTHS_NM
 
 # (weight, mean_nm, sigma_below_nm, sigma_above_nm) per lobe, from Wyman et al. 2013, section 2.
 _LOBES = {

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from bpy.props import FloatProperty, StringProperty
 
+from ..tracer.spectra.wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 from ._common import TEMPERATURE_SUBTYPE, WAVELENGTH_SUBTYPE
 from .file_path import BLEND_RELATIVE_PATH_OPTIONS
 
@@ -58,7 +59,7 @@ def temperature_property(description: str):
 
 def line_wavelength_property():
     return FloatProperty(name="Wavelength", description="Centre wavelength of the emission line in nm", default=550.0,
-                         min=360.0, max=830.0, subtype=WAVELENGTH_SUBTYPE)
+                         min=VISIBLE_MIN_NM, max=VISIBLE_MAX_NM, subtype=WAVELENGTH_SUBTYPE)
 
 
 def line_width_property():

@@ -36,8 +36,6 @@ class Buffer:
 #: Light that reached the camera, split by what it did first (see ``stages.passes``).
 LIGHT_SLOTS = ("emission", "environment", "diffuse_direct", "diffuse_indirect", "glossy_direct", "glossy_indirect",
                "transmission_direct", "transmission_indirect", "diffuse_color", "glossy_color", "transmission_color")
-#: Lobe categories of the first surface (columns of ``split``): diffuse, glossy, transmission.
-CATEGORIES = ("diffuse", "glossy", "transmission")
 
 BUFFERS = {b.key: b for b in (
     Buffer("depth", 2),  # depth of a sample on a surface (m), 1 for such a sample

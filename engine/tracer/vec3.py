@@ -94,8 +94,3 @@ def transform(m, v):
         m[1, 0] * v[0] + m[1, 1] * v[1] + m[1, 2] * v[2],
         m[2, 0] * v[0] + m[2, 1] * v[1] + m[2, 2] * v[2],
     )
-
-
-@kernel
-def is_finite(a):
-    return math.isfinite(a[0]) and math.isfinite(a[1]) and math.isfinite(a[2])

@@ -16,8 +16,6 @@ RAY_GLOSSY = 8
 RAY_TRANSMISSION = 16
 HOLDOUT = 32
 ALL_RAYS = RAY_CAMERA | RAY_SHADOW | RAY_DIFFUSE | RAY_GLOSSY | RAY_TRANSMISSION
-RAY_NAMES = {RAY_CAMERA: "camera", RAY_SHADOW: "shadow", RAY_DIFFUSE: "diffuse", RAY_GLOSSY: "glossy",
-             RAY_TRANSMISSION: "transmission"}
 
 
 def triangle_flags(scene, original) -> np.ndarray:

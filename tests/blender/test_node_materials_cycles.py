@@ -1,6 +1,6 @@
 """Node materials against Cycles: the same .blend rendered by both, compared by statistics.
 
-Cycles is the oracle (ENVIRONMENT.md): single-scatter GGX everywhere (Multiscatter GGX, Blender's default,
+Cycles is the oracle (set up by ``helpers/cycles.py``): single-scatter GGX everywhere (Multiscatter GGX, Blender's default,
 has its own comparison in absolute luminance: ``test_multiscatter_cycles.py``), box filter, no adaptive
 sampling or denoising, equal bounce limits. Images are compared normalised by their mean luminance, per
 object (pixels an ID render shows wholly inside one object) and by relative MSE. Saturated colours met twice along a path are avoided: the product of two smooth spectra

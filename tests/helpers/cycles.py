@@ -1,6 +1,6 @@
-"""Render the current bpy scene with Cycles, set up to compare with Prism by statistics (see
-/work/shared/ENVIRONMENT.md): CPU, box filter of 1 px, no adaptive sampling, no denoising, no clamping,
-single-scattering GGX where it matters, every bounce limit at ``max_bounces``."""
+"""Render the current bpy scene with Cycles, set up to compare with Prism by statistics: CPU, box
+filter of 1 px, no adaptive sampling, no denoising, no clamping, single-scattering GGX where it
+matters, every bounce limit at ``max_bounces``."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """Rendering one bpy scene with Cycles and with Prism, and comparing the images by statistics.
 
-Cycles is set up as ENVIRONMENT.md describes for comparisons: CPU, box filter of 1 px, no adaptive
+Cycles is set up for comparisons as ``helpers/cycles.py`` does: CPU, box filter of 1 px, no adaptive
 sampling, no denoising, no clamping, caustics on, single-scatter GGX wherever a node offers it (both
 renderers then scatter once; Multiscatter GGX is compared on its own, ``test_multiscatter_cycles.py``),
 bounce limits equal to Prism's. Images are compared normalised by their mean luminance

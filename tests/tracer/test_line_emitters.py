@@ -6,6 +6,7 @@ from engine.tracer.spectra import cie
 from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import SpectrumSpec
+from engine.tracer.spectra.trapezoid import trapezoid
 
 from .test_renderer import _closed_form
 from .tracer_scenes import plane_under_point_light, settings
@@ -21,7 +22,7 @@ def test_sodium_lamp_renders_its_colour_with_guided_wavelengths():
     r.render_pass()
     line = emission_spectrum(spec)
     grid = np.linspace(580, 598, 2001)
-    xyz = np.trapz(line.evaluate(grid)[:, None] * cie.cie_xyz_cmf(grid), grid, axis=0) / cie.CMF_Y_INTEGRAL
+    xyz = trapezoid(line.evaluate(grid)[:, None] * cie.cie_xyz_cmf(grid), grid, axis=0) / cie.CMF_Y_INTEGRAL
     rgb = cie.xyz_to_linear_rec709(xyz)
     expected = _closed_form(scene, power, albedo, height).mean() * rgb
     got = r.image_rgb().astype(np.float64).mean((0, 1))

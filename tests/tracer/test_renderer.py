@@ -7,6 +7,7 @@ from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import SpectrumSpec
 from engine.tracer.spectra.wavelengths import GaussianChannels
+from engine.tracer.spectra.trapezoid import trapezoid
 
 from .tracer_scenes import camera_rays, plane_under_point_light, settings
 
@@ -29,7 +30,7 @@ def _gaussian_white(s):
     lam = np.linspace(360.0, 830.0, 4701)
     spec = emission_spectrum(SpectrumSpec()).evaluate(lam)
     ch = GaussianChannels(s.channel_means_nm, s.channel_sigmas_nm)
-    return np.trapz(ch.pdf(np.repeat(lam[:, None], 3, 1)) * spec[:, None], lam, axis=0)
+    return trapezoid(ch.pdf(np.repeat(lam[:, None], 3, 1)) * spec[:, None], lam, axis=0)
 
 
 @pytest.mark.parametrize("mode", ["cie", "gaussian_rgb"])

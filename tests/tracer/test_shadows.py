@@ -7,7 +7,8 @@ from engine.tracer.spectra import cie
 from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Light, Material, SpectrumSpec
-from engine.tracer.spectra.thin_film import thin_film_reflectance
+from helpers.thin_film import thin_film_reflectance
+from engine.tracer.spectra.trapezoid import trapezoid
 
 from .tracer_scenes import look_at, make_scene, quad, settings
 
@@ -32,7 +33,7 @@ def test_point_light_behind_a_soap_film_is_attenuated_not_blocked():
     lam = np.linspace(360.0, 830.0, 4701)
     t = 1.0 - thin_film_reflectance(1.0, lam, 300.0, 1.0, 1.33, 1.0)
     white = emission_spectrum(SpectrumSpec()).evaluate(lam)
-    xyz = np.trapz((white * t)[:, None] * cie.cie_xyz_cmf(lam), lam, axis=0) / cie.CMF_Y_INTEGRAL
+    xyz = trapezoid((white * t)[:, None] * cie.cie_xyz_cmf(lam), lam, axis=0) / cie.CMF_Y_INTEGRAL
     expected = 100 / (4 * np.pi) * 0.5 / (np.pi * 4.0) * cie.xyz_to_linear_rec709(xyz)
     got = r.image_rgb().astype(np.float64).mean((0, 1))
     assert np.allclose(got, expected, rtol=0.03), (got, expected)

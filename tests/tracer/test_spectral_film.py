@@ -11,6 +11,7 @@ from engine.tracer.scene import SpectrumSpec
 from engine.tracer.spectra import cie
 from engine.tracer.spectra.emission_spectrum import emission_spectrum
 from engine.tracer.spectral_film import band_edges_nm
+from engine.tracer.spectra.trapezoid import trapezoid
 
 from .test_renderer import _closed_form
 from .tracer_scenes import plane_under_point_light, settings
@@ -41,7 +42,7 @@ def test_band_radiance_is_the_emitted_spectrum_times_the_irradiance():
     assert film.bands == 47 and film.centres_nm[0] == 365.0
     fine = np.linspace(360.0, 830.0, 47 * 200 + 1)
     emitted = emission_spectrum(spec).evaluate(fine)
-    band_means = np.array([np.trapz(emitted[200 * b: 200 * b + 201], fine[200 * b: 200 * b + 201]) / 10.0
+    band_means = np.array([trapezoid(emitted[200 * b: 200 * b + 201], fine[200 * b: 200 * b + 201]) / 10.0
                            for b in range(47)])
     expected = _closed_form(scene, 100.0, 1.0, 2.0).mean() * band_means
     assert np.abs(bands - expected).max() < 0.03 * expected.max()

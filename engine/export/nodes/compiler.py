@@ -20,54 +20,14 @@ from ...tracer.errors import PrismInputError
 from ...tracer.materials import opcodes as op
 from ...tracer.materials.program_builder import ProgramBuilder, Value
 from .graph import Source, follow, output_node
+from .registry import NODE_HANDLERS, SHADER_HANDLERS
+from .terms import COLOR, FLOAT, SOCKET_KINDS, EmissionTerm, PendingClosure, Weight
 
-FLOAT, VECTOR, COLOR = "float", "vector", "color"
-_SOCKET_KINDS = {"VALUE": FLOAT, "INT": FLOAT, "BOOLEAN": FLOAT, "VECTOR": VECTOR, "RGBA": COLOR, "ROTATION": VECTOR}
 _VECTOR_MATH = {name: i for i, name in enumerate(op.VECTOR_MATH_OPERATIONS)}
 _MATH = {name: i for i, name in enumerate(op.MATH_OPERATIONS)}
 #: The deepest chain of nodes (from the Material Output, through values and shaders) Prism compiles. The
 #: walk recurses a few Python frames per node; ``compile_material`` makes room for this many.
 MAX_NODE_DEPTH = 200
-
-
-@dataclass
-class Weight:
-    """A closure weight: ``scale`` (scalar) × ``colour`` (RGB), under a constant Principled specular layer
-    when ``layer`` is set ((index, roughness, largest f0, multiscatter): see ``ClosureSpec.layer``)."""
-
-    scale: Value
-    colour: Value
-    layer: tuple | None = None
-
-
-@dataclass
-class PendingClosure:
-    kind: int
-    weight: Weight
-    node: object
-    s0: Value | None = None
-    s1: Value | None = None
-    alpha: Value | None = None
-    eta: Value | None = None
-    fresnel: int = 0
-    glass: object = None
-    coat_nm: float = 0.0
-    coat_ior: float = 1.0
-    normal: Value | None = None
-    measured: object = None  # a scene.ReflectanceSpec replacing the colour part of the tint (diffuse) or s0
-    multiscatter: bool = False  # Blender's Multiscatter GGX: energy-compensated (``bsdf.multiscatter``)
-    multiscatter_colour: Value | None = None  # the lobe's Fss where its Fresnel model does not set it
-
-
-@dataclass
-class EmissionTerm:
-    scale: Value
-    colour: Value | None = None
-    spectrum: object = None  # a scene.SpectrumSpec (Blackbody feeding an emission)
-
-
-class Unsupported(Exception):
-    """Raised by a handler for a configuration it cannot compile; the message says what Prism did."""
 
 
 @dataclass
@@ -212,7 +172,7 @@ class MaterialCompiler:
         if not all(math.isfinite(v) for v in values):
             raise PrismInputError(f"Material '{self.material.name}': {socket.node.name} ▸ {socket.name} is "
                                   f"{', '.join(f'{v:g}' for v in values)}; enter a finite number.")
-        socket_kind = _SOCKET_KINDS.get(socket.type, FLOAT)
+        socket_kind = SOCKET_KINDS.get(socket.type, FLOAT)
         if socket_kind == COLOR:
             values = values[:3]
         value = self.const(*values[:3]) if len(values) > 1 else self.const(values[0])
@@ -220,8 +180,6 @@ class MaterialCompiler:
 
     def output(self, source: Source, variant=0):
         """(Value, kind) of an output socket, compiling its node once per context and variant."""
-        from .registry import NODE_HANDLERS
-
         key = (source.key[0], source.key[2], variant)
         outputs = self._outputs.get(key)
         if outputs is None or source.identifier not in outputs:
@@ -241,7 +199,7 @@ class MaterialCompiler:
             self._outputs[key] = outputs
         if source.identifier not in outputs:
             socket = next(s for s in source.node.outputs if s.identifier == source.identifier)
-            kind = _SOCKET_KINDS.get(socket.type, FLOAT)
+            kind = SOCKET_KINDS.get(socket.type, FLOAT)
             if socket.type == "SHADER":
                 self.warn(source.node, "is a shader used as a value; Prism takes 0 there.")
             zero = self.const(0.0, 0.0, 0.0) if kind != FLOAT else self.const(0.0)
@@ -266,8 +224,6 @@ class MaterialCompiler:
     # -- shaders -------------------------------------------------------------------------------------
     def shader(self, socket, context, weight: Weight) -> None:
         """Add the closures and emission of whatever feeds shader input ``socket``, scaled by ``weight``."""
-        from .registry import SHADER_HANDLERS
-
         source, _ = follow(socket, context)
         if source is None:
             return

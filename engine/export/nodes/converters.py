@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from ...tracer.materials import opcodes as op
-from .compiler import COLOR, FLOAT, VECTOR
+from .terms import COLOR, FLOAT, VECTOR
 
 TABLE_SIZE = 256
 

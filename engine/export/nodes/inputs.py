@@ -4,7 +4,7 @@ Value, RGB. Each handler returns {output identifier: (Value, kind)} (see ``compi
 from __future__ import annotations
 
 from ...tracer.materials import opcodes as op
-from .compiler import COLOR, FLOAT, VECTOR
+from .terms import COLOR, FLOAT, VECTOR
 
 
 def _uv_slot(c, name):

@@ -2,8 +2,8 @@
 metallic, transmission, specular, diffuse), Diffuse, Glossy, Metallic, Glass, Refraction, Translucent,
 Transparent, Emission, Holdout, Mix Shader and Add Shader.
 
-Each handler takes the weight its shader socket carries (``compiler.Weight``) and adds closures
-(``compiler.PendingClosure``) and emission. The Principled layering follows Blender's: a layer's closure
+Each handler takes the weight its shader socket carries (``terms.Weight``) and adds closures
+(``terms.PendingClosure``) and emission. The Principled layering follows Blender's: a layer's closure
 takes the running weight, then the layers below keep weight × (1 - its albedo seen from the view
 direction) (coat and specular, ``LAYER_ALBEDO``) or × (1 - its weight) (metallic, transmission).
 """
@@ -13,7 +13,7 @@ from __future__ import annotations
 from ...tracer.bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_CONDUCTOR, FRESNEL_DIELECTRIC,
                                     FRESNEL_F82, FRESNEL_NONE, GLASS, REFRACTION_ONLY, TRANSLUCENT, TRANSPARENT)
 from ...tracer.materials import opcodes as op
-from .compiler import COLOR, FLOAT, VECTOR, PendingClosure, Weight
+from .terms import COLOR, FLOAT, VECTOR, PendingClosure, Weight
 from .measured_base import keeps_own_colour, measured_base
 from .overrides import check_film, conductor_override, glass_override, prism_coating
 

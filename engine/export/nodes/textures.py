@@ -5,7 +5,7 @@ Blender. Each handler returns {output identifier: (Value, kind)} (see ``compiler
 from __future__ import annotations
 
 from ...tracer.materials import opcodes as op
-from .compiler import COLOR, FLOAT, VECTOR
+from .terms import COLOR, FLOAT, VECTOR
 from ..texture_memory import TextureMemoryError
 from .images import MISSING_COLOUR, read_image
 from .inputs import generated, uv

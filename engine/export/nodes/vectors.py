@@ -6,7 +6,7 @@ Weight, Normal. Each handler returns {output identifier: (Value, kind)} (see ``c
 from __future__ import annotations
 
 from ...tracer.materials import opcodes as op
-from .compiler import COLOR, FLOAT, VECTOR
+from .terms import COLOR, FLOAT, VECTOR
 
 
 def _normal_input(c, node, context, variant, name="Normal"):

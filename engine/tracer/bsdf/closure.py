@@ -70,8 +70,6 @@ C_MS_COLOUR = 19
 C_LAYER_MULTISCATTER = 20
 CLOSURE_ROW = 21
 
-#: Spectral sources and the ``spectral`` slot each fills.
-SPECTRAL_SOURCES = (C_SPECTRUM, C_S1, C_TINT)
 
 # Conductor (microfacet reflection) reflectance models.
 FRESNEL_SCHLICK = 0  # F0 = spectral[0]

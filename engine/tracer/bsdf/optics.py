@@ -1,8 +1,8 @@
 """Interface optics per path, in the BSDFs' local frame (+Z = normal, directions point away).
 
-Scalar forms of ``spectra.fresnel`` and ``spectra.thin_film`` (those stay the vectorised references
-the tests compare against): dielectric and conductor Fresnel, Snell refraction, and the Airy
-reflectance of one thin film over a substrate (complex indices allowed).
+Scalar forms of the vectorised references the tests compare against (``tests/helpers/fresnel.py``
+and ``tests/helpers/thin_film.py``, which do not ship): dielectric and conductor Fresnel, Snell
+refraction, and the Airy reflectance of one thin film over a substrate (complex indices allowed).
 """
 
 from __future__ import annotations

@@ -28,7 +28,7 @@ from collections import namedtuple
 
 from ..jit import kernel
 from .pupil_sampling import sample_exit_pupil
-from .system import FATE_ALIVE
+from .ray_fate import FATE_ALIVE
 from .trace_kernel import trace_ray
 
 RealLensTables = namedtuple(

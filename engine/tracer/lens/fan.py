@@ -21,7 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .system import FATE_ALIVE, FATE_BLOCKED, FATE_MISSED, FATE_TIR, TOWARD_FILM
+from .ray_fate import FATE_ALIVE, FATE_BLOCKED, FATE_MISSED, FATE_TIR
+from .system import TOWARD_FILM
 
 LEAD_IN_FRACTION = 0.3  # incoming rays start this fraction of the lens length before the front
 PUPIL_SCAN_RAYS = 801

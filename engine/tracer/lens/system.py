@@ -20,12 +20,7 @@ from functools import cached_property
 import numpy as np
 
 from .media import AIR
-
-FATE_ALIVE = 0
-FATE_MISSED = 1  # the ray never meets the surface's sphere (or meets it behind itself)
-FATE_BLOCKED = 2  # outside the clear aperture or the aperture stop
-FATE_TIR = 3  # total internal reflection
-FATE_NAMES = {FATE_ALIVE: "alive", FATE_MISSED: "missed", FATE_BLOCKED: "blocked", FATE_TIR: "TIR"}
+from .ray_fate import FATE_ALIVE, FATE_NAMES
 
 # Arrays handed to the lens kernels are C-contiguous and writable (np.require copies
 # otherwise): a read-only or strided input would compile and cache another specialisation.

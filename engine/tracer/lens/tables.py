@@ -21,11 +21,12 @@ from collections import namedtuple
 import numpy as np
 
 from ..spectra.dispersion import glass_row
+from ..spectra.wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
 LensTables = namedtuple("LensTables", "vertex_z_mm curvature_per_mm semi_aperture_mm is_stop medium_rows")
 
 # Wavelengths at which a medium given only as a function is probed to recognise its law.
-_PROBE_WAVELENGTHS_NM = np.linspace(360.0, 830.0, 9)
+_PROBE_WAVELENGTHS_NM = np.linspace(VISIBLE_MIN_NM, VISIBLE_MAX_NM, 9)
 _LAW_TOLERANCE = 1e-12
 
 

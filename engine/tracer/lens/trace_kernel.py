@@ -14,7 +14,7 @@ import math
 
 from ..jit import kernel
 from ..spectra.dispersion import refractive_index
-from .system import FATE_ALIVE, FATE_BLOCKED, FATE_MISSED, FATE_TIR
+from .ray_fate import FATE_ALIVE, FATE_BLOCKED, FATE_MISSED, FATE_TIR
 
 
 @kernel

@@ -138,9 +138,3 @@ def emitter_group(lights, triangle):
     """Light group of an emissive triangle (-1: none)."""
     e = lights.mesh.of_triangle[triangle]
     return lights.mesh.group[e] if e >= 0 else -1
-
-
-@inlined
-def light_count(lights):
-    return lights.select_prob.shape[0]
-

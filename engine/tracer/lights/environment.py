@@ -36,6 +36,8 @@ from ..jit import inlined, kernel
 from ..spectra.atmosphere import ground_fade
 from ..spectra.illuminant_texels import texel_reflectance
 from ..spectra.table import spectrum_value
+from ..spectra.trapezoid import trapezoid
+from ..spectra.wavelengths import VISIBLE_RANGE_NM
 from .row import L_CAMERA, L_COS_MAX, L_KIND, L_LIMB, L_NX, L_NZ, L_ONE_MINUS_COS, L_SCALE, L_SPECTRUM, LIGHT_ROW, SUN_DISK
 from .sphere_distribution import SphereDistribution, build_sphere_distribution, direction_pdf, sample_direction
 
@@ -297,7 +299,7 @@ def _sky_environment(world, spectra, strength, mapping):
     mean = table.astype(np.float64).mean(axis=(0, 1))
     mean_luminance = float((mean * ybar).sum() * 10.0 / y_integral)
     guide = spectra.tabulated(("sky mean", tuple(np.round(mean / mean_luminance, 12))), float(SKY_WAVELENGTHS_NM[0]),
-                              10.0, mean / mean_luminance, support_nm=(360.0, 830.0)) if mean_luminance > 0 else -1
+                              10.0, mean / mean_luminance, support_nm=VISIBLE_RANGE_NM) if mean_luminance > 0 else -1
     return EnvironmentBuild(env, integral, _sky_sun_rows(world, spectra, strength, tables, mapping), guide)
 
 
@@ -330,10 +332,10 @@ def _sky_sun_rows(world, spectra, strength, tables, mapping):
     if not (sky.sun_disc and sky.sun_intensity > 0 and sky.sun_size_rad > 0 and tables.sun_radiance.max() > 0):
         return []
     spectrum = tables.sun_radiance * float(cie.CMF_Y_INTEGRAL)
-    luminance = float(np.trapz(spectrum * cie.cie_xyz_cmf(SKY_WAVELENGTHS_NM)[:, 1], SKY_WAVELENGTHS_NM)
+    luminance = float(trapezoid(spectrum * cie.cie_xyz_cmf(SKY_WAVELENGTHS_NM)[:, 1], SKY_WAVELENGTHS_NM)
                       / float(cie.CMF_Y_INTEGRAL))
     sid = spectra.tabulated(("sky sun", tuple(np.round(spectrum / luminance, 12))), float(SKY_WAVELENGTHS_NM[0]),
-                            10.0, spectrum / luminance, support_nm=(360.0, 830.0))
+                            10.0, spectrum / luminance, support_nm=VISIBLE_RANGE_NM)
     e, rot = float(sky.sun_elevation_rad), float(sky.sun_rotation_rad)
     toward_sun = np.array([math.cos(e) * math.sin(rot), math.cos(e) * math.cos(rot), math.sin(e)])
     world_dir = mapping[1] @ toward_sun

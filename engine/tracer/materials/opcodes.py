@@ -48,7 +48,6 @@ COLOR_RAMP = 35  # mode: RAMP_INTERPOLATIONS; dst (rgba) = ramp(fac a); b = firs
 CURVES = 36  # mode 0 RGB curves, 1 vector curves, 2 float curve; dst = curves(fac a, colour b); c = table, d = size
 MAPPING = 38  # mode: MAPPING_TYPES; dst = map(vector a, location b, rotation c, scale d)
 VECTOR_ROTATE = 39  # mode: ROTATE_TYPES; dst = rotate(vector a, center b, axis c, angle d, rotation e); f = 1 inverts
-SEPARATE_XYZ = 40  # dst (3 scalars) = a
 COMBINE_XYZ = 41  # dst = (a, b, c)
 FLOAT_TO_COLOR = 42  # dst = (a, a, a)
 VECTOR_TO_FLOAT = 43  # dst = (x + y + z) / 3 of a

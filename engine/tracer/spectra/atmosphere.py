@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..jit import kernel
+from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
 EARTH_RADIUS_M = 6360e3
 ATMOSPHERE_RADIUS_M = 6420e3
@@ -56,7 +57,7 @@ OZONE_CROSS_SECTION_M2 = np.array([
     2.451e-26, 2.801e-26, 2.534e-26, 1.624e-26, 1.465e-26, 2.078e-26, 1.383e-26, 7.105e-27])
 
 #: Wavelengths of the sky tables (nm): every 10 nm of the visible range.
-SKY_WAVELENGTHS_NM = np.arange(360.0, 830.0 + 0.5, 10.0)
+SKY_WAVELENGTHS_NM = np.arange(VISIBLE_MIN_NM, VISIBLE_MAX_NM + 0.5, 10.0)
 
 VIEW_STEPS = 64
 SUN_STEPS = 96  # midpoint rule: the aerosol column (1.2 km scale height) within 0.1 %

@@ -60,15 +60,3 @@ def blackbody_luminance(temperature_k):
 
     t = check_temperature(temperature_k)
     return spectrum_luminance(lambda wl: planck_spectral_radiance(wl, t[..., None]))
-
-
-def blackbody_luminance_normalised(wavelength_nm, temperature_k):
-    """Blackbody spectrum scaled to luminance Y = 1, the Y of RGB white (1, 1, 1).
-
-    So the temperature changes the colour of a light, not its brightness.
-    Broadcasts ``wavelength_nm`` against ``temperature_k``.
-    """
-    t = check_temperature(temperature_k)
-    unique, inverse = np.unique(t, return_inverse=True)
-    scale = (1.0 / blackbody_luminance(unique))[inverse].reshape(t.shape)
-    return planck_spectral_radiance(wavelength_nm, t) * scale

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import PrismInputError
+from .trapezoid import trapezoid
 
 _CMF_TABLE = None  # (wavelength_nm [M], xyz [M, 3]) once loaded
 _LAZY = {}
@@ -46,7 +47,7 @@ def _cmf_table():
 
 def _cmf_y_integral():
     wavelength_nm, xyz = _cmf_table()
-    return float(np.trapz(xyz[:, 1], wavelength_nm))
+    return float(trapezoid(xyz[:, 1], wavelength_nm))
 
 
 def _xyz_to_linear_rec709():
@@ -135,21 +136,6 @@ def spectral_samples_to_xyz(radiance, wavelength_nm, pdf):
     return xyz / __getattr__("CMF_Y_INTEGRAL")
 
 
-def gaussian_channel_samples_to_rgb(radiance, wavelength_nm, pdf, channels):
-    """RGB estimate for ``gaussian_rgb`` mode: one wavelength per channel.
-
-    ``radiance``, ``wavelength_nm``, ``pdf``: [N, 3], column c sampled for
-    channel c. The channel response is the channel's own truncated Gaussian
-    (``channels.pdf``), so the weight is response / pdf and a constant
-    spectrum of 1 gives exactly RGB (1, 1, 1). Returns [N, 3].
-    """
-    radiance = np.asarray(radiance, dtype=np.float64)
-    pdf = np.asarray(pdf, dtype=np.float64)
-    response = channels.pdf(wavelength_nm)
-    safe_pdf = np.where(pdf > 0.0, pdf, 1.0)
-    return np.where(pdf > 0.0, radiance * (response / safe_pdf), 0.0)
-
-
 def monochromatic_rgb(wavelength_nm):
     """Display colour of monochromatic light, for overlays: linear Rec.709 [..., 3].
 
@@ -172,14 +158,14 @@ def spectrum_luminance(spectrum_fn):
     """
     table_nm, xyz = _cmf_table()
     values = np.asarray(spectrum_fn(table_nm), dtype=np.float64)
-    return np.trapz(values * xyz[:, 1], table_nm, axis=-1) / __getattr__("CMF_Y_INTEGRAL")
+    return trapezoid(values * xyz[:, 1], table_nm, axis=-1) / __getattr__("CMF_Y_INTEGRAL")
 
 
 def spectrum_to_xyz(spectrum_fn):
     """XYZ [..., 3] of a spectrum given as a callable of wavelength (nm) (trapezoid on the 1 nm grid; smooth spectra)."""
     table_nm, xyz = _cmf_table()
     values = np.asarray(spectrum_fn(table_nm), dtype=np.float64)
-    return np.trapz(values[..., None] * xyz, table_nm, axis=-2) / __getattr__("CMF_Y_INTEGRAL")
+    return trapezoid(values[..., None] * xyz, table_nm, axis=-2) / __getattr__("CMF_Y_INTEGRAL")
 
 
 def check_rgb(rgb, what):

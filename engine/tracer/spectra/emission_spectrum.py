@@ -25,6 +25,7 @@ from .blackbody import blackbody_luminance, check_temperature, planck_spectral_r
 from ..errors import PrismInputError
 from .rgb_to_spectrum import RGBEmission
 from .sampled import check_sampled, resample_1nm
+from .trapezoid import trapezoid
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
 SPECTRUM_KINDS = ("rgb", "blackbody", "monochromatic", "illuminant", "tabulated")
@@ -88,7 +89,7 @@ class MonochromaticEmissionSpectrum:
         self.support_nm = (max(VISIBLE_MIN_NM, centre - half), min(VISIBLE_MAX_NM, centre + half))
         # Integrate on a grid fine enough for the narrowest line (the 1 nm CMF grid is not).
         grid = np.linspace(self.support_nm[0], self.support_nm[1], 2001)
-        luminance = np.trapz(self._shape(grid) * cie.cie_xyz_cmf(grid)[:, 1], grid) / cie.CMF_Y_INTEGRAL
+        luminance = trapezoid(self._shape(grid) * cie.cie_xyz_cmf(grid)[:, 1], grid) / cie.CMF_Y_INTEGRAL
         if not luminance > 0.0:
             raise PrismInputError(
                 f"Monochromatic line at {centre:g} nm has no visible luminance: move it into 360–830 nm."
@@ -146,7 +147,7 @@ class TabulatedEmissionSpectrum:
         self.first_nm = VISIBLE_MIN_NM
         self.values = np.interp(grid, first_nm + np.arange(len(values)), values)
         self.support_nm = (VISIBLE_MIN_NM, VISIBLE_MAX_NM)
-        luminance = np.trapz(self.values * cie.cie_xyz_cmf(grid)[:, 1], grid) / cie.CMF_Y_INTEGRAL
+        luminance = trapezoid(self.values * cie.cie_xyz_cmf(grid)[:, 1], grid) / cie.CMF_Y_INTEGRAL
         if not luminance > 0.0:
             raise PrismInputError(f"{what} has no visible luminance (it emits only where the eye sees nothing): "
                                   "use a spectrum that emits within 380-780 nm.")

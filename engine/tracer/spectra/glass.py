@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import PrismInputError, UnknownGlassError
-from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
+from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM, VISIBLE_NM_GRID
 
 LAMBDA_D_NM = 587.5618
 LAMBDA_F_NM = 486.1327
@@ -164,7 +164,7 @@ def _validate_dispersion(glass, what):
     lo = max(VISIBLE_MIN_NM, glass.valid_range_nm[0])
     hi = min(VISIBLE_MAX_NM, glass.valid_range_nm[1])
     with np.errstate(all="ignore"):  # a pole in range shows up as inf/NaN, reported below
-        n = glass._raw_index(np.linspace(lo, hi, 471))
+        n = glass._raw_index(np.linspace(lo, hi, len(VISIBLE_NM_GRID)))
     if not (np.all(np.isfinite(n)) and np.all(n > 1.0) and np.all(np.diff(n) < 0.0)):
         raise PrismInputError(
             f"{what}: its refractive index is not finite, above 1 and decreasing over {lo:g}–{hi:g} nm; "

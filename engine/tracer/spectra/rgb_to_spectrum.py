@@ -235,12 +235,6 @@ def reflectance_coefficients(rgb):
     return out.reshape(shape)
 
 
-def reflectance_spectrum_to_rgb(reflectance_fn):
-    """Rec.709 of a reflectance (callable of wavelength in nm -> [..., L]) under D65; for tests and tools."""
-    wavelength_nm, kernel = _integration()
-    return np.asarray(reflectance_fn(wavelength_nm), np.float64) @ kernel
-
-
 class RGBEmission:
     """Emission spectrum of a linear Rec.709 colour ``rgb`` (components >= 0, any magnitude).
 

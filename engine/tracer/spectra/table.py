@@ -32,6 +32,7 @@ from collections import namedtuple
 import numpy as np
 
 from ..jit import inlined, kernel
+from .wavelengths import VISIBLE_MIN_NM, VISIBLE_NM_GRID
 
 CONSTANT = 0
 SIGMOID = 1
@@ -42,8 +43,8 @@ TABULATED = 5
 
 SPECTRUM_ROW = 8
 
-DENSE_START_NM = 360.0
-DENSE_COUNT = 471  # every nanometre of 360-830 nm
+DENSE_START_NM = VISIBLE_MIN_NM
+DENSE_COUNT = len(VISIBLE_NM_GRID)  # every nanometre of 360-830 nm
 
 #: The kernels' view of a ``SpectrumTable``: kind int32 [S], params float64 [S, SPECTRUM_ROW], data
 #: float64 [D], dense float64 [S, DENSE_COUNT] (each spectrum at 360, 361, ... 830 nm).

@@ -24,8 +24,15 @@ import numpy as np
 
 from ..errors import PrismInputError
 
+# The visible range every path's wavelengths lie in (the CIE 1931 tables' extent): the one home of
+# 360-830 nm for the tracer, the export, the properties, the panels, the tools and the benchmarks.
 VISIBLE_MIN_NM = 360.0
 VISIBLE_MAX_NM = 830.0
+VISIBLE_RANGE_NM = (VISIBLE_MIN_NM, VISIBLE_MAX_NM)
+#: Every whole nanometre of the visible range (471 values): the grid of the dense spectrum tables,
+#: the previews and the spectral colour fits. Left writable (never written): numba compiles a
+#: separate specialisation for read-only arrays, and this grid reaches kernels.
+VISIBLE_NM_GRID = np.arange(VISIBLE_MIN_NM, VISIBLE_MAX_NM + 1.0)
 
 _VISIBLE_A_PER_NM = 0.0072
 _VISIBLE_CENTRE_NM = 538.0

@@ -52,11 +52,6 @@ def new_pass_data(n: int, k: int, film_layout) -> PassData:
                     np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)))
 
 
-def pass_work(layout) -> bool:
-    """Whether the stages have anything to write (False: a Combined-only render skips every pass kernel)."""
-    return layout.columns > 0
-
-
 @kernel
 def reset_kernel(passes, layout, count):
     """Paths 0 .. count-1 start with no pass data."""

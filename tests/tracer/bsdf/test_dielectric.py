@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from engine.tracer.scene import Material
-from engine.tracer.spectra.fresnel import fresnel_dielectric
+from helpers.fresnel import fresnel_dielectric
 from engine.tracer.spectra.glass import glass_by_name
 
 from .bsdf_checks import MaterialBSDF, chi2_sampling_test, direction, weight_matches_eval

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from engine.tracer.scene import Material
-from engine.tracer.spectra.thin_film import thin_film_reflectance
+from helpers.thin_film import thin_film_reflectance
 
 from .bsdf_checks import MaterialBSDF, albedo, direction
 

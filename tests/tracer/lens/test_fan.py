@@ -9,7 +9,8 @@ from engine.tracer.errors import PrismInputError
 from engine.tracer.lens.fan import PointSource, lens_diagram, pupil_grid_mm, pupil_range_mm, ray_fan, spot_diagrams
 from engine.tracer.lens.media import AIR, FunctionMedium, constant_medium
 from engine.tracer.lens.outline import element_outline, sag_mm, system_outlines
-from engine.tracer.lens.system import FATE_ALIVE, FATE_BLOCKED, FATE_TIR, LensSystem, Surface
+from engine.tracer.lens.ray_fate import FATE_ALIVE, FATE_BLOCKED, FATE_TIR
+from engine.tracer.lens.system import LensSystem, Surface
 
 WAVELENGTHS_NM = (450.0, 550.0, 650.0)
 

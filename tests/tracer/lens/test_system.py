@@ -5,9 +5,8 @@ import math
 import numpy as np
 
 from engine.tracer.lens.media import AIR, constant_medium
-from engine.tracer.lens.system import (
-    FATE_ALIVE, FATE_BLOCKED, FATE_MISSED, FATE_TIR, TOWARD_FILM, TOWARD_SCENE, LensSystem, Surface,
-)
+from engine.tracer.lens.ray_fate import FATE_ALIVE, FATE_BLOCKED, FATE_MISSED, FATE_TIR
+from engine.tracer.lens.system import TOWARD_FILM, TOWARD_SCENE, LensSystem, Surface
 
 
 def _biconvex(n=1.5168, r1=100.0, r2=-80.0, t=8.0, stop_d=20.0, aperture=30.0):

@@ -15,6 +15,7 @@ from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Material, World
 from engine.tracer.spectra import cie
 from engine.tracer.spectra.table import SpectrumTable
+from engine.tracer.spectra.trapezoid import trapezoid
 
 from ..tracer_scenes import look_at, make_scene, quad, settings, sphere_under_sky
 
@@ -157,7 +158,7 @@ def _texel_direction(row, column, height, width):
 
 
 def _rgb_of_spectra(values, wavelengths):
-    xyz = np.trapz(values[..., None] * cie.cie_xyz_cmf(wavelengths), wavelengths, axis=-2) / cie.CMF_Y_INTEGRAL
+    xyz = trapezoid(values[..., None] * cie.cie_xyz_cmf(wavelengths), wavelengths, axis=-2) / cie.CMF_Y_INTEGRAL
     return cie.xyz_to_linear_rec709(xyz)
 
 

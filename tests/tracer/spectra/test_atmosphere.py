@@ -10,6 +10,7 @@ import pytest
 from engine.tracer.scene import Camera, Material, Sky, World
 from engine.tracer.spectra import atmosphere as A
 from engine.tracer.spectra import cie
+from engine.tracer.spectra.trapezoid import trapezoid
 
 from ..lights.light_checks import SceneLights
 from ..tracer_scenes import make_scene
@@ -43,7 +44,7 @@ def test_rayleigh_optical_depth_and_zenith_transmittance():
 
 def _rgb(spectrum):
     lam = A.SKY_WAVELENGTHS_NM
-    xyz = np.trapz(np.asarray(spectrum, float)[..., None] * cie.cie_xyz_cmf(lam), lam, axis=-2)
+    xyz = trapezoid(np.asarray(spectrum, float)[..., None] * cie.cie_xyz_cmf(lam), lam, axis=-2)
     return cie.xyz_to_linear_rec709(xyz)
 
 

@@ -7,11 +7,11 @@ from engine.tracer.spectra.blackbody import (
     MAX_TEMPERATURE_K,
     MIN_TEMPERATURE_K,
     blackbody_luminance,
-    blackbody_luminance_normalised,
     planck_spectral_radiance,
 )
 from engine.tracer.errors import PrismInputError
 from engine.tracer.spectra.wavelengths import sample_visible_wavelengths
+from helpers.spectral_oracles import blackbody_luminance_normalised
 
 WIEN_NM_K = 2.897771955e6
 

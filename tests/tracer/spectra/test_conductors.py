@@ -3,7 +3,8 @@ import pytest
 
 from engine.tracer.spectra.conductors import conductor_names, conductor_nk, conductor_range_nm
 from engine.tracer.errors import PrismInputError
-from engine.tracer.spectra.fresnel import fresnel_conductor
+from helpers.fresnel import fresnel_conductor
+from helpers.spectral_oracles import reflectance_spectrum_to_rgb
 
 
 def test_names():
@@ -56,8 +57,6 @@ def test_normal_incidence_colours_are_the_familiar_metal_colours():
 
     Those come from other measurements, so only a loose match is expected.
     """
-    from engine.tracer.spectra.rgb_to_spectrum import reflectance_spectrum_to_rgb
-
     quoted = {"Au": (1.000, 0.782, 0.344), "Ag": (0.972, 0.960, 0.915), "Cu": (0.955, 0.638, 0.538),
               "Al": (0.913, 0.922, 0.924)}
     for name, expected in quoted.items():

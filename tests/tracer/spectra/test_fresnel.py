@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from engine.tracer.errors import PrismInputError
-from engine.tracer.spectra.fresnel import (
+from helpers.fresnel import (
     fresnel_conductor,
     fresnel_conductor_polarized,
     fresnel_dielectric,

@@ -10,6 +10,7 @@ from engine.tracer.spectra import cie
 from engine.tracer.spectra.illuminants import canonical_illuminant, illuminant_names
 from engine.tracer.spectra.measured_reflectance import reflectance_names
 from engine.tracer.spectra.table import SpectrumTable, spectrum_values
+from engine.tracer.spectra.trapezoid import trapezoid
 
 GRID = np.arange(360.0, 830.5, 0.25)
 
@@ -17,7 +18,7 @@ GRID = np.arange(360.0, 830.5, 0.25)
 def _xyz_of_row(table, sid):
     values = np.empty(len(GRID))
     spectrum_values(table.arrays(), sid, GRID, values)
-    return np.trapz(values[:, None] * cie.cie_xyz_cmf(GRID), GRID, axis=0) / cie.CMF_Y_INTEGRAL
+    return trapezoid(values[:, None] * cie.cie_xyz_cmf(GRID), GRID, axis=0) / cie.CMF_Y_INTEGRAL
 
 
 def test_every_illuminant_is_luminance_normalised_at_its_chromaticity():

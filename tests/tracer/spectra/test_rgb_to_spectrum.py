@@ -11,6 +11,7 @@ from engine.tracer.spectra.rgb_to_spectrum import (
     white_rgb,
 )
 from engine.tracer.spectra.wavelengths import sample_visible_wavelengths
+from engine.tracer.spectra.trapezoid import trapezoid
 
 WAVELENGTHS_NM = np.arange(360.0, 830.5, 1.0)
 
@@ -20,8 +21,8 @@ def _reflectance_to_rgb(coefficients):
     reflectance = evaluate_sigmoid_polynomial(coefficients, np.broadcast_to(WAVELENGTHS_NM, coefficients.shape[:-1] + WAVELENGTHS_NM.shape))
     power = d65_relative_power(WAVELENGTHS_NM)
     cmf = cie.cie_xyz_cmf(WAVELENGTHS_NM)
-    xyz = np.trapz(reflectance[..., None] * (power[:, None] * cmf), WAVELENGTHS_NM, axis=-2)
-    return cie.xyz_to_linear_rec709(xyz / np.trapz(power * cmf[:, 1], WAVELENGTHS_NM))
+    xyz = trapezoid(reflectance[..., None] * (power[:, None] * cmf), WAVELENGTHS_NM, axis=-2)
+    return cie.xyz_to_linear_rec709(xyz / trapezoid(power * cmf[:, 1], WAVELENGTHS_NM))
 
 
 def test_white_and_black_are_exact():

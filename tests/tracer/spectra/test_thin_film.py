@@ -2,8 +2,8 @@ import numpy as np
 import pytest
 
 from engine.tracer.errors import PrismInputError
-from engine.tracer.spectra.fresnel import fresnel_conductor, fresnel_dielectric
-from engine.tracer.spectra.thin_film import (
+from helpers.fresnel import fresnel_conductor, fresnel_dielectric
+from helpers.thin_film import (
     thin_film_reflectance,
     thin_film_reflectance_transmittance,
     thin_film_transmittance,

@@ -18,13 +18,16 @@ reflections (Airy):
 
 R = |r|², T_s = Re(q_2) / q_0 |t_s|², T_p = Re(q_2 n̄_2 / n_2) / q_0 |t_p|² (power
 into the substrate); both polarisations are averaged (unpolarised light).
+
+A test oracle, not shipped in the extension: the compiled thin-film optics
+(``engine/tracer/bsdf/optics.py``) are checked against it.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..errors import PrismInputError
+from engine.tracer.errors import PrismInputError
 
 
 def _interface(n_i, q_i, n_j, q_j):

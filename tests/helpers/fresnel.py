@@ -5,13 +5,16 @@ between the incident ray's reversed direction and the surface normal on the
 incident side. Directions are arrays [N, 3]; an incoming ``direction`` points
 *toward* the surface and the ``normal`` faces the incident side (dot < 0).
 Reflectances are unpolarised (mean of s and p) unless stated.
+
+A test oracle, not shipped in the extension: the compiled Fresnel optics
+(``engine/tracer/bsdf/optics.py``) are checked against it.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..errors import PrismInputError
+from engine.tracer.errors import PrismInputError
 
 
 def _check_cos(cos_theta_i):
