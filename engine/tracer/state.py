@@ -68,6 +68,11 @@ ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction dist
 #: Embree's answer for each queued ray: ``triangle`` int32 [n] (-1: a miss), ``t``, ``u``, ``v`` float32 [n].
 HitRecord = namedtuple("HitRecord", "triangle t u v")
 
+#: A worker thread's memory for one chunk (``ChunkBuffers.loop``, read by ``stages.bounce_loop``): ``rays``
+#: the two ray queues (this bounce's, the next), ``hits`` a ``HitRecord`` per queued ray, ``occluded``
+#: int32 per shadow ray, ``rejected`` the counter of rays dropped as non-finite, ``rgb`` the paths' colours.
+LoopBuffers = namedtuple("LoopBuffers", "state rays surface shadows scratch hits occluded rejected rgb")
+
 #: A list of paths (e.g. those that hit a surface this bounce).
 PathList = namedtuple("PathList", "path")
 
@@ -128,10 +133,8 @@ class ChunkBuffers:
 
     @property
     def loop(self):
-        """These buffers as the bounce loop's record (``stages.bounce_loop.LoopBuffers``), made once."""
+        """These buffers as the bounce loop's record (``LoopBuffers``), made once."""
         if self._loop is None:
-            from .stages.bounce_loop import LoopBuffers
-
             self._loop = LoopBuffers(self.state, self.rays, self.surface, self.shadows, self.scratch, self.hits,
                                      self.occluded, self.counters, self.rgb)
         return self._loop

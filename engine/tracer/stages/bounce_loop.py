@@ -11,7 +11,7 @@ Python between Embree queries (a wavefront inside one call): the queues keep pat
 image is the one the Python loop made, bit for bit, and the kernels stay small and testable alone.
 
 Records (named tuples, built once and kept, so calls from Python are typed cheaply):
-``LoopBuffers`` a thread's working memory, ``SceneArrays`` the render's tables, and
+``state.LoopBuffers`` a thread's working memory, ``SceneArrays`` the render's tables, and
 ``embree.queries.RayCaster`` the Embree scene with this thread's ray record.
 """
 
@@ -24,6 +24,7 @@ import numpy as np
 from ..camera_clip import clip_far_hits_kernel
 from ..embree.queries import closest_hits, occlusion
 from ..jit import inlined, kernel
+from ..state import LoopBuffers  # noqa: F401  (the loop's record, declared with the buffers)
 from .emission import emission_kernel
 from .film import film_kernel
 from .passes import convert_kernel, route_kernel
@@ -32,11 +33,6 @@ from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
 
 #: The render's tables the loop reads (``scene_tables.SceneTables.arrays``).
 SceneArrays = namedtuple("SceneArrays", "geometry materials lights spectra settings wavelengths")
-
-#: A worker thread's memory for one chunk (``state.ChunkBuffers.loop``): ``rays`` the two ray queues
-#: (this bounce's, the next), ``hits`` a ``state.HitRecord`` per queued ray, ``occluded`` int32 per
-#: shadow ray, ``rejected`` the counter of rays dropped as non-finite, ``rgb`` the paths' colours.
-LoopBuffers = namedtuple("LoopBuffers", "state rays surface shadows scratch hits occluded rejected rgb")
 
 #: When the light split of the render passes runs (``route_kernel``'s step): after the first vertex's
 #: shadows, after the second ray's emission, at the end.

@@ -18,7 +18,7 @@ from .light_paths import connection_splats, emit_kernel, light_bounce_kernel, qu
 @kernel
 def light_loop_kernel(loop, light, arrays, caster, targets, camera, first, count, samples_per_pixel, first_sample,
                       glass_clamps):
-    """Trace light paths ``first .. first + count`` of the pass (``loop``: ``bounce_loop.LoopBuffers``;
+    """Trace light paths ``first .. first + count`` of the pass (``loop``: ``state.LoopBuffers``;
     ``light``: ``light_trace.LightBuffers``; ``arrays``: ``bounce_loop.SceneArrays``; ``targets``: the
     caustic targets; ``camera``: ``stages.camera.CameraData``). Returns (splats, rays cast):
     ``light.pixel[:splats]`` and ``loop.rgb[:splats]`` hold the splats."""
