@@ -33,6 +33,7 @@ import numpy as np
 
 from ..jit import kernel
 from ..warps import concentric_disk
+from .closure import C_SHEEN_A, C_SHEEN_B, SAMPLED_DIFFUSE
 from .multiscatter import grid_cell
 
 TABLE_PATH = Path(__file__).resolve().parent / "data" / "sheen_ltc.npz"
@@ -120,3 +121,24 @@ def lobe_sample(a, b, wo, u1, u2):
     tx, ty = view_axis(wo)
     wi = (x * tx - y * ty, x * ty + y * tx, z)
     return wi, ltc_density(a, b, x, y, z)
+
+
+@kernel
+def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+    """(wi, pdf, sampled flags, eta scale); ``weight[k]`` = f |cos wi| / pdf = 1: the fitted albedo is in the
+    closure's tint (``materials.sheen_setup``), (a, b) in ``C_SHEEN_A`` / ``C_SHEEN_B``."""
+    wi, pdf = lobe_sample(row[C_SHEEN_A], row[C_SHEEN_B], wo, u1, u2)
+    value = 1.0 if pdf > 0.0 else 0.0
+    for k in range(weight.shape[0]):
+        weight[k] = value
+    return wi, pdf, SAMPLED_DIFFUSE, 1.0  # Cycles labels sheen a diffuse reflection (ray visibility)
+
+
+@kernel
+def evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
+    """``f[k]`` (without the cosine; times the tint's albedo, D / cos wi); returns the pdf of ``sample``."""
+    pdf = lobe_pdf(row[C_SHEEN_A], row[C_SHEEN_B], wo, wi)
+    value = pdf / wi[2] if pdf > 0.0 else 0.0
+    for k in range(f.shape[0]):
+        f[k] = value
+    return pdf
