@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from ...tracer.bsdf.closure import SHEEN
 from ...tracer.materials import opcodes as op
-from .compiler import COLOR, FLOAT, VECTOR, PendingClosure
+from .terms import COLOR, FLOAT, VECTOR, PendingClosure
 
 
 def _normal(c, node, context):
