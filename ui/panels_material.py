@@ -69,7 +69,7 @@ def _preview(material) -> Preview:
     """The material compiled as a render would (no image read)."""
     from ..engine.export.nodes import compile_material
     from ..engine.tracer.bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_DIELECTRIC, FRESNEL_NONE,
-                                              GLASS, TRANSLUCENT, TRANSPARENT)
+                                              GLASS, SHEEN, TRANSLUCENT, TRANSPARENT)
 
     try:
         compiled = compile_material(material, evaluate=_fold(), load_pixels=False,
@@ -85,6 +85,8 @@ def _preview(material) -> Preview:
             name = "Translucent"
         elif spec.kind == TRANSPARENT:
             name = "Transparent"
+        elif spec.kind == SHEEN:
+            name = "Sheen"
         elif spec.kind == DIELECTRIC:
             name = "Glass (refractive)" if spec.fresnel == GLASS else "Refraction"
         elif spec.kind == CONDUCTOR:

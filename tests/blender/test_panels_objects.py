@@ -132,8 +132,8 @@ def test_material_panels_show_what_prism_reads(prism_addon, fresh_scene, monkeyp
     material.prism.is_thin_film = False
     log = draw_all()
     labels = _labels(log)
-    assert any(text == "Renders as: Metal + emission" for text in labels), labels
-    assert any("has Sheen, which Prism does not model" in text for text in labels)
+    assert any(text == "Renders as: Sheen + Metal + emission" for text in labels), labels
+    assert not any("Sheen" in text for text in labels if not text.startswith("Renders as")), labels
     assert "conductor" in _props(log)
 
     material.prism.is_thin_film = True

@@ -1,11 +1,11 @@
 """Shader nodes → closures, as Cycles defines them: Principled BSDF (layered: alpha, coat, emission,
 metallic, transmission, specular, diffuse), Diffuse, Glossy, Metallic, Glass, Refraction, Translucent,
-Transparent, Emission, Holdout, Mix Shader and Add Shader.
+Transparent, Emission, Holdout, Mix Shader and Add Shader; Sheen in ``sheen``.
 
 Each handler takes the weight its shader socket carries (``terms.Weight``) and adds closures
 (``terms.PendingClosure``) and emission. The Principled layering follows Blender's: a layer's closure
 takes the running weight, then the layers below keep weight × (1 - its albedo seen from the view
-direction) (coat and specular, ``LAYER_ALBEDO``) or × (1 - its weight) (metallic, transmission).
+direction) (sheen, ``SHEEN_ALBEDO``; coat and specular, ``LAYER_ALBEDO``) or × (1 - its weight) (metallic, transmission).
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ from ...tracer.materials import opcodes as op
 from .terms import COLOR, FLOAT, VECTOR, PendingClosure, Weight
 from .measured_base import keeps_own_colour, measured_base
 from .overrides import check_film, conductor_override, glass_override, prism_coating
+from .sheen import principled_sheen, sheen_bsdf
 
 
 def _val(c, node, name, context, kind=FLOAT):
@@ -89,8 +90,7 @@ def principled(c, node, context, weight: Weight):
         c.add_closure(PendingClosure(TRANSPARENT, c.weighted(weight, scale=c.one_minus(opacity)), node))
         weight = c.weighted(weight, scale=opacity)
 
-    if c.known(_val(c, node, "Sheen Weight", context)) != 0.0:
-        c.warn(node, "has Sheen, which Prism does not model; the sheen is left out.")
+    weight = principled_sheen(c, node, context, weight, cos, normal)
 
     coat = c.math("MAXIMUM", _val(c, node, "Coat Weight", context), c.const(0.0))
     if c.known(coat) != 0.0:
@@ -373,7 +373,7 @@ SHADER_HANDLERS = {
     "ShaderNodeSubsurfaceScattering": subsurface,
     "ShaderNodeMixShader": mix_shader,
     "ShaderNodeAddShader": add_shader,
-    "ShaderNodeBsdfSheen": left_out,
+    "ShaderNodeBsdfSheen": sheen_bsdf,
     "ShaderNodeBsdfToon": left_out,
     "ShaderNodeBsdfHair": left_out,
     "ShaderNodeBsdfHairPrincipled": left_out,

@@ -6,7 +6,7 @@ spectrum-table id, -1 means 1 at every wavelength, and ``≤ -2`` is a colour co
 material's program (``register_source``).
 
 - ``C_KIND``: ``DIFFUSE``, ``CONDUCTOR`` (any microfacet reflection), ``DIELECTRIC``, ``THIN_FILM``,
-  ``TRANSLUCENT`` or ``TRANSPARENT``.
+  ``TRANSLUCENT``, ``TRANSPARENT`` or ``SHEEN`` (Blender's microfiber sheen, ``bsdf.sheen``).
 - ``C_WEIGHT``: how often the closure is sampled relative to the others of its material (≥ 0; the
   estimated albedo times the mean tint); f = Σ tint · f_closure does not depend on it.
 - ``C_SPECTRUM`` (→ ``spectral[0]``): diffuse/translucent albedo; a conductor's F0 (Schlick, F82) or n;
@@ -17,7 +17,8 @@ material's program (``register_source``).
   constant weight above 1 is a reflectance spectrum times its largest component).
 - ``C_MIRROR``: set per hit when a reflection closure shares a material with glass and the ray arrived
   from inside: the glass needs the outward normal, the reflection sees its frame mirrored (``dispatch``).
-- ``C_ALPHA``: GGX alpha (Blender roughness²); below ``SMOOTH_ALPHA`` the lobe is a perfect mirror/glass.
+- ``C_ALPHA``: GGX alpha (Blender roughness²); below ``SMOOTH_ALPHA`` the lobe is a perfect mirror/glass. For
+  ``SHEEN``: the sheen roughness (Blender's, 0-1, not squared).
 - ``C_FRESNEL``: a conductor's reflectance model (``FRESNEL_*``) or a dielectric's mode (``GLASS`` reflects
   and refracts, ``REFRACTION_ONLY`` as Blender's Refraction BSDF).
 - ``C_ETA``: index of refraction of a ``FRESNEL_DIELECTRIC`` reflection (Principled specular, coat).
@@ -34,6 +35,8 @@ material's program (``register_source``).
   applied by ``materials.energy``); 0 for single-scatter GGX.
 - ``C_MS_COLOUR``: a spectral source: the average single-scattering Fresnel Fss of a compensated lobe whose
   Fresnel model does not set it (Glossy's colour, a glass's colour or transmission tint); -1 for 1.
+- ``C_SHEEN_A``, ``C_SHEEN_B``: the fitted LTC coefficients of a ``SHEEN`` closure at this hit's view
+  direction, set per hit with its tint scaled by the fitted albedo (``materials.sheen_setup``).
 """
 
 from __future__ import annotations
@@ -44,8 +47,9 @@ DIELECTRIC = 2
 THIN_FILM = 3
 TRANSLUCENT = 4
 TRANSPARENT = 5
+SHEEN = 6
 KIND_NAMES = {DIFFUSE: "diffuse", CONDUCTOR: "conductor", DIELECTRIC: "dielectric", THIN_FILM: "thin_film",
-              TRANSLUCENT: "translucent", TRANSPARENT: "transparent"}
+              TRANSLUCENT: "translucent", TRANSPARENT: "transparent", SHEEN: "sheen"}
 
 C_KIND = 0
 C_WEIGHT = 1
@@ -68,7 +72,9 @@ C_LAYER_F0 = 17
 C_MULTISCATTER = 18
 C_MS_COLOUR = 19
 C_LAYER_MULTISCATTER = 20
-CLOSURE_ROW = 21
+C_SHEEN_A = 21
+C_SHEEN_B = 22
+CLOSURE_ROW = 23
 
 
 # Conductor (microfacet reflection) reflectance models.

@@ -12,9 +12,9 @@ from __future__ import annotations
 import math
 
 from ..jit import kernel
-from . import conductor, dielectric, diffuse, thin_film, translucent, transparent
+from . import conductor, dielectric, diffuse, sheen, thin_film, translucent, transparent
 from .closure import (C_ALPHA, C_KIND, C_MIRROR, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA,
-                      SAMPLED_DIFFUSE, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT, TRANSPARENT)
+                      SAMPLED_DIFFUSE, SHEEN, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT, TRANSPARENT)
 
 
 @kernel
@@ -45,6 +45,9 @@ def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u
     elif kind == TRANSLUCENT:
         wi, pdf, flags, eta_scale = translucent.sample(row, spectral, eta, wo, wavelength_nm, hero,
                                                        collapsed, u0, u1, u2, weight)
+    elif kind == SHEEN:
+        wi, pdf, flags, eta_scale = sheen.sample(row, spectral, eta, wo, wavelength_nm, hero,
+                                                 collapsed, u0, u1, u2, weight)
     elif kind == TRANSPARENT:
         wi, pdf, flags, eta_scale = transparent.sample(row, spectral, eta, wo, wavelength_nm, hero,
                                                        collapsed, u0, u1, u2, weight)
@@ -70,6 +73,8 @@ def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed,
         return dielectric.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     if kind == TRANSLUCENT:
         return translucent.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
+    if kind == SHEEN:
+        return sheen.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     if kind == TRANSPARENT:
         return transparent.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     return thin_film.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)

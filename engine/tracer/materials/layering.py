@@ -1,7 +1,7 @@
 """Albedo of a layer, for weighting what lies under it (Blender's Principled BSDF layering).
 
 Blender lets the sheen, coat and specular layers take their share first: the closures below are
-weighted by 1 - albedo(view) of the layer above. For a GGX reflection whose dielectric Fresnel (index
+weighted by 1 - albedo(view) of the layer above (the sheen's fitted albedo: ``bsdf.sheen``, ``SHEEN_ALBEDO``). For a GGX reflection whose dielectric Fresnel (index
 η) is remapped to start at a tinted f0, albedo = mix(f0, 1, s(roughness, μ, η)), with s tabulated by
 ``tools/generate_layer_albedo.py`` (``data/ggx_layer_albedo.npz``) and read here trilinearly. A Multiscatter
 GGX layer (the coat always, the specular layer when the node asks) reflects what its energy compensation
@@ -22,14 +22,15 @@ import numpy as np
 from ..bsdf.closure import C_LAYER_ETA, C_LAYER_F0, C_LAYER_MULTISCATTER, C_LAYER_ROUGHNESS
 from ..bsdf.multiscatter import dielectric_fss, energy_scale, grid_cell, load_energy_tables, reflection_albedo
 from ..bsdf.optics import dielectric_f0
+from ..bsdf.sheen import load_sheen_table
 from ..jit import kernel
 
 TABLE_PATH = Path(__file__).resolve().parent / "data" / "ggx_layer_albedo.npz"
 
 #: ``dielectric_s`` float64 [R, M, Z] (roughness, view cosine, √|(η-1)/(η+1)|, each uniform over 0-1);
-#: ``energy``: the GGX energy tables of Multiscatter GGX (``bsdf.multiscatter.EnergyTables``), which travel
-#: with these to the kernels.
-LayerTables = namedtuple("LayerTables", "dielectric_s energy")
+#: ``energy``: the GGX energy tables of Multiscatter GGX (``bsdf.multiscatter.EnergyTables``) and ``sheen``: the
+#: microfiber sheen fit (``bsdf.sheen.SheenTable``), which travel with these to the kernels.
+LayerTables = namedtuple("LayerTables", "dielectric_s energy sheen")
 
 _CACHE = {}
 
@@ -38,7 +39,7 @@ def load_tables() -> LayerTables:
     if "tables" not in _CACHE:
         with np.load(TABLE_PATH) as data:
             _CACHE["tables"] = LayerTables(np.ascontiguousarray(data["dielectric_s"], dtype=np.float64),
-                                           load_energy_tables())
+                                           load_energy_tables(), load_sheen_table())
     return _CACHE["tables"]
 
 

@@ -79,6 +79,7 @@ BIND = 81  # rows[a, b] = register c (a scalar parameter of closure a, column b)
 BIND_RGB = 82  # rows[a, b] = colour at register c (a spectral parameter: resolved per hit)
 LAYER_DARKENING = 83  # dst = factor on the albedo of a Multiscatter GGX dielectric layer: roughness a, cos b,
 #                       ior c, normal-incidence reflectance d (``layering.dielectric_darkening``)
+SHEEN_ALBEDO = 84  # dst = fitted directional albedo of the microfiber sheen: roughness a, cos b (``bsdf.sheen``)
 
 MATH_OPERATIONS = [
     "ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER", "LOGARITHM", "SQRT", "INVERSE_SQRT",

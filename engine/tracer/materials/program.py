@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
+from ..bsdf.sheen import ltc_fit
 from ..jit import kernel
 from ..nodes import colour as col
 from ..nodes import math as nmath
@@ -298,6 +299,8 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
             regs[dst] = dielectric_s(tables, regs[a], regs[b], regs[c])
         elif code == op.LAYER_DARKENING:
             regs[dst] = dielectric_darkening(tables, regs[a], regs[b], regs[c], regs[d])
+        elif code == op.SHEEN_ALBEDO:
+            regs[dst] = ltc_fit(tables.sheen, regs[a], abs(regs[b]))[2]
         elif code == op.BIND:
             if mode == 1:
                 rows[a, b] *= regs[c]

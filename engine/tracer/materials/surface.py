@@ -6,7 +6,7 @@ instructions (``program.run_program``) and then resolve their closures; the othe
 their constant rows (``resolve.resolve_material``). Closures under a constant layer (``MAT_LAYERED``) are
 then scaled by what the layer lets through from the view direction (``layering.under_layer``), and closures
 whose distribution is Multiscatter GGX by the energy their single scattering misses (``MAT_MULTISCATTER``,
-``energy.compensate_energy``). Nothing here allocates: the register file
+``energy.compensate_energy``); sheen closures are fitted to the view (``MAT_SHEEN``, ``sheen_setup``). Nothing here allocates: the register file
 and closure rows are the caller's scratch memory.
 """
 
@@ -19,7 +19,8 @@ from .program import run_program
 from .energy import compensate_energy
 from .resolve import _fill, copy_rows, resolve_material, resolve_spectral, selection_weights
 from .layering import under_layer
-from .table import MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED, MAT_PROGRAM
+from .sheen_setup import set_up_sheen
+from .table import MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED, MAT_PROGRAM, MAT_SHEEN
 
 
 @inlined
@@ -59,13 +60,15 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
         resolve_spectral(materials, spectra, count, wavelength_nm, hero, rows, spectral, eta, glass_clamps, regs)
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
-    if flags & (MAT_PROGRAM | MAT_LAYERED | MAT_MULTISCATTER):
+    if flags & (MAT_PROGRAM | MAT_LAYERED | MAT_MULTISCATTER | MAT_SHEEN):
         cos_o = wo[0] * shading[0] + wo[1] * shading[1] + wo[2] * shading[2]
         if flags & MAT_MULTISCATTER:
             compensate_energy(materials, spectra, materials.programs.tables.energy, rows, spectral, eta, count, cos_o,
                               backfacing, wavelength_nm, sources)
         if flags & MAT_LAYERED:
             _apply_layers(materials.programs.tables, rows, spectral, count, cos_o)
+        if flags & MAT_SHEEN:
+            set_up_sheen(materials.programs.tables.sheen, rows, spectral, count, cos_o)
         if count > 1:
             selection_weights(rows, spectral, count, wavelength_nm, cos_o)
     if flags & MAT_ONE_SIDED and backfacing and count > 1:

@@ -23,6 +23,8 @@ the kernels decide without looking at kinds:
 - ``MAT_MULTISCATTER``: a closure is energy-compensated (Blender's Multiscatter GGX, ``C_MULTISCATTER``), by a
   factor that depends on the view direction: its tint and the closures' selection weights are computed per
   hit (``energy.compensate_energy``).
+- ``MAT_SHEEN``: a closure is Blender's microfiber sheen, fitted per hit to the view direction
+  (``sheen_setup.set_up_sheen``): its tint and the closures' selection weights are computed per hit.
 """
 
 from __future__ import annotations
@@ -36,7 +38,7 @@ from ..bsdf.closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C
                             C_KIND, C_LAYER_ETA, C_LAYER_F0, C_LAYER_MULTISCATTER, C_LAYER_ROUGHNESS, C_MIRROR,
                             C_MS_COLOUR, C_MULTISCATTER, C_S1, C_SPECTRUM, C_TINT,
                             C_TINT_SCALE, C_WEIGHT, CLOSURE_ROW,
-                            CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT,
+                            CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SHEEN, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT,
                             TRANSPARENT, register_source)
 from ..errors import PrismInputError
 from ..scene import SpectrumSpec
@@ -55,6 +57,7 @@ MAT_TRANSPARENT = 64
 MAT_EMISSION_VARIES = 128
 MAT_LAYERED = 256
 MAT_MULTISCATTER = 512
+MAT_SHEEN = 1024
 
 MaterialArrays = namedtuple(
     "MaterialArrays",
@@ -62,7 +65,8 @@ MaterialArrays = namedtuple(
     "white_emission",
 )
 
-_FEATURES = {DIFFUSE: "diffuse", TRANSLUCENT: "translucent", TRANSPARENT: "transparent", THIN_FILM: "thin_film"}
+_FEATURES = {DIFFUSE: "diffuse", TRANSLUCENT: "translucent", TRANSPARENT: "transparent", THIN_FILM: "thin_film",
+             SHEEN: "sheen"}
 
 
 @dataclass
@@ -201,6 +205,8 @@ def build_materials(materials, used, spectra) -> MaterialTable:
                 flags[m] |= MAT_LAYERED
             if spec.multiscatter and spec.kind in (CONDUCTOR, DIELECTRIC) and spec.alpha >= SMOOTH_ALPHA:
                 flags[m] |= MAT_MULTISCATTER
+            if spec.kind == SHEEN:
+                flags[m] |= MAT_SHEEN
             needs_lut = needs_lut or any(c is not None and c.varies
                                          for c in (spec.tint, spec.s0, spec.s1, spec.multiscatter_colour))
         if closures and all(_is_delta(spec) for spec in closures):

@@ -7,7 +7,8 @@ from engine.tracer.bsdf.dispatch import bsdf_evaluate, bsdf_sample
 from engine.tracer.jit import inlined, kernel
 from engine.tracer.materials.energy import compensate_energy
 from engine.tracer.materials.resolve import resolve_material
-from engine.tracer.materials.table import MAT_MULTISCATTER
+from engine.tracer.materials.sheen_setup import set_up_sheen
+from engine.tracer.materials.table import MAT_MULTISCATTER, MAT_SHEEN
 
 
 @inlined
@@ -16,6 +17,8 @@ def _resolve(materials, spectra, wo, lam, hero, rows, spectral, eta, clamps):
     if materials.flags[0] & MAT_MULTISCATTER:
         compensate_energy(materials, spectra, materials.programs.tables.energy, rows, spectral, eta, count, wo[2],
                           wo[2] < 0.0, lam, materials.programs.constants)
+    if materials.flags[0] & MAT_SHEEN:
+        set_up_sheen(materials.programs.tables.sheen, rows, spectral, count, wo[2])
     return count
 
 
