@@ -15,6 +15,10 @@ class PrismRenderEngine(bpy.types.RenderEngine):
     bl_label = "Prism"
     bl_use_preview = True  # material and light previews render with Prism (fast settings)
     bl_use_eevee_viewport = True  # Material Preview shading stays EEVEE's; Rendered is Prism's
+    # Prism renders Blender's own shader node trees: False makes ShaderNodeTree's poll accept the scene
+    # (Blender's default for a Python engine, True, hides the Shader Editor as for an engine with its own
+    # node system). Cycles needs no flag: Blender names it in that poll.
+    bl_use_shading_nodes_custom = False
 
     def render(self, depsgraph):
         from .render_request import handed_over

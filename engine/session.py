@@ -305,7 +305,9 @@ class RenderSession:
         failure is in ``report.output_errors``)."""
         film = renderer.spectral_film
         try:
-            written = spectral_exr.write_spectral_exr(path, film.centres_nm, film.mean(), renderer.image_rgb())
+            # Film ▸ Exposure scales the spectral bands as it scales their RGB image.
+            bands = film.mean() * renderer.settings.film_exposure
+            written = spectral_exr.write_spectral_exr(path, film.centres_nm, bands, renderer.image_rgb())
         except Exception as error:  # noqa: BLE001 - a secondary output never costs the render
             if not isinstance(error, PrismInputError):
                 traceback.print_exc()

@@ -16,6 +16,7 @@ import bpy
 
 from ..farm.manager import FlamencoError, FlamencoManager
 from ..farm.submission import PrismFarmJob, frame_range_text, samples_per_chunk, submit
+from . import online_access
 
 SNAPSHOT_FOLDER = "prism-jobs"
 
@@ -95,6 +96,9 @@ class PRISM_OT_farm_submit(bpy.types.Operator):
     def execute(self, context):
         scene = context.scene
         farm = scene.prism.farm
+        if not online_access.online_access_allowed():
+            self.report({"ERROR"}, online_access.OFFLINE_MESSAGE)
+            return {"CANCELLED"}
         try:
             summary = job_summary(scene)
             manager = FlamencoManager(farm.manager_url)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import bpy
 
 from ..operators.farm_submit import job_summary
+from ..operators import online_access
 from ._panel_base import PrismPanel, error_label
 
 
@@ -33,7 +34,12 @@ class PRISM_PT_farm(PrismPanel, bpy.types.Panel):
             layout.label(text=job_summary(scene), icon="INFO")
         except ValueError as error:
             error_label(layout, str(error))
-        layout.operator("prism.farm_submit", icon="EXPORT")
+        online = online_access.online_access_allowed()
+        if not online:  # say why the button is greyed out, and where to turn it on
+            error_label(layout, online_access.OFFLINE_MESSAGE)
+        row = layout.row()
+        row.enabled = online
+        row.operator("prism.farm_submit", icon="EXPORT")
         if farm.last_job_id:
             layout.label(text=f"Last job: {farm.last_job_id}")
 

@@ -150,7 +150,18 @@ def _projection(camera_object, warnings) -> str:
         if (data.shift_x or data.shift_y) and warnings is not None:
             warnings.append(f"Camera '{camera_object.name}': Shift is ignored by panoramic cameras (as in Cycles).")
         return PANORAMAS[kind]
-    raise PrismInputError(f"Camera '{camera_object.name}' has an unknown type '{data.type}'.")
+    if data.type == "CUSTOM":
+        # A Custom camera is an OSL shader that writes the ray itself (Cycles' CPU OSL backend only);
+        # Prism runs no OSL, so it says so rather than guess a projection.
+        raise PrismInputError(
+            f"Camera '{camera_object.name}' is a Custom (OSL script) camera, which Prism cannot run: Prism "
+            "renders perspective, orthographic and panoramic (Equirectangular, Fisheye Equidistant, Fisheye "
+            "Equisolid) cameras; set Camera ▸ Lens ▸ Type to one of them."
+        )
+    raise PrismInputError(
+        f"Camera '{camera_object.name}' has the camera type '{data.type}', which Prism does not know: set Camera ▸ "
+        "Lens ▸ Type to Perspective, Orthographic or Panoramic."
+    )
 
 
 def _lens_model(camera_object, projection) -> str:

@@ -37,7 +37,10 @@ def corner_uvs(mesh, name, loops):
 
 def corner_attribute(mesh, name, loops, triangle_vertices):
     """float32 [T, 3, 4] RGBA of attribute ``name`` (a colour attribute, a UV map or any float attribute:
-    scalars fill r, g, b; alpha 1 unless the attribute has one), or None if the mesh lacks it."""
+    scalars fill r, g, b; alpha 1 unless the attribute has one), or None if the mesh lacks it.
+
+    Byte colours come out scene-linear: their ``color`` property is Blender's sRGB → linear decode of the
+    stored bytes (``color_srgb`` holds the encoded value), as Cycles reads them."""
     if not name:
         name = mesh.color_attributes.default_color_name or (
             mesh.color_attributes.active_color.name if mesh.color_attributes.active_color else "")
@@ -55,16 +58,8 @@ def corner_attribute(mesh, name, loops, triangle_vertices):
     values = np.empty(count * width, np.float32)
     attribute.data.foreach_get(_PROPERTY[attribute.data_type], values)
     values = values.reshape(count, width)
-    domain = attribute.domain
-    if domain == "POINT":
-        per_corner = values[triangle_vertices]
-    elif domain == "CORNER":
-        per_corner = values[loops]
-    elif domain == "FACE":
-        polygon = np.empty(len(mesh.loop_triangles), np.int32)
-        mesh.loop_triangles.foreach_get("polygon_index", polygon)
-        per_corner = np.repeat(values[polygon], 3, axis=0)
-    else:
+    per_corner = _gather_per_corner(mesh, values, attribute.domain, loops, triangle_vertices)
+    if per_corner is None:
         return None
     rgba = np.zeros((len(per_corner), 4), np.float32)
     rgba[:, 3] = 1.0
@@ -73,6 +68,22 @@ def corner_attribute(mesh, name, loops, triangle_vertices):
     else:
         rgba[:, :width] = per_corner
     return rgba.reshape(-1, 3, 4)
+
+
+def _gather_per_corner(mesh, values, domain, loops, triangle_vertices):
+    """``values`` [N, width] of one attribute gathered to the T * 3 triangle corners, flat [T * 3, width],
+    from any domain Cycles renders: a point's value at each corner's vertex (``triangle_vertices`` is
+    [T, 3] or flat), a corner's directly, a face's at each corner of its loop triangles. None for other
+    domains (edge attributes, which Cycles does not render either)."""
+    if domain == "POINT":
+        return values[np.asarray(triangle_vertices).reshape(-1)]
+    if domain == "CORNER":
+        return values[np.asarray(loops).reshape(-1)]
+    if domain == "FACE":
+        polygon = np.empty(len(mesh.loop_triangles), np.int32)
+        mesh.loop_triangles.foreach_get("polygon_index", polygon)
+        return np.repeat(values[polygon], 3, axis=0)
+    return None
 
 
 def corner_tangents(mesh, name, loops, vertices, triangles, uvs, normals, warn):

@@ -69,6 +69,9 @@ def export_settings(
     if cycles is not None:  # Film ▸ Transparent ▸ Transparent Glass lives in Cycles' settings
         settings.transparent_glass = bool(cycles.film_transparent_glass)
         settings.transparent_roughness = float(cycles.film_transparent_roughness)
+        # Film ▸ Exposure: Prism has no exposure of its own, so Cycles' (the Film panel a converted scene
+        # carries) applies, as the same linear scale of the light passes.
+        settings.film_exposure = float(getattr(cycles, "film_exposure", 1.0))
     try:
         settings.validate()
     except PrismInputError as error:  # stored past the UI's limits (a script, an old file): say where

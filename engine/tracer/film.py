@@ -42,6 +42,7 @@ class Film:
         self._aux = np.zeros((count, columns))
         self._alpha = None  # sums of the samples' alpha, once a render has any transparency
         self.nan_samples = 0
+        self.exposure = 1.0  # Film ▸ Exposure: scales what mean() and variance_of_mean() report, not the sums
         self.light_paths = 0  # light paths traced so far (the light splats' denominator)
         self._light_sum = self._light_sum_sq = self._light_splats = None
 
@@ -111,7 +112,7 @@ class Film:
         mean = self._sum / n
         if self.light_paths:
             mean = mean + self._light_sum / self.light_paths
-        return mean.reshape(self.height, self.width, 3)
+        return (mean * self.exposure).reshape(self.height, self.width, 3)
 
     def aux_mean(self) -> np.ndarray:
         """The pass columns per pixel, float64 [H, W, layout width]: the mean of each over the samples."""
@@ -129,4 +130,5 @@ class Film:
         if self.light_paths > 1:
             m = float(self.light_paths)
             var = var + np.maximum(self._light_sum_sq - self._light_sum ** 2 / m, 0.0) / (m * (m - 1.0))
+        var = var * self.exposure ** 2
         return var.reshape(self.height, self.width, 3)

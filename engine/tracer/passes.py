@@ -36,6 +36,8 @@ class Buffer:
 #: Light that reached the camera, split by what it did first (see ``stages.passes``).
 LIGHT_SLOTS = ("emission", "environment", "diffuse_direct", "diffuse_indirect", "glossy_direct", "glossy_indirect",
                "transmission_direct", "transmission_indirect", "diffuse_color", "glossy_color", "transmission_color")
+#: The light slots Film ▸ Exposure scales: light, not the albedo-like colour passes.
+EXPOSED_BUFFERS = frozenset(slot for slot in LIGHT_SLOTS if not slot.endswith("_color"))
 
 BUFFERS = {b.key: b for b in (
     Buffer("depth", 2),  # depth of a sample on a surface (m), 1 for such a sample
@@ -180,9 +182,10 @@ class FilmLayout:
             aov_column if self.aov_names else -1, len(self.aov_names), column, len(self.slot_keys), rgb_column,
             int(white_spectrum))
 
-    def images(self, aux_mean: np.ndarray) -> dict[str, np.ndarray]:
+    def images(self, aux_mean: np.ndarray, exposure: float = 1.0) -> dict[str, np.ndarray]:
         """Every requested pass from the film's per-pixel ``aux_mean`` [..., width] (sums divided by the
-        sample count): name → float32 [..., channels]."""
+        sample count): name → float32 [..., channels]. ``exposure`` (Film ▸ Exposure) scales the light
+        passes and light groups, as Cycles does; data and colour (albedo) passes stay as they are."""
         out = {}
         for name in self.request.passes:
             p = PASSES[name]
@@ -193,9 +196,11 @@ class FilmLayout:
             elif p.divide_by:
                 colour = self._buffer(aux_mean, p.divide_by)
                 image = np.divide(image, colour, out=np.zeros_like(image), where=colour > 1e-8)
+            if p.buffer in EXPOSED_BUFFERS:
+                image = image * exposure
             out[name] = image.astype(np.float32)
         for group in self.request.light_groups:
-            out[LIGHT_GROUP_PREFIX + group] = self._buffer(aux_mean, "group:" + group).astype(np.float32)
+            out[LIGHT_GROUP_PREFIX + group] = (self._buffer(aux_mean, "group:" + group) * exposure).astype(np.float32)
         for name, kind in self.request.aovs.items():
             first, _ = self.columns["aov:" + name]
             width = 1 if kind == "VALUE" else 4

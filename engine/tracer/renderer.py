@@ -195,6 +195,7 @@ class Renderer:
         """The region's film."""
         if self._film is None:
             self._film = Film(self.width, self.height, self.tables.pass_layout, self.region)
+            self._film.exposure = float(self.settings.film_exposure)
         return self._film
 
     def _region_pixel_list(self) -> np.ndarray:
@@ -378,7 +379,7 @@ class Renderer:
         layout = self.tables.pass_layout
         if layout.width == 0:
             return {}
-        return layout.images(self.film.aux_mean())
+        return layout.images(self.film.aux_mean(), exposure=self.settings.film_exposure)
 
     def close(self) -> None:
         """Cancel outstanding work and free the thread pool (idempotent)."""

@@ -64,9 +64,15 @@ class RenderSettings:
     film_transparent: bool = False
     transparent_glass: bool = False
     transparent_roughness: float = 0.1
+    # Film ▸ Exposure (Cycles' ``film_exposure``): a linear scale of every light pass (Combined, Emit,
+    # Diffuse Direct, light groups, ...), not of data passes (Depth, Normal, colour passes). 1 = physical.
+    film_exposure: float = 1.0
 
     def validate(self) -> None:
         """Raise ``PrismInputError`` for settings no render can use."""
+        if not (self.film_exposure >= 0.0 and self.film_exposure < float("inf")):
+            raise PrismInputError(f"Film Exposure {self.film_exposure} is not a finite scale ≥ 0: set Film ▸ "
+                                  "Exposure between 0 and 10 (1 leaves the image as rendered).")
         if self.wavelength_mode not in WAVELENGTH_MODES:
             raise PrismInputError(
                 f"Unknown wavelength mode '{self.wavelength_mode}': use one of {', '.join(WAVELENGTH_MODES)}."

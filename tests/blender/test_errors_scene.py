@@ -40,6 +40,10 @@ def _panorama(kind):
     return mutate
 
 
+def _custom_camera():
+    bpy.context.scene.camera.data.type = "CUSTOM"
+
+
 def _real_lens_ortho(tmp):
     def mutate():
         _real_lens(REPO_ROOT / "lenses" / "double_gauss_50mm.lens")()
@@ -230,6 +234,10 @@ CASES = {
     "no camera": (_no_camera, "Scene 'Scene' has no active camera"),
     "camera is not a camera": (_empty_as_camera, "The active camera 'Helper' is not a camera object"),
     "mirror ball panorama": (_panorama("MIRRORBALL"), "Camera 'Camera': the Mirrorball panorama is not supported"),
+    "custom (OSL) camera": (
+        _custom_camera, "Camera 'Camera' is a Custom (OSL script) camera, which Prism cannot run: Prism renders "
+        "perspective, orthographic and panoramic"
+    ),
     "real lens on an orthographic camera": (
         _real_lens_ortho, "Camera 'Camera' uses a real lens, which forms a perspective image: set Camera ▸ Lens"
     ),

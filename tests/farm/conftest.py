@@ -282,3 +282,13 @@ def flamenco_farm(tmp_path_factory):
         yield farm
     finally:
         farm.stop()
+
+
+@pytest.fixture(autouse=True)
+def online_access_on(request, monkeypatch):
+    """The bpy module starts with Blender's Allow Online Access off (``bpy.app.online_access`` False, a
+    read-only flag), and Prism then makes no request to a Manager: the farm tests act as a user who allowed
+    it. ``test_farm_online_access.py`` turns it off again."""
+    if "prism_addon" in request.fixturenames:
+        addon = request.getfixturevalue("prism_addon")
+        monkeypatch.setattr(addon.operators.online_access, "online_access_allowed", lambda: True)
