@@ -58,6 +58,21 @@ def test_colour_checker_renders_colour_sciences_colours(fresh_scene, illuminant)
         f"{kind} CIEDE2000 max {worst:.2f} mean {mean:.2f}" for kind, (worst, mean) in figures.items()))
     worst = {f"{kind}: {patch}": round(float(e), 2) for (kind, patch, _), e in zip(windows, delta_e) if e > 1.0}
     assert delta_e.max() <= 1.0, (figures, worst)
+    if illuminant == "D65":
+        _cyan_is_out_of_gamut_as_measured(windows, means, patches, expected)
+
+
+def _cyan_is_out_of_gamut_as_measured(windows, means, patches, expected):
+    """The cyan patch under D65 lies outside Rec.709's gamut: colour-science's colour of it has red
+    -0.033. Prism writes that negative red (scene-linear, as a spectral renderer measures it; Cycles, an
+    RGB renderer, cannot leave the gamut), and does not clamp it to 0, which would shift the colour."""
+    index = next(i for i, name in enumerate(patches) if name.endswith(": cyan"))
+    reference_red = float(np.linalg.solve(rec709_to_xyz(np.eye(3)).T, expected[index])[0])
+    assert reference_red < -0.02, reference_red
+    for k in range(2):  # the Principled patch, then the Diffuse one
+        assert windows[k * 24 + index][1] == patches[index]
+        red = float(means[k * 24 + index][0])
+        assert abs(red - reference_red) < 0.01, (windows[k * 24 + index][0], red, reference_red)
 
 
 def _export(prism_addon, mat):
