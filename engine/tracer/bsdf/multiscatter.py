@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from ..jit import kernel
+from ..table_files import load_table
 from .closure import C_ETA, C_FRESNEL, FRESNEL_CONDUCTOR, FRESNEL_DIELECTRIC, FRESNEL_F82, FRESNEL_SCHLICK
 from .conductor import C82_5, C82_WEIGHT
 from .optics import dielectric_f0, fresnel_conductor, tinted_fresnel
@@ -47,15 +48,9 @@ _X, _W = np.polynomial.legendre.leggauss(12)
 _GL_NODES = tuple(float(x) for x in 0.5 * (_X + 1.0))
 _GL_WEIGHTS = tuple(float(w) for w in 0.5 * _W)
 
-_CACHE = {}
-
 
 def load_energy_tables() -> EnergyTables:
-    if "tables" not in _CACHE:
-        with np.load(TABLE_PATH) as data:
-            _CACHE["tables"] = EnergyTables(*(np.ascontiguousarray(data[name], dtype=np.float64)
-                                              for name in EnergyTables._fields))
-    return _CACHE["tables"]
+    return load_table(TABLE_PATH, EnergyTables)
 
 
 @kernel

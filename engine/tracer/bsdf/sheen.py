@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ..jit import kernel
+from ..table_files import load_table
 from ..warps import concentric_disk
 from .closure import C_SHEEN_A, C_SHEEN_B, SAMPLED_DIFFUSE
 from .multiscatter import grid_cell
@@ -46,15 +47,9 @@ MIN_ROUGHNESS = 1e-3
 #: Below this |a| or albedo the fitted lobe is degenerate; the closure reflects nothing (as in Cycles).
 DEGENERATE = 1e-5
 
-_CACHE = {}
-
 
 def load_sheen_table() -> SheenTable:
-    if "table" not in _CACHE:
-        with np.load(TABLE_PATH) as data:
-            _CACHE["table"] = SheenTable(*(np.ascontiguousarray(data[name], dtype=np.float64)
-                                           for name in SheenTable._fields))
-    return _CACHE["table"]
+    return load_table(TABLE_PATH, SheenTable)
 
 
 @kernel
