@@ -22,31 +22,28 @@ def empty_file(resolution=(48, 48)) -> bpy.types.Scene:
     return scene
 
 
-def diffuse(name: str, colour=(0.5, 0.5, 0.5)) -> bpy.types.Material:
-    """A Lambertian material of ``colour`` (linear RGB)."""
+def _shader_material(name: str, node_type: str, inputs: dict) -> bpy.types.Material:
+    """A material whose Surface is one ``node_type`` shader with ``inputs`` (socket name → value)."""
     material = bpy.data.materials.new(name)
     material.use_nodes = True
     nodes = material.node_tree.nodes
     nodes.clear()
-    shader = nodes.new("ShaderNodeBsdfDiffuse")
-    shader.inputs["Color"].default_value = (*colour, 1.0)
+    shader = nodes.new(node_type)
+    for socket, value in inputs.items():
+        shader.inputs[socket].default_value = value
     output = nodes.new("ShaderNodeOutputMaterial")
     material.node_tree.links.new(shader.outputs[0], output.inputs["Surface"])
     return material
+
+
+def diffuse(name: str, colour=(0.5, 0.5, 0.5)) -> bpy.types.Material:
+    """A Lambertian material of ``colour`` (linear RGB)."""
+    return _shader_material(name, "ShaderNodeBsdfDiffuse", {"Color": (*colour, 1.0)})
 
 
 def emission(name: str, strength: float, colour=(1.0, 1.0, 1.0)) -> bpy.types.Material:
     """A material emitting ``colour`` × ``strength`` (radiance, W/(m² sr) per unit colour) on both sides."""
-    material = bpy.data.materials.new(name)
-    material.use_nodes = True
-    nodes = material.node_tree.nodes
-    nodes.clear()
-    shader = nodes.new("ShaderNodeEmission")
-    shader.inputs["Color"].default_value = (*colour, 1.0)
-    shader.inputs["Strength"].default_value = strength
-    output = nodes.new("ShaderNodeOutputMaterial")
-    material.node_tree.links.new(shader.outputs[0], output.inputs["Surface"])
-    return material
+    return _shader_material(name, "ShaderNodeEmission", {"Color": (*colour, 1.0), "Strength": strength})
 
 
 def link_object(obj, collection=None):
