@@ -1,7 +1,7 @@
 """What image textures cost in memory, checked image by image before Prism reads an image's pixels.
 
-Measured per texel with ``/proc/self/status`` (VmRSS, VmHWM) around ``nodes.images.read_image`` and
-``tracer.textures.image.build_textures`` on 4096² images (bpy 4.5): Blender's own buffer of the image
+Measured per texel around ``nodes.images.read_image`` and ``tracer.textures.image.build_textures``
+(bpy 4.5; the test counts numpy's buffers with ``tracemalloc``, exact to 0.01 byte a texel): Blender's own buffer of the image
 (4 bytes a texel for 8-bit images, 16 for float ones), the peak while Prism reads it (the float32 RGBA
 copy ``foreach_get`` fills, the levels or decoded values made from it), and what stays for the render
 (the ``TextureImage`` and its copy in the texture tables). A 16384² 8-bit texture thus needs about
