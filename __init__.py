@@ -7,7 +7,8 @@ process that compiles the kernels in the background: ``engine.warmup``).
 """
 
 from . import operators, ui
-from .engine import properties, render_engine
+from .engine import properties
+from .engine.render import render_engine
 from .engine.warmup import triggers as kernel_warmup
 
 # The warm-up's triggers after the engine (a scene can only use a registered engine).

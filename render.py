@@ -22,7 +22,7 @@ merged.exr|.png`` checks the chunks belong to one render (and, with
 ``--expect-samples``, hold samples ``0..TOTAL-1`` with none missing) and combines
 them weighted by their samples. Chunks ``0..K-1`` merge to the same image, bit
 for bit, as one render of ``K*N`` samples written with ``--chunk-seed 0`` (see
-``engine/chunks.py`` for when that holds); a merged PNG has the pixels of that
+``engine/render/chunks.py`` for when that holds); a merged PNG has the pixels of that
 render's PNG.
 
 ``--spectral-output spectra.exr`` also writes a multispectral EXR (the layout
@@ -94,16 +94,16 @@ class Prism:
         self.arguments = self.module("engine.batch.arguments")
         self.output_files = self.module("engine.batch.output_files")
         self.stop_signals = self.module("engine.batch.stop_signals")
-        self.requests = self.module("engine.render_request")
+        self.requests = self.module("engine.render.request")
         self.export = self.module("engine.export")
         self.errors = self.module("engine.tracer.errors")
 
     def module(self, name: str):
-        """``engine.chunks`` etc. of the add-on (imported on first use: some pull in OpenImageIO or the GPU)."""
+        """``engine.render.chunks`` etc. of the add-on (imported on first use: some pull in OpenImageIO or the GPU)."""
         return importlib.import_module(f"{self.package}.{name}")
 
     def chunks(self):
-        return self.module("engine.chunks")
+        return self.module("engine.render.chunks")
 
 
 def open_blend_file(path: str, prism: Prism) -> None:
@@ -164,9 +164,9 @@ def render_frame(arguments, output: Path, prism: Prism, signals, frame: int | No
     chunked = arguments.chunk_seed is not None
     if chunked:  # what `--output x.png` would write with, for a merge into a PNG
         with output_format(scene, "PNG"):
-            png_settings = prism.module("engine.png_output").png_settings(scene)
+            png_settings = prism.module("engine.output.png").png_settings(scene)
     file_format = OUTPUT_FORMATS[output.suffix.lower()]
-    if file_format == "OPEN_EXR" and not chunked and prism.module("engine.passes").enabled_passes(scene):
+    if file_format == "OPEN_EXR" and not chunked and prism.module("engine.render.result_passes").enabled_passes(scene):
         file_format = "OPEN_EXR_MULTILAYER"  # every pass, named as Blender names them
     with (
         output_format(scene, file_format),
@@ -296,7 +296,7 @@ def merge(arguments, prism: Prism, signals) -> None:
     output = prism.output_files.numbered_output(Path(arguments.output).resolve(), frame)  # '#': the chunks' frame
     with prism.output_files.atomic_output(output, signals) as temporary:
         if output.suffix.lower() == ".png":
-            png = prism.module("engine.png_output")
+            png = prism.module("engine.output.png")
             png.write_png(merged.mean, merged.png_settings, temporary, source=arguments.merge[0], frame=frame)
         else:
             chunks.write_chunk(temporary, merged)

@@ -80,7 +80,7 @@ class PRISM_PT_light_spectrum(PrismPanel, bpy.types.Panel):
 
     def draw(self, context):
         from ..engine.export.spectra import light_emission_source
-        from ..engine.spectrum_preview import emission_preview
+        from ..engine.output.spectrum_preview import emission_preview
 
         light = context.light
         preview = emission_preview(light_emission_source(light.name, light))

@@ -42,7 +42,7 @@ def _split(layout):
 def _fold():
     """The kernels' constant folder if they are compiled already, else None: a panel must never wait for
     numba (the summary then also lists lobes that constant weights of 0 would remove)."""
-    from ..engine import kernel_cache
+    from ..engine.warmup import kernel_cache
     from ..engine.tracer import jit
 
     kernel_cache.configure()  # before any kernel is imported: the cache a render would use
@@ -197,7 +197,7 @@ class PRISM_PT_material_base_spectrum(MaterialSubpanel, bpy.types.Panel):
 
     def draw(self, context):
         from ..engine.export.spectra import material_reflectance_source
-        from ..engine.spectrum_preview import reflectance_preview
+        from ..engine.output.spectrum_preview import reflectance_preview
 
         layout = _split(self.layout)
         material = context.material
@@ -238,7 +238,7 @@ class PRISM_PT_material_emission_spectrum(MaterialSubpanel, bpy.types.Panel):
 
     def draw(self, context):
         from ..engine.export.spectra import material_emission_source
-        from ..engine.spectrum_preview import emission_preview
+        from ..engine.output.spectrum_preview import emission_preview
 
         layout = _split(self.layout)
         material = context.material

@@ -1,5 +1,5 @@
 """Drawing a light's or material's spectrum in a panel: the plot, the colour metrics of an emitter,
-or the message of a spectrum the render would refuse. Previews come from ``engine.spectrum_preview``
+or the message of a spectrum the render would refuse. Previews come from ``engine.output.spectrum_preview``
 (computed off the main thread); while one is computed a timer redraws the Properties editor when it
 is ready."""
 
@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import bpy
 
-from ..engine.spectrum_preview import pending
+from ..engine.output.spectrum_preview import pending
 from . import spectral_plot
 from ._panel_base import error_label
 

@@ -10,8 +10,8 @@ TITLE = "Denoising: relMSE of a 16 spp frame before and after OpenImageDenoise"
 def run(quick: bool) -> dict:
     from benchmarks import scenes
     from benchmarks.metrics import relmse, relmse_noise_floor
-    from engine.denoise import denoise
-    from engine.tracer.passes import PassRequest
+    from engine.output.denoise import denoise
+    from engine.tracer.pass_table import PassRequest
 
     from ._common import reference, render
 

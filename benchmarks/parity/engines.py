@@ -27,7 +27,7 @@ def _prism_modules():
     """The registered add-on's ``render_request`` module (registering this checkout's copy if needed)."""
     from render import prism_package_name
 
-    return importlib.import_module(f"{prism_package_name()}.engine.render_request")
+    return importlib.import_module(f"{prism_package_name()}.engine.render.request")
 
 
 def _configure_cycles(scene, samples: int, seed: int, bounces: int) -> None:

@@ -34,7 +34,7 @@ def read_layers(path, layer_names) -> np.ndarray:
     Blender's image loader shows one layer only, so the file is read with OpenImageIO (bundled)."""
     from render import prism_package_name
 
-    openimageio = importlib.import_module(f"{prism_package_name()}.engine.openimageio").import_openimageio()
+    openimageio = importlib.import_module(f"{prism_package_name()}.engine.output.openimageio").import_openimageio()
     buffer = openimageio.ImageBuf(str(path))
     spec = buffer.spec()
     pixels = np.asarray(buffer.get_pixels(openimageio.FLOAT)).reshape(spec.height, spec.width, spec.nchannels)

@@ -78,8 +78,8 @@ def check_camera_scale(camera_object) -> None:
 
 
 def check_frame_memory(scene, width: int, height: int) -> None:
-    """Refuse at once a frame whose image and passes cannot fit in memory (``engine.passes.frame_plan``)."""
-    from ..passes import frame_plan
+    """Refuse at once a frame whose image and passes cannot fit in memory (``engine.render.result_passes.frame_plan``)."""
+    from ..render.result_passes import frame_plan
 
     frame_plan(scene, None, width, height)
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..tracer.errors import PrismInputError
-from ..tracer.passes import PassRequest
+from ..tracer.pass_table import PassRequest
 from ..tracer.settings import RenderSettings
 
 _MODES = {"CIE": "cie", "GAUSSIAN_RGB": "gaussian_rgb"}
@@ -29,7 +29,7 @@ def export_settings(
     ``preview`` (a material or light preview) renders ``PREVIEW_SAMPLES`` with the
     viewport's bounces; ``border`` is the pixel rectangle (x0, y0, x1, y1), rows
     from the top, half-open; ``passes`` what besides Combined to render
-    (``engine.passes.pass_request``); ``spectral`` keeps band radiance for a multispectral
+    (``engine.render.result_passes.pass_request``); ``spectral`` keeps band radiance for a multispectral
     EXR (bands of the scene's Spectral Output width).
     """
     prism = scene.prism

@@ -71,7 +71,7 @@ class TextureBudget:
     @classmethod
     def for_scene(cls, scene) -> TextureBudget:
         """The budget left once ``scene``'s frame (its resolution and passes) is planned."""
-        from ..passes import frame_plan
+        from ..render.result_passes import frame_plan
         from .camera import render_resolution
 
         available = frames.available_memory_bytes()

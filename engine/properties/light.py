@@ -26,7 +26,7 @@ def _preview_color(self):
         return line_display_rgb(self.wavelength_nm, self.line_width_nm)
     if self.color_source in ("ILLUMINANT", "FILE"):
         from ..export.spectra import light_emission_source
-        from ..spectrum_preview import emission_preview
+        from ..output.spectrum_preview import emission_preview
 
         preview = emission_preview(light_emission_source(self.id_data.name, self.id_data))
         return preview.display_rgb if preview is not None and preview.error is None else (0.0, 0.0, 0.0)

@@ -105,7 +105,7 @@ def analyse_scene(scene, settings, used, material_table, light_table, camera, ge
                   triangle_objects):
     """(``SceneAnalysis`` of a render, the caustic targets of its specular triangles or None) from its
     tables: ``used`` material indices, ``camera`` (``cameras.make_camera``), ``geometry`` (its triangles),
-    ``pass_layout`` (``passes.FilmLayout``), ``ray_classes`` (None unless some object hides from some ray
+    ``pass_layout`` (``pass_table.FilmLayout``), ``ray_classes`` (None unless some object hides from some ray
     type), ``triangle_objects`` (the object of each triangle, or None)."""
     k = int(settings.wavelengths_per_path) if settings.wavelength_mode == "cie" else 3
     a = SceneAnalysis(settings.wavelength_mode, k, list(used), sampler=settings.sampler)

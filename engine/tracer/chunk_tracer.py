@@ -16,7 +16,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .stages.passes import new_pass_data
+from .stages.pass_writes import new_pass_data
 from .state import ChunkBuffers
 
 

@@ -1,5 +1,5 @@
 """The film: per-pixel running sums of RGB samples and their squares (float64), sample counts, and the
-sums of the requested passes' values (``aux`` columns, laid out by ``passes.FilmLayout``).
+sums of the requested passes' values (``aux`` columns, laid out by ``pass_table.FilmLayout``).
 
 Samples arrive already converted to scene-linear Rec.709 (the spectral-to-RGB map is linear, so the
 mean of converted samples is the converted mean). ``add`` splats them one by one (``stages.film``):

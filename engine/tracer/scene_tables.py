@@ -10,7 +10,7 @@ Every position is relative to the render's origin (``camera.origin``). The table
 - ``geometry`` (``geometry.prepare_geometry``: float32 triangles, zero-area ones dropped), its Embree
   scene ``accel`` and, when objects hide from some rays, ``ray_classes`` (else None);
 - ``spectra`` (``spectra.table``), ``material_table`` (``materials.table``), ``light_table``
-  (``lights.table``), ``pass_layout`` and ``aov_table`` (``passes``), the wavelength sampling
+  (``lights.table``), ``pass_layout`` and ``aov_table`` (``pass_table``), the wavelength sampling
   ``wavelengths`` (guided by ``guide`` towards the scene's emission lines in ``cie`` mode, else None),
   ``kernel_settings`` (``stages.settings``) and ``needs_alpha`` (the film keeps alpha);
 - what the scene needs (``analysis.analyse_scene``): ``analysis``, ``caustic_targets`` (None without
@@ -30,7 +30,7 @@ from .geometry import prepare_geometry
 from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
 from .materials.table import build_materials
-from .passes import FilmLayout, aov_table
+from .pass_table import FilmLayout, aov_table
 from .sampler import SAMPLERS
 from .scene import SpectrumSpec
 from .spectra import wavelength_sampling

@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass, field
 
 from .errors import PrismInputError
-from .passes import PassRequest
+from .pass_table import PassRequest
 
 WAVELENGTH_MODES = ("cie", "gaussian_rgb")
 LIGHT_TRACING_MODES = ("auto", "off", "on")
@@ -49,7 +49,7 @@ class RenderSettings:
     # Caustics from light tracing (paths from the lights through specular objects, seen by the camera):
     # "auto" (where the scene analysis finds specular objects a light can shine through), "off", "on".
     light_tracing: str = "auto"
-    # Passes besides Combined (``passes.PassRequest``).
+    # Passes besides Combined (``pass_table.PassRequest``).
     passes: PassRequest = field(default_factory=PassRequest)
     # Adaptive sampling (Cycles' Noise Threshold and Min Samples): a pixel stops once its relative
     # error (``adaptive.pixel_error``) is below the threshold; 0 = off. Min samples 0 = automatic.

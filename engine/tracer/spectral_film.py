@@ -1,5 +1,5 @@
 """The multispectral film: per pixel, the mean spectral radiance in wavelength bands across the visible
-range (an optional output, written as a spectral EXR by ``engine.spectral_exr``).
+range (an optional output, written as a spectral EXR by ``engine.output.spectral_exr``).
 
 Kept apart from the RGB film: it exists only when ``RenderSettings.spectral_band_nm`` > 0. Bands tile
 360-830 nm, every wavelength a path carries, with the width nearest the setting that divides the

@@ -117,7 +117,7 @@ class ChunkBuffers:
     def __init__(self, n: int, k: int, passes=None, registers: int = 1):
         self.capacity = n
         self.k = k
-        self.passes = passes  # stages.passes.PassData
+        self.passes = passes  # stages.pass_writes.PassData
         self.state = new_path_state(n, k)
         self.rays = (new_ray_queue(n), new_ray_queue(n))  # this bounce's and the next
         self.surface = PathList(np.empty(n, np.int32))

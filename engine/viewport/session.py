@@ -15,12 +15,12 @@ from __future__ import annotations
 import traceback
 import weakref
 
-from .. import kernel_cache
+from ..warmup import kernel_cache
 
 kernel_cache.configure()  # before anything below imports a tracer kernel module
 
 from ..export.camera import export_camera  # noqa: E402
-from ..stats import stats_line  # noqa: E402
+from ..render.stats import stats_line  # noqa: E402
 from ..tracer.errors import PrismInputError  # noqa: E402
 from .display import FrameDisplay  # noqa: E402
 from .progressive import Change, ProgressiveRender  # noqa: E402

@@ -18,7 +18,7 @@ import sys
 import time
 from pathlib import Path
 
-from .. import kernel_cache
+from . import kernel_cache
 from ..tracer import kernel_folder
 from . import lock
 

@@ -19,7 +19,7 @@ from helpers.bpy_scenes import build_lit_card_scene, image_pixels
 @pytest.fixture
 def batch(prism_addon, fresh_scene):
     build_lit_card_scene(resolution=(16, 12))
-    return importlib.import_module("render"), importlib.import_module(f"{prism_addon.__name__}.engine.chunks")
+    return importlib.import_module("render"), importlib.import_module(f"{prism_addon.__name__}.engine.render.chunks")
 
 
 def _run(render, *arguments):
@@ -77,7 +77,7 @@ def test_merge_rejects_overlaps_foreign_files_and_size_mismatches(batch, tmp_pat
 
 def _edit_chunk(path, edit):
     """Rewrite the EXR at ``path`` after ``edit(pixels [H, W, C], spec)``, keeping its attributes."""
-    chunks = importlib.import_module("prism_spectral.engine.chunks")
+    chunks = importlib.import_module("prism_spectral.engine.render.chunks")
     oiio = chunks._oiio()
     image = oiio.ImageInput.open(str(path))
     spec = image.spec()
@@ -235,7 +235,7 @@ def test_every_pass_prints_a_time_line_that_render_farms_count(batch, tmp_path, 
     times = [line for line in stderr.splitlines() if re.match(r"Time: [0-9:.]+ ", line)]
     assert [line.split(" | ")[2:4] for line in times] == [["Pass 1", "2/6 spp"], ["Pass 2", "4/6 spp"],
                                                          ["Pass 3", "6/6 spp"]]
-    stats = importlib.import_module("prism_spectral.engine.stats")
+    stats = importlib.import_module("prism_spectral.engine.render.stats")
     assert [stats.timecode(s) for s in (0.0, 7.254, 3727.25)] == ["00:00.00", "00:07.25", "01:02:07.25"]
 
 
@@ -369,8 +369,8 @@ def test_a_png_merge_with_settings_this_blender_lacks_is_refused_and_writes_noth
 
 
 def test_expect_samples_names_many_missing_chunks_as_a_range_and_odd_sizes_without_a_hint(prism_addon):
-    chunks = importlib.import_module(f"{prism_addon.__name__}.engine.chunks")
-    parts = importlib.import_module(f"{prism_addon.__name__}.engine.fingerprint").PARTS
+    chunks = importlib.import_module(f"{prism_addon.__name__}.engine.render.chunks")
+    parts = importlib.import_module(f"{prism_addon.__name__}.engine.render.fingerprint").PARTS
 
     def chunk(start, end, name):
         return chunks.Chunk(mean=np.zeros((2, 2, 3)), seed=0, sample_ranges=((start, end),),

@@ -18,8 +18,8 @@ def _chunk(chunks, parts, start, end, name):
 
 
 def _modules(prism_addon):
-    chunks = importlib.import_module(f"{prism_addon.__name__}.engine.chunks")
-    parts = importlib.import_module(f"{prism_addon.__name__}.engine.fingerprint").PARTS
+    chunks = importlib.import_module(f"{prism_addon.__name__}.engine.render.chunks")
+    parts = importlib.import_module(f"{prism_addon.__name__}.engine.render.fingerprint").PARTS
     return chunks, parts
 
 

@@ -42,7 +42,7 @@ def test_each_warning_prints_once(prism_addon, fresh_scene, tmp_path, capfd, bad
 def test_a_spectral_exr_that_fails_after_the_render_keeps_the_image(prism_addon, fresh_scene, tmp_path, capfd,
                                                                      monkeypatch, bad_input):
     build_lit_card_scene(resolution=(8, 6))
-    spectral_exr = importlib.import_module(f"{prism_addon.__name__}.engine.spectral_exr")
+    spectral_exr = importlib.import_module(f"{prism_addon.__name__}.engine.output.spectral_exr")
     errors = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.errors")
 
     def disk_full(path, *_):

@@ -318,7 +318,7 @@ _NEEDS_TMP = {"no lens chosen", "missing lens file", "invalid lens file", "unkno
 
 @pytest.mark.parametrize("case", list(CASES))
 def test_error_is_reported_and_stops_the_render(prism_addon, fresh_scene, tmp_path, case, capsys, bad_input):
-    requests = importlib.import_module(f"{prism_addon.__name__}.engine.render_request")
+    requests = importlib.import_module(f"{prism_addon.__name__}.engine.render.request")
     export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
     mutate, message = CASES[case]
     _base_scene()

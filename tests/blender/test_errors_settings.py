@@ -55,7 +55,7 @@ SETTING_CASES = {
 @pytest.mark.parametrize("case", list(SETTING_CASES))
 def test_scene_settings_stored_past_their_limits(prism_addon, fresh_scene, tmp_path, capsys, bad_input, case):
     """As a script or an old file can store them: the message says which scene and panel."""
-    requests = importlib.import_module(f"{prism_addon.__name__}.engine.render_request")
+    requests = importlib.import_module(f"{prism_addon.__name__}.engine.render.request")
     values, message = SETTING_CASES[case]
     _base_scene()
     _scene_setting(**values)()

@@ -8,7 +8,7 @@ import dataclasses
 
 import numpy as np
 
-from engine.fingerprint import differing_parts, render_fingerprint
+from engine.render.fingerprint import differing_parts, render_fingerprint
 from engine.tracer.lens.catalogue import LENS_DIRECTORY
 from engine.tracer.scene import Camera, Light, Material, Scene
 from engine.tracer.settings import RenderSettings

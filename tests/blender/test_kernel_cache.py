@@ -46,7 +46,7 @@ def status_bar():
 
 def _modules(prism_addon):
     package = prism_addon.__name__
-    return (importlib.import_module(f"{package}.engine.kernel_cache"),
+    return (importlib.import_module(f"{package}.engine.warmup.kernel_cache"),
             importlib.import_module(f"{package}.engine.tracer.jit"))
 
 
@@ -74,7 +74,7 @@ def test_a_cancelled_first_render_does_not_mark_the_cache_warm(
     prism_addon, lit_plane, status_bar, tmp_path, monkeypatch
 ):
     _, jit = _modules(prism_addon)
-    session = importlib.import_module(f"{prism_addon.__name__}.engine.session")
+    session = importlib.import_module(f"{prism_addon.__name__}.engine.render.session")
     monkeypatch.setenv("PRISM_KERNEL_CACHE", str(tmp_path / "kernels"))
     original_passes = session.RenderSession._passes
 

@@ -143,7 +143,7 @@ def test_material_panels_show_what_prism_reads(prism_addon, fresh_scene, monkeyp
 def test_spectrum_panels_plot_the_spectrum_and_the_lights_colour_rendering(prism_addon, fresh_scene, tmp_path):
     import bpy
 
-    preview = importlib.import_module(f"{prism_addon.__name__}.engine.spectrum_preview")
+    preview = importlib.import_module(f"{prism_addon.__name__}.engine.output.spectrum_preview")
     sources = importlib.import_module(f"{prism_addon.__name__}.engine.export.spectra")
     light = bpy.data.lights.new("Lamp", "AREA")
     light.prism.color_source, light.prism.illuminant = "ILLUMINANT", "FL2"

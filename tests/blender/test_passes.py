@@ -19,7 +19,7 @@ LIGHT = ("emit", "environment", "diffuse_direct", "diffuse_indirect", "diffuse_c
 
 def _read_layers(prism_addon, path) -> dict[str, np.ndarray]:
     """Pass name → [H, W, C] (row 0 on top) of a multilayer EXR Blender wrote."""
-    oiio = importlib.import_module(f"{prism_addon.__name__}.engine.chunks")._oiio()
+    oiio = importlib.import_module(f"{prism_addon.__name__}.engine.render.chunks")._oiio()
     image = oiio.ImageInput.open(str(path))
     spec = image.spec()
     pixels = np.asarray(image.read_image(0, 0, 0, spec.nchannels, "float")).reshape(spec.height, spec.width, -1)
@@ -168,7 +168,7 @@ def test_compositor_denoise_node_and_the_denoise_option_clean_the_frame(prism_ad
 
 
 def test_a_frame_too_large_for_memory_fails_at_once(prism_addon, card_scene, bad_input):
-    session = importlib.import_module(f"{prism_addon.__name__}.engine.render_request")
+    session = importlib.import_module(f"{prism_addon.__name__}.engine.render.request")
     _switch_on(card_scene, DATA + LIGHT)
     card_scene.prism.use_pass_denoising_data = True
     card_scene.render.resolution_x = card_scene.render.resolution_y = 20000

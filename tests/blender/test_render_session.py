@@ -14,12 +14,12 @@ LUMINANCE = np.array([0.2126, 0.7152, 0.0722])  # Rec.709 Y of linear RGB
 
 
 def _session(prism_addon):
-    return importlib.import_module(f"{prism_addon.__name__}.engine.session")
+    return importlib.import_module(f"{prism_addon.__name__}.engine.render.session")
 
 
 def _reporting(prism_addon):
     """``with _reporting(addon) as report:`` around a render: the F12 defaults, and its report."""
-    return importlib.import_module(f"{prism_addon.__name__}.engine.render_request").render_request()
+    return importlib.import_module(f"{prism_addon.__name__}.engine.render.request").render_request()
 
 
 def _count_passes(prism_addon, monkeypatch) -> list:
@@ -158,7 +158,7 @@ def test_render_border_and_resolution_percentage(prism_addon, lit_plane, crop):
 
 
 def test_noise_and_sample_count_passes(prism_addon, lit_plane, tmp_path):
-    chunks = importlib.import_module(f"{prism_addon.__name__}.engine.chunks")
+    chunks = importlib.import_module(f"{prism_addon.__name__}.engine.render.chunks")
     lit_plane.prism.use_pass_variance = True
     lit_plane.prism.use_pass_sample_count = True
     lit_plane.prism.samples = 6

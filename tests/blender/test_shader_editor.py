@@ -21,7 +21,7 @@ def _editor_types(scene, engine):
 
 
 def test_engine_declares_blender_shader_nodes(prism_addon):
-    engine = prism_addon.engine.render_engine.PrismRenderEngine
+    engine = prism_addon.engine.render.render_engine.PrismRenderEngine
     assert engine.bl_use_shading_nodes_custom is False
     assert engine.bl_use_eevee_viewport is True  # Material Preview stays EEVEE's, as Cycles declares
 

@@ -24,7 +24,7 @@ def _lamp_scene():
 
 
 def test_spectral_exr_round_trips_through_colour_sciences_reader(prism_addon, tmp_path):
-    spectral_exr = importlib.import_module(f"{prism_addon.__name__}.engine.spectral_exr")
+    spectral_exr = importlib.import_module(f"{prism_addon.__name__}.engine.output.spectral_exr")
     rng = np.random.default_rng(4)
     centres = np.linspace(365.0, 825.0, 47)
     bands = rng.random((5, 7, 47)) * 3.0

@@ -34,7 +34,7 @@ def _textured_card(width, height, name="Poster"):
 def test_an_image_that_does_not_fit_beside_the_frame_is_refused_before_its_pixels_are_read(
         prism_addon, fresh_scene, tmp_path, capsys, monkeypatch, bad_input):
     frames = _module(prism_addon, "engine.tracer.frame_plan")
-    passes = _module(prism_addon, "engine.passes")
+    passes = _module(prism_addon, "engine.render.result_passes")
     _textured_card(64, 32)
     frame_bytes = passes.frame_plan(fresh_scene, None, 8, 6, region=None).needed_bytes
     # Room for the frame and 10 kB more: the 64 x 32 texture needs 64 * 32 * 24 = 49 kB while it is read.

@@ -80,7 +80,7 @@ def _draw_in_a_real_engine(addon, monkeypatch, context, samples, then=None) -> d
         seen["pixels"] = np.array(buffer, dtype=np.float32).reshape(height, width, 4)
         self.end_result(self.begin_result(0, 0, 4, 4))
 
-    monkeypatch.setattr(addon.engine.render_engine.PrismRenderEngine, "render", render)
+    monkeypatch.setattr(addon.engine.render.render_engine.PrismRenderEngine, "render", render)
     scene = bpy.context.scene
     resolution = scene.render.resolution_x, scene.render.resolution_y
     scene.render.resolution_x = scene.render.resolution_y = 4

@@ -48,7 +48,7 @@ _F12 = textwrap.dedent(
         sys.modules[package] = addon
         spec.loader.exec_module(addon)
         addon.register()
-        kernel_cache = importlib.import_module(package + ".engine.kernel_cache")
+        kernel_cache = importlib.import_module(package + ".engine.warmup.kernel_cache")
         kernel_folder = importlib.import_module(package + ".engine.tracer.kernel_folder")
         kernel_folder.configure_cache(cache)  # what the extension's user folder is in Blender
         kernel_cache._configured = True

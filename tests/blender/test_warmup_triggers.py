@@ -28,7 +28,7 @@ def warmup(prism_addon, tmp_path, monkeypatch):
     package = prism_addon.__name__
     modules = SimpleNamespace(**{name: importlib.import_module(f"{package}.engine.{path}") for name, path in (
         ("launch", "warmup.launch"), ("triggers", "warmup.triggers"), ("lock", "warmup.lock"),
-        ("kernel_folder", "tracer.kernel_folder"), ("kernel_cache", "kernel_cache"), ("requests", "render_request"))})
+        ("kernel_folder", "tracer.kernel_folder"), ("kernel_cache", "warmup.kernel_cache"), ("requests", "render.request"))})
     monkeypatch.setenv("PRISM_KERNEL_CACHE", str(tmp_path / "kernels"))
     monkeypatch.setenv("PRISM_KERNEL_WARMUP", "1")
     started = []

@@ -138,7 +138,7 @@ def test_chunks_on_workers_merge_into_the_frames_of_single_renders(animated_scen
 
     # The merge task, run again into an EXR: the float image of one render, bit for bit.
     merges = {t["name"]: flamenco_farm.manager.task(t["id"])["commands"][0] for t in tasks if "merge" in t["name"]}
-    chunks = importlib.import_module("prism_spectral.engine.chunks")
+    chunks = importlib.import_module("prism_spectral.engine.render.chunks")
     means = []
     for frame in (1, 2):
         command = merges[f"merge frame {frame}"]

@@ -1,7 +1,7 @@
 """Reading a spectral EXR with colour-science's own reader, in a fresh process.
 
 colour-science decides at import whether OpenImageIO exists; in the bpy module OpenImageIO (Blender's
-copy) is only importable once ``engine.openimageio`` has put it on ``sys.path``, which is after the
+copy) is only importable once ``engine.output.openimageio`` has put it on ``sys.path``, which is after the
 tests imported colour. A fresh process imports OpenImageIO first, as a user's script would."""
 
 from __future__ import annotations

@@ -95,7 +95,7 @@ def test_the_analysis_reads_materials_lights_and_the_camera_for_light_tracing():
     scene.camera.model = "pinhole"
     r = Renderer(scene, settings(spectral_band_nm=10.0))  # the spectral film takes camera samples only
     assert not r.tables.analysis.light_tracing and "caustics by path tracing (spectral output)" in r.strategy
-    from engine.tracer.passes import PassRequest
+    from engine.tracer.pass_table import PassRequest
 
     for request in (PassRequest(passes=("DiffInd",)), PassRequest(light_groups=("key",))):
         r = Renderer(scene, settings(passes=request))  # they split Combined by the path tracer's paths

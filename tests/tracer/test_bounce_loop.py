@@ -5,7 +5,7 @@ for bit: Combined and every pass, light-traced splats, shadow rays through films
 import numpy as np
 import pytest
 
-from engine.tracer.passes import PASSES, PassRequest
+from engine.tracer.pass_table import PASSES, PassRequest
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import World
 

@@ -33,7 +33,7 @@ def test_non_finite_samples_are_dropped_and_counted():
 
 
 def test_pass_columns_are_averaged_and_regions_index_the_frame():
-    from engine.tracer.passes import FilmLayout, PassRequest
+    from engine.tracer.pass_table import FilmLayout, PassRequest
 
     layout = FilmLayout(PassRequest(("Depth", "Normal")))
     film = Film(10, 8, layout, region=(4, 2, 7, 3))  # three pixels of a 10 x 8 frame: (4, 2) .. (6, 2)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from engine.tracer.errors import PrismInputError
-from engine.tracer.passes import PassRequest
+from engine.tracer.pass_table import PassRequest
 from engine.tracer.renderer import Renderer
 from tracer.tracer_scenes import settings
 from tracer.test_passes import _facing_wall

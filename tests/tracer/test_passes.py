@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from engine.tracer.errors import PrismInputError
-from engine.tracer.passes import BACKGROUND_DEPTH_M, PASSES, FilmLayout, PassRequest, blender_passes
+from engine.tracer.pass_table import BACKGROUND_DEPTH_M, PASSES, FilmLayout, PassRequest, blender_passes
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Light, Material, World
 from tracer.tracer_scenes import look_at, make_scene, quad, settings

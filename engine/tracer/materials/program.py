@@ -17,9 +17,9 @@ from collections import namedtuple
 
 from ..bsdf.sheen import ltc_fit
 from ..jit import kernel
-from ..nodes import colour as col
-from ..nodes import math as nmath
-from ..nodes import vector as vec
+from ..node_eval import colour as col
+from ..node_eval import math as nmath
+from ..node_eval import vector as vec
 from ..textures.image import image_lookup
 from ..textures.noise import noise_texture
 from ..textures.patterns import brick, checker, gradient, magic, wave, white_noise

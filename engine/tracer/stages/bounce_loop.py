@@ -27,7 +27,7 @@ from ..jit import inlined, kernel
 from ..state import LoopBuffers  # noqa: F401  (the loop's record, declared with the buffers)
 from .emission import emission_kernel
 from .film import film_kernel
-from .passes import convert_kernel, route_kernel
+from .pass_writes import convert_kernel, route_kernel
 from .shade import shade_kernel
 from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
 

@@ -27,7 +27,7 @@ from ..spectra.table import spectrum_value
 from ..state import CAMERA_PATH, PREV_DELTA
 from ..visibility import HOLDOUT
 from .mis import emitter_weight
-from .passes import camera_slot, deposit, features_done
+from .pass_writes import camera_slot, deposit, features_done
 
 
 @inlined
@@ -100,7 +100,7 @@ def _add_background(state, i, d, lights, spectra, settings, depth, passes, layou
 def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, lights, spectra,
                     settings, depth, surface, passes, layout, scratch):
     """Add emission for the first ``count`` rays of ``rays``; list the paths that hit a surface in
-    ``surface.path`` and return how many. ``passes`` / ``layout``: see ``stages.passes``; ``scratch``
+    ``surface.path`` and return how many. ``passes`` / ``layout``: see ``stages.pass_writes``; ``scratch``
     (``state.ShadingScratch``) serves materials whose emission varies over the surface."""
     shade_next = depth <= settings.max_bounces
     listed = 0

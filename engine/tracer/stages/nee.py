@@ -17,7 +17,7 @@ from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..vec3 import to_local
 from ..warps import power_heuristic
-from .passes import lobe_shares
+from .pass_writes import lobe_shares
 
 SHADOW_SHORTEN = 1e-4  # shadow rays stop this fraction short of the light sample
 FAR = 1e30  # tmax of shadow rays toward distant lights (float32-representable)

@@ -25,7 +25,7 @@ from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, PRE
 from ..vec3 import tangents, to_local, to_world
 from .caustic_split import classify_vertex
 from .nee import consistent, sample_direct
-from .passes import first_bounce, first_hit, surface_features
+from .pass_writes import first_bounce, first_hit, surface_features
 from .queue import push_ray
 from .roulette import survives
 
@@ -72,7 +72,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                  scratch, glass_clamps, rejected, passes, layout):
     """Shade the ``count`` paths listed in ``surface``; returns (rays queued in ``next_rays``, shadow
     rays queued in ``shadows``). ``scratch`` is a ``state.ShadingScratch``; ``glass_clamps`` and
-    ``rejected`` (int64 counters) are incremented; ``passes`` / ``layout``: see ``stages.passes``."""
+    ``rejected`` (int64 counters) are incremented; ``passes`` / ``layout``: see ``stages.pass_writes``."""
     k = state.wavelength.shape[1]
     rows, spectral, eta, weight, li, f, mix, registers, _ = scratch
     has_lights = lights.select_prob.shape[0] > 0

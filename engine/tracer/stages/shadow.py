@@ -17,7 +17,7 @@ from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..materials.surface import surface_transparency
 from ..materials.table import MAT_NULL, MAT_TRANSPARENT
-from .passes import deposit
+from .pass_writes import deposit
 
 MAX_FILM_LAYERS = 8
 
@@ -51,7 +51,7 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
                       spectra, scratch):
     """One layer of closest hits (before each ray's ``tmax``): rays that hit nothing deliver their
     contribution; rays that hit a film or a cut-out are attenuated, moved past it and kept (compacted to
-    the front); others are blocked. Returns the number kept. ``passes`` / ``layout``: see ``stages.passes``;
+    the front); others are blocked. Returns the number kept. ``passes`` / ``layout``: see ``stages.pass_writes``;
     ``scratch`` is a ``state.ShadingScratch``."""
     kept = 0
     for j in range(count):

@@ -15,7 +15,7 @@ from . import bounce_loop as _bounce_loop
 from . import camera as _camera
 from . import emission as _emission
 from . import film as _film
-from . import passes as _passes
+from . import pass_writes as _passes
 from . import real_lens as _real_lens
 from . import shade as _shade
 from . import shadow as _shadow

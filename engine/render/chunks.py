@@ -9,9 +9,9 @@ works in float64 and its float32 result is bit-identical to the single render
 (see ``merge_chunks`` for when).
 
 Each chunk carries, as EXR string attributes (exact for any 64-bit number): the
-fingerprint of its frame, scene and settings (``engine.fingerprint``), its seed,
+fingerprint of its frame, scene and settings (``engine.render.fingerprint``), its seed,
 the sample ranges it holds, the settings its scene writes a PNG with
-(``engine.png_output``: a merge can write the frame's PNG without the .blend
+(``engine.output.png``: a merge can write the frame's PNG without the .blend
 file), and a checksum over all of that and the pixels. A merge refuses chunks of
 different renders, overlapping samples, damaged or edited files and non-finite
 pixels, naming the file.
@@ -29,8 +29,8 @@ from pathlib import Path
 import numpy as np
 
 from .fingerprint import differing_parts
-from .openimageio import import_openimageio as _oiio
-from .tracer.errors import PrismInputError
+from ..output.openimageio import import_openimageio as _oiio
+from ..tracer.errors import PrismInputError
 
 FORMAT_ATTRIBUTE = "prism:chunk"
 FORMAT_VERSION = "3"  # 3: the fingerprint holds the frame; the PNG settings
@@ -47,7 +47,7 @@ CHANNELS = ("R", "G", "B", "A", "prism_lo_R", "prism_lo_G", "prism_lo_B")
 class Chunk:
     """A chunk's float64 mean [H, W, 3] (row 0 = top), seed, the half-open sample
     ranges ``[(start, end), ...]`` it holds, the fingerprint of its render, and the
-    settings its scene writes a PNG with (``engine.png_output.png_settings``)."""
+    settings its scene writes a PNG with (``engine.output.png.png_settings``)."""
 
     mean: np.ndarray
     seed: int

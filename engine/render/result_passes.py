@@ -9,9 +9,9 @@ Imports no numpy until pixels are written (``update_render_passes`` runs in the 
 
 from __future__ import annotations
 
-from .tracer.errors import PrismInputError
-from .tracer.frame_plan import DEFAULT_TILE_SIZE, film_bytes_per_pixel, plan_frame
-from .tracer.passes import DENOISING_PASSES, PASSES, VIEW_LAYER_SWITCH, FilmLayout, PassRequest, blender_passes
+from ..tracer.errors import PrismInputError
+from ..tracer.frame_plan import DEFAULT_TILE_SIZE, film_bytes_per_pixel, plan_frame
+from ..tracer.pass_table import DENOISING_PASSES, PASSES, VIEW_LAYER_SWITCH, FilmLayout, PassRequest, blender_passes
 
 COMBINED = ("Combined", "RGBA", "COLOR")
 NOISY_IMAGE = ("Noisy Image", "RGBA", "COLOR")

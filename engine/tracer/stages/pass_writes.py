@@ -1,4 +1,4 @@
-"""What the stages write for the render passes (``passes.py`` declares them; ``layout`` says which are on).
+"""What the stages write for the render passes (``tracer.pass_table`` declares them; ``layout`` says which are on).
 
 Per path (``PassData``): ``values`` [n, columns] (data passes and AOVs, written directly), ``spectral``
 [n, slots, K] (light, albedo and colour buffers, per wavelength, turned into Rec.709 by
@@ -32,7 +32,7 @@ from ..spectra.wavelength_sampling import radiance_to_rgb
 
 PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table")
 
-EMISSION = 0  # offsets from layout.light, in passes.LIGHT_SLOTS order
+EMISSION = 0  # offsets from layout.light, in pass_table.LIGHT_SLOTS order
 ENVIRONMENT = 1
 DIRECT = 2  # + 2 * category
 INDIRECT = 3

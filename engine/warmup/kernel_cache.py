@@ -28,7 +28,7 @@ WAITING_MESSAGE = "Waiting for the Prism kernels compiling in the background (fi
 CACHE_SUBFOLDER = "kernel_cache"
 
 #: The add-on's package: ``bl_ext.<repository>.prism_spectral`` when installed as an extension.
-ADDON_PACKAGE = __name__.rsplit(".", 2)[0]
+ADDON_PACKAGE = __name__.rsplit(".", 3)[0]  # <add-on>.engine.warmup.kernel_cache
 
 _configured = False
 
@@ -52,7 +52,7 @@ def extension_cache_directory(package: str = ADDON_PACKAGE) -> Path | None:
 def configure() -> Path:
     """Choose the kernel cache directory (once per process) and return it."""
     global _configured
-    from .tracer import kernel_folder
+    from ..tracer import kernel_folder
 
     if not _configured:
         _configured = True
@@ -68,21 +68,21 @@ def configure() -> Path:
 def check_directory() -> None:
     """``PrismInputError`` naming ``$PRISM_KERNEL_CACHE`` (or ``$NUMBA_CACHE_DIR``) when the folder it
     names cannot hold the kernels; a render calls it before exporting anything."""
-    from .tracer import kernel_folder
+    from ..tracer import kernel_folder
 
     kernel_folder.prepare_kernel_directory()
 
 
 def compiling_notice() -> str | None:
     """``COMPILING_MESSAGE`` if this render will compile the kernels (cold cache), else None."""
-    from .tracer import kernel_folder
+    from ..tracer import kernel_folder
 
     return None if kernel_folder.cache_is_warm() else COMPILING_MESSAGE
 
 
 def mark_compiled() -> None:
     """Record that a finished render compiled every kernel it needed into the cache."""
-    from .tracer import kernel_folder
+    from ..tracer import kernel_folder
 
     try:
         kernel_folder.cache_directory().mkdir(parents=True, exist_ok=True)

@@ -18,8 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .tracer.spectra.trapezoid import trapezoid
-from .tracer.spectra.wavelengths import VISIBLE_NM_GRID as WAVELENGTHS_NM
+from ..tracer.spectra.trapezoid import trapezoid
+from ..tracer.spectra.wavelengths import VISIBLE_NM_GRID as WAVELENGTHS_NM
 _FINE_PER_NM = 10
 _CACHE_SIZE = 64
 #: Beyond this distance from the Planckian locus, CCT and colour rendering indices mean nothing.
@@ -70,7 +70,7 @@ def _preview(compute, source, wait: bool):
 
 
 def _store(compute, source, key):
-    from .tracer.errors import PrismInputError
+    from ..tracer.errors import PrismInputError
 
     # colour-science notes each time it resamples its tables for an index: noise in Blender's console.
     # (A filter added once, not catch_warnings: that is not safe off the main thread.)
@@ -110,8 +110,8 @@ def _fine_grid():
 
 
 def _emission(source) -> SpectrumPreview:
-    from .tracer.spectra import cie
-    from .tracer.spectra.emission_spectrum import emission_spectrum
+    from ..tracer.spectra import cie
+    from ..tracer.spectra.emission_spectrum import emission_spectrum
 
     colour = cie.import_colour()
     spectrum = emission_spectrum(source.spec())
@@ -149,9 +149,9 @@ def _light_metrics(colour, xyz, per_nm) -> dict:
 
 
 def _reflectance(source) -> SpectrumPreview:
-    from .tracer.spectra import cie
-    from .tracer.spectra.reflectance_spectrum import ReflectanceSpectrum
-    from .tracer.spectra.rgb_to_spectrum import (d65_relative_power, evaluate_sigmoid_polynomial,
+    from ..tracer.spectra import cie
+    from ..tracer.spectra.reflectance_spectrum import ReflectanceSpectrum
+    from ..tracer.spectra.rgb_to_spectrum import (d65_relative_power, evaluate_sigmoid_polynomial,
                                                  reflectance_coefficients)
 
     spec = source.spec()

@@ -6,7 +6,7 @@ surface and their number, so a pixel's depth is the mean over its surface sample
 inside a surface, as Cycles writes it), never a blend of a near surface and the background. A
 ``spectral`` buffer is
 filled per wavelength by the stage kernels and turned into Rec.709 once per path by the film stage
-(``stages.passes``), like Combined. Reflectances (albedos, colours) are carried as reflectance × the
+(``stages.pass_writes``), like Combined. Reflectances (albedos, colours) are carried as reflectance × the
 spectrum of a white emitter, so a white surface reads (1, 1, 1).
 
 A **pass** is what Blender receives: its name and channels (Cycles' names and meanings) and the
@@ -33,7 +33,7 @@ class Buffer:
     spectral: bool = False
 
 
-#: Light that reached the camera, split by what it did first (see ``stages.passes``).
+#: Light that reached the camera, split by what it did first (see ``stages.pass_writes``).
 LIGHT_SLOTS = ("emission", "environment", "diffuse_direct", "diffuse_indirect", "glossy_direct", "glossy_indirect",
                "transmission_direct", "transmission_indirect", "diffuse_color", "glossy_color", "transmission_color")
 #: The light slots Film ▸ Exposure scales: light, not the albedo-like colour passes.

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .tracer.errors import PrismInputError
+from ..tracer.errors import PrismInputError
 
 _DEVICE_CPU = 1
 _FORMAT_FLOAT3 = 3

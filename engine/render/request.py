@@ -43,7 +43,7 @@ class RenderRequest:
     None: the scene's Spectral Output setting decides).
     ``show_image``: a finished scene-linear image [H, W, 3] (row 0 at the top) to
     put in the Render Result instead of tracing the scene, so Blender's own
-    writers can save it with a scene's output settings (``engine.png_output``).
+    writers can save it with a scene's output settings (``engine.output.png``).
     """
 
     samples: int | None = None
@@ -64,7 +64,7 @@ class RenderRequest:
 @dataclass
 class FilmSnapshot:
     """The float64 mean [H, W, 3] (row 0 = top) of a finished render, what it was
-    rendered from (``fingerprint``, see ``engine.fingerprint``) and its samples."""
+    rendered from (``fingerprint``, see ``engine.render.fingerprint``) and its samples."""
 
     mean: np.ndarray
     samples: int

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .batch.output_files import atomic_output, check_writable as _check_output_writable
+from ..batch.output_files import atomic_output, check_writable as _check_output_writable
 from .openimageio import import_openimageio
 
 UNITS_ATTRIBUTE = "prism:spectralRadiance"
@@ -34,14 +34,14 @@ def requested_path(scene, request, preview: bool) -> Path | None:
         return None  # a chunk of a render holds some of its samples: its spectra are not the render's
     import bpy
 
-    from .batch.output_files import numbered_output
+    from ..batch.output_files import numbered_output
 
     return numbered_output(Path(bpy.path.abspath(prism.spectral_output_path) or "spectral.exr"), scene.frame_current)
 
 
 def check_writable(path) -> None:
     """``PrismInputError`` now, before a render, when the spectral EXR could not be written to ``path``."""
-    from .tracer.errors import PrismInputError
+    from ..tracer.errors import PrismInputError
 
     try:
         _check_output_writable(Path(path))
@@ -53,7 +53,7 @@ def write_spectral_exr(path, centres_nm, bands, rgb) -> Path:
     """Write ``bands`` float [H, W, B] (row 0 = top) at band centres ``centres_nm`` [B] and the preview
     ``rgb`` [H, W, 3] to ``path`` (float32 EXR); returns the path."""
     oiio = import_openimageio()
-    from .tracer.spectra.cie import import_colour
+    from ..tracer.spectra.cie import import_colour
 
     colour = import_colour()
     io = colour.io

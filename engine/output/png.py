@@ -18,8 +18,8 @@ from pathlib import Path
 
 import bpy
 
-from .render_request import RenderRequest, render_request
-from .tracer.errors import PrismInputError
+from ..render.request import RenderRequest, render_request
+from ..tracer.errors import PrismInputError
 
 #: The output settings a PNG depends on, besides Color Management and dither.
 _PNG_FIELDS = ("color_management", "color_mode", "color_depth", "compression")

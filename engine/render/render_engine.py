@@ -5,7 +5,7 @@ import sys
 
 import bpy
 
-from .passes import COMBINED, enabled_passes
+from .result_passes import COMBINED, enabled_passes
 
 
 class PrismRenderEngine(bpy.types.RenderEngine):
@@ -21,18 +21,18 @@ class PrismRenderEngine(bpy.types.RenderEngine):
     bl_use_shading_nodes_custom = False
 
     def render(self, depsgraph):
-        from .render_request import handed_over
+        from .request import handed_over
         from .session import RenderSession
 
         RenderSession(self, depsgraph, *handed_over()).run()
 
     def view_update(self, context, depsgraph):
-        from .viewport.session import session_of
+        from ..viewport.session import session_of
 
         session_of(self).view_update(context, depsgraph)
 
     def view_draw(self, context, depsgraph):
-        from .viewport.session import session_of
+        from ..viewport.session import session_of
 
         session_of(self).view_draw(self, context, depsgraph)
 
@@ -48,7 +48,7 @@ def register():
 
 
 def unregister():
-    viewport = sys.modules.get(f"{__package__}.viewport.session")
+    viewport = sys.modules.get(f"{__package__.rsplit('.', 1)[0]}.viewport.session")  # <add-on>.engine.viewport
     if viewport is not None:  # never imported when no viewport rendered
         viewport.stop_all()
     bpy.utils.unregister_class(PrismRenderEngine)

@@ -2,7 +2,7 @@
 
 Imported only when a render starts (it pulls in the tracer: numpy, embreex,
 colour-science). A batch script hands its overrides over with
-``engine.render_request.render_request`` and reads the ``RenderReport`` the
+``engine.render.request.render_request`` and reads the ``RenderReport`` the
 session fills; an F12 render uses the scene's settings.
 """
 
@@ -13,20 +13,20 @@ import traceback
 
 import numpy as np
 
-from . import kernel_cache
+from ..warmup import kernel_cache
 
 kernel_cache.configure()  # before anything below imports a tracer kernel module
 
-from . import spectral_exr  # noqa: E402
-from .denoise import denoise as denoise_image  # noqa: E402
-from .export import export_scene  # noqa: E402
-from .export.border import render_border  # noqa: E402
-from .export.settings import export_settings  # noqa: E402
+from ..output import spectral_exr  # noqa: E402
+from ..output.denoise import denoise as denoise_image  # noqa: E402
+from ..export import export_scene  # noqa: E402
+from ..export.border import render_border  # noqa: E402
+from ..export.settings import export_settings  # noqa: E402
 from .fingerprint import render_fingerprint  # noqa: E402
-from .passes import bottom_up, denoising, enabled_passes, frame_plan, pass_request, write_passes  # noqa: E402
-from .render_request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
+from .result_passes import bottom_up, denoising, enabled_passes, frame_plan, pass_request, write_passes  # noqa: E402
+from .request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
 from .stats import stats_line, timecode  # noqa: E402
-from .tracer.errors import PrismInputError  # noqa: E402
+from ..tracer.errors import PrismInputError  # noqa: E402
 
 
 #: During a whole-frame render the Render Result is refreshed after the first pass, then at most this
@@ -92,7 +92,7 @@ class RenderSession:
         return self.report
 
     def _render(self) -> None:
-        from .tracer.renderer import Renderer
+        from ..tracer.renderer import Renderer
 
         engine = self.engine
         scene = self.depsgraph.scene
@@ -153,7 +153,7 @@ class RenderSession:
         stopped meanwhile (Esc, Ctrl-C)."""
         if kernel_cache.compiling_notice() is None:
             return True
-        from .warmup import launch
+        from ..warmup import launch
 
         if launch.running() is None:
             return True
