@@ -17,6 +17,8 @@ import numpy as np
 
 from ...tracer.materials.shader import TextureImage
 from ..texture_memory import DECODED, FLOAT, LEVELS, budget_of
+from .pixel_source import PixelSource
+from .udim import read_udim
 
 #: Colour spaces whose levels are the values themselves.
 _RAW = {"Non-Color", "Raw", "Linear Rec.709", "Linear", "Linear CIE-XYZ E"}
@@ -99,8 +101,8 @@ def _levels(pixels):
 
 
 def read_image(image, node, warn, cache):
-    """The ``TextureImage`` of ``image`` for Image Texture ``node`` (shared through ``cache``), or None when
-    it cannot be read (Blender renders such images magenta)."""
+    """The ``TextureImage`` (a ``UdimImage`` for a UDIM image) of ``image`` for Image Texture ``node``
+    (shared through ``cache``), or None when it cannot be read (Blender renders such images magenta)."""
     if image is None:
         warn(node, "has no image; Prism renders it magenta, as Blender does.")
         return None
@@ -108,46 +110,50 @@ def read_image(image, node, warn, cache):
     if key in cache:
         return cache[key]
     if image.source == "TILED":
-        warn(node, f"uses the UDIM image '{image.name}', which Prism does not support; it renders magenta.")
-        cache[key] = None
-        return None
-    if image.source in ("MOVIE", "SEQUENCE"):
-        warn(node, f"uses the {image.source.lower()} '{image.name}'; Prism reads its current frame only.")
-    width, height = image.size
-    if width == 0 or height == 0:
-        warn(node, f"cannot read image '{image.name}' (missing file?); Prism renders it magenta, as Blender does.")
-        cache[key] = None
-        return None
-    colour_space = image.colorspace_settings.name
-    table = None if image.is_float else _level_table(colour_space)
-    cost = FLOAT if image.is_float else LEVELS if colour_space == "sRGB" or table is not None else DECODED
-    budget_of(cache).admit(image.name, node.name, width, height, cost, image.alpha_mode == "PREMUL")
+        result = read_udim(image, node, warn, lambda source: texture_from(source, node, warn, cache))
+    else:
+        if image.source in ("MOVIE", "SEQUENCE"):
+            warn(node, f"uses the {image.source.lower()} '{image.name}'; Prism reads its current frame only.")
+        width, height = image.size
+        if width == 0 or height == 0:
+            warn(node, f"cannot read image '{image.name}' (missing file?); Prism renders it magenta, as Blender does.")
+            result = None
+        else:
+            result = texture_from(PixelSource(image.name, width, height, image.is_float, image.colorspace_settings.name,
+                                              image.alpha_mode, image.pixels.foreach_get), node, warn, cache)
+    cache[key] = result
+    return result
+
+
+def texture_from(source: PixelSource, node, warn, cache) -> TextureImage:
+    """The ``TextureImage`` of ``source`` for Image Texture ``node``, once the render's texture memory
+    (``budget_of(cache)``) admits it."""
+    width, height, colour_space = source.width, source.height, source.colour_space
+    table = None if source.is_float else _level_table(colour_space)
+    cost = FLOAT if source.is_float else LEVELS if colour_space == "sRGB" or table is not None else DECODED
+    budget_of(cache).admit(source.name, node.name, width, height, cost, source.alpha_mode == "PREMUL")
     pixels = np.empty(width * height * 4, np.float32)
-    image.pixels.foreach_get(pixels)
+    source.fill(pixels)
     pixels = pixels.reshape(height, width, 4)
-    if image.alpha_mode == "PREMUL":
+    if source.alpha_mode == "PREMUL":
         alpha = pixels[..., 3:4]
         pixels[..., :3] = np.where(alpha > 0, pixels[..., :3] / np.where(alpha > 0, alpha, 1.0), pixels[..., :3])
-    if image.alpha_mode == "NONE":
+    if source.alpha_mode == "NONE":
         pixels[..., 3] = 1.0
     interpolation = node.interpolation if node.interpolation in ("Closest", "Linear", "Cubic") else "Linear"
     if node.interpolation == "Smart":
         interpolation = "Cubic"
-    if image.is_float:
-        result = TextureImage(image.name, np.ascontiguousarray(pixels), None, interpolation, node.extension)
-    else:
-        if colour_space == "sRGB":  # Blender filters sRGB levels and decodes after
-            result = TextureImage(image.name, _levels(pixels), None, interpolation, node.extension, srgb_levels=True)
-        elif table is not None:
-            result = TextureImage(image.name, _levels(pixels), table, interpolation, node.extension)
-        else:
-            decoded = _to_linear(colour_space, pixels[..., :3].reshape(-1, 3))
-            if decoded is None:
-                warn(node, f"image '{image.name}' is in colour space '{colour_space}', which Prism cannot decode; "
-                           "it is read as sRGB.")
-                decoded = _srgb_to_linear(pixels[..., :3].reshape(-1, 3))
-            rgba = np.concatenate([decoded.reshape(height, width, 3), pixels[..., 3:4]], axis=2)
-            result = TextureImage(image.name, np.ascontiguousarray(rgba, dtype=np.float32), None, interpolation,
-                                  node.extension)
-    cache[key] = result
-    return result
+    if source.is_float:
+        return TextureImage(source.name, np.ascontiguousarray(pixels), None, interpolation, node.extension)
+    if colour_space == "sRGB":  # Blender filters sRGB levels and decodes after
+        return TextureImage(source.name, _levels(pixels), None, interpolation, node.extension, srgb_levels=True)
+    if table is not None:
+        return TextureImage(source.name, _levels(pixels), table, interpolation, node.extension)
+    decoded = _to_linear(colour_space, pixels[..., :3].reshape(-1, 3))
+    if decoded is None:
+        warn(node, f"image '{source.name}' is in colour space '{colour_space}', which Prism cannot decode; "
+                   "it is read as sRGB.")
+        decoded = _srgb_to_linear(pixels[..., :3].reshape(-1, 3))
+    rgba = np.concatenate([decoded.reshape(height, width, 3), pixels[..., 3:4]], axis=2)
+    return TextureImage(source.name, np.ascontiguousarray(rgba, dtype=np.float32), None, interpolation,
+                        node.extension)

@@ -71,6 +71,21 @@ class TextureImage:
     extension: str = "REPEAT"  # "REPEAT", "EXTEND", "CLIP", "MIRROR"
     srgb_levels: bool = False  # 8-bit sRGB: levels are filtered, then decoded (Blender's order)
 
+    rows = 1  # rows of the texture table (``textures.image``)
+
+
+@dataclass
+class UdimImage:
+    """A UDIM image: its tiles ``(number, TextureImage)``, tile 1001 + u + 10 v covering texture
+    coordinates [u, u + 1] × [v, v + 1]."""
+
+    name: str
+    tiles: list[tuple[int, TextureImage]]
+
+    @property
+    def rows(self) -> int:
+        return 1 + len(self.tiles)  # a header, then the tiles
+
 
 @dataclass
 class ShaderProgram:
@@ -84,7 +99,7 @@ class ShaderProgram:
     emission_strength: float = 0.0  # its strength; an estimate for light selection when the emission varies
     emission_scale: int = -1  # register of a factor that varies (the emission is then colour × that factor)
     normal: int = -1  # register of the shading normal (normal maps, bump), or -1
-    images: list[TextureImage] = field(default_factory=list)
+    images: list[TextureImage | UdimImage] = field(default_factory=list)
 
     @property
     def has_program(self) -> bool:

@@ -175,6 +175,7 @@ def build_materials(materials, used, spectra) -> MaterialTable:
     emission_scale = np.full(count, -1, np.int32)
     rows, glasses, glass_index, features = [], [], {}, set()
     instructions, constants, images, image_index = [], [], [], {}
+    image_rows = 0
     needs_lut = False
     register_count = 1
     for m, material in enumerate(materials):
@@ -220,9 +221,10 @@ def build_materials(materials, used, spectra) -> MaterialTable:
                                       np.array(binds, dtype=np.int32).reshape(-1, op.INSTRUCTION)])
             local = []
             for image in shader.images:
-                key = id(image.texels)
+                key = id(image)
                 if key not in image_index:
-                    image_index[key] = len(images)
+                    image_index[key] = image_rows  # the image's first row of the texture table
+                    image_rows += image.rows
                     images.append(image)
                 local.append(image_index[key])
             for ins in program:

@@ -5,7 +5,12 @@ Texels are stored once per render, row 0 at the bottom as Blender stores images,
 width × height × 4 values: 8-bit images as they are (``bytes``) with a table decoding each channel's 256
 levels to scene-linear (``decode``, the image's colour space) — 8-bit sRGB images are filtered as levels
 and decoded after (as Blender does) — others decoded to scene-linear float32 (``floats``). An image's row of ``TextureArrays.images`` holds (first value, width, height,
-interpolation, extension, decode table or -1). Texel centres sit at (i + 0.5) / width, as in Blender.
+interpolation, extension, decode table or -1, tile). Texel centres sit at (i + 0.5) / width, as in Blender.
+
+A UDIM image is a header row (``I_TILE`` = minus its tile count) followed by one row per tile (``I_TILE`` = the
+tile's number, 1001 + u + 10 v). As Cycles does, a lookup at (s, t) truncates them to the tile
+(u, v) = (int(s), int(t)), reads that tile at (s - u, t - v), and renders a tile the image lacks (or u outside
+0-9, v below 0) magenta.
 """
 
 from __future__ import annotations
@@ -20,32 +25,46 @@ from ..jit import inlined, kernel
 #: ``images`` float64 [I, IMAGE_ROW], ``floats`` float32 [N], ``bytes`` uint8 [M], ``decode`` float32 [D, 256, 3].
 TextureArrays = namedtuple("TextureArrays", "images floats bytes decode")
 
-I_OFFSET, I_WIDTH, I_HEIGHT, I_INTERPOLATION, I_EXTENSION, I_DECODE = range(6)
-IMAGE_ROW = 6
+I_OFFSET, I_WIDTH, I_HEIGHT, I_INTERPOLATION, I_EXTENSION, I_DECODE, I_TILE = range(7)
+IMAGE_ROW = 7
+FIRST_TILE = 1001  # UDIM numbering: tile (u, v) is 1001 + u + 10 v
+TILES_PER_ROW = 10
+MISSING_RGBA = (1.0, 0.0, 1.0, 1.0)  # what Blender and Cycles render for an image or tile they cannot read
 SRGB_LEVELS = -2  # ``I_DECODE`` of 8-bit sRGB images: levels filtered first, then decoded (as Blender does)
 INTERPOLATIONS = {"Linear": 0, "Closest": 1, "Cubic": 2, "Smart": 2}
 EXTENSIONS = {"REPEAT": 0, "EXTEND": 1, "CLIP": 2, "MIRROR": 3}
 
 
 def build_textures(images) -> TextureArrays:
-    """Arrays for ``images`` (``materials.shader.TextureImage``), in order."""
+    """Arrays for ``images`` (``materials.shader.TextureImage`` or ``UdimImage``), in order: an image's first
+    row is the sum of the ``rows`` of the images before it."""
     rows, floats, byte_chunks, decode = [], [], [], []
-    float_offset = byte_offset = 0
-    for image in images:
+    offsets = [0, 0]  # next float, next byte
+
+    def add(image, tile):
         height, width = image.texels.shape[:2]
         kind = [INTERPOLATIONS.get(image.interpolation, 0), EXTENSIONS.get(image.extension, 0)]
         if image.decode is not None or image.srgb_levels:
             texels = np.ascontiguousarray(image.texels, dtype=np.uint8).reshape(-1)
-            rows.append([byte_offset, width, height, *kind, SRGB_LEVELS if image.srgb_levels else len(decode)])
+            rows.append([offsets[1], width, height, *kind, SRGB_LEVELS if image.srgb_levels else len(decode), tile])
             if not image.srgb_levels:
                 decode.append(np.asarray(image.decode, dtype=np.float32).reshape(256, 3))
             byte_chunks.append(texels)
-            byte_offset += texels.size
+            offsets[1] += texels.size
         else:
             texels = np.ascontiguousarray(image.texels, dtype=np.float32).reshape(-1)
-            rows.append([float_offset, width, height, *kind, -1])
+            rows.append([offsets[0], width, height, *kind, -1, tile])
             floats.append(texels)
-            float_offset += texels.size
+            offsets[0] += texels.size
+
+    for image in images:
+        tiles = getattr(image, "tiles", None)
+        if tiles is None:
+            add(image, 0)
+            continue
+        rows.append([0, 0, 0, 0, 0, -1, -len(tiles)])
+        for number, tile in tiles:
+            add(tile, number)
     table = np.array(rows, dtype=np.float64).reshape(-1, IMAGE_ROW)
     return TextureArrays(table if len(table) else np.zeros((1, IMAGE_ROW)),
                          np.concatenate(floats) if floats else np.zeros(4, np.float32),
@@ -103,9 +122,31 @@ def _bspline(t):
     return w0, w1, w2, 1.0 / 6.0 * t * t * t
 
 
+@kernel
+def _udim_tile(images, header, s, t):
+    """(row, s, t) of the UDIM tile at (s, t) of the UDIM image whose header row is ``header``, the
+    coordinates made relative to that tile; row -1 where the image has no such tile."""
+    if not (math.isfinite(s) and math.isfinite(t)):
+        return -1, s, t
+    u = int(s)  # truncated toward zero, as Cycles does: (-0.5, 0.2) reads tile 1001
+    v = int(t)
+    if u < 0 or v < 0 or u >= TILES_PER_ROW:
+        return -1, s, t
+    number = FIRST_TILE + u + TILES_PER_ROW * v
+    for k in range(1, 1 - int(images[header, I_TILE])):
+        if int(images[header + k, I_TILE]) == number:
+            return header + k, s - u, t - v
+    return -1, s, t
+
+
 @inlined
 def image_lookup(textures, image, s, t):
-    """RGBA of image ``image`` at texture coordinates (s, t) (0-1 across the image, (0, 0) bottom left)."""
+    """RGBA of image ``image`` at texture coordinates (s, t) (0-1 across the image, (0, 0) bottom left; a
+    UDIM image's tiles side by side from (0, 0))."""
+    if textures.images[image, I_TILE] < 0.0:
+        image, s, t = _udim_tile(textures.images, image, s, t)
+        if image < 0:
+            return MISSING_RGBA
     rgba = _filtered(textures, image, s, t)
     if int(textures.images[image, I_DECODE]) != SRGB_LEVELS:
         return rgba
