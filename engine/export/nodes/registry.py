@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from . import converters, inputs, shaders, textures, vectors
+from . import converters, inputs, shaders, textures, vectors, wavelength
 
-NODE_HANDLERS = {**inputs.HANDLERS, **converters.HANDLERS, **textures.HANDLERS, **vectors.HANDLERS}
+NODE_HANDLERS = {**inputs.HANDLERS, **converters.HANDLERS, **textures.HANDLERS, **vectors.HANDLERS,
+                 **wavelength.HANDLERS}
 SHADER_HANDLERS = dict(shaders.SHADER_HANDLERS)
