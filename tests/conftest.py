@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import one_package
+from helpers import extension_build, one_package
 from render import exit_now, load_addon_package
 
 one_package.install()
@@ -109,10 +109,13 @@ FIRST_TEST = "test_warmup_child.py::test_the_warmup_leaves_the_cache_warm_and_th
 
 def pytest_collection_modifyitems(session, config, items):
     items.sort(key=lambda item: not item.nodeid.endswith(FIRST_TEST))  # stable: the rest keep their order
+    if any("linux_zip" in getattr(item, "fixturenames", ()) for item in items):
+        extension_build.start()  # its compile overlaps the first test's (helpers/extension_build.py)
 
 
 def pytest_sessionfinish(session, exitstatus):
     _exit_status["code"] = int(exitstatus)
+    extension_build.finish()
     target = os.environ.get(INVENTORY_ENVIRONMENT)
     if target:
         Path(target).write_text(json.dumps(_bad_inputs, indent=1, ensure_ascii=False))

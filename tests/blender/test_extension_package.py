@@ -6,14 +6,15 @@ from the extension's site-packages and the kernels compile into the extension's 
 
 Wheels are cached in the repository's `wheels/` (gitignored), so only the first run downloads
 (the linux wheels only, from PyPI). Without network the build fails with the tool's message.
-The install-and-render check runs in a subprocess with its own Blender user dirs.
+The build, and then the install-and-render check (a subprocess with its own Blender user dirs), start
+with the test run in a background thread (`helpers/extension_build.py`), so that the check's kernel
+compile overlaps the run's first one.
 """
 
 from __future__ import annotations
 
 import importlib.util
 import json
-import os
 import subprocess
 import sys
 import tomllib
@@ -22,9 +23,10 @@ from pathlib import Path
 
 import pytest
 
+from helpers import extension_build
+
 REPO_ROOT = Path(__file__).resolve().parents[2]
 BUILD_TOOL = REPO_ROOT / "tools" / "build_extension.py"
-INSTALL_CHECK = REPO_ROOT / "tools" / "check_extension_install.py"
 PLATFORM = "linux-x64"
 RUNTIME_WHEELS = ("colour_science", "embreex", "imageio", "llvmlite", "numba", "pillow", "scipy",
                   "typing_extensions")
@@ -34,17 +36,12 @@ DEV_ONLY_DIRS = ("tests/", "benchmarks/", ".ci/", "docs/", "tools/", ".venv/", "
 
 
 @pytest.fixture(scope="session")
-def linux_zip(tmp_path_factory) -> Path:
-    """The linux-x64 zip, built from this tree (wheels from the repository's cache)."""
-    out = tmp_path_factory.mktemp("extension")
-    result = subprocess.run(
-        [sys.executable, str(BUILD_TOOL), "--platform", PLATFORM,
-         "--output-dir", str(out / "dist"), "--stage-dir", str(out / "stage")],
-        capture_output=True, text=True, timeout=600,
-    )
-    if result.returncode != 0:
-        pytest.fail(f"tools/build_extension.py failed:\n{result.stdout}\n{result.stderr}")
-    zips = sorted((out / "dist").glob("*.zip"))
+def linux_zip() -> Path:
+    """The linux-x64 zip, built from this tree (wheels from the repository's cache) when the run began
+    (``helpers/extension_build.py``)."""
+    result, zips = extension_build.start().build()
+    if result is None or result.returncode != 0:
+        pytest.fail(f"tools/build_extension.py failed:\n{result and result.stdout}\n{result and result.stderr}")
     assert [z.name for z in zips] == ["prism_spectral-0.1.0-linux_x64.zip"], result.stdout
     return zips[0]
 
@@ -149,18 +146,11 @@ def test_linux_wheels_run_with_the_numpy_of_blender_42(tmp_path):
     assert f'"numpy": "{oldest}", "numba": ' in result.stdout, result.stdout
 
 
-def test_installed_zip_enables_and_renders(linux_zip, tmp_path):
-    report_path = tmp_path / "report.json"
-    user_dir = tmp_path / "blender-user"
-    env = dict(os.environ)
-    for var, sub in (("BLENDER_USER_RESOURCES", "resources"), ("BLENDER_USER_CONFIG", "config"),
-                     ("BLENDER_USER_SCRIPTS", "scripts")):
-        env[var] = str(user_dir / sub)
-    result = subprocess.run(
-        [sys.executable, str(INSTALL_CHECK), str(linux_zip), "--user-dir", str(user_dir),
-         "--report", str(report_path)],
-        capture_output=True, text=True, timeout=300, env=env, cwd=tmp_path,
-    )
+def test_installed_zip_enables_and_renders(linux_zip):
+    build = extension_build.start()  # its install check started with the run, beside the first compile
+    result = build.check()
+    report_path, user_dir = build.report_path, build.user_dir
+    assert result is not None, "the install check did not run"
     log = f"exit {result.returncode}\n{result.stdout[-3000:]}\n{result.stderr[-3000:]}"
     assert report_path.exists(), log
     report = json.loads(report_path.read_text())
