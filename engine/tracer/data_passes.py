@@ -22,7 +22,7 @@ AO_FAR_M = 1e30  # an AO ray's length where the distance is unbounded (float32-r
 @dataclass
 class DataPassInputs:
     """``object_pass_index`` float32 [T] (Object ▸ Relations ▸ Pass Index per triangle) and ``uv`` float32
-    [T, 3, 2] (the render UV map per triangle corner; 0 without one): None unless their pass is asked
+    [T, 3, 3] (the render UV map per triangle corner as u, v, 1; 0, 0, 0 on a mesh without one, as Cycles): None unless their pass is asked
     for; ``material_pass_index`` one per scene material; World ▸ Mist Pass (m; falloff a ``MIST_FALLOFFS``
     key) and World ▸ Ambient Occlusion ▸ Distance (m). Defaults are Blender's."""
 
@@ -53,7 +53,7 @@ def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, 
         object_index = np.ascontiguousarray(np.asarray(inputs.object_pass_index, np.float32)[original_triangle])
     material_index = np.zeros(max(materials, 1))
     material_index[:len(inputs.material_pass_index)] = inputs.material_pass_index
-    uv = np.zeros((0, 3, 2), np.float32)
+    uv = np.zeros((0, 3, 3), np.float32)
     if layout.uv >= 0 and inputs.uv is not None:
         uv = np.ascontiguousarray(np.asarray(inputs.uv, np.float32)[original_triangle])
     return FirstHitTables(data, object_index, material_index, uv)

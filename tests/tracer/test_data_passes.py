@@ -68,7 +68,8 @@ def test_object_and_material_index_are_sample_zeros_ids_never_blended():
 def test_uv_pass_interpolates_the_render_uv_map():
     scene = _facing_wall(distance=3.0)  # the wall fills the view (±0.54 m of its ±2 m)
     corners = scene.vertices[scene.triangles]  # [T, 3, 3]
-    scene.data_passes = DataPassInputs(uv=np.stack([(corners[..., 0] + 2.0) / 4.0, (corners[..., 2] + 2.0) / 4.0], -1))
+    scene.data_passes = DataPassInputs(uv=np.stack([(corners[..., 0] + 2.0) / 4.0, (corners[..., 2] + 2.0) / 4.0,
+                                                    np.ones(corners.shape[:2])], -1))
     uv = _passes(scene, ["UV"], samples=64, samples_per_pass=64)["UV"]
     half = 3.0 * 0.18  # half the view's width on the wall (50 mm lens, 18 mm film)
     centre = (np.arange(16) + 0.5) / 16 * 2 * half - half

@@ -63,7 +63,7 @@ def new_pass_data(n: int, k: int, film_layout) -> PassData:
     return PassData(np.empty((n, layout.columns)), np.zeros((n, layout.slots, k)), np.zeros((light, k)),
                     np.zeros((light, 2, 3, k)), np.zeros(features, np.int8),
                     np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)),
-                    np.zeros(FIRST_HIT_DATA), np.zeros(0, np.float32), np.zeros(1), np.zeros((0, 3, 2), np.float32),
+                    np.zeros(FIRST_HIT_DATA), np.zeros(0, np.float32), np.zeros(1), np.zeros((0, 3, 3), np.float32),
                     new_ray_queue(ao), np.zeros(ao, np.int32), np.zeros(ao), np.zeros(1, np.int64))
 
 
@@ -172,10 +172,9 @@ def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle):
     if layout.uv >= 0 and passes.triangle_uv.shape[0] > 0:
         u, v = state.hit_u[i], state.hit_v[i]
         corners = passes.triangle_uv[triangle]
-        for c in range(2):
+        for c in range(3):  # u, v and A (1 where the mesh has the UV map)
             passes.values[i, layout.uv + c] = ((1.0 - u - v) * corners[0, c] + u * corners[1, c]
                                                + v * corners[2, c])
-        passes.values[i, layout.uv + 2] = 1.0
     if state.sample[i] == 0:  # Cycles writes the indices of sample 0 only, never a blend
         if layout.object_index >= 0 and passes.object_index.shape[0] > 0:
             passes.values[i, layout.object_index] = passes.object_index[triangle]
