@@ -99,7 +99,7 @@ PASSES = {p.name: p for p in (
     Pass("Denoising Albedo", "RGB", "COLOR", "denoising_albedo", meaning="albedo of that surface seen through "
          "the mirrors and glass in front of it; the radiance of the background or light where no surface"),
     Pass("Denoising Depth", "Z", "VALUE", "denoising_depth", meaning="distance along the view axis to that "
-         "surface (m); 1e10 where none"),
+         "surface (m); 1e10 where none", reduce=DEPTH),
     Pass("Emit", "RGB", "COLOR", "emission", meaning="emission of surfaces seen directly"),
     Pass("Env", "RGB", "COLOR", "environment", meaning="the world seen directly"),
     Pass("DiffDir", "RGB", "COLOR", "diffuse_direct", "diffuse_color", "light reaching the camera after one "
