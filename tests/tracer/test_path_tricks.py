@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from engine.tracer.errors import PrismInputError
-from engine.tracer.passes import PassRequest
+from engine.tracer.pass_table import PassRequest
 from engine.tracer.path_tricks import LightPathTricks
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Light, Material, World
