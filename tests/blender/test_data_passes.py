@@ -80,3 +80,38 @@ def test_vector_and_cryptomatte_are_warned(prism_addon, fresh_scene):
     messages = warnings.unrendered_setting_warnings(fresh_scene, layer)
     assert any(f"View Layer '{layer.name}': the Vector pass" in m for m in messages)
     assert any("CryptoObject pass" in m for m in messages)
+
+
+def test_pass_index_follows_each_object_and_instance(prism_addon, fresh_scene):
+    """Object ▸ Pass Index per triangle, for objects sharing a mesh and for a collection's instances
+    (each instance carries its object's index, as Cycles), read only when IndexOB is on."""
+    from importlib import import_module
+
+    from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+
+    export = import_module(f"{prism_addon.__name__}.engine.export")
+    a = add_plane("A", 1.0)
+    b = bpy.data.objects.new("B", a.data)  # the same mesh
+    fresh_scene.collection.objects.link(b)
+    a.pass_index, b.pass_index = 4, 6
+    group = bpy.data.collections.new("Group")
+    c = bpy.data.objects.new("C", a.data)
+    c.pass_index = 8
+    group.objects.link(c)
+    for x in (3.0, 6.0):
+        empty = bpy.data.objects.new(f"Instancer {x}", None)
+        empty.instance_type, empty.instance_collection = "COLLECTION", group
+        empty.location.x = x
+        fresh_scene.collection.objects.link(empty)
+    add_point_light("Bulb", 100.0, (0.0, 0.0, 2.0))
+    add_camera((0.0, -3.0, 2.5), (0.9, 0.0, 0.0), resolution=(8, 8))
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    assert export.export_scene(depsgraph).data_passes.object_pass_index is None  # pass off: nothing read
+    fresh_scene.view_layers[0].use_pass_object_index = True
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    scene = export.export_scene(depsgraph)
+    names = [scene.object_names[o] for o in scene.triangle_object]
+    index = scene.data_passes.object_pass_index
+    assert len(index) == len(names) == 8  # A, B and two instances of C, two triangles each
+    expected = {"A": 4.0, "B": 6.0, "C": 8.0}
+    assert [float(v) for v in index] == [expected[n] for n in names]
