@@ -12,6 +12,7 @@ from ..tracer.errors import PrismInputError
 from ..tracer.scene import Scene
 from .border import render_border
 from .camera import export_camera, render_resolution
+from .data_passes import export_data_passes
 from .lights import export_lights
 from .meshes import export_meshes
 from .missing_libraries import missing_libraries
@@ -98,6 +99,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
         world=export_world(depsgraph.scene_eval, warnings, depsgraph.view_layer),  # its world: evaluated
     )
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
+    tracer_scene.data_passes = export_data_passes(scene, geometry)
     tracer_scene.validate()
     filtered_by = depsgraph.view_layer.name if scene.world is not None and not depsgraph.view_layer.use_sky else ""
     world_notes = [w for w in warnings or () if scene.world is not None and w.startswith(f"World '{scene.world.name}'")]

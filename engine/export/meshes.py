@@ -25,6 +25,7 @@ from .instancing import WorldTriangles, instance_triangles
 from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
+from .data_passes import data_pass_switches
 from .surface_attributes import SurfaceCollector
 from .texture_memory import TextureBudget
 from .unrendered import particle_hair_warnings, unrendered_type_warning
@@ -46,6 +47,12 @@ class ExportedGeometry:
     object_light_groups: list[str] = field(default_factory=list)
     surface: object = None  # scene.SurfaceAttributes read by node materials, or None
     object_flags: np.ndarray | None = None  # uint8 per entry of object_names (``tracer.visibility``)
+    # What the data passes read (``data_passes``), None unless the view layer asks for the pass: Object ▸
+    # Pass Index per triangle, the render UV map per triangle corner (u, v, 1; 0, 0, 0 on meshes without one);
+    # Material ▸ Pass Index per material.
+    triangle_pass_index: np.ndarray | None = None
+    pass_uv: np.ndarray | None = None
+    material_pass_index: tuple = ()
 
 
 @dataclass
@@ -68,6 +75,8 @@ class _Materials:
         self.exporter = MaterialExporter(warnings, texture_budget=texture_budget)
         self.index: dict[str | None, int] = {}
         self.materials: list[Material] = []
+        self.uv_pass_slot: int | None = None  # the render UV map's slot when the UV pass is on
+        self.pass_index: list[float] = []  # Material ▸ Settings ▸ Pass Index of each material
 
     def slot_lookup(self, slot_materials: list) -> np.ndarray:
         return np.asarray([self._of(m) for m in slot_materials] or [self._of(None)], dtype=np.int32)
@@ -77,6 +86,7 @@ class _Materials:
         if key not in self.index:
             self.index[key] = len(self.materials)
             self.materials.append(self.exporter.export(material) if material is not None else DEFAULT_MATERIAL)
+            self.pass_index.append(float(material.pass_index) if material is not None else 0.0)
         return self.index[key]
 
     def request(self, slot_materials: list) -> AttributeRequest:
@@ -84,6 +94,8 @@ class _Materials:
         self.slot_lookup(slot_materials)
         slots = self.exporter.slots
         request = AttributeRequest()
+        if self.uv_pass_slot is not None:
+            request.uvs[self.uv_pass_slot] = ""
         for material in slot_materials:
             if material is None:
                 continue
@@ -158,8 +170,13 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     flags: list[int] = []
     groups: list[str] = []
     camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
+    passes = data_pass_switches(getattr(depsgraph, "view_layer", None))
+    if passes.uv:
+        materials.uv_pass_slot = materials.exporter.slots.uv("")
     pieces = _gather(depsgraph, warnings, read, materials)
     surface = SurfaceCollector(materials.exporter.slots)
+    pass_index: list[np.ndarray] = []
+    has_uv: list[np.ndarray] = []  # per triangle: its mesh has the render UV map (the UV pass's A)
     for piece in pieces:
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
         lookup = materials.slot_lookup(piece.geometry.slot_materials)
@@ -171,6 +188,8 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                 groups.append(piece.light_group)
                 surface.add_other(len(placed.triangles))
                 flags.append(piece.flags)
+                pass_index.append(np.full(len(placed.triangles), piece.infos[0][1] if piece.infos else 0, np.float32))
+                has_uv.append(np.zeros(len(placed.triangles), bool))
             continue
         local = piece.geometry
         placed = instance_triangles(local.vertices, local.triangles, local.corner_normals, matrices)
@@ -180,10 +199,23 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
         groups.append(piece.light_group)
         surface.add_mesh(local, matrices, piece.infos, np.linalg.det(matrices[:, :3, :3]) < 0)
         flags.append(piece.flags)
+        if passes.uv:
+            has_uv.append(np.full(len(local.triangles) * len(matrices), materials.uv_pass_slot in local.uvs))
+        if passes.object_index:  # instance by instance, as ``instance_triangles`` places them
+            pass_index.append(np.repeat(np.asarray([info[1] for info in piece.infos], np.float32),
+                                        len(local.triangles)))
     geometry = _assemble(parts, names, materials.materials)
     geometry.object_light_groups = groups
     geometry.surface = surface.surface()
     geometry.object_flags = np.asarray(flags, np.uint8)
+    if passes.object_index:
+        geometry.triangle_pass_index = np.concatenate(pass_index) if pass_index else np.zeros(0, np.float32)
+    if passes.uv and geometry.surface is not None:
+        uv = geometry.surface.uvs[materials.uv_pass_slot]
+        present = np.concatenate(has_uv) if has_uv else np.zeros(0, bool)
+        geometry.pass_uv = np.concatenate([uv, np.broadcast_to(present[:, None, None], (len(uv), 3, 1))], -1)
+    if passes.material_index:
+        geometry.material_pass_index = tuple(materials.pass_index)
     return geometry
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..tracer.errors import PrismInputError
 from ..tracer.pass_table import PassRequest
 from ..tracer.settings import RenderSettings
+from .light_path_tricks import light_path_tricks
 
 _MODES = {"CIE": "cie", "GAUSSIAN_RGB": "gaussian_rgb"}
 #: Samples of a material or light preview (``preview=True``): Blender renders them in its own preview
@@ -72,6 +73,7 @@ def export_settings(
         # Film ▸ Exposure: Prism has no exposure of its own, so Cycles' (the Film panel a converted scene
         # carries) applies, as the same linear scale of the light passes.
         settings.film_exposure = float(getattr(cycles, "film_exposure", 1.0))
+    settings.light_path_tricks = light_path_tricks(scene)
     try:
         settings.validate()
     except PrismInputError as error:  # stored past the UI's limits (a script, an old file): say where

@@ -3,6 +3,8 @@ instead, never a silently different image."""
 
 from __future__ import annotations
 
+from .light_path_tricks import light_path_trick_warnings
+
 
 def motion_blur_warning(scene) -> str | None:
     """The warning for Render Properties ▸ Motion Blur turned on, else None."""
@@ -22,6 +24,21 @@ def surfaces_filter_warning(view_layer) -> str | None:
             "every surface is rendered as if it were on (Cycles renders the world alone).")
 
 
+#: View Layer ▸ Passes switches Prism does not render yet, with Blender's pass names.
+UNRENDERED_PASSES = (("use_pass_vector", "Vector"), ("use_pass_cryptomatte_object", "CryptoObject"),
+                     ("use_pass_cryptomatte_material", "CryptoMaterial"),
+                     ("use_pass_cryptomatte_asset", "CryptoAsset"))
+
+
+def unrendered_pass_warnings(view_layer) -> list[str]:
+    """One warning per pass ``view_layer`` asks for that Prism does not write."""
+    if view_layer is None:
+        return []
+    return [f"View Layer '{view_layer.name}': the {name} pass is on, but Prism does not write it yet: the pass is "
+            "missing from the render result." for switch, name in UNRENDERED_PASSES if getattr(view_layer, switch, False)]
+
+
 def unrendered_setting_warnings(scene, view_layer=None) -> list[str]:
     """One warning per render setting of ``scene`` (and of the rendered ``view_layer``) that Prism leaves out."""
-    return [message for message in (motion_blur_warning(scene), surfaces_filter_warning(view_layer)) if message]
+    return [message for message in (motion_blur_warning(scene), surfaces_filter_warning(view_layer)) if message] + (
+        light_path_trick_warnings(scene) + unrendered_pass_warnings(view_layer))

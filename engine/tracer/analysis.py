@@ -151,6 +151,8 @@ def _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes) -> 
         return "spectral output"
     if layout.light >= 0 or layout.groups > 0:
         return "light passes"
+    if settings.light_path_tricks.biased:
+        return "clamps or caustics toggles"
     if ray_classes is not None or (geometry.flags & HOLDOUT).any():
         return "ray visibility or holdouts"
     return ""

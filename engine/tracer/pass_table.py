@@ -46,8 +46,20 @@ BUFFERS = {b.key: b for b in (
     Buffer("denoising_normal"),
     Buffer("denoising_depth", 2),
     Buffer("denoising_albedo", spectral=True),
+    Buffer("mist", 1),  # 1 - mist of the surface first seen (the pass is 1 - the mean: 1 where none)
+    Buffer("object_index", 2),  # pass index of sample 0's object and 1 (sample 0 only: Cycles overwrites)
+    Buffer("material_index", 2),  # the same for its material
+    Buffer("uv"),  # u, v, 1 of the first surface's render UV map
+    Buffer("ao", 1),  # 1 where the first surface's ambient-occlusion ray is free
+
     *(Buffer(key, spectral=True) for key in LIGHT_SLOTS),
 )}
+
+
+#: How a pass is made from its buffer's per-pixel mean (``Pass.reduce``): the mean itself; DEPTH: sum /
+#: count, 1e10 where no sample counted; FIRST: the same, 0 where none (values of sample 0 only);
+#: COMPLEMENT: 1 - the mean; GREY: a 1-wide mean as R = G = B.
+MEAN, DEPTH, FIRST, COMPLEMENT, GREY = "mean", "depth", "first", "complement", "grey"
 
 
 @dataclass(frozen=True)
@@ -63,20 +75,31 @@ class Pass:
     buffer: str
     divide_by: str | None = None
     meaning: str = ""
+    reduce: str = MEAN
 
 
 PASSES = {p.name: p for p in (
     Pass("Depth", "Z", "VALUE", "depth", meaning="distance along the camera's view axis to the surfaces seen "
-         "in the pixel (m, their mean); 1e10 where none"),
+         "in the pixel (m, their mean); 1e10 where none", reduce=DEPTH),
+    Pass("Mist", "Z", "VALUE", "mist", meaning="World ▸ Mist Pass of the surface first seen: ((distance - "
+         "start) / depth) clamped to 0-1, raised to the falloff; 1 where none", reduce=COMPLEMENT),
     Pass("Position", "XYZ", "VECTOR", "position", meaning="world position of the surface first seen (m)"),
     Pass("Normal", "XYZ", "VECTOR", "normal", meaning="world-space shading normal of the surface first seen, "
          "facing the camera"),
+    Pass("UV", "UVA", "VECTOR", "uv", meaning="the render UV map of the surface first seen (u, v, 1; 0 where "
+         "none or without UV map)"),
+    Pass("IndexOB", "X", "VALUE", "object_index", meaning="Object ▸ Relations ▸ Pass Index of the object sample "
+         "0 of the pixel saw first (not averaged); 0 where none", reduce=FIRST),
+    Pass("IndexMA", "X", "VALUE", "material_index", meaning="Material ▸ Settings ▸ Pass Index of that "
+         "surface's material", reduce=FIRST),
+    Pass("AO", "RGB", "COLOR", "ao", meaning="ambient occlusion of the surface first seen: the fraction of "
+         "cosine-weighted directions free within World ▸ Ambient Occlusion ▸ Distance", reduce=GREY),
     Pass("Denoising Normal", "XYZ", "VECTOR", "denoising_normal", meaning="camera-space shading normal (x right, "
          "y up, z forward) of the first surface that is not a perfect mirror or glass; 0 where none"),
     Pass("Denoising Albedo", "RGB", "COLOR", "denoising_albedo", meaning="albedo of that surface seen through "
          "the mirrors and glass in front of it; the radiance of the background or light where no surface"),
     Pass("Denoising Depth", "Z", "VALUE", "denoising_depth", meaning="distance along the view axis to that "
-         "surface (m); 1e10 where none"),
+         "surface (m); 1e10 where none", reduce=DEPTH),
     Pass("Emit", "RGB", "COLOR", "emission", meaning="emission of surfaces seen directly"),
     Pass("Env", "RGB", "COLOR", "environment", meaning="the world seen directly"),
     Pass("DiffDir", "RGB", "COLOR", "diffuse_direct", "diffuse_color", "light reaching the camera after one "
@@ -94,7 +117,9 @@ PASSES = {p.name: p for p in (
 
 #: Blender's view-layer switch of each pass (``ViewLayer.use_pass_*``), for the Blender side.
 VIEW_LAYER_SWITCH = {
-    "Depth": "use_pass_z", "Position": "use_pass_position", "Normal": "use_pass_normal", "Emit": "use_pass_emit",
+    "Depth": "use_pass_z", "Mist": "use_pass_mist", "Position": "use_pass_position", "Normal": "use_pass_normal",
+    "UV": "use_pass_uv", "IndexOB": "use_pass_object_index", "IndexMA": "use_pass_material_index",
+    "AO": "use_pass_ambient_occlusion", "Emit": "use_pass_emit",
     "Env": "use_pass_environment", "DiffDir": "use_pass_diffuse_direct", "DiffInd": "use_pass_diffuse_indirect",
     "DiffCol": "use_pass_diffuse_color", "GlossDir": "use_pass_glossy_direct",
     "GlossInd": "use_pass_glossy_indirect", "GlossCol": "use_pass_glossy_color",
@@ -136,7 +161,7 @@ class PassRequest:
 PassLayout = namedtuple(
     "PassLayout",
     "depth position normal denoising_normal denoising_depth denoising_albedo light group groups aov aovs "
-    "columns slots rgb_column white",
+    "columns slots rgb_column white mist object_index material_index uv ao",
 )
 
 
@@ -180,7 +205,7 @@ class FilmLayout:
             slot.get("denoising_albedo", -1), slot.get(LIGHT_SLOTS[0], -1),
             slot["group:" + request.light_groups[0]] if groups else -1, groups,
             aov_column if self.aov_names else -1, len(self.aov_names), column, len(self.slot_keys), rgb_column,
-            int(white_spectrum))
+            int(white_spectrum), col["mist"], col["object_index"], col["material_index"], col["uv"], col["ao"])
 
     def images(self, aux_mean: np.ndarray, exposure: float = 1.0) -> dict[str, np.ndarray]:
         """Every requested pass from the film's per-pixel ``aux_mean`` [..., width] (sums divided by the
@@ -190,9 +215,14 @@ class FilmLayout:
         for name in self.request.passes:
             p = PASSES[name]
             image = self._buffer(aux_mean, p.buffer)
-            if p.channels == "Z":  # depth sum and hit fraction
+            if p.reduce in (DEPTH, FIRST):  # a sum over the samples that counted, and their count
                 hits = image[..., 1:2]
-                image = np.divide(image[..., :1], hits, out=np.full_like(hits, BACKGROUND_DEPTH_M), where=hits > 0)
+                empty = BACKGROUND_DEPTH_M if p.reduce == DEPTH else 0.0
+                image = np.divide(image[..., :1], hits, out=np.full_like(hits, empty), where=hits > 0)
+            elif p.reduce == COMPLEMENT:
+                image = 1.0 - image
+            elif p.reduce == GREY:
+                image = np.repeat(image, 3, axis=-1)
             elif p.divide_by:
                 colour = self._buffer(aux_mean, p.divide_by)
                 image = np.divide(image, colour, out=np.zeros_like(image), where=colour > 1e-8)

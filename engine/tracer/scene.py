@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .data_passes import DataPassInputs
 from .errors import PrismInputError
 
 
@@ -293,7 +294,7 @@ class Scene:
     group, for the light its emissive triangles give. ``surface`` holds UV maps, colour attributes,
     tangents and object data for node materials (None when no material reads them). ``object_flags``
     uint8 [objects] (parallel to ``object_names``: ``visibility.RAY_*`` and ``HOLDOUT`` bits; None: every
-    object seen by every ray, no holdout).
+    object seen by every ray, no holdout). ``data_passes``: what the Mist, UV, Index and AO passes read.
     """
 
     vertices: np.ndarray
@@ -309,6 +310,7 @@ class Scene:
     object_flags: np.ndarray | None = None
     object_light_groups: list[str] = field(default_factory=list)
     surface: SurfaceAttributes | None = None
+    data_passes: DataPassInputs = field(default_factory=DataPassInputs)
 
     @property
     def triangle_count(self) -> int:

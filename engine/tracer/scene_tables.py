@@ -25,6 +25,7 @@ import numpy as np
 
 from .accel import Accel
 from .analysis import analyse_scene
+from .data_passes import first_hit_tables
 from .errors import PrismInputError
 from .geometry import prepare_geometry
 from .lights.emitters import emitter_spectra
@@ -37,6 +38,7 @@ from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
 from .spectra.wavelength_guide import build_guide
 from .stages.bounce_loop import SceneArrays
+from .stages.camera import ORTHOGRAPHIC
 from .stages.settings import KernelSettings
 from .visibility import HOLDOUT
 from .visibility_accel import RayClassAccel, needs_ray_classes
@@ -56,6 +58,14 @@ def _kept(triangle_object, original):
     if triangle_object is None:
         return None
     return np.asarray(triangle_object)[original]
+
+
+def _trick_settings(tricks) -> dict:
+    """The ``KernelSettings`` fields of Cycles' Light Paths tricks (``path_tricks``)."""
+    direct, indirect = tricks.kernel_limits()
+    return dict(clamping=tricks.clamping, clamp_direct=direct, clamp_indirect=indirect,
+                caustics_filtered=tricks.caustics_filtered, caustics_reflective=bool(tricks.caustics_reflective),
+                caustics_refractive=bool(tricks.caustics_refractive))
 
 
 class SceneTables:
@@ -96,6 +106,8 @@ class SceneTables:
         white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
         self.pass_layout = FilmLayout(settings.passes, white)
         self.aov_table = aov_table(scene.materials, settings.passes.aovs)
+        self.first_hit = first_hit_tables(scene.data_passes, self._original_triangle, len(scene.materials),
+                                          self.pass_layout.kernel, camera.data.projection == ORTHOGRAPHIC)
         self.spectra = spectra.arrays()
         guide = None
         if settings.wavelength_mode == "cie":
@@ -108,7 +120,8 @@ class SceneTables:
             light_tracing=False,  # the analysis decides (``describe``)
             film_transparent=bool(settings.film_transparent),
             transparent_glass=bool(settings.film_transparent and settings.transparent_glass),
-            transparent_alpha=float(settings.transparent_roughness) ** 2)
+            transparent_alpha=float(settings.transparent_roughness) ** 2,
+            **_trick_settings(settings.light_path_tricks), wavelengths=self.wavelengths)
         self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.describe(scene, settings, camera)
 

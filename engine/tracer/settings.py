@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 from .errors import PrismInputError
 from .pass_table import PassRequest
+from .path_tricks import LightPathTricks
 
 WAVELENGTH_MODES = ("cie", "gaussian_rgb")
 LIGHT_TRACING_MODES = ("auto", "off", "on")
@@ -67,12 +68,16 @@ class RenderSettings:
     # Film ▸ Exposure (Cycles' ``film_exposure``): a linear scale of every light pass (Combined, Emit,
     # Diffuse Direct, light groups, ...), not of data passes (Depth, Normal, colour passes). 1 = physical.
     film_exposure: float = 1.0
+    # Cycles' Light Paths tricks (``path_tricks.LightPathTricks``): clamps, Filter Glossy, caustics toggles.
+    # The default is none of them: an unbiased image.
+    light_path_tricks: LightPathTricks = field(default_factory=LightPathTricks)
 
     def validate(self) -> None:
         """Raise ``PrismInputError`` for settings no render can use."""
         if not (self.film_exposure >= 0.0 and self.film_exposure < float("inf")):
             raise PrismInputError(f"Film Exposure {self.film_exposure} is not a finite scale ≥ 0: set Film ▸ "
                                   "Exposure between 0 and 10 (1 leaves the image as rendered).")
+        self.light_path_tricks.validate()
         if self.wavelength_mode not in WAVELENGTH_MODES:
             raise PrismInputError(
                 f"Unknown wavelength mode '{self.wavelength_mode}': use one of {', '.join(WAVELENGTH_MODES)}."

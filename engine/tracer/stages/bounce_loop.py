@@ -27,7 +27,7 @@ from ..jit import inlined, kernel
 from ..state import LoopBuffers  # noqa: F401  (the loop's record, declared with the buffers)
 from .emission import emission_kernel
 from .film import film_kernel
-from .pass_writes import convert_kernel, route_kernel
+from .pass_writes import ao_kernel, convert_kernel, route_kernel
 from .shade import shade_kernel
 from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
 
@@ -96,6 +96,10 @@ def bounce_loop_kernel(loop, arrays, caster, camera, passes, layout, count, queu
                                         loop.scratch, glass_clamps, loop.rejected, passes, layout)
         if shadowed:
             rays_cast += _trace_shadows(loop, arrays, caster, passes, layout, shadowed, see_through)
+        if depth == 0 and layout.ao >= 0 and passes.ao_count[0] > 0:  # the AO pass's rays
+            occlusion(caster, passes.ao_rays, passes.ao_count[0], passes.ao_free)
+            rays_cast += passes.ao_count[0]
+            ao_kernel(passes, layout, passes.ao_count[0])
         if depth == 0 and routed == ROUTE_FIRST_SHADOWS:
             route_kernel(state, passes, layout, count, routed)
             routed += 1

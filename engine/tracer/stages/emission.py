@@ -26,15 +26,20 @@ from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE
 from ..spectra.table import spectrum_value
 from ..state import CAMERA_PATH, PREV_DELTA
 from ..visibility import HOLDOUT
+from .clamp import clamp_factor
 from .mis import emitter_weight
 from .pass_writes import camera_slot, deposit, features_done
 
 
 @inlined
-def _add(state, i, factor, sid, spectra, weight, passes, layout, group, slot, albedo):
+def _add(state, i, factor, sid, spectra, weight, passes, layout, group, slot, albedo, settings, depth, tmp):
     scale = factor * weight
     if scale == 0.0:
         return
+    if settings.clamping:
+        for k in range(state.radiance.shape[1]):
+            tmp[k] = state.throughput[i, k] * scale * spectrum_value(spectra, sid, state.wavelength[i, k])
+        scale *= clamp_factor(settings, state, i, tmp, depth > 1)
     for k in range(state.radiance.shape[1]):
         value = state.throughput[i, k] * scale * spectrum_value(spectra, sid, state.wavelength[i, k])
         state.radiance[i, k] += value
@@ -43,7 +48,7 @@ def _add(state, i, factor, sid, spectra, weight, passes, layout, group, slot, al
 
 
 @inlined
-def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout):
+def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout, tmp):
     """Every hittable light between the ray's origin and distance ``t`` adds its emission."""
     offset = (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
     for h in range(lights.hittable.shape[0]):
@@ -55,7 +60,7 @@ def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, 
             factor, pdf = light_hit(lights, index, mis_origin, d, t_light + offset)
             _add(state, i, factor, light_spectrum(lights, index), spectra,
                  emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index],
-                 camera_slot(layout, depth, False), True)
+                 camera_slot(layout, depth, False), True, settings, depth, tmp)
 
 
 @inlined
@@ -69,7 +74,7 @@ def _see_through(state, i):
 
 
 @inlined
-def _add_background(state, i, d, lights, spectra, settings, depth, passes, layout):
+def _add_background(state, i, d, lights, spectra, settings, depth, passes, layout, tmp):
     """The world's background and the sun discs seen by an escaping ray."""
     if settings.film_transparent and state.flags[i] & CAMERA_PATH:
         _see_through(state, i)
@@ -82,6 +87,11 @@ def _add_background(state, i, d, lights, spectra, settings, depth, passes, layou
             weight = emitter_weight(state, i, environment_pdf(lights, d), settings.use_mis)
         if weight > 0.0:
             fp = environment.footprint(env, d)
+            if settings.clamping:
+                for k in range(state.radiance.shape[1]):
+                    tmp[k] = state.throughput[i, k] * weight * environment.value(env, spectra, fp,
+                                                                                 state.wavelength[i, k])
+                weight *= clamp_factor(settings, state, i, tmp, depth > 1)
             for k in range(state.radiance.shape[1]):
                 value = state.throughput[i, k] * weight * environment.value(env, spectra, fp, state.wavelength[i, k])
                 state.radiance[i, k] += value
@@ -93,7 +103,7 @@ def _add_background(state, i, d, lights, spectra, settings, depth, passes, layou
             if factor > 0.0:
                 _add(state, i, factor, light_spectrum(lights, index), spectra,
                      emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index], slot,
-                     True)
+                     True, settings, depth, tmp)
 
 
 @kernel
@@ -112,9 +122,10 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
         t = float(hit_t[j]) if triangle >= 0 else math.inf
         mis_origin = (state.mis_origin[i, 0], state.mis_origin[i, 1], state.mis_origin[i, 2])
         if lights.hittable.shape[0] > 0:
-            _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout)
+            _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout,
+                              scratch.weight)
         if triangle < 0:
-            _add_background(state, i, d, lights, spectra, settings, depth, passes, layout)
+            _add_background(state, i, d, lights, spectra, settings, depth, passes, layout, scratch.weight)
             if layout.columns > 0:
                 features_done(passes, layout, i)
             continue
@@ -133,6 +144,10 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
                 radiance = scratch.li
                 emission_at(materials, spectra, geometry, material, triangle, float(hit_u[j]), float(hit_v[j]),
                             (-d[0], -d[1], -d[2]), state.wavelength[i], scratch.rows, scratch.registers, radiance)
+                if settings.clamping:
+                    for k in range(state.radiance.shape[1]):
+                        scratch.weight[k] = state.throughput[i, k] * weight * radiance[k]
+                    weight *= clamp_factor(settings, state, i, scratch.weight, depth > 1)
                 for k in range(state.radiance.shape[1]):
                     value = state.throughput[i, k] * weight * radiance[k]
                     state.radiance[i, k] += value
@@ -140,7 +155,7 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
                         deposit(passes, layout, i, k, value, group, slot, False)
             else:
                 _add(state, i, materials.emission_strength[material], materials.emission_spectrum[material],
-                     spectra, weight, passes, layout, group, slot, False)
+                     spectra, weight, passes, layout, group, slot, False, settings, depth, scratch.weight)
         if shade_next:
             state.hit_triangle[i] = triangle
             state.hit_u[i] = hit_u[j]

@@ -17,6 +17,7 @@ from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..vec3 import to_local
 from ..warps import power_heuristic
+from .clamp import clamp_factor
 from .pass_writes import lobe_shares
 
 SHADOW_SHORTEN = 1e-4  # shadow rays stop this fraction short of the light sample
@@ -58,6 +59,10 @@ def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, cou
         any_light = any_light or contribution[k] > 0.0
     if not any_light:
         return 0
+    if settings.clamping:
+        factor = clamp_factor(settings, state, i, contribution, depth > 0)
+        for k in range(li.shape[0]):
+            contribution[k] *= factor
     origin = offset_origin(p, ng, wi)
     distance = dist * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
     if not (math.isfinite(origin[0]) and math.isfinite(origin[1]) and math.isfinite(origin[2])

@@ -20,17 +20,29 @@ the sampled direction. Colour = the BSDF sample weight × share, whose mean is e
 
 from __future__ import annotations
 
+import math
 from collections import namedtuple
 
 import numpy as np
 
 from ..bsdf.closure import C_KIND, CONDUCTOR, DIFFUSE, SAMPLED_DELTA, SAMPLED_TRANSMISSION
 from ..bsdf.dispatch import closure_evaluate
+from ..data_passes import AO_DISTANCE, FIRST_HIT_DATA, MIST_FALLOFF, MIST_INV_DEPTH, MIST_START, ORTHOGRAPHIC
+from ..geometry import offset_origin
 from ..jit import inlined, kernel
+from ..sampler import sample_2d
 from ..spectra.table import spectrum_value
 from ..spectra.wavelength_sampling import radiance_to_rgb
+from ..state import new_ray_queue
+from ..vec3 import tangents, to_world
+from ..warps import cosine_hemisphere
 
-PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table")
+PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table "
+                                   "first_hit_data object_index material_index triangle_uv ao_rays ao_free ao_weight "
+                                   "ao_count")
+
+#: The sampler slot of the AO pass's direction (2-D): far past any bounce's slots.
+SLOT_AO = 1 << 20
 
 EMISSION = 0  # offsets from layout.light, in pass_table.LIGHT_SLOTS order
 ENVIRONMENT = 1
@@ -47,9 +59,12 @@ def new_pass_data(n: int, k: int, film_layout) -> PassData:
     layout = film_layout.kernel
     light = n if layout.light >= 0 else 0
     features = n if layout.denoising_albedo >= 0 or layout.denoising_normal >= 0 else 0
+    ao = n if layout.ao >= 0 else 0
     return PassData(np.empty((n, layout.columns)), np.zeros((n, layout.slots, k)), np.zeros((light, k)),
                     np.zeros((light, 2, 3, k)), np.zeros(features, np.int8),
-                    np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)))
+                    np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)),
+                    np.zeros(FIRST_HIT_DATA), np.zeros(0, np.float32), np.zeros(1), np.zeros((0, 3, 3), np.float32),
+                    new_ray_queue(ao), np.zeros(ao, np.int32), np.zeros(ao), np.zeros(1, np.int64))
 
 
 @kernel
@@ -64,6 +79,7 @@ def reset_kernel(passes, layout, count):
             passes.feature[i] = 0
         if passes.split.shape[0] > 0:
             passes.split[i, :, :, :] = 0.0
+    passes.ao_count[0] = 0
 
 
 @inlined
@@ -99,9 +115,75 @@ def _camera_depth(passes, p):
 
 
 @inlined
-def first_hit(passes, layout, i, p, n, material):
-    """Depth, Position, Normal and AOVs of the surface the camera ray hit at ``p`` (in the render's space)
-    with normal ``n`` (facing the camera)."""
+def _mist(passes, p):
+    """1 - mist at ``p`` (Cycles' ``film_write_data_passes``: distance from the camera, or along its axis
+    for an orthographic one, mapped through start, depth and falloff)."""
+    data = passes.first_hit_data
+    if data[ORTHOGRAPHIC] > 0.0:
+        distance = abs(_camera_depth(passes, p))
+    else:
+        c = passes.camera_at
+        distance = math.sqrt((p[0] - c[0]) ** 2 + (p[1] - c[1]) ** 2 + (p[2] - c[2]) ** 2)
+    mist = min(max((distance - data[MIST_START]) * data[MIST_INV_DEPTH], 0.0), 1.0)
+    falloff = data[MIST_FALLOFF]
+    if falloff != 1.0:
+        mist = mist ** falloff
+    return 1.0 - mist
+
+
+@inlined
+def _queue_ao_ray(state, passes, settings, i, p, ng, n):
+    """The first surface's ambient-occlusion ray (Cycles' ``integrate_surface_ao``: a cosine-weighted
+    direction about the shading normal, as far as World ▸ Ambient Occlusion ▸ Distance)."""
+    u1, u2 = sample_2d(settings.sampler, state.seed[i], state.sample[i], SLOT_AO)
+    tangent, bitangent = tangents(n)
+    d = to_world(cosine_hemisphere(u1, u2), tangent, bitangent, n)
+    o = offset_origin(p, ng, d)
+    j = passes.ao_count[0]
+    rays = passes.ao_rays
+    for c in range(3):
+        rays.origin[j, c] = o[c]
+        rays.direction[j, c] = d[c]
+    rays.tmax[j] = passes.first_hit_data[AO_DISTANCE]
+    rays.path[j] = i
+    k = state.throughput.shape[1]
+    total = 0.0
+    for c in range(k):
+        total += state.throughput[i, c]
+    passes.ao_weight[i] = total / k
+    passes.ao_count[0] = j + 1
+
+
+@kernel
+def ao_kernel(passes, layout, count):
+    """The AO pass of the first ``count`` AO rays: their path's weight where the ray was free."""
+    for j in range(count):
+        if passes.ao_free[j] != 0:
+            i = passes.ao_rays.path[j]
+            passes.values[i, layout.ao] += passes.ao_weight[i]
+
+
+@inlined
+def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle):
+    """Depth, Mist, Position, Normal, UV, Object and Material Index, AO and AOVs of the surface the camera
+    ray hit at ``p`` (in the render's space) with normals ``ng`` and ``n`` (facing the camera)."""
+    if layout.mist >= 0:
+        passes.values[i, layout.mist] = _mist(passes, p)
+    if layout.uv >= 0 and passes.triangle_uv.shape[0] > 0:
+        u, v = state.hit_u[i], state.hit_v[i]
+        corners = passes.triangle_uv[triangle]
+        for c in range(3):  # u, v and A (1 where the mesh has the UV map)
+            passes.values[i, layout.uv + c] = ((1.0 - u - v) * corners[0, c] + u * corners[1, c]
+                                               + v * corners[2, c])
+    if state.sample[i] == 0:  # Cycles writes the indices of sample 0 only, never a blend
+        if layout.object_index >= 0 and passes.object_index.shape[0] > 0:
+            passes.values[i, layout.object_index] = passes.object_index[triangle]
+            passes.values[i, layout.object_index + 1] = 1.0
+        if layout.material_index >= 0:
+            passes.values[i, layout.material_index] = passes.material_index[material]
+            passes.values[i, layout.material_index + 1] = 1.0
+    if layout.ao >= 0:
+        _queue_ao_ray(state, passes, settings, i, p, ng, n)
     for a in range(layout.aovs):
         for c in range(4):
             passes.values[i, layout.aov + 4 * a + c] = passes.aov_table[material, a, c]

@@ -8,8 +8,13 @@ from collections import namedtuple
 #: use_mis, sampler (``sampler.SOBOL`` / ``INDEPENDENT``), seed; light_tracing (caustic paths come from
 #: light tracing and path tracing skips them: ``stages.caustic_split``); film_transparent (the background
 #: seen by camera paths is see-through), transparent_glass (camera paths stay camera paths through
-#: transmission of roughness² at most ``transparent_alpha``), as Cycles' Film ▸ Transparent.
+#: transmission of roughness² at most ``transparent_alpha``), as Cycles' Film ▸ Transparent;
+#: Cycles' Light Paths tricks (``path_tricks``): ``clamping`` (a flag: either clamp is on), ``clamp_direct`` /
+#: ``clamp_indirect`` (limits on |R| + |G| + |B| of one contribution, inf when off), ``caustics_filtered`` (a
+#: flag: a caustics toggle is off), ``caustics_reflective`` / ``caustics_refractive``; ``wavelengths`` the
+#: render's ``WavelengthSampling`` (a clamp measures a contribution in Rec.709).
 KernelSettings = namedtuple(
     "KernelSettings",
-    "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha",
+    "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha "
+    "clamping clamp_direct clamp_indirect caustics_filtered caustics_reflective caustics_refractive wavelengths",
 )

@@ -24,6 +24,7 @@ from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sam
 from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
 from .caustic_split import classify_vertex
+from .caustics_toggles import filter_caustic_closures
 from .nee import consistent, sample_direct
 from .pass_writes import first_bounce, first_hit, surface_features
 from .queue import push_ray
@@ -97,13 +98,15 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         closures, n = shade_surface(materials, spectra, geometry, material, triangle, state.hit_u[i], state.hit_v[i],
                                     p, facing_ng, facing_ns, wo, backfacing, lam, hero, rows, spectral, eta,
                                     registers, glass_clamps)
+        if settings.caustics_filtered and depth > 0 and state.flags[i] & LAST_DIFFUSE:
+            filter_caustic_closures(settings, rows, spectral, closures)
         if backfacing and mflags & MAT_ONE_SIDED:
             n = (-n[0], -n[1], -n[2])
         tangent, bitangent = tangents(n)
         frame = (tangent, bitangent, n)
         wo_l = to_local(wo, tangent, bitangent, n)
         if depth == 0 and layout.columns > 0:
-            first_hit(passes, layout, i, p, facing_ns, material)
+            first_hit(state, passes, layout, settings, i, p, facing_ng, facing_ns, material, triangle)
         if has_lights and not mflags & MAT_DELTA:
             shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                       materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,

@@ -31,6 +31,7 @@ shadow_kernel = Launch(_shadow.shadow_kernel)
 route_kernel = Launch(_passes.route_kernel)
 reset_kernel = Launch(_passes.reset_kernel)
 convert_kernel = Launch(_passes.convert_kernel)
+ao_kernel = Launch(_passes.ao_kernel)
 film_kernel = Launch(_film.film_kernel)
 bounce_loop_kernel = Launch(_bounce_loop.bounce_loop_kernel)
 
@@ -115,6 +116,11 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
                                         rejected, passes, layout)
         if shadowed:
             rays_cast += _trace_shadows(renderer, state, buffers.shadows, shadowed, passes, layout, buffers.scratch)
+        if depth == 0 and layout.ao >= 0 and passes.ao_count[0] > 0:  # the AO pass's rays see every object
+            ao_rays = int(passes.ao_count[0])
+            passes.ao_free[:ao_rays] = tables.accel.occluded(passes.ao_rays, ao_rays)
+            rays_cast += ao_rays
+            ao_kernel(passes, layout, ao_rays)
         if depth == 0 and routed == _ROUTE_FIRST_SHADOWS:
             route_kernel(state, passes, layout, count, routed)
             routed += 1

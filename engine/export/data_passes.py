@@ -1,0 +1,33 @@
+"""What the data passes read from Blender (``tracer.data_passes.DataPassInputs``): View Layer ▸ Passes ▸
+Data switches, World ▸ Mist Pass and World ▸ Ambient Occlusion ▸ Distance (Cycles reads the same)."""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+from ..tracer.data_passes import DataPassInputs
+
+#: Which data passes the rendered view layer asks for (the per-triangle data is read only for those).
+DataPassSwitches = namedtuple("DataPassSwitches", "uv object_index material_index")
+
+
+def data_pass_switches(view_layer) -> DataPassSwitches:
+    if view_layer is None:
+        return DataPassSwitches(False, False, False)
+    return DataPassSwitches(bool(getattr(view_layer, "use_pass_uv", False)),
+                            bool(getattr(view_layer, "use_pass_object_index", False)),
+                            bool(getattr(view_layer, "use_pass_material_index", False)))
+
+
+def export_data_passes(scene, geometry) -> DataPassInputs:
+    """The data passes' inputs of ``scene`` whose meshes are ``geometry`` (``meshes.ExportedGeometry``)."""
+    inputs = DataPassInputs(object_pass_index=geometry.triangle_pass_index, uv=geometry.pass_uv,
+                            material_pass_index=tuple(geometry.material_pass_index))
+    world = scene.world
+    if world is not None:
+        mist = world.mist_settings
+        inputs.mist_start_m = float(mist.start)
+        inputs.mist_depth_m = float(mist.depth)
+        inputs.mist_falloff = str(mist.falloff)
+        inputs.ao_distance_m = float(world.light_settings.distance)
+    return inputs

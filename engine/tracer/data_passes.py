@@ -1,0 +1,59 @@
+"""What the data passes read besides the hit itself (Mist, UV, Object and Material Index, AO), from the
+scene (``DataPassInputs``, filled by the export) to the kernels' arrays (``first_hit_tables``)."""
+
+from __future__ import annotations
+
+from collections import namedtuple
+from dataclasses import dataclass
+
+import numpy as np
+
+#: ``PassData.first_hit_data`` [FIRST_HIT_DATA]: World ▸ Mist Pass start (m), 1 / depth (1/m; 0 for depth 0),
+#: falloff exponent, 1 for an orthographic camera (mist then measures along the view axis, as Cycles'
+#: ``camera_distance``), World ▸ Ambient Occlusion ▸ Distance (m).
+MIST_START, MIST_INV_DEPTH, MIST_FALLOFF, ORTHOGRAPHIC, AO_DISTANCE = range(5)
+FIRST_HIT_DATA = 5
+
+#: Blender's mist falloffs (World ▸ Mist Pass ▸ Falloff) as Cycles' exponents.
+MIST_FALLOFFS = {"QUADRATIC": 2.0, "LINEAR": 1.0, "INVERSE_QUADRATIC": 0.5}
+AO_FAR_M = 1e30  # an AO ray's length where the distance is unbounded (float32-representable)
+
+
+@dataclass
+class DataPassInputs:
+    """``object_pass_index`` float32 [T] (Object ▸ Relations ▸ Pass Index per triangle) and ``uv`` float32
+    [T, 3, 3] (the render UV map per triangle corner as u, v, 1; 0, 0, 0 on a mesh without one, as Cycles): None unless their pass is asked
+    for; ``material_pass_index`` one per scene material; World ▸ Mist Pass (m; falloff a ``MIST_FALLOFFS``
+    key) and World ▸ Ambient Occlusion ▸ Distance (m). Defaults are Blender's."""
+
+    object_pass_index: np.ndarray | None = None
+    uv: np.ndarray | None = None
+    material_pass_index: tuple = ()
+    mist_start_m: float = 5.0
+    mist_depth_m: float = 25.0
+    mist_falloff: str = "QUADRATIC"
+    ao_distance_m: float = 10.0
+
+
+#: The ``stages.pass_writes.PassData`` arrays of a render: see there.
+FirstHitTables = namedtuple("FirstHitTables", "first_hit_data object_index material_index triangle_uv")
+
+
+def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, layout, orthographic: bool):
+    """The kernels' arrays for ``inputs`` with triangles kept as ``original_triangle`` (their scene
+    indices), ``materials`` scene materials and the passes of ``layout`` (``PassLayout``)."""
+    data = np.zeros(FIRST_HIT_DATA)
+    data[MIST_START] = inputs.mist_start_m
+    data[MIST_INV_DEPTH] = 1.0 / inputs.mist_depth_m if inputs.mist_depth_m > 0.0 else 0.0
+    data[MIST_FALLOFF] = MIST_FALLOFFS[inputs.mist_falloff]
+    data[ORTHOGRAPHIC] = 1.0 if orthographic else 0.0
+    data[AO_DISTANCE] = min(float(inputs.ao_distance_m), AO_FAR_M)
+    object_index = np.zeros(0, np.float32)
+    if layout.object_index >= 0 and inputs.object_pass_index is not None:
+        object_index = np.ascontiguousarray(np.asarray(inputs.object_pass_index, np.float32)[original_triangle])
+    material_index = np.zeros(max(materials, 1))
+    material_index[:len(inputs.material_pass_index)] = inputs.material_pass_index
+    uv = np.zeros((0, 3, 3), np.float32)
+    if layout.uv >= 0 and inputs.uv is not None:
+        uv = np.ascontiguousarray(np.asarray(inputs.uv, np.float32)[original_triangle])
+    return FirstHitTables(data, object_index, material_index, uv)

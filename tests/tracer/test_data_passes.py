@@ -1,0 +1,111 @@
+"""Data passes as Cycles writes them (Mist, UV, IndexOB, IndexMA, AO), each against its closed form."""
+
+import numpy as np
+
+from engine.tracer.data_passes import DataPassInputs
+from engine.tracer.pass_table import PassRequest
+from engine.tracer.renderer import Renderer
+from engine.tracer.scene import Camera, Material, World
+from tracer.tracer_scenes import look_at, make_scene, quad, settings
+from tracer.test_passes import _facing_wall
+
+
+def _passes(scene, names, **kw):
+    with Renderer(scene, settings(passes=PassRequest(tuple(names)), **kw)) as r:
+        while not r.finished:
+            r.render_pass()
+        return {k: v.astype(np.float64) for k, v in r.pass_images().items()}
+
+
+def _wide_wall(distance=3.0):
+    """The wall of ``test_passes`` filling the middle of a wide view (4 m of 7.2 m), background around."""
+    scene = _facing_wall(distance=distance, world=World((0.2, 0.2, 0.2), 1.0))
+    scene.camera.focal_length_mm = 15.0
+    scene.camera.film_width_mm = scene.camera.film_height_mm = 36.0
+    return scene
+
+
+def _pixel_mean(f, size=16, tan_half=1.2, sub=32):
+    """The mean of f(tan_x, tan_z) over each pixel of a square pinhole view (rows top down), by a sub x
+    sub grid."""
+    t = (np.arange(size * sub) + 0.5) / (size * sub) * 2.0 - 1.0
+    tx, tz = np.meshgrid(t * tan_half, -t * tan_half)
+    return f(tx, tz).reshape(size, sub, size, sub).mean((1, 3))
+
+
+def test_mist_follows_cycles_falloffs_of_the_distance_from_the_camera():
+    for falloff, power in (("LINEAR", 1.0), ("QUADRATIC", 2.0), ("INVERSE_QUADRATIC", 0.5)):
+        scene = _wide_wall(3.0)
+        scene.data_passes = DataPassInputs(mist_start_m=2.0, mist_depth_m=3.0, mist_falloff=falloff)
+        mist = _passes(scene, ["Mist", "Depth"], samples=64, samples_per_pass=64)
+        depth = mist["Depth"][..., 0]
+
+        def cycles_mist(tx, tz):  # the wall spans ±2 m at 3 m: ±2/3 in tan; no surface: mist 1
+            on_wall = (np.abs(tx) < 2.0 / 3.0) & (np.abs(tz) < 2.0 / 3.0)
+            distance = 3.0 * np.sqrt(1.0 + tx * tx + tz * tz)
+            return np.where(on_wall, np.clip((distance - 2.0) / 3.0, 0.0, 1.0) ** power, 1.0)
+
+        error = np.abs(mist["Mist"][..., 0] - _pixel_mean(cycles_mist))
+        assert error[4:12, 4:12].max() < 0.005, (falloff, error[4:12, 4:12].max())  # pixels all on the wall
+        assert error.max() < 0.02, (falloff, error.max())  # the wall's edges: sampling noise of the coverage
+        assert (depth > 1e9).sum() > 60 and np.all(mist["Mist"][depth > 1e9] == 1.0)
+
+
+def test_object_and_material_index_are_sample_zeros_ids_never_blended():
+    scene = _wide_wall()
+    scene.data_passes = DataPassInputs(object_pass_index=np.array([3, 3, 7, 7], np.float32),
+                                       material_pass_index=(11, 13))
+    p = _passes(scene, ["IndexOB", "IndexMA", "Depth"], samples=16, samples_per_pass=16)
+    ob, ma = p["IndexOB"][..., 0], p["IndexMA"][..., 0]
+    assert set(np.unique(ob).tolist()) == {0.0, 3.0, 7.0}  # integers: the id of sample 0, never a mean
+    assert set(np.unique(ma).tolist()) == {0.0, 11.0, 13.0}
+    # columns 0-2 see the background only, 4-7 the left object, 8-11 the right one (3 and 12: edges)
+    assert np.all(ob[:, :3] == 0) and np.all(ob[4:12, 4:8] == 3) and np.all(ob[4:12, 8:12] == 7)
+    assert np.all(ma[4:12, 4:8] == 11) and np.all(ma[4:12, 8:12] == 13)
+    assert np.all((ob == 0) == (ma == 0))
+
+
+def test_uv_pass_interpolates_the_render_uv_map():
+    scene = _facing_wall(distance=3.0)  # the wall fills the view (±0.54 m of its ±2 m)
+    corners = scene.vertices[scene.triangles]  # [T, 3, 3]
+    scene.data_passes = DataPassInputs(uv=np.stack([(corners[..., 0] + 2.0) / 4.0, (corners[..., 2] + 2.0) / 4.0,
+                                                    np.ones(corners.shape[:2])], -1))
+    uv = _passes(scene, ["UV"], samples=64, samples_per_pass=64)["UV"]
+    half = 3.0 * 0.18  # half the view's width on the wall (50 mm lens, 18 mm film)
+    centre = (np.arange(16) + 0.5) / 16 * 2 * half - half
+    assert np.allclose(uv[..., 2], 1.0)
+    assert np.abs(uv[..., 0] - (centre[None, :] + 2.0) / 4.0).max() < 0.004
+    assert np.abs(uv[..., 1] - (-centre[:, None] + 2.0) / 4.0).max() < 0.004
+
+
+def _ao_closed_form(h, distance):
+    """AO at a floor point ``h`` m from an infinite wall, rays as far as ``distance``: the cosine-weighted
+    directions that reach the wall within it are those whose horizontal component toward it exceeds
+    a = h / distance, a segment of the projected unit disc of area acos(a) - a √(1 - a²)."""
+    a = np.clip(h / distance, 0.0, 1.0)
+    return 1.0 - (np.arccos(a) - a * np.sqrt(1.0 - a * a)) / np.pi
+
+
+def test_ambient_occlusion_of_an_open_floor_and_beside_a_wall():
+    camera = Camera("cam", look_at((-1.0, 0.0, 2.0), (-1.0, 0.0, 0.0), up=(0, 1, 0)), (16, 16),
+                    focal_length_mm=50.0, film_width_mm=18.0, film_height_mm=18.0)
+    floor = quad((-5.0, 0.0, 0.0), (5.0, 0, 0), (0, 10.0, 0))
+    wall = quad((0.0, 0.0, 10.0), (0, 10.0, 0), (0, 0, 10.0))  # the plane x = 0, facing -x
+    grey = [Material("grey", base_color=(0.5, 0.5, 0.5))]
+    open_floor = make_scene([(*floor, 0)], grey, camera, world=World((1.0, 1.0, 1.0), 1.0))
+    open_floor.data_passes = DataPassInputs(ao_distance_m=2.0)
+    assert np.all(_passes(open_floor, ["AO"], samples=16, samples_per_pass=16)["AO"] == 1.0)
+
+    scene = make_scene([(*floor, 0), (*wall, 0)], grey, camera,
+                       world=World((1.0, 1.0, 1.0), 1.0))
+    scene.data_passes = DataPassInputs(ao_distance_m=2.0)
+    p = _passes(scene, ["AO", "Position"], samples=256, samples_per_pass=256)
+    h = -p["Position"][..., 0]
+    assert 0.6 < h.min() and h.max() < 1.4
+    expected = _ao_closed_form(h, 2.0)
+    ao = p["AO"]
+    assert np.allclose(ao[..., 0], ao[..., 2])
+    for low, high in ((0.6, 0.8), (0.8, 1.0), (1.0, 1.2), (1.2, 1.4)):  # 4 bands of distance to the wall
+        band = (h >= low) & (h < high)
+        assert abs(ao[..., 0][band].mean() - expected[band].mean()) < 0.03, (low, ao[..., 0][band].mean(),
+                                                                              expected[band].mean())
