@@ -108,7 +108,8 @@ class SceneTables:
             light_tracing=False,  # the analysis decides (``describe``)
             film_transparent=bool(settings.film_transparent),
             transparent_glass=bool(settings.film_transparent and settings.transparent_glass),
-            transparent_alpha=float(settings.transparent_roughness) ** 2)
+            transparent_alpha=float(settings.transparent_roughness) ** 2,
+            has_media=bool((materials.medium >= 0).any()))
         self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.describe(scene, settings, camera)
 

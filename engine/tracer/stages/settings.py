@@ -8,8 +8,10 @@ from collections import namedtuple
 #: use_mis, sampler (``sampler.SOBOL`` / ``INDEPENDENT``), seed; light_tracing (caustic paths come from
 #: light tracing and path tracing skips them: ``stages.caustic_split``); film_transparent (the background
 #: seen by camera paths is see-through), transparent_glass (camera paths stay camera paths through
-#: transmission of roughness² at most ``transparent_alpha``), as Cycles' Film ▸ Transparent.
+#: transmission of roughness² at most ``transparent_alpha``), as Cycles' Film ▸ Transparent; has_media: some material has a
+#: volume inside (``media``): paths track their medium, and scenes without media skip that code.
 KernelSettings = namedtuple(
     "KernelSettings",
-    "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha",
+    "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha "
+    "has_media",
 )
