@@ -1,5 +1,5 @@
 """Homogeneous media against Cycles, in absolute light: a Principled Volume cube (scattering, absorption,
-anisotropy) lit by a white world and a sun, and a Glass BSDF cube holding a Volume Absorption (coloured,
+anisotropy) lit by a white world and a sun, an emitting Principled Volume cube in the dark, and a Glass BSDF cube holding a Volume Absorption (coloured,
 still refracting glass) in front of an emitter. Both scenes are rendered by both engines in the test; the
 mean luminance of the pixels that see the cube agrees within 3 %. The export keeps every setting (no
 warning), and a textured density is warned, naming material, node and input."""
@@ -70,6 +70,20 @@ def test_principled_volume_cube_matches_cycles(prism_addon, fresh_scene):
     assert ratio == pytest.approx(1.0, abs=0.03)
 
 
+def test_emitting_principled_volume_matches_cycles(prism_addon, fresh_scene):
+    """Emission Strength × Emission Color is radiance per metre, not scaled by density, in a scattering and
+    absorbing medium, in a black world: all the light is the medium's own."""
+    black_world()
+    mat, nodes, link = material("Glow")
+    volume = node(nodes, "ShaderNodeVolumePrincipled", Color=(0.6, 0.6, 0.6), Density=1.5,
+                  Emission_Strength=0.4, Emission_Color=(1.0, 0.6, 0.3))
+    link(volume.outputs[0], nodes["Output"].inputs["Volume"])
+    _cube("Glow", mat)
+    camera((0.0, -8.0, 1.0), (0.0, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
+    ratio = _compare(fresh_scene, 128, (slice(6, 18), slice(6, 18)), "emitting Principled Volume cube")
+    assert ratio == pytest.approx(1.0, abs=0.03)
+
+
 def test_glass_with_absorbing_interior_matches_cycles(prism_addon, fresh_scene):
     black_world()
     _cube("Gem", _tinted_glass())
@@ -88,7 +102,8 @@ def test_volume_settings_export_as_a_medium_and_textured_density_is_warned(prism
     compiled = nodes_module.compile_material(_principled_volume(), load_pixels=False)
     assert compiled.warnings == []
     medium = compiled.medium
-    assert medium.scatter == [(0.8, pytest.approx((0.8, 0.7, 0.55)))]
+    (density, colour), = medium.scatter
+    assert density == pytest.approx(0.8) and colour == pytest.approx((0.8, 0.7, 0.55))
     assert medium.anisotropy == pytest.approx(0.3)
     mat, nodes, link = material("Cloud")
     volume = node(nodes, "ShaderNodeVolumeScatter", Density=1.5)
