@@ -24,7 +24,7 @@ __all__ = ["PrismInputError", "export_camera", "export_scene", "render_border", 
 
 def _emits(material) -> bool:
     medium = material.medium
-    if medium is not None and any(strength > 0 and max(rgb) > 0 for strength, rgb in medium.emission):
+    if medium is not None and any(strength > 0 and max(rgb) > 0 for strength, rgb, _ in medium.emission):
         return True  # an emitting volume lights the scene from inside its mesh
     shader = material.shader
     if shader is not None:

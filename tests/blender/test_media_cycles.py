@@ -114,3 +114,17 @@ def test_volume_settings_export_as_a_medium_and_textured_density_is_warned(prism
     assert compiled.medium.scatter[0][0] == pytest.approx(1.5)
     assert any("Material 'Cloud'" in w and "Density driven by nodes that vary" in w and "1.5" in w
                for w in compiled.warnings), compiled.warnings
+
+
+def test_blackbody_principled_volume_matches_cycles(prism_addon, fresh_scene):
+    """Blackbody Intensity 1 at 1800 K: σ_SB T⁴ × 10⁻⁶ / π of luminance-1 blackbody light per metre (Cycles'
+    Stefan-Boltzmann scaling), in an absorbing, scattering medium in the dark."""
+    black_world()
+    mat, nodes, link = material("Flame")
+    volume = node(nodes, "ShaderNodeVolumePrincipled", Color=(0.5, 0.5, 0.5), Density=1.0,
+                  Blackbody_Intensity=1.0, Temperature=1800.0)
+    link(volume.outputs[0], nodes["Output"].inputs["Volume"])
+    _cube("Flame", mat)
+    camera((0.0, -8.0, 1.0), (0.0, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
+    ratio = _compare(fresh_scene, 128, (slice(6, 18), slice(6, 18)), "blackbody Principled Volume cube")
+    assert ratio == pytest.approx(1.0, abs=0.03)

@@ -4,15 +4,19 @@ Volume Absorption, Volume Scatter and Principled Volume, alone or summed by Add 
 constant Fac), with Cycles' meanings (``tracer/media/spec.py``). Prism renders homogeneous media: an
 input driven by something that varies (a texture, an attribute) is rendered at the value the socket holds
 under its link, and the warning says so, naming the material, node and input. What Prism does not model
-(Volume Scatter's phase functions other than Henyey-Greenstein, Principled Volume's blackbody emission,
-other shaders on the Volume socket) is named in a warning too.
+(Volume Scatter's phase functions other than Henyey-Greenstein, other shaders on the Volume socket) is
+named in a warning too.
 """
 
 from __future__ import annotations
 
+import math
+
 from ...tracer.media.spec import MediumSpec
 from .graph import follow
 from .terms import COLOR, FLOAT
+
+STEFAN_BOLTZMANN = 5.670373e-8  # W m⁻² K⁻⁴, the value Cycles' Principled Volume uses
 
 
 def _constant(c, node, name, context, kind):
@@ -58,10 +62,28 @@ def _principled(c, node, context, weight, spec, anisotropies):
     anisotropies.append((density * max(colour), _constant(c, node, "Anisotropy", context, FLOAT)))
     strength = weight * _constant(c, node, "Emission Strength", context, FLOAT)
     if strength > 0.0:
-        spec.emission.append((strength, tuple(_constant(c, node, "Emission Color", context, COLOR))))
-    if _constant(c, node, "Blackbody Intensity", context, FLOAT) > 0.0:
-        c.warn(node, "has a Blackbody Intensity; Prism does not render blackbody emission of volumes yet and "
-                     "leaves it out (the volume still scatters, absorbs and emits its Emission Color).")
+        spec.emission.append((strength, tuple(_constant(c, node, "Emission Color", context, COLOR)), None))
+    blackbody = min(max(_constant(c, node, "Blackbody Intensity", context, FLOAT), 0.0), 1.0)
+    if blackbody > 0.0:
+        _blackbody(c, node, context, weight, blackbody, spec)
+
+
+def _blackbody(c, node, context, weight, blackbody, spec):
+    """Cycles' blackbody emission of a Principled Volume: Stefan-Boltzmann's σ T⁴ (×10⁻⁶ / π), blended from
+    1 by the intensity, of the luminance-1 blackbody colour at T, tinted."""
+    from ...tracer.spectra.blackbody import MAX_TEMPERATURE_K, MIN_TEMPERATURE_K
+
+    temperature = max(_constant(c, node, "Temperature", context, FLOAT), 0.0)
+    intensity = STEFAN_BOLTZMANN * 1e-6 / math.pi * (1.0 + blackbody * (temperature ** 4 - 1.0))
+    if not intensity > 1e-5:  # Cycles' cutoff for closures
+        return
+    shown = min(max(temperature, MIN_TEMPERATURE_K), MAX_TEMPERATURE_K)
+    if shown != temperature:
+        c.warn(node, f"has a Temperature of {temperature:g} K; Prism's blackbody spectra span "
+                     f"{MIN_TEMPERATURE_K:g}-{MAX_TEMPERATURE_K:g} K, so it renders the colour of {shown:g} K "
+                     "(at the intensity of the Temperature set).")
+    tint = tuple(_constant(c, node, "Blackbody Tint", context, COLOR))
+    spec.emission.append((weight * intensity, tint, shown))
 
 
 def _walk(c, socket, context, weight, spec, anisotropies):

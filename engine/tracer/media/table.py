@@ -3,7 +3,8 @@
 Every coefficient is a tabulated spectrum of the render's ``SpectrumTable`` on its 1 nm grid, per metre:
 ``scattering`` σ_s and ``absorption`` σ_a (spectrum ids [M]); ``emission`` (spectrum id [M], -1: none)
 with ``emission_strength`` [M] (radiance per metre per unit strength, as surfaces' Emission Strength);
-``anisotropy`` [M] (Henyey-Greenstein g).
+``anisotropy`` [M] (Henyey-Greenstein g). The emission is the sum of the medium's emission terms
+(``spec.MediumSpec``) tabulated as one spectrum, of strength 1.
 """
 
 from __future__ import annotations
@@ -13,7 +14,6 @@ from collections import namedtuple
 import numpy as np
 
 from ..errors import PrismInputError
-from ..scene import SpectrumSpec
 from ..spectra.wavelengths import VISIBLE_MIN_NM, VISIBLE_NM_GRID
 
 MediaArrays = namedtuple("MediaArrays", "scattering absorption emission emission_strength anisotropy")
@@ -41,7 +41,9 @@ def coefficient_spectra(spec):
     sigma_s = np.zeros(len(VISIBLE_NM_GRID))
     sigma_a = np.zeros(len(VISIBLE_NM_GRID))
     for density, rgb in spec.scatter:
-        sigma_s += max(float(density), 0.0) * reflectance_on_grid(rgb)
+        # Cycles scales σ_s by the colour as given: a colour above 1 scatters more (its shape is upsampled).
+        scale = max(max(float(c) for c in rgb), 1.0)
+        sigma_s += max(float(density), 0.0) * scale * reflectance_on_grid(np.asarray(rgb, float) / scale)
     for density, *colours in spec.absorb:
         term = np.full(len(VISIBLE_NM_GRID), max(float(density), 0.0))
         for rgb in colours:
@@ -50,9 +52,29 @@ def coefficient_spectra(spec):
     return sigma_s, sigma_a
 
 
+def emission_on_grid(spec):
+    """Emitted radiance per metre on the 1 nm grid for a ``MediumSpec`` (zeros if it emits nothing)."""
+    from ..spectra.emission_spectrum import BlackbodyEmissionSpectrum, RGBEmissionSpectrum
+
+    lam = np.asarray(VISIBLE_NM_GRID, dtype=np.float64)
+    total = np.zeros(len(lam))
+    for strength, rgb, temperature_k in spec.emission:
+        rgb = np.maximum(np.asarray(rgb, dtype=np.float64), 0.0)
+        if not (strength > 0.0 and rgb.max() > 0.0):
+            continue
+        if temperature_k is None:
+            scale = float(rgb.max())
+            total += strength * scale * np.asarray(RGBEmissionSpectrum(tuple(rgb / scale)).evaluate(lam))
+        else:  # the tint filters the blackbody as a reflectance of its colour would
+            scale = max(float(rgb.max()), 1.0)
+            total += (strength * scale * reflectance_on_grid(rgb / scale)
+                      * np.asarray(BlackbodyEmissionSpectrum(temperature_k).evaluate(lam)))
+    return total
+
+
 def _check(spec):
-    values = [d for d, *_ in spec.scatter + spec.absorb] + [s for s, _ in spec.emission] + [spec.anisotropy]
-    colours = [c for _, *cs in spec.scatter + spec.absorb + spec.emission for c in cs]
+    values = [d for d, *_ in spec.scatter + spec.absorb] + [s for s, *_ in spec.emission] + [spec.anisotropy]
+    colours = [c for _, *cs in spec.scatter + spec.absorb for c in cs] + [rgb for _, rgb, _ in spec.emission]
     if not all(np.isfinite(values)) or not all(np.all(np.isfinite(c)) for c in colours):
         raise PrismInputError(f"Material '{spec.name}': a volume setting is NaN or infinite; set it again.")
 
@@ -73,16 +95,13 @@ def build_media(materials, used, spectra):
         scattering.append(spectra.tabulated(key + ("sigma_s",), float(VISIBLE_MIN_NM), 1.0, sigma_s))
         absorption.append(spectra.tabulated(key + ("sigma_a",), float(VISIBLE_MIN_NM), 1.0, sigma_a))
         anisotropy.append(float(np.clip(spec.anisotropy, -MAX_ANISOTROPY, MAX_ANISOTROPY)))
-        terms = [(float(s), tuple(float(c) for c in rgb)) for s, rgb in spec.emission if s > 0 and max(rgb) > 0]
-        if not terms:
+        emitted = emission_on_grid(spec)
+        if emitted.max() > 0.0:
+            emission.append(spectra.tabulated(key + ("emission",), float(VISIBLE_MIN_NM), 1.0, emitted))
+            strength.append(1.0)
+        else:
             emission.append(-1)
             strength.append(0.0)
-            continue
-        # Several terms sum as radiance: one RGB emission of unit strength carrying their sum.
-        total = np.sum([s * np.asarray(rgb) for s, rgb in terms], axis=0)
-        scale = float(total.max())
-        emission.append(spectra.emission(SpectrumSpec("rgb", tuple(total / scale))))
-        strength.append(scale)
     arrays = MediaArrays(np.array(scattering or [0], np.int32), np.array(absorption or [0], np.int32),
                          np.array(emission or [-1], np.int32), np.array(strength or [0.0]),
                          np.array(anisotropy or [0.0]))
