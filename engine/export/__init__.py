@@ -102,6 +102,10 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     )
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.validate()
+    if warnings is not None:
+        from .camera_in_medium import camera_in_medium_warnings
+
+        warnings.extend(camera_in_medium_warnings(tracer_scene))
     filtered_by = depsgraph.view_layer.name if scene.world is not None and not depsgraph.view_layer.use_sky else ""
     world_notes = [w for w in warnings or () if scene.world is not None and w.startswith(f"World '{scene.world.name}'")]
     _check_something_to_see(scene.name, tracer_scene, missing, filtered_by, world_notes)

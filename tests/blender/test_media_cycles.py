@@ -128,3 +128,20 @@ def test_blackbody_principled_volume_matches_cycles(prism_addon, fresh_scene):
     camera((0.0, -8.0, 1.0), (0.0, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
     ratio = _compare(fresh_scene, 128, (slice(6, 18), slice(6, 18)), "blackbody Principled Volume cube")
     assert ratio == pytest.approx(1.0, abs=0.03)
+
+
+def test_a_camera_inside_a_volume_is_warned(prism_addon, fresh_scene):
+    export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
+    _white_world(1.0)
+    _cube("Smoke", _principled_volume(), size=4.0, location=(0.0, 0.0, 0.0))
+    bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0.0, 0.0, -5.0))
+    camera((0.5, -0.3, 0.2), (0.0, 0.0, 0.0))
+    warnings = []
+    export.export_scene(bpy.context.evaluated_depsgraph_get(), warnings)
+    assert [w for w in warnings if "camera is inside" in w] == [
+        "Material 'Smoke': the camera is inside the volume it fills; Prism starts camera rays outside every medium, "
+        "so the view renders without this volume until a ray enters it. Move the camera out of the mesh."]
+    bpy.data.objects["Camera"].location = (0.0, -8.0, 0.0)
+    warnings = []
+    export.export_scene(bpy.context.evaluated_depsgraph_get(), warnings)
+    assert not [w for w in warnings if "camera is inside" in w]
