@@ -24,6 +24,9 @@ __all__ = ["PrismInputError", "export_camera", "export_scene", "render_border", 
 
 
 def _emits(material) -> bool:
+    medium = material.medium
+    if medium is not None and any(strength > 0 and max(rgb) > 0 for strength, rgb, _ in medium.emission):
+        return True  # an emitting volume lights the scene from inside its mesh
     shader = material.shader
     if shader is not None:
         return shader.emission is not None and shader.emission_strength > 0
@@ -101,6 +104,10 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.data_passes = export_data_passes(scene, geometry)
     tracer_scene.validate()
+    if warnings is not None:
+        from .camera_in_medium import camera_in_medium_warnings
+
+        warnings.extend(camera_in_medium_warnings(tracer_scene))
     filtered_by = depsgraph.view_layer.name if scene.world is not None and not depsgraph.view_layer.use_sky else ""
     world_notes = [w for w in warnings or () if scene.world is not None and w.startswith(f"World '{scene.world.name}'")]
     _check_something_to_see(scene.name, tracer_scene, missing, filtered_by, world_notes)

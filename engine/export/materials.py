@@ -58,7 +58,7 @@ def _summary(material, compiled) -> Material:
     kinds = [spec.kind for spec in closures]
     metal = any(spec.kind == CONDUCTOR and spec.fresnel in (FRESNEL_F82, FRESNEL_CONDUCTOR) for spec in closures)
     kind = "dielectric" if DIELECTRIC in kinds else ("conductor" if metal else "diffuse")
-    exported = Material(name=material.name, kind=kind, shader=shader)
+    exported = Material(name=material.name, kind=kind, shader=shader, medium=compiled.medium)
     if shader is None:  # no Material Output (an add-on's node tree): black, as Cycles and the warning say
         exported.base_color = (0.0, 0.0, 0.0)
     for spec in closures:

@@ -82,6 +82,10 @@ def _surface_terms(world, tree, warnings) -> list[BackgroundTerm]:
     """The Backgrounds of the active World Output's Surface; with nothing linked there (or no World Output),
     the tree's first Background node, as Prism has always read such worlds."""
     output = tree.get_output_node("ALL")
+    volume = output.inputs.get("Volume") if output is not None else None
+    if volume is not None and is_linked(volume) and warnings is not None:
+        warnings.append(f"World '{world.name}': its World Output has a Volume shader (fog); Prism renders media "
+                        "inside closed meshes only, not in the world yet, so it renders the world without fog.")
     if output is not None and is_linked(output.inputs["Surface"]):
         return background_terms(world, output.inputs["Surface"], warnings)
     node = next((n for n in tree.nodes if n.type == "BACKGROUND"), None)

@@ -133,6 +133,8 @@ def analyse_scene(scene, settings, used, material_table, light_table, camera, ge
         targets = build_caustic_targets(geometry, flags, MAT_DELTA, triangle_objects)
         small = small_lights(lights.rows[:len(light_table.names)], light_table.names, lights.mesh, targets)
     only = _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes)
+    if not only and (material_table.arrays.medium >= 0).any():
+        only = "media"  # light paths do not track media
     a.light_tracing, a.light_tracing_note = choose_light_tracing(
         settings.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
         any(kind != "world" for kind in light_table.kinds), only)

@@ -38,6 +38,9 @@ BOUNCE_DIRECTION = 1  # 2-D: BSDF direction
 BOUNCE_LIGHT = 2  # 1-D: which light
 BOUNCE_LIGHT_POINT = 3  # 2-D: point on the light
 BOUNCE_ROULETTE = 4  # 1-D: Russian roulette
+#: 2-D per bounce, in a range of its own so scenes without media keep every other slot: the distance to
+#: a collision in a medium and the wavelength whose extinction samples it (``media.segment``).
+SLOT_MEDIUM = 1 << 24
 
 _MASK = 0xFFFFFFFF
 _INV_2_32 = 1.0 / 4294967296.0
@@ -154,3 +157,9 @@ def sample_1d(kind, pixel_seed_value, sample_index, slot):
 def bounce_slot(depth, which):
     """The slot of per-bounce dimension ``which`` (``BOUNCE_*``) at bounce ``depth``."""
     return SLOT_BOUNCE + depth * SLOTS_PER_BOUNCE + which
+
+
+@kernel
+def medium_slot(depth):
+    """The 2-D slot of the medium decisions of the ray traced at bounce ``depth``."""
+    return SLOT_MEDIUM + depth

@@ -83,7 +83,8 @@ class Material:
     ``shader`` (a ``materials.shader.ShaderProgram``), when set, is the material as its Blender node
     tree defines it and replaces the kind-based closure; the other fields then only describe it for
     messages. ``holdout`` (Blender's Holdout shader): camera rays see a transparent black hole in the
-    image; other rays a black surface.
+    image; other rays a black surface. ``medium`` (a ``media.spec.MediumSpec``), when set, fills the
+    closed mesh: its volume shader. Kind ``"null"`` is no surface at all (a volume's boundary).
     """
 
     name: str
@@ -105,6 +106,7 @@ class Material:
     reflectance: ReflectanceSpec | None = None
     shader: object = None
     holdout: bool = False
+    medium: object = None
 
 
 @dataclass

@@ -121,7 +121,8 @@ class SceneTables:
             film_transparent=bool(settings.film_transparent),
             transparent_glass=bool(settings.film_transparent and settings.transparent_glass),
             transparent_alpha=float(settings.transparent_roughness) ** 2,
-            **_trick_settings(settings.light_path_tricks), wavelengths=self.wavelengths)
+            **_trick_settings(settings.light_path_tricks), wavelengths=self.wavelengths,
+            has_media=bool((materials.medium >= 0).any()))
         self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.describe(scene, settings, camera)
 

@@ -16,7 +16,9 @@ deterministic). Embree reads the queues' float32 rays directly.
   a light path's, ``stages.light_paths``; ``CAMERA_PATH``: the path still sees what the camera sees — no
   scattering yet but transparent glass — so the background and holdouts make it transparent;
   ``LAST_DIFFUSE``, ``LAST_TRANSMISSION``: what the last scattering was (neither: glossy), for ray
-  visibility);
+  visibility); ``MEDIUM_VERTEX``: this bounce's vertex is a collision in the path's medium at ``hit_t``
+  along its ray, not a surface (``media.segment``);
+- ``medium`` int32: the medium the path's ray travels in (``MaterialArrays.media`` row, -1: none);
 - ``throughput`` and ``radiance`` float64 [n, K]; ``eta_scale`` float64 (Π eta'² of refractions, for
   Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample);
 - ``origin``, ``direction`` float64 [n, 3] (the current ray, camera-relative metres),
@@ -43,11 +45,12 @@ LIGHT_CONNECTED = 64
 CAMERA_PATH = 128
 LAST_DIFFUSE = 256
 LAST_TRANSMISSION = 512
+MEDIUM_VERTEX = 1024
 
 _PATH_FIELDS = (
     ("pixel", np.int64, ()), ("sample", np.int64, ()), ("seed", np.int64, ()),
     ("wavelength", np.float64, ("K",)), ("wavelength_pdf", np.float64, ("K",)), ("hero", np.int32, ()),
-    ("flags", np.int32, ()),
+    ("flags", np.int32, ()), ("medium", np.int32, ()),
     ("throughput", np.float64, ("K",)), ("radiance", np.float64, ("K",)),
     ("eta_scale", np.float64, ()), ("prev_pdf", np.float64, ()),
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
@@ -62,8 +65,9 @@ RayQueue = namedtuple("RayQueue", "path origin direction tmax")
 
 #: Shadow rays and what each brings if it reaches its light: ``contribution`` float64 [n, K]; the
 #: float64 ``origin`` / ``direction`` / ``distance`` let rays continue through free-standing films;
-#: ``group`` int32 [n] the light group of the light sampled (for its pass).
-ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance group")
+#: ``group`` int32 [n] the light group of the light sampled (for its pass); ``medium`` int32 [n] the medium
+#: the shadow ray starts in (-1: none).
+ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance group medium")
 
 #: Embree's answer for each queued ray: ``triangle`` int32 [n] (-1: a miss), ``t``, ``u``, ``v`` float32 [n].
 HitRecord = namedtuple("HitRecord", "triangle t u v")
@@ -100,7 +104,7 @@ def new_ray_queue(n: int) -> RayQueue:
 
 def new_shadow_queue(n: int, k: int) -> ShadowQueue:
     return ShadowQueue(new_ray_queue(n), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n),
-                       np.empty(n, np.int32))
+                       np.empty(n, np.int32), np.full(n, -1, np.int32))
 
 
 def new_shading_scratch(k: int, registers: int = 1) -> ShadingScratch:

@@ -1,5 +1,6 @@
-"""A material with only its Volume linked (no Surface) is a transparent surface, as Cycles renders the
-missing surface of a volume; Prism does not render the volume yet and says so, naming the material."""
+"""A material with only its Volume linked (no Surface) is a null surface around a medium, as Cycles renders
+a volume's missing surface; a density driven by a texture is rendered at the socket's own value and warned,
+naming the material, node and input."""
 
 from __future__ import annotations
 
@@ -28,13 +29,13 @@ def _volume_only(obj, density=1.0):
     return material
 
 
-EXPECTED_WARNING = ("Material 'Fog': the 'Material Output' node (Material Output) has a Volume shader and no Surface; "
-                    "Prism does not render volumes yet, so it renders the surface transparent, as Cycles does, and "
-                    "leaves the volume inside it out.")
+EXPECTED_WARNING = ("Material 'Fog': the 'Principled Volume' node (Principled Volume) has its Density driven by "
+                    "nodes that vary; Prism renders homogeneous volumes only, so it uses the Density set on the socket, "
+                    "1, throughout the volume.")
 
 
-def test_a_volume_only_material_compiles_to_a_transparent_surface(prism_addon, fresh_scene, bad_input, capsys,
-                                                                  tmp_path):
+def test_a_volume_only_material_compiles_to_a_null_surface_around_a_medium(prism_addon, fresh_scene, bad_input,
+                                                                           capsys, tmp_path):
     base_scene()
     material = _volume_only(bpy.data.objects["Floor"])
     nodes = importlib.import_module(f"{prism_addon.__name__}.engine.export.nodes")
@@ -42,16 +43,21 @@ def test_a_volume_only_material_compiles_to_a_transparent_surface(prism_addon, f
     compiled = nodes.compile_material(material, load_pixels=False)
     assert [spec.kind for spec in compiled.shader.closures] == [closure.TRANSPARENT]
     assert tuple(compiled.shader.closures[0].tint.rgb) == (1.0, 1.0, 1.0)
+    assert compiled.warnings == []
+    assert compiled.medium.scatter == [(1.0, (0.5, 0.5, 0.5))]  # Principled Volume's defaults
+    volume = material.node_tree.nodes["Principled Volume"]
+    noise = material.node_tree.nodes.new("ShaderNodeTexNoise")
+    material.node_tree.links.new(noise.outputs["Fac"], volume.inputs["Density"])
+    compiled = nodes.compile_material(material, load_pixels=False)
     assert compiled.warnings == [EXPECTED_WARNING]
-    bad_input("material with only a Principled Volume on its Material Output",
+    bad_input("material whose Principled Volume Density is driven by a Noise Texture",
               *batch_warning(capsys, tmp_path, EXPECTED_WARNING))
 
 
 def test_a_volume_only_card_lets_the_floor_show_through_as_in_cycles(prism_addon, fresh_scene):
     """A lit grey floor, half covered (as the camera sees it) by a volume-only card: Cycles and Prism show the
     floor through the card; before, Prism drew an opaque black card. The volume's density is 0: an open card
-    has no inside, so Cycles' fog would fill everything behind it, which Prism (rendering no volumes) cannot
-    be compared with."""
+    has no inside, so Cycles' fog would fill everything behind it (media fill closed meshes only)."""
     from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
 
     black_world()

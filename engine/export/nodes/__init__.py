@@ -29,6 +29,7 @@ class CompiledMaterial:
     conductor: str | None = None  # a measured metal Material.prism sets
     kinds: set = field(default_factory=set)  # closure kinds, for the panel's summary
     measured_nodes: list = field(default_factory=list)  # nodes whose colour the measured reflectance replaced
+    medium: object = None  # tracer.media.spec.MediumSpec of the Volume socket (the mesh's inside), or None
 
 
 def compile_material(material, slots=None, image_cache=None, evaluate=None, load_pixels=True,
@@ -46,7 +47,7 @@ def compile_material(material, slots=None, image_cache=None, evaluate=None, load
         check_measured_used(compiler, compiler.measured_nodes)
         shader = finish(compiler)
     return CompiledMaterial(shader, compiler.warnings, compiler.needs, compiler.glass_description, compiler.conductor,
-                            {p.kind for p in compiler.closures}, list(compiler.measured_nodes))
+                            {p.kind for p in compiler.closures}, list(compiler.measured_nodes), compiler.medium)
 
 
 #: Python frames the walk takes per node at most (value → output → handler → helper → value, and the

@@ -50,6 +50,7 @@ class MaterialCompiler:
     displacement: object = None
     overrides: dict = field(default_factory=dict)  # see ``nodes.compile_material``
     measured_nodes: list = field(default_factory=list)  # names of the nodes whose colour ``reflectance`` replaced
+    medium: object = None  # tracer.media.spec.MediumSpec of the Volume socket, or None
     _outputs: dict = field(default_factory=dict)
     _warned: set = field(default_factory=set)
     _depth: int = 0  # nodes between the Material Output and the node being compiled
@@ -294,15 +295,14 @@ class MaterialCompiler:
         surface, volume = out.inputs["Surface"], out.inputs.get("Volume")
         has_volume = volume is not None and follow(volume)[0] is not None
         volume_only = has_volume and follow(surface)[0] is None
-        if volume_only:
-            self.warn(out, "has a Volume shader and no Surface; Prism does not render volumes yet, so it renders the "
-                           "surface transparent, as Cycles does, and leaves the volume inside it out.")
-        elif has_volume:
-            self.warn(out, "has a Volume shader; Prism renders surfaces only and leaves it out.")
         socket = out.inputs.get("Displacement")
         if socket is not None and follow(socket)[0] is not None:
             self.displacement = socket
         self.output_node = out
+        if has_volume:  # the closed mesh's inside (``volumes``); a missing surface is a null one, as in Cycles
+            from .volumes import compile_volume
+
+            self.medium = compile_volume(self, volume)
         one = Weight(self.const(1.0), self.const(1.0, 1.0, 1.0))
         if volume_only:  # Cycles: a volume's missing surface lets light through unchanged
             self.add_closure(PendingClosure(TRANSPARENT, one, out))

@@ -3,7 +3,8 @@ the materials tests and benchmarks build in code, and the fallback for materials
 
 from __future__ import annotations
 
-from ..bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_CONDUCTOR, FRESNEL_SCHLICK, GLASS, THIN_FILM)
+from ..bsdf.closure import (CONDUCTOR, DIELECTRIC, DIFFUSE, FRESNEL_CONDUCTOR, FRESNEL_SCHLICK, GLASS, THIN_FILM,
+                            TRANSPARENT)
 from ..errors import PrismInputError
 from ..scene import SpectrumSpec
 from .shader import ClosureSpec, Colour, ShaderProgram
@@ -72,9 +73,12 @@ def legacy_shader(material) -> ShaderProgram:
             raise PrismInputError(f"Material '{material.name}': film thickness and IOR must be positive.")
         closure = ClosureSpec(THIN_FILM, film_nm=float(material.film_thickness_nm),
                               film_ior=float(material.film_ior))
+    elif kind == "null":  # no surface: what Cycles renders for a material with only a volume
+        closure = ClosureSpec(TRANSPARENT, tint=Colour(rgb=(1.0, 1.0, 1.0)))
     else:
         raise PrismInputError(
-            f"Material '{material.name}': unknown kind '{kind}'; use diffuse, conductor, dielectric or thin_film."
+            f"Material '{material.name}': unknown kind '{kind}'; use diffuse, conductor, dielectric, thin_film or "
+            "null."
         )
     shader = ShaderProgram([closure])
     if is_emissive(material):

@@ -23,6 +23,8 @@ the kernels decide without looking at kinds:
 - ``MAT_MULTISCATTER``: a closure is energy-compensated (Blender's Multiscatter GGX, ``C_MULTISCATTER``), by a
   factor that depends on the view direction: its tint and the closures' selection weights are computed per
   hit (``energy.compensate_energy``).
+- ``MAT_MEDIUM``: the closed mesh holds a medium (its volume shader; ``medium`` is its row of ``media``, a
+  ``media.table.MediaArrays``): paths crossing the surface inward enter it, outward leave it.
 - ``MAT_SHEEN``: a closure is Blender's microfiber sheen, fitted per hit to the view direction
   (``sheen_setup.set_up_sheen``): its tint and the closures' selection weights are computed per hit.
 """
@@ -58,11 +60,12 @@ MAT_EMISSION_VARIES = 128
 MAT_LAYERED = 256
 MAT_MULTISCATTER = 512
 MAT_SHEEN = 1024
+MAT_MEDIUM = 2048
 
 MaterialArrays = namedtuple(
     "MaterialArrays",
     "flags closure_start closure_count emission_spectrum emission_strength closures glasses programs textures lut "
-    "white_emission",
+    "white_emission medium media",
 )
 
 _FEATURES = {DIFFUSE: "diffuse", TRANSLUCENT: "translucent", TRANSPARENT: "transparent", THIN_FILM: "thin_film",
@@ -160,6 +163,7 @@ def build_materials(materials, used, spectra) -> MaterialTable:
     """Tables for ``materials`` (``scene.Material``); only indices in ``used`` get closures.
     ``spectra`` is the render's ``SpectrumTable``."""
     from ..spectra.rgb_lut import empty_lut, load_lut
+    from ..media.table import build_media
     from ..textures.image import build_textures
     from .layering import load_tables
 
@@ -266,7 +270,11 @@ def build_materials(materials, used, spectra) -> MaterialTable:
                              np.array(instructions or [[0] * op.INSTRUCTION], dtype=np.int32).reshape(-1, op.INSTRUCTION),
                              np.array(constants or [0.0], dtype=np.float64), load_tables())
     white = spectra.emission(SpectrumSpec()) if needs_lut else 0
+    medium, media = build_media(materials, used, spectra)
+    flags[medium >= 0] |= MAT_MEDIUM
+    if (medium >= 0).any():
+        features.add("homogeneous media")
     arrays = MaterialArrays(flags, start, closure_count, emission_spectrum, emission_strength,
                             closure_rows if len(closure_rows) else np.zeros((1, CLOSURE_ROW)), glass_rows, programs,
-                            build_textures(images), load_lut() if needs_lut else empty_lut(), white)
+                            build_textures(images), load_lut() if needs_lut else empty_lut(), white, medium, media)
     return MaterialTable(arrays, glasses, sorted(features), register_count)

@@ -113,6 +113,7 @@ def start_path(state, i, pixel, sample, seed):
     state.sample[i] = sample
     state.seed[i] = ps
     state.flags[i] = PREV_DELTA | CAMERA_PATH
+    state.medium[i] = -1  # cameras inside media are not modelled (the export warns)
     state.transparency[i] = 0.0
     state.eta_scale[i] = 1.0
     state.prev_pdf[i] = 0.0

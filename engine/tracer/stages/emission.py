@@ -11,6 +11,9 @@ listed for shading unless it has used its last bounce.
 Film transparency (Cycles'): a camera path (``CAMERA_PATH``: no scattering yet but transparent glass)
 that escapes into a transparent film's background, or meets a holdout, becomes see-through by its
 throughput's mean (``transparency``) and brings no light from there.
+
+A ray inside a medium (``media.segment``) first adds the medium's emission along it and may scatter
+before the surface: the path is then listed as a medium vertex (``MEDIUM_VERTEX``, at ``hit_t``).
 """
 
 from __future__ import annotations
@@ -22,9 +25,10 @@ from ..lights import environment
 from ..lights.dispatch import (distant_hit, emitter_group, emitter_pdf, environment_pdf, is_distant, light_distance,
                                light_hit, light_spectrum, seen_by_camera)
 from ..materials.emitters import emission_at
+from ..media.segment import cross_medium
 from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE
 from ..spectra.table import spectrum_value
-from ..state import CAMERA_PATH, PREV_DELTA
+from ..state import CAMERA_PATH, MEDIUM_VERTEX, PREV_DELTA
 from ..visibility import HOLDOUT
 from .clamp import clamp_factor
 from .mis import emitter_weight
@@ -121,6 +125,21 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
         triangle = hit_triangle[j]
         t = float(hit_t[j]) if triangle >= 0 else math.inf
         mis_origin = (state.mis_origin[i, 0], state.mis_origin[i, 1], state.mis_origin[i, 2])
+        if settings.has_media and state.medium[i] >= 0:
+            collision = cross_medium(state, i, t, materials.media, spectra, settings, depth, scratch.mix[0],
+                                     scratch.mix[1])
+            if collision < t:  # the path scatters in its medium: a vertex for the shading stage
+                if lights.hittable.shape[0] > 0:
+                    _add_lights_along(state, i, o, d, collision, mis_origin, lights, spectra, settings, depth, passes,
+                                      layout, scratch.weight)
+                if layout.columns > 0:
+                    features_done(passes, layout, i)
+                if shade_next:
+                    state.flags[i] |= MEDIUM_VERTEX
+                    state.hit_t[i] = collision
+                    surface.path[listed] = i
+                    listed += 1
+                continue
         if lights.hittable.shape[0] > 0:
             _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout,
                               scratch.weight)

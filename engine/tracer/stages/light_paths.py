@@ -71,6 +71,7 @@ def emit_kernel(state, rays, light_of_path, lights, materials, spectra, geometry
         state.sample[i] = sample
         state.seed[i] = ps
         state.flags[i] = 0
+        state.medium[i] = -1
         state.prev_pdf[i] = 0.0
         state.radiance[i, :] = 0.0
         draw_wavelengths(state, i, ws, settings.sampler, ps, sample)

@@ -77,6 +77,7 @@ def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, cou
     rays.tmax[slot] = distance
     shadows.distance[slot] = distance
     shadows.group[slot] = group
+    shadows.medium[slot] = state.medium[i]  # the shading stage corrects it where the surface bounds a medium
     rays.path[slot] = i
     if depth == 0 and layout.light >= 0:
         lobe_shares(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, scratch[0],

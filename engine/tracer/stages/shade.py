@@ -9,7 +9,8 @@ queued. A free-standing film crossed straight through, or a cut-out (Transparent
 null event for MIS: the path keeps the pdf and ``mis_origin`` of the vertex before it, and the ray
 type it had (a camera ray seen through a cut-out is still a camera ray, as in Cycles). A camera path
 also stays one through transparent glass (transmission no rougher than the film's threshold, with
-Transparent Glass on).
+Transparent Glass on). A path crossing the surface of a material with a medium enters or leaves it
+(``side_medium``); a medium vertex (``MEDIUM_VERTEX``) scatters by its phase function (``media.scatter``).
 """
 
 from __future__ import annotations
@@ -19,9 +20,10 @@ from ..bsdf.dispatch import bsdf_sample
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..materials.surface import shade_surface
-from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
+from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_MEDIUM, MAT_NULL, MAT_ONE_SIDED
+from ..media.scatter import scatter_in_medium
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
-from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, PREV_DELTA
+from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA
 from ..vec3 import tangents, to_local, to_world
 from .caustic_split import classify_vertex
 from .caustics_toggles import filter_caustic_closures
@@ -39,6 +41,14 @@ def collapse_to_hero(state, i):
     for c in range(k):
         state.throughput[i, c] = state.throughput[i, c] * k if c == hero else 0.0
     state.flags[i] |= COLLAPSED
+
+
+@inlined
+def side_medium(materials, material, direction, ng):
+    """The medium a ray leaving a surface of ``material`` (which holds a medium) along ``direction`` travels
+    in: the material's inward (against the geometric normal ``ng``), none outward (media do not nest)."""
+    inward = direction[0] * ng[0] + direction[1] * ng[1] + direction[2] * ng[2] < 0.0
+    return materials.medium[material] if inward else -1
 
 
 @inlined
@@ -77,10 +87,17 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
     k = state.wavelength.shape[1]
     rows, spectral, eta, weight, li, f, mix, registers, _ = scratch
     has_lights = lights.select_prob.shape[0] > 0
+    has_media = settings.has_media
     queued = 0
     shadowed = 0
     for s in range(count):
         i = surface.path[s]
+        if has_media and state.flags[i] & MEDIUM_VERTEX:
+            pushed, lit = scatter_in_medium(state, i, lights, materials, spectra, geometry, settings, depth, next_rays,
+                                            queued, shadows, shadowed, scratch, rejected)
+            queued += pushed
+            shadowed += lit
+            continue
         triangle = state.hit_triangle[i]
         p, ng, ns = surface_at(geometry, triangle, state.hit_u[i], state.hit_v[i])
         material = geometry.material[triangle]
@@ -108,9 +125,12 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         if depth == 0 and layout.columns > 0:
             first_hit(state, passes, layout, settings, i, p, facing_ng, facing_ns, material, triangle)
         if has_lights and not mflags & MAT_DELTA:
-            shadowed += sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
-                                      materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
-                                      mix, passes, layout, geometry, scratch)
+            lit = sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
+                                materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
+                                mix, passes, layout, geometry, scratch)
+            if lit and has_media and mflags & MAT_MEDIUM:
+                shadows.medium[shadowed] = side_medium(materials, material, shadows.direction[shadowed], ng)
+            shadowed += lit
         wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
                                                                        closures, wo_l, frame, collapsed, weight, mix)
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
@@ -150,6 +170,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                 state.flags[i] &= ~PREV_DELTA
             for c in range(3):
                 state.mis_origin[i, c] = p[c]
+        if has_media and mflags & MAT_MEDIUM:
+            state.medium[i] = side_medium(materials, material, wi, ng)
         pushed = push_ray(state, next_rays, queued, i, offset_origin(p, ng, wi), wi)
         queued += pushed
         rejected[0] += 1 - pushed

@@ -5,7 +5,9 @@ straight shadow ray, attenuated by T = 1 - R(λ, θ) per wavelength; cut-outs (`
 Transparent BSDF) let it through by their transparency at the point crossed. In scenes with either,
 shadow rays are traced as closest-hit queries layer by layer (``film_layer_kernel`` keeps the rays that
 crossed such a surface, attenuated and moved past it; anything else blocks), up to ``MAX_FILM_LAYERS``;
-one occlusion query settles the rest.
+one occlusion query settles the rest. With media (``KernelSettings.has_media``) shadow rays are always
+traced layer by layer: each stretch inside a medium attenuates them by its transmittance exp(-σ_t(λ) d)
+(analytic: the media are homogeneous), and crossing a volume's null boundary changes their medium.
 """
 
 from __future__ import annotations
@@ -16,7 +18,8 @@ from ..bsdf.thin_film import film_reflectance
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..materials.surface import surface_transparency
-from ..materials.table import MAT_NULL, MAT_TRANSPARENT
+from ..materials.table import MAT_MEDIUM, MAT_NULL, MAT_TRANSPARENT
+from ..media.coefficients import attenuate
 from .pass_writes import deposit
 
 MAX_FILM_LAYERS = 8
@@ -57,6 +60,10 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
     for j in range(count):
         i = shadows.rays.path[j]
         triangle = hit_triangle[j]
+        medium = shadows.medium[j]
+        if medium >= 0:  # the stretch to the hit (or to the light) lies in a medium
+            attenuate(materials.media, spectra, medium, state.wavelength[i],
+                      float(hit_t[j]) if triangle >= 0 else shadows.distance[j], shadows.contribution[j])
         if triangle < 0:
             for k in range(state.radiance.shape[1]):
                 state.radiance[i, k] += shadows.contribution[j, k]
@@ -70,6 +77,8 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
         d = (shadows.direction[j, 0], shadows.direction[j, 1], shadows.direction[j, 2])
         u, v = float(hit_u[j]), float(hit_v[j])
         p, ng, ns = surface_at(geometry, triangle, u, v)
+        if mflags & MAT_MEDIUM:  # a volume's boundary: the ray enters (against ng) or leaves its medium
+            medium = materials.medium[material] if d[0] * ng[0] + d[1] * ng[1] + d[2] * ng[2] < 0.0 else -1
         if mflags & MAT_NULL:
             row = materials.closures[materials.closure_start[material]]
             cos = min(abs(d[0] * ng[0] + d[1] * ng[1] + d[2] * ng[2]), 1.0)
@@ -102,5 +111,6 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
         shadows.rays.tmax[kept] = remaining
         shadows.rays.path[kept] = i
         shadows.group[kept] = shadows.group[j]
+        shadows.medium[kept] = medium
         kept += 1
     return kept

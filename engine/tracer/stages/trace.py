@@ -44,7 +44,8 @@ def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
     tables = renderer.tables
     accel = tables.accel if tables.ray_classes is None else tables.ray_classes
     rays = 0
-    if tables.analysis.see_through_films or tables.analysis.see_through_cutouts:
+    if (tables.analysis.see_through_films or tables.analysis.see_through_cutouts
+            or tables.kernel_settings.has_media):
         for _ in range(MAX_FILM_LAYERS):
             if count == 0:
                 return rays
@@ -85,7 +86,8 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     layout = tables.pass_layout.kernel
     if layout.columns:
         reset_kernel(passes, layout, count)
-    see_through = bool(tables.analysis.see_through_films or tables.analysis.see_through_cutouts)
+    see_through = bool(tables.analysis.see_through_films or tables.analysis.see_through_cutouts
+                        or tables.kernel_settings.has_media)
     if tables.ray_classes is None and tables.accel.compiled_loops:
         accel = tables.accel  # held until the call returns: it owns the Embree scene the loop traces
         rays_cast = bounce_loop_kernel(buffers.loop, tables.arrays, accel.caster(), renderer.camera.data, passes,

@@ -1,0 +1,126 @@
+"""The Material Output's Volume socket → a ``tracer.media.spec.MediumSpec`` (a homogeneous medium).
+
+Volume Absorption, Volume Scatter and Principled Volume, alone or summed by Add Shader and Mix Shader (of
+constant Fac), with Cycles' meanings (``tracer/media/spec.py``). Prism renders homogeneous media: an
+input driven by something that varies (a texture, an attribute) is rendered at the value the socket holds
+under its link, and the warning says so, naming the material, node and input. What Prism does not model
+(Volume Scatter's phase functions other than Henyey-Greenstein, other shaders on the Volume socket) is
+named in a warning too.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ...tracer.media.spec import MediumSpec
+from .graph import follow
+from .terms import COLOR, FLOAT
+
+STEFAN_BOLTZMANN = 5.670373e-8  # W m⁻² K⁻⁴, the value Cycles' Principled Volume uses
+
+
+def _constant(c, node, name, context, kind):
+    """The input's constant value; a varying one is warned and replaced by the socket's own value."""
+    socket = c.socket(node, name)
+    source, value_socket = follow(socket, context)
+    if source is not None:
+        value = c.constant_of(node, name, context, kind)
+        if value is not None:
+            return value
+        own = c.known(c.default_value(value_socket, kind))
+        shown = f"{own:g}" if kind == FLOAT else "(" + ", ".join(f"{x:g}" for x in own) + ")"
+        c.warn(node, f"has its {name} driven by nodes that vary; Prism renders homogeneous volumes only, so it "
+                     f"uses the {name} set on the socket, {shown}, throughout the volume.")
+        return own
+    return c.known(c.default_value(value_socket, kind))
+
+
+def _absorption(c, node, context, weight, spec):
+    colour = _constant(c, node, "Color", context, COLOR)
+    density = weight * max(_constant(c, node, "Density", context, FLOAT), 0.0)
+    spec.absorb.append((density, tuple(colour)))
+
+
+def _scatter(c, node, context, weight, spec, anisotropies):
+    phase = getattr(node, "phase", "HENYEY_GREENSTEIN")
+    if phase != "HENYEY_GREENSTEIN":
+        c.warn(node, f"uses the {phase.replace('_', ' ').title()} phase function; Prism models Henyey-Greenstein "
+                     "only and renders it with Henyey-Greenstein of the node's Anisotropy.")
+    colour = _constant(c, node, "Color", context, COLOR)
+    density = weight * max(_constant(c, node, "Density", context, FLOAT), 0.0)
+    g = _constant(c, node, "Anisotropy", context, FLOAT) if c.socket(node, "Anisotropy") is not None else 0.0
+    spec.scatter.append((density, tuple(colour)))
+    anisotropies.append((density * max(colour), g))
+
+
+def _principled(c, node, context, weight, spec, anisotropies):
+    density = weight * max(_constant(c, node, "Density", context, FLOAT), 0.0)
+    colour = tuple(_constant(c, node, "Color", context, COLOR))
+    absorption = tuple(max(x, 0.0) ** 0.5 for x in _constant(c, node, "Absorption Color", context, COLOR))
+    spec.scatter.append((density, colour))
+    spec.absorb.append((density, colour, absorption))  # σ_a = density (1 - colour)(1 - sqrt(absorption colour))
+    anisotropies.append((density * max(colour), _constant(c, node, "Anisotropy", context, FLOAT)))
+    strength = weight * _constant(c, node, "Emission Strength", context, FLOAT)
+    if strength > 0.0:
+        spec.emission.append((strength, tuple(_constant(c, node, "Emission Color", context, COLOR)), None))
+    blackbody = min(max(_constant(c, node, "Blackbody Intensity", context, FLOAT), 0.0), 1.0)
+    if blackbody > 0.0:
+        _blackbody(c, node, context, weight, blackbody, spec)
+
+
+def _blackbody(c, node, context, weight, blackbody, spec):
+    """Cycles' blackbody emission of a Principled Volume: Stefan-Boltzmann's σ T⁴ (×10⁻⁶ / π), blended from
+    1 by the intensity, of the luminance-1 blackbody colour at T, tinted."""
+    from ...tracer.spectra.blackbody import MAX_TEMPERATURE_K, MIN_TEMPERATURE_K
+
+    temperature = max(_constant(c, node, "Temperature", context, FLOAT), 0.0)
+    intensity = STEFAN_BOLTZMANN * 1e-6 / math.pi * (1.0 + blackbody * (temperature ** 4 - 1.0))
+    if not intensity > 1e-5:  # Cycles' cutoff for closures
+        return
+    shown = min(max(temperature, MIN_TEMPERATURE_K), MAX_TEMPERATURE_K)
+    if shown != temperature:
+        c.warn(node, f"has a Temperature of {temperature:g} K; Prism's blackbody spectra span "
+                     f"{MIN_TEMPERATURE_K:g}-{MAX_TEMPERATURE_K:g} K, so it renders the colour of {shown:g} K "
+                     "(at the intensity of the Temperature set).")
+    tint = tuple(_constant(c, node, "Blackbody Tint", context, COLOR))
+    spec.emission.append((weight * intensity, tint, shown))
+
+
+def _walk(c, socket, context, weight, spec, anisotropies):
+    source, _ = follow(socket, context)
+    if source is None or weight == 0.0:
+        return
+    node, context = source.node, source.context
+    kind = node.bl_idname
+    if kind == "ShaderNodeVolumeAbsorption":
+        _absorption(c, node, context, weight, spec)
+    elif kind == "ShaderNodeVolumeScatter":
+        _scatter(c, node, context, weight, spec, anisotropies)
+    elif kind == "ShaderNodeVolumePrincipled":
+        _principled(c, node, context, weight, spec, anisotropies)
+    elif kind == "ShaderNodeAddShader":
+        _walk(c, node.inputs[0], context, weight, spec, anisotropies)
+        _walk(c, node.inputs[1], context, weight, spec, anisotropies)
+    elif kind == "ShaderNodeMixShader":
+        fac = min(max(_constant(c, node, "Fac", context, FLOAT), 0.0), 1.0)
+        _walk(c, node.inputs[1], context, weight * (1.0 - fac), spec, anisotropies)
+        _walk(c, node.inputs[2], context, weight * fac, spec, anisotropies)
+    else:
+        c.warn(node, "is on the Volume socket, where Prism renders Volume Absorption, Volume Scatter and "
+                     "Principled Volume only; it is left out (no volume from it).")
+
+
+def compile_volume(c, socket):
+    """The ``MediumSpec`` of the shaders feeding the Volume input ``socket``, or None if they add nothing."""
+    spec = MediumSpec(c.material.name)
+    anisotropies = []
+    _walk(c, socket, (), 1.0, spec, anisotropies)
+    total = sum(w for w, _ in anisotropies)
+    if total > 0.0:
+        spec.anisotropy = sum(w * g for w, g in anisotropies) / total
+        if len({g for w, g in anisotropies if w > 0.0}) > 1:
+            c.warn(c.output_node, f"mixes volume scattering of different Anisotropy; Prism renders one "
+                                  f"Henyey-Greenstein lobe of their scattering-weighted mean, {spec.anisotropy:g}.")
+    if not (any(d > 0 for d, *_ in spec.scatter + spec.absorb) or spec.emission):
+        return None
+    return spec

@@ -1,0 +1,15 @@
+"""Participating media inside closed meshes: homogeneous, spectral (extinction, albedo and emission per
+wavelength), as Blender's Volume Absorption, Volume Scatter and Principled Volume define them.
+
+- ``spec.py``: ``MediumSpec``, a medium as the export layer describes it (Blender's settings, RGB);
+- ``table.py``: ``MediaArrays``, the media of a render as spectra per metre (built with the materials);
+- ``coefficients.py``: σ_s, σ_t at a path's wavelengths, and transmittance;
+- ``phase.py``: the Henyey-Greenstein phase function (evaluate, sample);
+- ``segment.py``: a ray segment inside a medium (emission, distance sampling with spectral MIS);
+- ``scatter.py``: a scattering vertex in a medium (light sampling through media, phase sampling).
+
+A path carries the medium it is in (``PathState.medium``, -1 outside every medium): it enters a medium by
+crossing a surface whose material has one against its geometric normal (inward), and leaves it by
+crossing such a surface along the normal. Media do not nest (leaving any medium puts the path outside
+all of them). Scenes without media skip all of this (``KernelSettings.has_media``).
+"""

@@ -1,0 +1,84 @@
+"""A scattering vertex inside a medium (a collision ``media.segment`` chose): light sampling with the
+phase function (the shadow ray starts in this medium; ``stages.shadow`` attenuates it through media and
+across volume boundaries), then the next direction drawn from the phase function (weight 1), roulette and
+the next ray. Its uniforms are the bounce's light, direction and roulette slots, as a surface vertex of
+that bounce would use them (a path has one vertex per bounce).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..jit import inlined
+from ..lights.dispatch import sample_light
+from ..sampler import BOUNCE_DIRECTION, BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
+from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA
+from ..stages.nee import FAR, SHADOW_SHORTEN
+from ..stages.queue import push_ray
+from ..stages.roulette import survives
+from ..warps import power_heuristic
+from .phase import hg_sample, hg_value
+
+
+@inlined
+def _light_through_medium(state, i, p, d_in, g, lights, materials, spectra, geometry, settings, depth, shadows, slot,
+                          shading):
+    """Queue the light-sampled contribution of medium vertex ``p`` at ``slot`` of ``shadows``; 1 if queued."""
+    ps, sample = state.seed[i], state.sample[i]
+    u_select = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT))
+    u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT_POINT))
+    li = shading.li
+    wi, dist, pdf_light, delta, group = sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2,
+                                                     state.wavelength[i], li, shading.emitter_rows, shading.registers)
+    if not pdf_light > 0.0:
+        return 0
+    phase = hg_value(d_in[0] * wi[0] + d_in[1] * wi[1] + d_in[2] * wi[2], g)
+    weight = 1.0 if (delta or not settings.use_mis) else power_heuristic(pdf_light, phase)
+    scale = weight * phase / pdf_light
+    contribution = shadows.contribution[slot]
+    any_light = False
+    for k in range(li.shape[0]):
+        contribution[k] = state.throughput[i, k] * li[k] * scale
+        any_light = any_light or contribution[k] > 0.0
+    distance = dist * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
+    if not (any_light and math.isfinite(wi[0]) and math.isfinite(wi[1]) and math.isfinite(wi[2]) and distance > 0.0):
+        return 0
+    rays = shadows.rays
+    for c in range(3):
+        rays.origin[slot, c] = p[c]
+        rays.direction[slot, c] = wi[c]
+        shadows.origin[slot, c] = p[c]
+        shadows.direction[slot, c] = wi[c]
+    rays.tmax[slot] = distance
+    shadows.distance[slot] = distance
+    shadows.group[slot] = group
+    shadows.medium[slot] = state.medium[i]
+    rays.path[slot] = i
+    return 1
+
+
+@inlined
+def scatter_in_medium(state, i, lights, materials, spectra, geometry, settings, depth, next_rays, queued, shadows,
+                      shadowed, shading, rejected):
+    """Path ``i`` scatters in its medium at distance ``hit_t`` along its ray. Returns (rays queued, shadow
+    rays queued): 0 or 1 each, written at ``next_rays[queued]`` and ``shadows[shadowed]``."""
+    state.flags[i] &= ~MEDIUM_VERTEX
+    t = state.hit_t[i]
+    d_in = (state.direction[i, 0], state.direction[i, 1], state.direction[i, 2])
+    p = (state.origin[i, 0] + t * d_in[0], state.origin[i, 1] + t * d_in[1], state.origin[i, 2] + t * d_in[2])
+    g = materials.media.anisotropy[state.medium[i]]
+    lit = 0
+    if lights.select_prob.shape[0] > 0:
+        lit = _light_through_medium(state, i, p, d_in, g, lights, materials, spectra, geometry, settings, depth,
+                                    shadows, shadowed, shading)
+    u1, u2 = sample_2d(settings.sampler, state.seed[i], state.sample[i], bounce_slot(depth, BOUNCE_DIRECTION))
+    d_out, pdf = hg_sample(d_in, g, u1, u2)
+    state.flags[i] &= ~(CAMERA_PATH | PREV_DELTA | LAST_DIFFUSE | LAST_TRANSMISSION)
+    if not (pdf > 0.0 and survives(state, i, depth, settings, state.flags[i] & COLLAPSED != 0)):
+        return 0, lit
+    state.prev_pdf[i] = pdf
+    for c in range(3):
+        state.mis_origin[i, c] = p[c]
+    pushed = push_ray(state, next_rays, queued, i, p, d_out)
+    rejected[0] += 1 - pushed
+    return pushed, lit

@@ -1,0 +1,30 @@
+"""``MediumSpec``: a homogeneous medium as the export layer hands it to the tracer (Blender's settings).
+
+Cycles' volume closures, per unit length (metres): Volume Scatter adds scattering σ_s = density × colour,
+Volume Absorption adds absorption σ_a = density × (1 - colour), Principled Volume adds σ_s = density ×
+colour and σ_a = density × max(1 - colour, 0) × max(1 - sqrt(absorption colour), 0); emission (Principled's
+Emission Strength × Emission Color) is radiance added per metre travelled, not scaled by density, and so is
+its blackbody emission, σ_SB 10⁻⁶ / π × mix(1, T⁴, Blackbody Intensity) × Blackbody Tint × the blackbody
+colour of luminance 1 at Temperature T. Prism upsamples each colour to a reflectance spectrum
+(``spectra.rgb_to_spectrum``) and uses Planck's law for the blackbody, so σ_s, σ_a and the emission are
+functions of wavelength.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass
+class MediumSpec:
+    """``scatter``: (density, rgb) terms, σ_s(λ) = Σ density × R_rgb(λ); ``absorb``: (density, rgb, ...)
+    terms, σ_a(λ) = Σ density × Π (1 - R_rgb(λ)) over the term's colours; ``anisotropy``: the
+    Henyey-Greenstein g of the scattering (-1..1); ``emission``: (strength, rgb, temperature_k) terms of
+    emitted radiance per metre: strength × the RGB emission of ``rgb`` when ``temperature_k`` is None, else
+    strength × the luminance-1 blackbody spectrum at ``temperature_k`` tinted by ``rgb``."""
+
+    name: str
+    scatter: list = field(default_factory=list)
+    absorb: list = field(default_factory=list)
+    anisotropy: float = 0.0
+    emission: list = field(default_factory=list)
