@@ -20,7 +20,18 @@ class Accel:
     def __init__(self, geometry):
         from .embree.scene import Scene, TriangleGeometry
 
-        geometries = [TriangleGeometry(geometry.vertices, geometry.triangles)] if len(geometry.triangles) else []
+        self._rows = {}  # RayCaster's id mapping; none: Embree's primitive ids are the rows
+        moving = moving_triangles(geometry)
+        if moving is None:
+            geometries = [TriangleGeometry(geometry.vertices, geometry.triangles)] if len(geometry.triangles) else []
+        else:  # static triangles as today (one time step), moving ones with the shutter's time steps
+            static_rows, moving_rows = np.flatnonzero(~moving), np.flatnonzero(moving)
+            geometries = []
+            if len(static_rows):
+                geometries.append(TriangleGeometry(geometry.vertices, geometry.triangles[static_rows]))
+            geometries.append(TriangleGeometry(list(geometry.motion), geometry.triangles[moving_rows]))
+            self._rows = dict(moving_geometry=len(geometries) - 1, first_moving=len(static_rows),
+                              triangle_of=np.concatenate([static_rows, moving_rows]).astype(np.int32))
         self._scene = Scene(geometries)
         self._local = threading.local()
         #: Chunks trace in compiled loops that query Embree themselves; False makes them call this
@@ -34,7 +45,7 @@ class Accel:
             from .embree.layout import new_ray_hit_record
             from .embree.queries import RayCaster
 
-            found = self._local.caster = RayCaster(self._scene.handle, *new_ray_hit_record())
+            found = self._local.caster = RayCaster(self._scene.handle, *new_ray_hit_record(), **self._rows)
         return found
 
     def _closest(self, rays, count, bounded):
@@ -64,10 +75,23 @@ class Accel:
         return result
 
 
+def moving_triangles(geometry):
+    """bool [T]: the triangles whose corners move during the shutter, or None without motion blur (or
+    when nothing moves)."""
+    if geometry.motion.shape[0] < 2 or not len(geometry.triangles):
+        return None
+    still = (geometry.motion == geometry.motion[:1]).all(axis=(0, 2))  # per vertex, over the steps
+    moving = ~still[geometry.triangles].all(axis=1)
+    return moving if moving.any() else None
+
+
 def _as_queue(rays):
-    """``rays`` as a ``state.RayQueue`` (callers may hand any object with ``origin``, ``direction``, ``tmax``)."""
+    """``rays`` as a ``state.RayQueue`` (callers may hand any object with ``origin``, ``direction``, ``tmax``,
+    and ``path`` / ``time`` where the rays have ray times)."""
     from .state import RayQueue
 
     if isinstance(rays, RayQueue):
         return rays
-    return RayQueue(np.zeros(len(rays.tmax), np.int32), rays.origin, rays.direction, rays.tmax)
+    n = len(rays.tmax)
+    return RayQueue(getattr(rays, "path", np.zeros(n, np.int32)), rays.origin, rays.direction, rays.tmax,
+                    getattr(rays, "time", np.full(max(n, 1), 0.5)))

@@ -9,7 +9,10 @@ camera: a scene moved 1e7 m from the origin renders as it does at the origin. Ze
 ``material`` int32 [T], ``normals`` float32 [T, 3, 3] (unit shading normals at the corners) or
 [0, 3, 3] for flat shading, ``attributes`` (``SurfaceArrays``: what node materials read, empty arrays
 when nothing does), ``flags`` uint8 [T] (``visibility``: the rays that see the triangle's object, and
-whether it is a holdout).
+whether it is a holdout), ``motion`` float32 [S, V, 3] (with motion blur: the vertices at S evenly spaced
+times of the shutter, camera-relative; [0, 0, 3] without) and ``motion_normals`` float32 [S, T, 3, 3] (the
+corner normals at those times; [0, 0, 3, 3] without, or for flat shading). A ray at time τ (0..1) sees
+vertices interpolated linearly between the two steps around τ·(S-1), as Embree interpolates them.
 """
 
 from __future__ import annotations
@@ -21,7 +24,17 @@ import numpy as np
 
 from .jit import inlined, kernel
 
-Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags")
+Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags motion motion_normals")
+
+#: A ``surface_at`` time that reads the positions at the frame (``Geometry.vertices``), where the light
+#: table's emitters stand, instead of those at a ray time of the shutter.
+FRAME_TIME = -1.0
+
+
+def no_motion():
+    """``Geometry.motion`` / ``motion_normals`` of a render without motion blur: empty, so kernels take
+    the static path."""
+    return np.zeros((0, 0, 3), np.float32), np.zeros((0, 0, 3, 3), np.float32)
 
 #: UV maps, colour attributes and UV tangents per corner, instance of each triangle, instance rows, the
 #: camera position (world = camera-relative + ``offset``) and object-space corner positions; see
@@ -51,8 +64,20 @@ def prepare_geometry(scene, offset):
 
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
                         np.ascontiguousarray(material), normals, surface_arrays(scene.surface, original, offset),
-                        triangle_flags(scene, original))
+                        triangle_flags(scene, original), *_motion_arrays(scene, original, offset, len(normals)))
     return geometry, original, int(len(triangles) - len(original))
+
+
+def _motion_arrays(scene, original, offset, smooth):
+    """(``motion``, ``motion_normals``) of ``scene.motion`` for the kept triangles ``original``."""
+    motion = getattr(scene, "motion", None)
+    if motion is None or motion.vertices is None:
+        return no_motion()
+    steps = (np.asarray(motion.vertices, np.float64) - np.asarray(offset, np.float64)).astype(np.float32)
+    normals = np.zeros((0, 0, 3, 3), np.float32)
+    if smooth and motion.corner_normals is not None:
+        normals = np.ascontiguousarray(np.asarray(motion.corner_normals, np.float32)[:, original])
+    return np.ascontiguousarray(steps), normals
 
 
 def surface_arrays(surface, original, offset) -> SurfaceArrays:
@@ -103,16 +128,48 @@ def _non_degenerate(vertices, triangles, keep):
 
 
 @inlined
-def surface_at(geometry, triangle, u, v):
+def _corner(geometry, vertex, time):
+    """Vertex ``vertex`` (float64 xyz) at ray time ``time`` (``FRAME_TIME``: at the frame)."""
+    m = geometry.motion
+    if m.shape[0] == 0 or time < 0.0:
+        vs = geometry.vertices
+        return float(vs[vertex, 0]), float(vs[vertex, 1]), float(vs[vertex, 2])
+    x = min(max(time, 0.0), 1.0) * (m.shape[0] - 1)
+    s = min(int(x), m.shape[0] - 2)
+    f = x - s
+    return ((1.0 - f) * float(m[s, vertex, 0]) + f * float(m[s + 1, vertex, 0]),
+            (1.0 - f) * float(m[s, vertex, 1]) + f * float(m[s + 1, vertex, 1]),
+            (1.0 - f) * float(m[s, vertex, 2]) + f * float(m[s + 1, vertex, 2]))
+
+
+@inlined
+def _corner_normal(geometry, triangle, corner, time):
+    """Corner ``corner``'s shading normal (not unit) at ray time ``time``."""
+    m = geometry.motion_normals
+    if m.shape[0] == 0 or time < 0.0:
+        cn = geometry.normals[triangle]
+        return float(cn[corner, 0]), float(cn[corner, 1]), float(cn[corner, 2])
+    x = min(max(time, 0.0), 1.0) * (m.shape[0] - 1)
+    s = min(int(x), m.shape[0] - 2)
+    f = x - s
+    return ((1.0 - f) * float(m[s, triangle, corner, 0]) + f * float(m[s + 1, triangle, corner, 0]),
+            (1.0 - f) * float(m[s, triangle, corner, 1]) + f * float(m[s + 1, triangle, corner, 1]),
+            (1.0 - f) * float(m[s, triangle, corner, 2]) + f * float(m[s + 1, triangle, corner, 2]))
+
+
+@inlined
+def surface_at(geometry, triangle, u, v, time):
     """(point, unit geometric normal, unit shading normal on the geometric normal's side) at
-    barycentrics (u, v) of ``triangle`` (corner weights 1 - u - v, u, v)."""
+    barycentrics (u, v) of ``triangle`` (corner weights 1 - u - v, u, v) at ray time ``time`` (0..1 over
+    the shutter; ``FRAME_TIME`` or no motion: the frame's vertices)."""
     a = geometry.triangles[triangle, 0]
     b = geometry.triangles[triangle, 1]
     c = geometry.triangles[triangle, 2]
-    vs = geometry.vertices
-    ax, ay, az = float(vs[a, 0]), float(vs[a, 1]), float(vs[a, 2])
-    e1 = (float(vs[b, 0]) - ax, float(vs[b, 1]) - ay, float(vs[b, 2]) - az)
-    e2 = (float(vs[c, 0]) - ax, float(vs[c, 1]) - ay, float(vs[c, 2]) - az)
+    ax, ay, az = _corner(geometry, a, time)
+    bx, by, bz = _corner(geometry, b, time)
+    cx, cy, cz = _corner(geometry, c, time)
+    e1 = (bx - ax, by - ay, bz - az)
+    e2 = (cx - ax, cy - ay, cz - az)
     p = (ax + u * e1[0] + v * e2[0], ay + u * e1[1] + v * e2[1], az + u * e1[2] + v * e2[2])
     nx = e1[1] * e2[2] - e1[2] * e2[1]
     ny = e1[2] * e2[0] - e1[0] * e2[2]
@@ -122,10 +179,12 @@ def surface_at(geometry, triangle, u, v):
     if geometry.normals.shape[0] == 0:
         return p, ng, ng
     w = 1.0 - u - v
-    cn = geometry.normals[triangle]
-    sx = w * cn[0, 0] + u * cn[1, 0] + v * cn[2, 0]
-    sy = w * cn[0, 1] + u * cn[1, 1] + v * cn[2, 1]
-    sz = w * cn[0, 2] + u * cn[1, 2] + v * cn[2, 2]
+    n0 = _corner_normal(geometry, triangle, 0, time)
+    n1 = _corner_normal(geometry, triangle, 1, time)
+    n2 = _corner_normal(geometry, triangle, 2, time)
+    sx = w * n0[0] + u * n1[0] + v * n2[0]
+    sy = w * n0[1] + u * n1[1] + v * n2[1]
+    sz = w * n0[2] + u * n1[2] + v * n2[2]
     length = math.sqrt(sx * sx + sy * sy + sz * sz)
     if not (length > 1e-12 and math.isfinite(length)):
         return p, ng, ng

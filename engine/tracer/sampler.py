@@ -41,6 +41,9 @@ BOUNCE_ROULETTE = 4  # 1-D: Russian roulette
 #: 2-D per bounce, in a range of its own so scenes without media keep every other slot: the distance to
 #: a collision in a medium and the wavelength whose extinction samples it (``media.segment``).
 SLOT_MEDIUM = 1 << 24
+# 1-D: the path's ray time in the shutter (motion blur). Numbered far beyond every bounce's slots, so
+# turning motion blur on leaves every other dimension, and so still images, as they were.
+SLOT_TIME = 1 << 20
 
 _MASK = 0xFFFFFFFF
 _INV_2_32 = 1.0 / 4294967296.0

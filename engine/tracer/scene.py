@@ -174,7 +174,9 @@ class Camera:
     centre); keeping the camera at the view's centre keeps the camera-relative geometry precise.
     ``clip_start_m`` / ``clip_end_m``: Blender's Clip Start / Clip End; camera rays see only geometry at
     depths between them (along the view axis; along the ray for panoramas), as in Cycles. Clip Start
-    beyond Clip End leaves camera rays no geometry to see (Cycles: the world only).
+    beyond Clip End leaves camera rays no geometry to see (Cycles: the world only). Motion blur:
+    ``shutter_times`` (``motion.shutter_times``, the ray time's inverse CDF; None: no motion blur) and
+    ``motion_to_world`` (the camera's matrices at the shutter's time steps when it moves, else None).
     """
 
     name: str
@@ -205,6 +207,8 @@ class Camera:
     ortho_start_m: float = 0.0
     clip_start_m: float = 0.0
     clip_end_m: float = float("inf")
+    shutter_times: np.ndarray | None = None  # motion blur: ``motion.shutter_times``; None: a still image
+    motion_to_world: np.ndarray | None = None  # [S, 4, 4] camera_to_world at the shutter's steps, or None
 
 
 @dataclass
@@ -297,6 +301,8 @@ class Scene:
     tangents and object data for node materials (None when no material reads them). ``object_flags``
     uint8 [objects] (parallel to ``object_names``: ``visibility.RAY_*`` and ``HOLDOUT`` bits; None: every
     object seen by every ray, no holdout). ``data_passes``: what the Mist, UV, Index and AO passes read.
+    ``motion`` (``motion.Motion``): the vertices at the shutter's time steps when motion blur is on and
+    something moves or deforms, else None.
     """
 
     vertices: np.ndarray
@@ -313,6 +319,7 @@ class Scene:
     object_light_groups: list[str] = field(default_factory=list)
     surface: SurfaceAttributes | None = None
     data_passes: DataPassInputs = field(default_factory=DataPassInputs)
+    motion: object = None  # motion.Motion
 
     @property
     def triangle_count(self) -> int:

@@ -26,7 +26,9 @@ deterministic). Embree reads the queues' float32 rays directly.
   emitters hit later are measured from it);
 - ``hit_triangle`` int32, ``hit_u``, ``hit_v``, ``hit_t`` float64 (the hit handed from the emission
   stage to the shading stage);
-- ``transparency`` float64 (how much of the sample is see-through: 1 - its alpha).
+- ``transparency`` float64 (how much of the sample is see-through: 1 - its alpha);
+- ``time`` float64 (the path's ray time, 0..1 over the shutter as Embree reads it: every ray of the path —
+  camera ray, bounces, shadow rays — sees the scene at this one instant; 0.5 without motion blur).
 """
 
 from __future__ import annotations
@@ -55,13 +57,14 @@ _PATH_FIELDS = (
     ("eta_scale", np.float64, ()), ("prev_pdf", np.float64, ()),
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
     ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
-    ("transparency", np.float64, ()),
+    ("transparency", np.float64, ()), ("time", np.float64, ()),
 )
 PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
 
 #: Rays for Embree: ``path`` int32 [n] (which path), ``origin`` / ``direction`` float32 [n, 3]
-#: (camera-relative), ``tmax`` float32 [n] (shadow rays: where the light is).
-RayQueue = namedtuple("RayQueue", "path origin direction tmax")
+#: (camera-relative), ``tmax`` float32 [n] (shadow rays: where the light is), ``time`` float64 indexed by
+#: *path* (the paths' ``PathState.time``, shared, so a queued ray needs no copy of its path's time).
+RayQueue = namedtuple("RayQueue", "path origin direction tmax time")
 
 #: Shadow rays and what each brings if it reaches its light: ``contribution`` float64 [n, K]; the
 #: float64 ``origin`` / ``direction`` / ``distance`` let rays continue through free-standing films;
@@ -97,13 +100,14 @@ def new_path_state(n: int, k: int) -> PathState:
     return PathState(*(np.empty(_shape(shape, n, k), dtype) for _, dtype, shape in _PATH_FIELDS))
 
 
-def new_ray_queue(n: int) -> RayQueue:
+def new_ray_queue(n: int, time=None) -> RayQueue:
+    """A queue of ``n`` rays; ``time`` the paths' ray times (``PathState.time``; default 0.5 for each)."""
     return RayQueue(np.empty(n, np.int32), np.empty((n, 3), np.float32), np.empty((n, 3), np.float32),
-                    np.empty(n, np.float32))
+                    np.empty(n, np.float32), np.full(n, 0.5) if time is None else time)
 
 
-def new_shadow_queue(n: int, k: int) -> ShadowQueue:
-    return ShadowQueue(new_ray_queue(n), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n),
+def new_shadow_queue(n: int, k: int, time=None) -> ShadowQueue:
+    return ShadowQueue(new_ray_queue(n, time), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n),
                        np.empty(n, np.int32), np.full(n, -1, np.int32))
 
 
@@ -123,9 +127,9 @@ class ChunkBuffers:
         self.k = k
         self.passes = passes  # stages.pass_writes.PassData
         self.state = new_path_state(n, k)
-        self.rays = (new_ray_queue(n), new_ray_queue(n))  # this bounce's and the next
+        self.rays = (new_ray_queue(n, self.state.time), new_ray_queue(n, self.state.time))  # this bounce's, the next
         self.surface = PathList(np.empty(n, np.int32))
-        self.shadows = new_shadow_queue(n, k)
+        self.shadows = new_shadow_queue(n, k, self.state.time)
         self.scratch = new_shading_scratch(k, registers)
         self.rgb = np.empty((n, 3))
         self.alpha = np.empty(n)

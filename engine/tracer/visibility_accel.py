@@ -29,7 +29,7 @@ class _Subset:
         self.ids = np.flatnonzero(chosen).astype(np.int32)
         sub = Geometry(geometry.vertices, np.ascontiguousarray(geometry.triangles[self.ids]),
                        geometry.material[self.ids], geometry.normals[:0], geometry.attributes,
-                       geometry.flags[self.ids])
+                       geometry.flags[self.ids], geometry.motion, geometry.motion_normals[:, self.ids])
         self.accel = Accel(sub)
 
     def _map(self, hit):
@@ -96,3 +96,5 @@ class _Group:
         self.origin = np.ascontiguousarray(rays.origin[chosen])
         self.direction = np.ascontiguousarray(rays.direction[chosen])
         self.tmax = np.ascontiguousarray(rays.tmax[chosen])
+        self.path = np.arange(len(chosen), dtype=np.int32)  # ray j's time is time[j] (its path's)
+        self.time = np.ascontiguousarray(rays.time[rays.path[chosen]])

@@ -51,7 +51,7 @@ def test_camera_rays_land_where_blenders_projection_puts_them(prism_addon, fresh
     raster = rng.uniform((0.0, 0.0), (width, height), size=(64, 2))
     to_camera = np.linalg.inv(np.asarray(setup.data.rotation))
     for x, y in raster:
-        o, d = stages.camera_ray(setup.data, float(x), float(y), 0.5, 0.5)
+        o, d = stages.camera_ray(setup.data, float(x), float(y), 0.5, 0.5, 0.5)
         # A point one metre along the ray, in Blender's camera space, through Blender's projection.
         point = to_camera @ (np.asarray(o) + np.asarray(d) - np.asarray(setup.data.origin))
         clip = projection @ np.append(point, 1.0)

@@ -80,7 +80,7 @@ def test_reflected_rays_do_not_rehit_their_surface(scale):
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     tri, _, bu, bv = acc.intersect(_queue(origins, d), n)
     hit = np.flatnonzero(tri >= 0)
-    surfaces = [surface_at(geometry, int(tri[j]), float(bu[j]), float(bv[j])) for j in hit]
+    surfaces = [surface_at(geometry, int(tri[j]), float(bu[j]), float(bv[j]), 0.5) for j in hit]
     p = np.array([s[0] for s in surfaces])
     ng = np.array([s[1] for s in surfaces])
     dh = d[hit]

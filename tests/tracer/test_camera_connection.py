@@ -42,7 +42,7 @@ def test_points_on_camera_rays_connect_back_to_their_pixel_and_lens_point(model)
     n = 2000
     raster = rng.random((n, 2)) * (40, 30)
     lens_u = rng.random((n, 2))
-    rays = [camera_ray(camera, x, y, u, v) for (x, y), (u, v) in zip(raster, lens_u)]
+    rays = [camera_ray(camera, x, y, u, v, 0.5) for (x, y), (u, v) in zip(raster, lens_u)]
     points = np.array([np.add(o, rng.uniform(0.5, 6.0) * np.asarray(d)) for o, d in rays])
     pixel, lens, importance = np.empty(n, np.int64), np.empty((n, 3)), np.empty(n)
     _connect_many(camera, points, np.column_stack([lens_u, rng.random((n, 2))]), pixel, lens, importance)

@@ -58,7 +58,7 @@ def test_rays_through_prism_follow_snell_at_both_faces():
         rays.origin[:], rays.direction[:] = o, d
         tri, t, bu, bv = acc.intersect(rays, n)
         assert set(tri) <= {face, face + 1}
-        hits = [surface_at(geometry, int(tri[j]), float(bu[j]), float(bv[j])) for j in range(n)]
+        hits = [surface_at(geometry, int(tri[j]), float(bu[j]), float(bv[j]), 0.5) for j in range(n)]
         frames = [(*tangents(ng), ng) for _, ng, _ in hits]
         wo = np.array([to_local(tuple(-dj), *f) for dj, f in zip(d, frames)])
         u = np.tile([0.99999, 0.5, 0.5], (n, 1))  # choose refraction

@@ -110,6 +110,6 @@ def camera_rays(camera, xy, lens_uv=None, render_settings=None):
 
     setup = make_camera(camera, render_settings or RenderSettings())
     lens_uv = np.zeros((len(xy), 2)) if lens_uv is None else lens_uv
-    rays = [camera_ray(setup.data, float(x), float(y), float(u), float(v)) for (x, y), (u, v) in zip(xy, lens_uv)]
+    rays = [camera_ray(setup.data, float(x), float(y), float(u), float(v), 0.5) for (x, y), (u, v) in zip(xy, lens_uv)]
     origins = np.array([o for o, _ in rays]) + setup.origin
     return origins, np.array([d for _, d in rays])

@@ -3,8 +3,8 @@
 
 Kernels call Embree's ``rtcIntersect1`` / ``rtcOccluded1`` by symbol (``library`` registers them), on
 a per-thread ``RTCRayHit`` record (``layout.new_ray_hit_record``) passed as its float32 and uint32
-views. Rays start at distance 0 (callers offset secondary origins, as with embreex) and carry ray time
-0 until motion blur gives them one.
+views. Rays start at distance 0 (callers offset secondary origins, as with embreex) and carry their
+path's ray time (``RayQueue.time``, by path), which geometry with several time steps interpolates by.
 """
 
 from __future__ import annotations
@@ -19,9 +19,13 @@ from . import library
 from .layout import ALL_MASK, DIR_X, FLAGS, GEOM_ID, INST_ID, INVALID_ID, MASK, ORG_X, PRIM_ID, RAY_ID, TFAR, TIME, \
     TNEAR, U, V
 
-#: What a compiled loop traces against: ``scene`` the committed ``RTCScene`` handle (``scene.Scene.handle``)
-#: and this thread's ``RTCRayHit`` record as its float32 ``words`` and uint32 ``ids`` views.
-RayCaster = namedtuple("RayCaster", "scene words ids")
+#: What a compiled loop traces against: ``scene`` the committed ``RTCScene`` handle (``scene.Scene.handle``),
+#: this thread's ``RTCRayHit`` record as its float32 ``words`` and uint32 ``ids`` views, and how Embree's
+#: (geometry, primitive) ids map to rows of the render's triangles: ``moving_geometry`` the geometry id of
+#: the moving triangles (-1: one geometry whose primitive ids are the rows), ``triangle_of`` int32 (the
+#: static geometry's rows, then the moving one's) and ``first_moving`` (where the moving rows start in it).
+RayCaster = namedtuple("RayCaster", "scene words ids moving_geometry triangle_of first_moving",
+                       defaults=(-1, np.zeros(1, np.int32), 0))
 
 library.load()  # before any kernel below is compiled or loaded: they link to its symbols by name
 
@@ -49,17 +53,24 @@ def _set_ray(words, ids, ox, oy, oz, dx, dy, dz, tmax, time):
 
 
 @inlined
-def closest_hit(scene, words, ids, ox, oy, oz, dx, dy, dz, tmax, time):
-    """Closest triangle along the ray before ``tmax`` in ``scene`` (an ``rtcNewScene`` handle):
-    (primitive id, or -1 for a miss; t; u; v). On a miss t is ``tmax``."""
+def closest_hit(caster, ox, oy, oz, dx, dy, dz, tmax, time):
+    """Closest triangle along the ray before ``tmax`` in ``caster.scene`` at ray time ``time`` (0..1):
+    (triangle row, or -1 for a miss; t; u; v). On a miss t is ``tmax``."""
+    words = caster.words
+    ids = caster.ids
     _set_ray(words, ids, ox, oy, oz, dx, dy, dz, tmax, time)
     ids[GEOM_ID] = INVALID_ID
     ids[PRIM_ID] = INVALID_ID
     ids[INST_ID] = INVALID_ID
-    _rtc_intersect1(scene, words.ctypes.data, 0)
+    _rtc_intersect1(caster.scene, words.ctypes.data, 0)
     if ids[GEOM_ID] == INVALID_ID:
         return -1, words[TFAR], np.float32(0.0), np.float32(0.0)
-    return np.int32(ids[PRIM_ID]), words[TFAR], words[U], words[V]
+    if caster.moving_geometry < 0:
+        return np.int32(ids[PRIM_ID]), words[TFAR], words[U], words[V]
+    row = np.int64(ids[PRIM_ID])
+    if np.int64(ids[GEOM_ID]) == caster.moving_geometry:
+        row += caster.first_moving
+    return np.int32(caster.triangle_of[row]), words[TFAR], words[U], words[V]
 
 
 @inlined
@@ -78,8 +89,9 @@ def closest_hits(caster, rays, count, bounded, hits):
     for j in range(count):
         limit = rays.tmax[j] if bounded else np.float32(np.inf)
         hits.triangle[j], hits.t[j], hits.u[j], hits.v[j] = closest_hit(
-            caster.scene, caster.words, caster.ids, rays.origin[j, 0], rays.origin[j, 1], rays.origin[j, 2],
-            rays.direction[j, 0], rays.direction[j, 1], rays.direction[j, 2], limit, np.float32(0.0))
+            caster, rays.origin[j, 0], rays.origin[j, 1], rays.origin[j, 2],
+            rays.direction[j, 0], rays.direction[j, 1], rays.direction[j, 2], limit,
+            np.float32(rays.time[rays.path[j]]))
 
 
 @kernel
@@ -89,5 +101,5 @@ def occlusion(caster, rays, count, occluded):
     for j in range(count):
         blocked = is_occluded(caster.scene, caster.words, caster.ids, rays.origin[j, 0], rays.origin[j, 1],
                               rays.origin[j, 2], rays.direction[j, 0], rays.direction[j, 1], rays.direction[j, 2],
-                              rays.tmax[j], np.float32(0.0))
+                              rays.tmax[j], np.float32(rays.time[rays.path[j]]))
         occluded[j] = 0 if blocked else -1

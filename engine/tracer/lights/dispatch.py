@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from ..geometry import FRAME_TIME
 from ..jit import inlined
 from ..materials.emitters import emission_at
 from ..materials.table import MAT_EMISSION_VARIES
@@ -36,7 +37,7 @@ def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wave
         wi, dist, pdf, e, b1, b2 = mesh.sample_point(lights.mesh, p, u_rest, u1, u2)
         material = lights.mesh.material[e]
         if materials.flags[material] & MAT_EMISSION_VARIES:
-            emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2,
+            emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, FRAME_TIME,
                         (-wi[0], -wi[1], -wi[2]), wavelength_nm, rows, regs, li)
         else:
             strength = materials.emission_strength[material]

@@ -11,7 +11,7 @@ path tracing, which never skips escapes.
 
 from __future__ import annotations
 
-from ..geometry import offset_origin
+from ..geometry import FRAME_TIME, offset_origin
 from ..jit import inlined
 from ..materials.emitters import emission_at
 from ..materials.table import MAT_EMISSION_VARIES
@@ -51,7 +51,7 @@ def sample_emission(lights, materials, spectra, geometry, targets, u_select, u_p
         origin = offset_origin(p, ng, direction)
         if materials.flags[material] & MAT_EMISSION_VARIES:
             scale = cos_l / (select * pdf_area * pdf_direction) if pdf_direction > 0.0 else 0.0
-            emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, direction,
+            emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, FRAME_TIME, direction,
                         wavelength_nm, rows, regs, beta)
             for k in range(beta.shape[0]):
                 beta[k] = scale * beta[k] if scale > 0.0 else 0.0

@@ -10,9 +10,10 @@ from .surface import surface_emission
 
 
 @inlined
-def emission_at(materials, spectra, geometry, material, triangle, u, v, wo, wavelength_nm, rows, regs, out):
-    """``out[k]`` = radiance leaving barycentrics (u, v) of ``triangle`` towards ``wo`` (unit, pointing away)."""
-    p, ng, ns = surface_at(geometry, triangle, u, v)
+def emission_at(materials, spectra, geometry, material, triangle, u, v, time, wo, wavelength_nm, rows, regs, out):
+    """``out[k]`` = radiance leaving barycentrics (u, v) of ``triangle`` at ray time ``time`` (``geometry.
+    FRAME_TIME`` for a point the light table picked) towards ``wo`` (unit, pointing away)."""
+    p, ng, ns = surface_at(geometry, triangle, u, v, time)
     backfacing = wo[0] * ng[0] + wo[1] * ng[1] + wo[2] * ng[2] < 0.0
     if backfacing:
         ng = (-ng[0], -ng[1], -ng[2])

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..bsdf.closure import CLOSURE_ROW
-from ..geometry import Geometry, SurfaceArrays
+from ..geometry import Geometry, SurfaceArrays, no_motion
 from ..textures.image import build_textures
 from ..visibility import ALL_RAYS
 from .layering import load_tables
@@ -22,7 +22,7 @@ def fold_evaluator():
                                np.zeros(3), np.zeros((0, 3, 3), np.float32))
     geometry = Geometry(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32), np.array([[0, 1, 2]], np.int32),
                         np.zeros(1, np.int32), np.zeros((0, 3, 3), np.float32), attributes,
-                        np.full(1, ALL_RAYS, np.uint8))
+                        np.full(1, ALL_RAYS, np.uint8), *no_motion())
     tables = load_tables()
     textures = build_textures([])
     rows = np.zeros((1, CLOSURE_ROW))

@@ -23,11 +23,12 @@ from collections import namedtuple
 import numpy as np
 
 from ..jit import inlined, kernel
-from ..sampler import SLOT_HERO, SLOT_LENS, SLOT_PIXEL, SLOT_WAVELENGTH, pixel_seed, sample_1d, sample_2d
+from ..sampler import SLOT_HERO, SLOT_LENS, SLOT_PIXEL, SLOT_TIME, SLOT_WAVELENGTH, pixel_seed, sample_1d, sample_2d
 from ..spectra.wavelength_sampling import MODE_GAUSSIAN_RGB, inverse_normal_cdf, sample_wavelengths
 from ..state import CAMERA_PATH, PREV_DELTA
 from ..vec3 import tangents
 from ..warps import concentric_disk, regular_polygon
+from .camera_motion import camera_pose, quaternion_rotate, shutter_time
 from .panorama import EQUIRECTANGULAR, FISHEYE_EQUIDISTANT, FISHEYE_EQUISOLID, panorama_direction
 from .queue import push_ray
 
@@ -48,12 +49,16 @@ PROJECTIONS = {"perspective": PERSPECTIVE, "orthographic": ORTHOGRAPHIC, "equire
 #: (where orthographic rays start on the camera's +Z axis, m: Clip Start in front of the camera for a
 #: render), clip_start_m / clip_end_m (Blender's Clip Start / Clip End, m: camera rays see geometry between
 #: these depths along the view axis, along the ray for panoramas, as Cycles; orthographic rays start at
-#: Clip Start through ``ortho_start_m``, so their ``clip_start_m`` is 0; ``camera_clip`` applies Clip End).
+#: Clip Start through ``ortho_start_m``, so their ``clip_start_m`` is 0; ``camera_clip`` applies Clip End),
+#: shutter_times float64 [M] (motion blur: the ray time's inverse CDF, ``motion.shutter_times``; empty: no
+#: motion blur, every path at time 0.5), poses float64 [S, 7] (a moving camera: position in the render's
+#: space and rotation quaternion w, x, y, z at the shutter's S steps, ``motion.camera_poses``; empty: the
+#: camera stands at ``origin`` with ``rotation``).
 CameraData = namedtuple(
     "CameraData",
     "kind projection rotation tan_w tan_h shift_x shift_y aperture_radius_m focus_distance_m blades blade_rotation "
     "aperture_ratio panorama width height filter_kind filter_width_px filter_cdf_lo origin ortho_start_m "
-    "clip_start_m clip_end_m",
+    "clip_start_m clip_end_m shutter_times poses",
 )
 
 
@@ -64,8 +69,16 @@ def camera_data(camera, settings, kind, origin_m=(0.0, 0.0, 0.0)) -> CameraData:
 
     from .panorama import panorama_parameters
 
+    from ..motion import camera_poses
+
     width, height = (int(r) for r in camera.resolution)
     projection = PROJECTIONS[camera.projection]
+    shutter = np.zeros(0) if camera.shutter_times is None else np.asarray(camera.shutter_times, np.float64)
+    poses = np.zeros((0, 7))
+    if len(shutter) and camera.motion_to_world is not None:
+        # the render's space is the world less (camera position - origin_m)
+        world_origin = np.asarray(camera.camera_to_world, np.float64)[:3, 3] - np.asarray(origin_m, np.float64)
+        poses = camera_poses(camera.motion_to_world, world_origin)
     if projection == ORTHOGRAPHIC:
         scale_w, scale_h = float(camera.ortho_width_m), float(camera.ortho_height_m)
         aperture = 1.0 / (2.0 * camera.fstop) if kind == THIN_LENS else 0.0
@@ -84,7 +97,8 @@ def camera_data(camera, settings, kind, origin_m=(0.0, 0.0, 0.0)) -> CameraData:
                       float(settings.filter_width_px), float(ndtr(-settings.filter_width_px / sigma)),
                       np.ascontiguousarray(origin_m, dtype=np.float64),
                       float(camera.ortho_start_m - camera.clip_start_m) if projection == ORTHOGRAPHIC else 0.0,
-                      0.0 if projection == ORTHOGRAPHIC else float(camera.clip_start_m), float(camera.clip_end_m))
+                      0.0 if projection == ORTHOGRAPHIC else float(camera.clip_start_m), float(camera.clip_end_m),
+                      np.ascontiguousarray(shutter), poses)
 
 
 @inlined
@@ -119,6 +133,7 @@ def start_path(state, i, pixel, sample, seed):
     state.prev_pdf[i] = 0.0
     state.throughput[i, :] = 1.0
     state.radiance[i, :] = 0.0
+    state.time[i] = 0.5
     return ps
 
 
@@ -192,21 +207,28 @@ def near_clip_distance(camera, x, y):
 
 
 @inlined
-def camera_ray(camera, x, y, lens_u, lens_v):
+def camera_ray(camera, x, y, lens_u, lens_v, time):
     """(origin, unit direction) of the camera ray through raster position (x, y) (pixels from the
-    top-left corner) and lens sample (lens_u, lens_v), in the render's space, starting at Clip Start; the direction is
-    (0, 0, 0) where the camera sees nothing (outside a fisheye's circle)."""
+    top-left corner) and lens sample (lens_u, lens_v) at ray time ``time`` (a moving camera's pose then),
+    in the render's space, starting at Clip Start; the direction is (0, 0, 0) where the camera sees
+    nothing (outside a fisheye's circle)."""
     o, d = camera_space_ray(camera, x, y, lens_u, lens_v)
     if d[0] == 0.0 and d[1] == 0.0 and d[2] == 0.0:
         return o, d
-    r = camera.rotation
-    c = camera.origin
-    wo = (c[0] + r[0, 0] * o[0] + r[0, 1] * o[1] + r[0, 2] * o[2],
-          c[1] + r[1, 0] * o[0] + r[1, 1] * o[1] + r[1, 2] * o[2],
-          c[2] + r[2, 0] * o[0] + r[2, 1] * o[1] + r[2, 2] * o[2])
-    wd = (r[0, 0] * d[0] + r[0, 1] * d[1] + r[0, 2] * d[2],
-          r[1, 0] * d[0] + r[1, 1] * d[1] + r[1, 2] * d[2],
-          r[2, 0] * d[0] + r[2, 1] * d[1] + r[2, 2] * d[2])
+    if camera.poses.shape[0] > 0:
+        c, q = camera_pose(camera.poses, time)
+        wo = quaternion_rotate(q, o)
+        wo = (c[0] + wo[0], c[1] + wo[1], c[2] + wo[2])
+        wd = quaternion_rotate(q, d)
+    else:
+        r = camera.rotation
+        c = camera.origin
+        wo = (c[0] + r[0, 0] * o[0] + r[0, 1] * o[1] + r[0, 2] * o[2],
+              c[1] + r[1, 0] * o[0] + r[1, 1] * o[1] + r[1, 2] * o[2],
+              c[2] + r[2, 0] * o[0] + r[2, 1] * o[1] + r[2, 2] * o[2])
+        wd = (r[0, 0] * d[0] + r[0, 1] * d[1] + r[0, 2] * d[2],
+              r[1, 0] * d[0] + r[1, 1] * d[1] + r[1, 2] * d[2],
+              r[2, 0] * d[0] + r[2, 1] * d[1] + r[2, 2] * d[2])
     n = math.sqrt(wd[0] * wd[0] + wd[1] * wd[1] + wd[2] * wd[2])
     unit = (wd[0] / n, wd[1] / n, wd[2] / n)
     near = near_clip_distance(camera, x, y)
@@ -228,7 +250,9 @@ def camera_kernel(state, rays, camera, ws, settings, pixels, first, count, sampl
         lu, lv = sample_2d(settings.sampler, ps, sample, SLOT_LENS)
         x = pixel % camera.width + filter_offset(camera, ux)
         y = pixel // camera.width + filter_offset(camera, uy)
-        origin, direction = camera_ray(camera, x, y, lu, lv)
+        if camera.shutter_times.shape[0] > 0:
+            state.time[i] = shutter_time(camera.shutter_times, sample_1d(settings.sampler, ps, sample, SLOT_TIME))
+        origin, direction = camera_ray(camera, x, y, lu, lv, state.time[i])
         if direction[0] == 0.0 and direction[1] == 0.0 and direction[2] == 0.0:
             continue  # outside a fisheye's circle: the path adds nothing
         for c in range(3):

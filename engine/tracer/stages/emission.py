@@ -161,7 +161,7 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
             group, slot = emitter_group(lights, triangle), camera_slot(layout, depth, False)
             if materials.flags[material] & MAT_EMISSION_VARIES:
                 radiance = scratch.li
-                emission_at(materials, spectra, geometry, material, triangle, float(hit_u[j]), float(hit_v[j]),
+                emission_at(materials, spectra, geometry, material, triangle, float(hit_u[j]), float(hit_v[j]), state.time[i],
                             (-d[0], -d[1], -d[2]), state.wavelength[i], scratch.rows, scratch.registers, radiance)
                 if settings.clamping:
                     for k in range(state.radiance.shape[1]):

@@ -72,6 +72,7 @@ def emit_kernel(state, rays, light_of_path, lights, materials, spectra, geometry
         state.seed[i] = ps
         state.flags[i] = 0
         state.medium[i] = -1
+        state.time[i] = 0.5  # light tracing is off with motion blur (analysis): the shutter's middle
         state.prev_pdf[i] = 0.0
         state.radiance[i, :] = 0.0
         draw_wavelengths(state, i, ws, settings.sampler, ps, sample)
@@ -169,7 +170,7 @@ def light_bounce_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, l
         triangle = hit_triangle[j]
         if triangle < 0:
             continue
-        p, ng, ns = surface_at(geometry, triangle, float(hit_u[j]), float(hit_v[j]))
+        p, ng, ns = surface_at(geometry, triangle, float(hit_u[j]), float(hit_v[j]), state.time[i])
         if depth == 0:
             row = lights.rows[light_of_path[i]]
             if int(row[L_KIND]) == POINT or int(row[L_KIND]) == SPHERE:

@@ -10,9 +10,10 @@ from __future__ import annotations
 
 from ..jit import kernel
 from ..lens.camera_kernel import camera_ray, film_point_mm
-from ..sampler import SLOT_LENS, SLOT_PIXEL, sample_2d
+from ..sampler import SLOT_LENS, SLOT_PIXEL, SLOT_TIME, sample_1d, sample_2d
 from ..state import COLLAPSED
 from .camera import draw_wavelengths, filter_offset, start_path
+from .camera_motion import camera_pose, quaternion_rotate, shutter_time
 from .queue import push_ray
 
 
@@ -41,11 +42,19 @@ def real_lens_kernel(state, rays, camera, lens, ws, settings, pixels, first, cou
         state.flags[i] |= COLLAPSED
         if not weight > 0.0:
             continue
-        origin = (at[0] + r[0, 0] * ox + r[0, 1] * oy + r[0, 2] * oz,
-                  at[1] + r[1, 0] * ox + r[1, 1] * oy + r[1, 2] * oz,
-                  at[2] + r[2, 0] * ox + r[2, 1] * oy + r[2, 2] * oz)
-        direction = (r[0, 0] * dx + r[0, 1] * dy + r[0, 2] * dz, r[1, 0] * dx + r[1, 1] * dy + r[1, 2] * dz,
-                     r[2, 0] * dx + r[2, 1] * dy + r[2, 2] * dz)
+        if camera.shutter_times.shape[0] > 0:
+            state.time[i] = shutter_time(camera.shutter_times, sample_1d(settings.sampler, ps, sample, SLOT_TIME))
+        if camera.poses.shape[0] > 0:  # a moving camera: its pose at the path's time
+            c, q = camera_pose(camera.poses, state.time[i])
+            origin = quaternion_rotate(q, (ox, oy, oz))
+            origin = (c[0] + origin[0], c[1] + origin[1], c[2] + origin[2])
+            direction = quaternion_rotate(q, (dx, dy, dz))
+        else:
+            origin = (at[0] + r[0, 0] * ox + r[0, 1] * oy + r[0, 2] * oz,
+                      at[1] + r[1, 0] * ox + r[1, 1] * oy + r[1, 2] * oz,
+                      at[2] + r[2, 0] * ox + r[2, 1] * oy + r[2, 2] * oz)
+            direction = (r[0, 0] * dx + r[0, 1] * dy + r[0, 2] * dz, r[1, 0] * dx + r[1, 1] * dy + r[1, 2] * dz,
+                         r[2, 0] * dx + r[2, 1] * dy + r[2, 2] * dz)
         for c in range(3):
             state.mis_origin[i, c] = origin[c]
         queued += push_ray(state, rays, queued, i, origin, direction)

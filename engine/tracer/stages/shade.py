@@ -99,7 +99,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             shadowed += lit
             continue
         triangle = state.hit_triangle[i]
-        p, ng, ns = surface_at(geometry, triangle, state.hit_u[i], state.hit_v[i])
+        p, ng, ns = surface_at(geometry, triangle, state.hit_u[i], state.hit_v[i], state.time[i])
         material = geometry.material[triangle]
         mflags = materials.flags[material]
         if mflags & MAT_DISPERSIVE and not state.flags[i] & COLLAPSED:

@@ -76,7 +76,7 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
             continue
         d = (shadows.direction[j, 0], shadows.direction[j, 1], shadows.direction[j, 2])
         u, v = float(hit_u[j]), float(hit_v[j])
-        p, ng, ns = surface_at(geometry, triangle, u, v)
+        p, ng, ns = surface_at(geometry, triangle, u, v, state.time[i])
         if mflags & MAT_MEDIUM:  # a volume's boundary: the ray enters (against ng) or leaves its medium
             medium = materials.medium[material] if d[0] * ng[0] + d[1] * ng[1] + d[2] * ng[2] < 0.0 else -1
         if mflags & MAT_NULL:

@@ -29,7 +29,7 @@ def _rays(n, seed=11):
 
 
 def _queue(origin, direction, tmax):
-    return RayQueue(np.arange(len(origin), dtype=np.int32), origin, direction, tmax)
+    return RayQueue(np.arange(len(origin), dtype=np.int32), origin, direction, tmax, np.full(len(origin), 0.5))
 
 
 def _hits(n):
@@ -110,12 +110,12 @@ def test_time_steps_interpolate_linearly_by_ray_time():
     from numba import njit
 
     @njit
-    def at(handle, words, ids, time):
-        return closest_hit(handle, words, ids, 0.1, 0.2, 2.0, 0.0, 0.0, -1.0, np.float32(np.inf), time)
+    def at(caster, time):
+        return closest_hit(caster, 0.1, 0.2, 2.0, 0.0, 0.0, -1.0, np.float32(np.inf), time)
 
-    words, ids = new_ray_hit_record()
+    caster = RayCaster(scene.handle, *new_ray_hit_record())
     for time in (0.0, 0.25, 1.0):
-        triangle, t, _, _ = at(scene.handle, words, ids, np.float32(time))
+        triangle, t, _, _ = at(caster, np.float32(time))
         assert triangle in (0, 1) and t == pytest.approx(2.0 - time, abs=1e-6)
 
 

@@ -1,0 +1,126 @@
+"""Motion blur against its closed form: an emitting square moving sideways at constant speed during the
+shutter, seen by an orthographic camera over a black world, smears into the box convolution of its
+sharp profile (linear ramps of width speed × shutter) and keeps its energy; a still square seen by a
+camera moving the other way gives the same smear; a still scene renders bit for bit as without motion."""
+
+import numpy as np
+import pytest
+
+from engine.tracer.motion import Motion, shutter_times
+from engine.tracer.renderer import Renderer
+from engine.tracer.scene import Camera, Material, SpectrumSpec
+from engine.tracer.spectra.rgb_to_spectrum import white_rgb
+
+from .tracer_scenes import look_at, make_scene, quad, settings
+
+WIDTH_M, PIXELS = 4.0, 64  # the orthographic view: 4 m over 64 px, 1/16 m a pixel
+SIDE_M = 1.0  # the square's side
+TRAVEL_M = 0.5  # how far it moves while the shutter is open (speed × shutter)
+STEPS = 3  # Cycles' default: open, middle, close
+
+
+def _camera(x=0.0):
+    return Camera("cam", look_at((x, 0.0, 5.0), (x, 0.0, 0.0), up=(0, 1, 0)), (PIXELS, PIXELS),
+                  projection="orthographic", ortho_width_m=WIDTH_M, ortho_height_m=WIDTH_M,
+                  clip_start_m=0.1, clip_end_m=100.0)
+
+
+def _square_scene(camera):
+    square = quad((0.0, 0.0, 0.0), (SIDE_M / 2, 0, 0), (0, SIDE_M / 2, 0))
+    glow = Material("glow", base_color=(0.0, 0.0, 0.0), emission=SpectrumSpec(), emission_strength=1.0)
+    return make_scene([(*square, 0)], [glow], camera)
+
+
+def _steps(start_m, end_m, count=STEPS):
+    return np.linspace(start_m, end_m, count)
+
+
+def _render(scene, samples=64):
+    r = Renderer(scene, settings(samples=samples, samples_per_pass=samples, max_bounces=1))
+    r.render_pass()
+    return r.image_rgb().astype(np.float64)[..., 1] / white_rgb()[1]  # green: radiance 1 reads 1
+
+
+def _box_profile(shift_m, travel_m):
+    """The closed form per pixel column: the square's indicator [-side/2, side/2] + ``shift_m`` convolved
+    with a box of width ``travel_m`` (uniform motion over the shutter), averaged over each pixel."""
+    edges = (np.arange(PIXELS + 1) / PIXELS - 0.5) * WIDTH_M
+    fine = (np.arange(400) + 0.5) / 400  # midpoints: the pixel average as a mean
+    x = edges[:-1, None] + np.diff(edges)[:, None] * fine[None, :]
+
+    def covered(a):  # length of [a - travel, a] inside the square, over travel: the box convolution
+        lo, hi = -SIDE_M / 2 + shift_m, SIDE_M / 2 + shift_m
+        if travel_m == 0.0:
+            return ((a >= lo) & (a <= hi)).astype(float)
+        return np.clip(np.minimum(a, hi) - np.maximum(a - travel_m, lo), 0.0, None) / travel_m
+
+    return covered(x + travel_m / 2).mean(axis=1)
+
+
+def _middle_rows(image):
+    rows = slice(PIXELS // 2 - 6, PIXELS // 2 + 6)  # well inside the square's height (16 px)
+    return image[rows].mean(axis=0)
+
+
+def _moving_square_scene(travel_m):
+    scene = _square_scene(_camera())
+    scene.camera.shutter_times = shutter_times([1.0, 1.0])
+    scene.motion = Motion(np.stack([scene.vertices + [dx, 0.0, 0.0] for dx in _steps(-travel_m / 2, travel_m / 2)]))
+    return scene
+
+
+def test_a_moving_square_smears_into_the_box_convolution_and_keeps_its_energy():
+    sharp = _render(_square_scene(_camera()))
+    blurred = _render(_moving_square_scene(TRAVEL_M))
+    expected = _box_profile(0.0, TRAVEL_M)
+    profile = _middle_rows(blurred)
+    # the ramps: linear over TRAVEL_M (8 px), the plateau 1, nothing beyond side + travel
+    assert np.abs(profile - expected).max() < 0.03, np.round(np.c_[profile, expected][20:44], 3)
+    ramp = profile[(expected > 0.1) & (expected < 0.9)]
+    assert len(ramp) >= 2 * (TRAVEL_M / WIDTH_M * PIXELS) - 4  # two ramps, each ~travel wide
+    width_px = np.sum(profile > 0.01)  # smear extent: side + travel
+    assert abs(width_px - (SIDE_M + TRAVEL_M) / WIDTH_M * PIXELS) <= 1
+    # energy: the blurred image holds the sharp one's light (and the closed form: side² × radiance 1)
+    energy_sharp, energy_blurred = sharp.sum(), blurred.sum()
+    pixel_area = (WIDTH_M / PIXELS) ** 2
+    assert energy_blurred / energy_sharp == pytest.approx(1.0, abs=0.01)
+    assert energy_sharp * pixel_area == pytest.approx(SIDE_M ** 2, rel=0.01)
+
+
+def test_a_moving_camera_smears_a_still_square_the_same_way():
+    scene = _square_scene(_camera())
+    scene.camera.shutter_times = shutter_times([1.0, 1.0])
+    # the camera moves +x by TRAVEL_M: the square moves -x in the image, the same box convolution
+    scene.camera.motion_to_world = np.stack([look_at((dx, 0.0, 5.0), (dx, 0.0, 0.0), up=(0, 1, 0))
+                                             for dx in _steps(-TRAVEL_M / 2, TRAVEL_M / 2)])
+    profile = _middle_rows(_render(scene))
+    expected = _box_profile(0.0, TRAVEL_M)
+    assert np.abs(profile - expected).max() < 0.03, np.round(np.c_[profile, expected][20:44], 3)
+
+
+def test_a_shutter_curve_weights_the_ray_time():
+    # openness rising linearly from 0 to 1: τ has density 2τ, so the square (moving +x) leaves a brighter
+    # trail where it ends: the profile is the box convolution with that density
+    scene = _moving_square_scene(TRAVEL_M)
+    scene.camera.shutter_times = shutter_times(np.linspace(0.0, 1.0, 33))
+    profile = _middle_rows(_render(scene))
+    edges = (np.arange(PIXELS + 1) / PIXELS - 0.5) * WIDTH_M
+    centres = 0.5 * (edges[1:] + edges[:-1])
+    tau = (np.arange(2000) + 0.5) / 2000
+    density = 2.0 * tau
+    fine = (np.arange(40) + 0.5) / 40
+    x = edges[:-1, None] + np.diff(edges)[:, None] * fine[None, :]
+    position = -TRAVEL_M / 2 + TRAVEL_M * tau  # the square's centre at τ
+    inside = np.abs(x[..., None] - position) <= SIDE_M / 2
+    expected = (inside * density).mean(axis=(1, 2)) * 1.0  # E over τ (density mean 1) and over the pixel
+    assert np.abs(profile - expected).max() < 0.04, np.round(np.c_[centres, profile, expected][20:44], 3)
+    # 0.59 m right of centre the square passes for τ > 0.69 (weight 0.53), as far left for τ < 0.31 (0.10)
+    assert profile[PIXELS // 2 + 9] > 0.4 > 0.2 > profile[PIXELS // 2 - 10]
+
+
+def test_a_still_scene_is_unchanged_by_motion_blur_being_on():
+    still = _render(_square_scene(_camera()), samples=16)
+    scene = _square_scene(_camera())
+    scene.camera.shutter_times = shutter_times([1.0, 1.0])
+    scene.motion = Motion(np.stack([scene.vertices] * STEPS))  # nothing moves
+    assert np.array_equal(_render(scene, samples=16), still)
