@@ -16,6 +16,7 @@ from .data_passes import export_data_passes
 from .lights import export_lights
 from .meshes import export_meshes
 from .missing_libraries import missing_libraries
+from .motion import export_motion
 from .unrendered_settings import unrendered_setting_warnings
 from .world import export_world
 from .zero_area import zero_area_objects, zero_area_sentence
@@ -72,8 +73,12 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
         )
 
 
-def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
+def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None) -> Scene:
     """Build the tracer scene from an evaluated depsgraph.
+
+    With Render ▸ Motion Blur on, the scene is evaluated again at the shutter's times through
+    ``frame_set(frame, subframe)`` (a render passes its engine's, which re-evaluates ``depsgraph``; default:
+    the scene's own ``frame_set``) and set back to its frame afterwards (``motion``).
 
     Raises ``PrismInputError`` (naming the object and the fix) for scenes that
     cannot render: no camera, unsupported camera, NaN geometry, unknown glass, ...
@@ -103,6 +108,9 @@ def export_scene(depsgraph, warnings: list[str] | None = None) -> Scene:
     )
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.data_passes = export_data_passes(scene, geometry)
+    export_motion(scene, depsgraph, tracer_scene, frame_set or (lambda f, s: scene.frame_set(f, subframe=s)),
+                  lambda evaluated: export_meshes(evaluated, None, camera_position=camera.camera_to_world[:3, 3]),
+                  warnings if warnings is not None else [])
     tracer_scene.validate()
     if warnings is not None:
         from .camera_in_medium import camera_in_medium_warnings

@@ -6,15 +6,6 @@ from __future__ import annotations
 from .light_path_tricks import light_path_trick_warnings
 
 
-def motion_blur_warning(scene) -> str | None:
-    """The warning for Render Properties ▸ Motion Blur turned on, else None."""
-    if not scene.render.use_motion_blur:
-        return None
-    return (f"Scene '{scene.name}': Render Properties ▸ Motion Blur is on, but Prism has no motion blur yet: the "
-            f"image is rendered without motion blur, everything sharp where it stands at frame "
-            f"{scene.frame_current + scene.frame_subframe:g}.")
-
-
 def surfaces_filter_warning(view_layer) -> str | None:
     """The warning for View Layer ▸ Filter ▸ Surfaces turned off (Cycles then renders no surface at all,
     leaving the world), else None."""
@@ -39,6 +30,11 @@ def unrendered_pass_warnings(view_layer) -> list[str]:
 
 
 def unrendered_setting_warnings(scene, view_layer=None) -> list[str]:
-    """One warning per render setting of ``scene`` (and of the rendered ``view_layer``) that Prism leaves out."""
-    return [message for message in (motion_blur_warning(scene), surfaces_filter_warning(view_layer)) if message] + (
-        light_path_trick_warnings(scene) + unrendered_pass_warnings(view_layer))
+    """One warning per render setting of ``scene`` (and of the rendered ``view_layer``) that Prism leaves out
+    (motion blur's own: ``motion.motion_setting_warnings``)."""
+    from .motion import motion_setting_warnings
+
+    prism = getattr(scene, "prism", None)
+    return [message for message in [surfaces_filter_warning(view_layer)] if message] + (
+        light_path_trick_warnings(scene) + unrendered_pass_warnings(view_layer)) + motion_setting_warnings(
+        scene, getattr(prism, "light_tracing", "AUTO"))

@@ -106,7 +106,8 @@ class RenderSession:
             self._print(f"Prism: {compiling}")
         engine.update_stats("", f"Prism | Exporting scene{notice}")
         warnings: list[str] = []
-        tracer_scene = export_scene(self.depsgraph, warnings)
+        # motion blur evaluates the shutter's times through the engine: the user's frame is left alone
+        tracer_scene = export_scene(self.depsgraph, warnings, frame_set=lambda f, s: engine.frame_set(f, subframe=s))
         width, height = tracer_scene.camera.resolution
         border = render_border(scene, width, height)
         view_layer = self.depsgraph.view_layer
