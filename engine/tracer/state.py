@@ -102,8 +102,9 @@ def new_path_state(n: int, k: int) -> PathState:
 
 def new_ray_queue(n: int, time=None) -> RayQueue:
     """A queue of ``n`` rays; ``time`` the paths' ray times (``PathState.time``; default 0.5 for each)."""
-    return RayQueue(np.empty(n, np.int32), np.empty((n, 3), np.float32), np.empty((n, 3), np.float32),
-                    np.empty(n, np.float32), np.full(n, 0.5) if time is None else time)
+    # paths zeroed: a query reads its ray's time through ``path``, so no index may point outside ``time``
+    return RayQueue(np.zeros(n, np.int32), np.empty((n, 3), np.float32), np.empty((n, 3), np.float32),
+                    np.empty(n, np.float32), np.full(max(n, 1), 0.5) if time is None else time)
 
 
 def new_shadow_queue(n: int, k: int, time=None) -> ShadowQueue:

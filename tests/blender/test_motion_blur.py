@@ -42,9 +42,7 @@ def _moving_card_scene(scene):
     for frame, x in ((0, -SPEED_M_PER_FRAME), (2, SPEED_M_PER_FRAME)):  # x = 0 at frame 1
         card.location = (x, 0.0, 0.0)
         card.keyframe_insert("location", frame=frame)
-    for curve in card.animation_data.action.fcurves:
-        for key in curve.keyframe_points:
-            key.interpolation = "LINEAR"
+    _linear_keys(card)
     camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
     camera.location = (0.0, 0.0, 5.0)
     camera.data.type = "ORTHO"
@@ -102,6 +100,52 @@ def test_the_smear_matches_cycles_in_absolute_light(fresh_scene):
     assert energy == pytest.approx(1.0, abs=0.02)
     assert difference < 0.05, np.round(np.c_[_profile(prism), _profile(cycles)][10:38], 3)
     assert _profile(cycles).max() > 0.95  # Cycles blurred it too (a plateau of 1 and ramps)
+
+
+def _linear_keys(datablock):
+    for curve in datablock.animation_data.action.fcurves:
+        for key in curve.keyframe_points:
+            key.interpolation = "LINEAR"
+
+
+def _camera_moves_instead(scene, card):
+    """The card stands at x = 0; the camera flies at the card's speed the other way (the same smear)."""
+    card.animation_data_clear()
+    card.location = (0.0, 0.0, 0.0)
+    camera = scene.camera
+    for frame, x in ((0, SPEED_M_PER_FRAME), (2, -SPEED_M_PER_FRAME)):
+        camera.location = (x, 0.0, 5.0)
+        camera.keyframe_insert("location", frame=frame)
+    _linear_keys(camera)
+
+
+def _card_deforms_instead(scene, card):
+    """The card's object stands still; a shape key carries its vertices across (deformation motion)."""
+    card.animation_data_clear()
+    card.location = (0.0, 0.0, 0.0)
+    card.shape_key_add(name="Basis")
+    slide = card.shape_key_add(name="Slide")
+    for point, base in zip(slide.data, card.data.shape_keys.key_blocks["Basis"].data):
+        point.co = (base.co[0] + SPEED_M_PER_FRAME, base.co[1], base.co[2])
+    for point in card.data.shape_keys.key_blocks["Basis"].data:
+        point.co = (point.co[0] - SPEED_M_PER_FRAME, point.co[1], point.co[2])
+    for frame, value in ((0, 0.0), (2, 1.0)):
+        slide.value = value
+        slide.keyframe_insert("value", frame=frame)
+    _linear_keys(card.data.shape_keys)
+
+
+@pytest.mark.parametrize("motion", [_camera_moves_instead, _card_deforms_instead])
+def test_camera_motion_and_deformation_smear_as_the_moving_card_and_as_cycles(fresh_scene, motion):
+    card = _moving_card_scene(fresh_scene)
+    motion(fresh_scene, card)
+    fresh_scene.frame_set(1)
+    prism = render_prism_rgba(fresh_scene, 32, seed=1)[..., :3].astype(np.float64)
+    cycles = render_cycles_rgba(fresh_scene, 32, seed=1, max_bounces=1)[..., :3].astype(np.float64)
+    expected = _box_profile(0.0)
+    assert np.abs(_profile(prism) - expected).max() < 0.05, np.round(np.c_[_profile(prism), expected][10:38], 3)
+    assert prism.sum() / cycles.sum() == pytest.approx(1.0, abs=0.02)
+    assert np.abs(_profile(prism) - _profile(cycles)).max() < 0.05
 
 
 def _save_side_by_side(prism, cycles, path, energy, difference):

@@ -8,8 +8,8 @@ bounce loop runs in one compiled call (the issue "Every core of an artist's work
 - ``library``: finding and loading the library, its C signatures, and the symbols kernels link to.
 - ``layout``: ``RTCRayHit`` / ``RTCRay`` as Embree 4 lays them out, declared once.
 - ``device``: an Embree device and its errors (``EmbreeError``).
-- ``scene``: a scene of triangle geometry over shared camera-relative float32 buffers (time steps ready
-  for motion blur).
+- ``scene``: a scene of triangle geometry over shared camera-relative float32 buffers (vertex time
+  steps for motion blur's moving triangles).
 - ``queries``: per-ray compiled functions (closest hit, occlusion) and whole-queue kernels.
 
 embreex's Python API stays the oracle the tests compare this layer with (same hits, same primitive ids).
