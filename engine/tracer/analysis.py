@@ -44,6 +44,7 @@ class SceneAnalysis:
     sampler: str = "sobol"
     light_tracing: bool = False
     light_tracing_note: str = ""  # what the stats line says about light tracing
+    motion_note: str = ""  # motion blur: what moves, in how many time steps
 
     def strategy(self, use_mis: bool, pixel_filter: str) -> str:
         """One line for the render stats."""
@@ -73,6 +74,8 @@ class SceneAnalysis:
         parts.append(f"{self.sampler} sampler")
         if self.camera_strategy:
             parts.append(self.camera_strategy)
+        if self.motion_note:
+            parts.append(self.motion_note)
         if self.light_tracing_note:
             parts.append(self.light_tracing_note)
         return " | ".join(parts)
@@ -132,6 +135,7 @@ def analyse_scene(scene, settings, used, material_table, light_table, camera, ge
     if specular or films:
         targets = build_caustic_targets(geometry, flags, MAT_DELTA, triangle_objects)
         small = small_lights(lights.rows[:len(light_table.names)], light_table.names, lights.mesh, targets)
+    a.motion_note = _motion_note(camera, geometry)
     only = _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes)
     if not only and (material_table.arrays.medium >= 0).any():
         only = "media"  # light paths do not track media
@@ -139,6 +143,19 @@ def analyse_scene(scene, settings, used, material_table, light_table, camera, ge
         settings.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
         any(kind != "world" for kind in light_table.kinds), only)
     return a, targets
+
+
+def _motion_note(camera, geometry) -> str:
+    """The stats line's words on motion blur ("" for a still image)."""
+    if camera.data.shutter_times.shape[0] == 0:
+        return ""
+    from .accel import moving_triangles
+
+    moving = moving_triangles(geometry)
+    what = [f"{int(moving.sum())} moving triangles x{geometry.motion.shape[0]} steps"] if moving is not None else []
+    if camera.data.poses.shape[0]:
+        what.append("moving camera")
+    return "motion blur (" + (", ".join(what) or "nothing moves") + ")"
 
 
 def _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes) -> str:

@@ -35,8 +35,9 @@ def _steps(start_m, end_m, count=STEPS):
     return np.linspace(start_m, end_m, count)
 
 
-def _render(scene, samples=64):
+def _render(scene, samples=64, says=""):
     r = Renderer(scene, settings(samples=samples, samples_per_pass=samples, max_bounces=1))
+    assert says in r.tables.strategy  # the render stats name what motion blur does
     r.render_pass()
     return r.image_rgb().astype(np.float64)[..., 1] / white_rgb()[1]  # green: radiance 1 reads 1
 
@@ -71,7 +72,7 @@ def _moving_square_scene(travel_m):
 
 def test_a_moving_square_smears_into_the_box_convolution_and_keeps_its_energy():
     sharp = _render(_square_scene(_camera()))
-    blurred = _render(_moving_square_scene(TRAVEL_M))
+    blurred = _render(_moving_square_scene(TRAVEL_M), says="motion blur (2 moving triangles x3 steps)")
     expected = _box_profile(0.0, TRAVEL_M)
     profile = _middle_rows(blurred)
     # the ramps: linear over TRAVEL_M (8 px), the plateau 1, nothing beyond side + travel
@@ -93,7 +94,7 @@ def test_a_moving_camera_smears_a_still_square_the_same_way():
     # the camera moves +x by TRAVEL_M: the square moves -x in the image, the same box convolution
     scene.camera.motion_to_world = np.stack([look_at((dx, 0.0, 5.0), (dx, 0.0, 0.0), up=(0, 1, 0))
                                              for dx in _steps(-TRAVEL_M / 2, TRAVEL_M / 2)])
-    profile = _middle_rows(_render(scene))
+    profile = _middle_rows(_render(scene, says="motion blur (moving camera)"))
     expected = _box_profile(0.0, TRAVEL_M)
     assert np.abs(profile - expected).max() < 0.03, np.round(np.c_[profile, expected][20:44], 3)
 
@@ -123,4 +124,4 @@ def test_a_still_scene_is_unchanged_by_motion_blur_being_on():
     scene = _square_scene(_camera())
     scene.camera.shutter_times = shutter_times([1.0, 1.0])
     scene.motion = Motion(np.stack([scene.vertices] * STEPS))  # nothing moves
-    assert np.array_equal(_render(scene, samples=16), still)
+    assert np.array_equal(_render(scene, samples=16, says="motion blur (nothing moves)"), still)
