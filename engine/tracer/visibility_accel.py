@@ -29,7 +29,8 @@ class _Subset:
         self.ids = np.flatnonzero(chosen).astype(np.int32)
         sub = Geometry(geometry.vertices, np.ascontiguousarray(geometry.triangles[self.ids]),
                        geometry.material[self.ids], geometry.normals[:0], geometry.attributes,
-                       geometry.flags[self.ids], geometry.motion, geometry.motion_normals[:, self.ids])
+                       geometry.flags[self.ids], geometry.motion,
+                       geometry.motion_normals[:, self.ids] if len(geometry.motion_normals) else geometry.motion_normals)
         self.accel = Accel(sub)
 
     def _map(self, hit):
