@@ -1,6 +1,12 @@
-"""Scenes without media render bit for bit as before media existed: the image hashes below were recorded
-on ``main`` at 48b8d14 (before this code) by ``python -m tests.tracer.media.no_media_scene``; and such a
-scene's tables say there are no media, so the kernels never enter the media code."""
+"""Scenes without media render bit for bit as if media did not exist: the kernels' media code, switched on
+for a scene that has no medium, changes no bit of its image; and such a scene's tables leave it switched off,
+so the kernels never enter it.
+
+History: the image hashes of this scene recorded on ``main`` before media existed (48b8d14) still held when
+media were merged (25abc54). Motion blur's merge (aba9130) restructured ``geometry.surface_at`` and the
+camera ray and changed the last float32 place of about 10 % of the values (means equal to 17 digits), so
+a recorded hash stopped being a test of media; the comparison below is independent of such changes.
+"""
 
 import pytest
 
@@ -9,15 +15,10 @@ from engine.tracer.renderer import Renderer
 from ..tracer_scenes import settings
 from .no_media_scene import image_hash, no_media_scene
 
-RECORDED_ON_MAIN = {
-    "cie": "c17141cf3a816efe304b26cc995bf62eeb24f60e635126e6e5688a81ba4f736a",
-    "gaussian_rgb": "bac103dd774ce310600518f95326365adf3206564b2eff5e8df3f0c95542c0e7",
-}
-
 
 @pytest.mark.parametrize("mode", ["cie", "gaussian_rgb"])
-def test_scene_without_media_renders_bit_for_bit_as_on_main(mode):
-    assert image_hash(mode) == RECORDED_ON_MAIN[mode]
+def test_the_media_code_changes_no_bit_of_a_scene_without_media(mode):
+    assert image_hash(mode, media_code=True) == image_hash(mode)
 
 
 def test_scene_without_media_takes_the_media_free_path():
