@@ -14,7 +14,7 @@ from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA
 from ..stages.nee import FAR, SHADOW_SHORTEN
-from ..stages.queue import push_ray
+from ..stages.queue import push_ray, queue_shadow
 from ..stages.roulette import survives
 from ..warps import power_heuristic
 from .phase import hg_sample, hg_value
@@ -41,20 +41,9 @@ def _light_through_medium(state, i, p, d_in, g, lights, materials, spectra, geom
         contribution[k] = state.throughput[i, k] * li[k] * scale
         any_light = any_light or contribution[k] > 0.0
     distance = dist * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
-    if not (any_light and math.isfinite(wi[0]) and math.isfinite(wi[1]) and math.isfinite(wi[2]) and distance > 0.0):
+    if not any_light:
         return 0
-    rays = shadows.rays
-    for c in range(3):
-        rays.origin[slot, c] = p[c]
-        rays.direction[slot, c] = wi[c]
-        shadows.origin[slot, c] = p[c]
-        shadows.direction[slot, c] = wi[c]
-    rays.tmax[slot] = distance
-    shadows.distance[slot] = distance
-    shadows.group[slot] = group
-    shadows.medium[slot] = state.medium[i]
-    rays.path[slot] = i
-    return 1
+    return queue_shadow(shadows, slot, i, p, wi, distance, group, state.medium[i])
 
 
 @inlined

@@ -19,6 +19,7 @@ from ..vec3 import to_local
 from ..warps import power_heuristic
 from .clamp import clamp_factor
 from .pass_writes import lobe_shares
+from .queue import queue_shadow
 
 SHADOW_SHORTEN = 1e-4  # shadow rays stop this fraction short of the light sample
 FAR = 1e30  # tmax of shadow rays toward distant lights (float32-representable)
@@ -63,22 +64,10 @@ def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, cou
         factor = clamp_factor(settings, state, i, contribution, depth > 0)
         for k in range(li.shape[0]):
             contribution[k] *= factor
-    origin = offset_origin(p, ng, wi)
     distance = dist * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
-    if not (math.isfinite(origin[0]) and math.isfinite(origin[1]) and math.isfinite(origin[2])
-            and math.isfinite(wi[0]) and math.isfinite(wi[1]) and math.isfinite(wi[2]) and distance > 0.0):
+    # the medium: the path's; the shading stage corrects it where the surface bounds a medium
+    if not queue_shadow(shadows, slot, i, offset_origin(p, ng, wi), wi, distance, group, state.medium[i]):
         return 0
-    rays = shadows.rays
-    for c in range(3):
-        rays.origin[slot, c] = origin[c]
-        rays.direction[slot, c] = wi[c]
-        shadows.origin[slot, c] = origin[c]
-        shadows.direction[slot, c] = wi[c]
-    rays.tmax[slot] = distance
-    shadows.distance[slot] = distance
-    shadows.group[slot] = group
-    shadows.medium[slot] = state.medium[i]  # the shading stage corrects it where the surface bounds a medium
-    rays.path[slot] = i
     if depth == 0 and layout.light >= 0:
         lobe_shares(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, scratch[0],
                     passes.split[i, 0])

@@ -1,4 +1,4 @@
-"""Writing a path's next ray into a queue (the only place rays enter a queue)."""
+"""Writing a path's next ray, or a light sample's shadow ray, into a queue (the only places rays enter one)."""
 
 from __future__ import annotations
 
@@ -19,5 +19,28 @@ def push_ray(state, rays, slot, i, origin, direction):
         state.direction[i, c] = direction[c]
         rays.origin[slot, c] = origin[c]
         rays.direction[slot, c] = direction[c]
+    rays.path[slot] = i
+    return 1
+
+
+@inlined
+def queue_shadow(shadows, slot, i, origin, direction, distance, group, medium):
+    """Queue path ``i``'s shadow ray from ``origin`` along ``direction`` over ``distance`` toward light group
+    ``group`` at ``slot`` of ``shadows``, in ``medium`` (-1: none); returns 1, or 0 (nothing queued) when the
+    ray is not finite or has no length. Its contribution is written by the caller."""
+    if not (math.isfinite(origin[0]) and math.isfinite(origin[1]) and math.isfinite(origin[2])
+            and math.isfinite(direction[0]) and math.isfinite(direction[1]) and math.isfinite(direction[2])
+            and distance > 0.0):
+        return 0
+    rays = shadows.rays
+    for c in range(3):
+        rays.origin[slot, c] = origin[c]
+        rays.direction[slot, c] = direction[c]
+        shadows.origin[slot, c] = origin[c]
+        shadows.direction[slot, c] = direction[c]
+    rays.tmax[slot] = distance
+    shadows.distance[slot] = distance
+    shadows.group[slot] = group
+    shadows.medium[slot] = medium
     rays.path[slot] = i
     return 1
