@@ -8,11 +8,17 @@ from ..jit import inlined
 
 
 @inlined
+def _finite(origin, direction):
+    """Whether a ray is finite: Embree must never see one that is not."""
+    return (math.isfinite(origin[0]) and math.isfinite(origin[1]) and math.isfinite(origin[2])
+            and math.isfinite(direction[0]) and math.isfinite(direction[1]) and math.isfinite(direction[2]))
+
+
+@inlined
 def push_ray(state, rays, slot, i, origin, direction):
     """Make (origin, direction) path ``i``'s ray and queue it at ``slot``; returns 1, or 0 (nothing queued,
     the path ends) when the ray is not finite: Embree must never see such rays."""
-    if not (math.isfinite(origin[0]) and math.isfinite(origin[1]) and math.isfinite(origin[2])
-            and math.isfinite(direction[0]) and math.isfinite(direction[1]) and math.isfinite(direction[2])):
+    if not _finite(origin, direction):
         return 0
     for c in range(3):
         state.origin[i, c] = origin[c]
@@ -28,9 +34,7 @@ def queue_shadow(shadows, slot, i, origin, direction, distance, group, medium):
     """Queue path ``i``'s shadow ray from ``origin`` along ``direction`` over ``distance`` toward light group
     ``group`` at ``slot`` of ``shadows``, in ``medium`` (-1: none); returns 1, or 0 (nothing queued) when the
     ray is not finite or has no length. Its contribution is written by the caller."""
-    if not (math.isfinite(origin[0]) and math.isfinite(origin[1]) and math.isfinite(origin[2])
-            and math.isfinite(direction[0]) and math.isfinite(direction[1]) and math.isfinite(direction[2])
-            and distance > 0.0):
+    if not (_finite(origin, direction) and distance > 0.0):
         return 0
     rays = shadows.rays
     for c in range(3):
