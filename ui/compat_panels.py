@@ -51,6 +51,7 @@ COMPATIBLE_PANELS = frozenset(
         "MATERIAL_PT_custom_props",
         # View layer: use for rendering, the Passes parent Prism's pass panels sit in, AOVs, light groups
         "VIEWLAYER_PT_layer",
+        "VIEWLAYER_PT_filter",  # Environment, Surfaces, Curves, Volumes, Motion Blur: each honoured as Cycles
         "VIEWLAYER_PT_layer_passes",
         "VIEWLAYER_PT_layer_passes_aov",
         "VIEWLAYER_PT_layer_passes_lightgroups",

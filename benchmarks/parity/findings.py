@@ -16,14 +16,16 @@ FINDINGS: dict[str, str] = {
   Blender's own Render Animation (Ctrl F12) was. Lights, materials and the world now share one rule
   (`engine/export/animated.py`): the evaluated copy where the data-block or its node tree is animated or
   driven, the original otherwise; the world is read from the evaluated scene.
-- **View Layer ▸ Filter ▸ Surfaces (warned).** Prism rendered every surface with the filter off (ratio
-  0.94 here only because the floor and world happen to be similar greys); Cycles renders the world alone.
-  Filtering is not a small change (Prism refuses a scene with no geometry), so the export now prints a
-  warning naming the view layer, the setting and what is rendered instead.
+- **View Layer ▸ Filter ▸ Surfaces (fixed).** Prism rendered every surface with the filter off and said so
+  in a warning; Cycles' Blender sync gives a mesh no triangles then, and renders the world alone. The
+  export now reads the layer's Filter as Cycles does (`engine/export/view_layer_filter.py`): Surfaces off
+  leaves out every mesh (and the volumes inside them), Curves off every hair curve, and the layer's Motion
+  Blur switch joins Render ▸ Motion Blur. A layer left with the world alone renders it (1.0000 of Cycles);
+  one left with a black world is refused, naming the filter. The panel is shown for Prism now.
 - Everything else matches Cycles to well within the tolerance (|ratio − 1| ≤ 0.5 %, within each scene's
   noise), including the settings issue 32 found silent before: clip range, Environment filter, soft
   falloff, linked libraries, materials without an output.
-- Not exercised: view-layer filters for hair (Strands), volumes and per-layer motion blur; Cycles' light
+- Not exercised: the Volumes filter (Prism renders no Volume objects yet, and says so); Cycles' light
   tree and Prism's light sampling are compared only through mean luminance.
 """,
     "soft_falloff": """\
@@ -31,11 +33,17 @@ This scene is the noisiest (a point light whose sphere the floor cuts: each engi
 lit disc under it is noisy): at 16 samples the ratio's seed-to-seed σ was 1.1 %, too close to the 2 %
 tolerance, so it renders 256 samples (σ ≈ 0.2 %, "Noise").""",
     "motion_blur": """\
-Prism has no motion blur yet: the ball renders sharp at frame 1 and the warning says so. The ratio is
-near 1 because blurring moves light, it does not add any.""",
+Both engines blur the ball over the half-frame shutter (`docs/motion_blur.md`); blurring moves light and
+adds none, so the ratio alone would not see a sharp ball: relMSE does, and `tests/blender/test_motion_blur.py`
+measures the smear against its closed form.""",
+    "layer_motion_blur": """\
+Render ▸ Motion Blur is on but this view layer's own switch is off: both engines render the ball sharp
+(`tests/blender/test_view_layer_filter.py` checks that no shutter is sampled).""",
     "surfaces_filter": """\
-Cycles shows the world alone (no surface is seen or casts a shadow); Prism renders the surfaces and
-prints the warning above.""",
+Every surface is left out: the world alone is seen and the bulb lights nothing.""",
+    "curves_filter": """\
+The glowing tuft of hair curves is left out (with the filter on it raises the mean by 9 %, so the ratio
+sees it).""",
     "animated_shading": """\
 Fixed: see Findings, "Animated node values in Render Animation".""",
 }

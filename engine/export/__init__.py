@@ -18,6 +18,7 @@ from .meshes import export_meshes
 from .missing_libraries import missing_libraries
 from .motion import export_motion
 from .unrendered_settings import unrendered_setting_warnings
+from .view_layer_filter import LayerFilter, layer_filter
 from .world import export_world
 from .zero_area import zero_area_objects, zero_area_sentence
 
@@ -35,15 +36,25 @@ def _emits(material) -> bool:
 
 
 def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), world_filtered_by: str = "",
-                            world_notes=()) -> None:
+                            world_notes=(), included: LayerFilter = LayerFilter()) -> None:
     """Raises when the image could only be black or empty; ``missing``: ``MissingLibrary``s, named when
     nothing is left to see; ``world_filtered_by``: the view layer whose Filter ▸ Environment is off (its
     world lights nothing), named when nothing else lights the scene; ``world_notes``: the warnings about
     the world (a link Prism ignored may be why it is black), told with the refusal since the warnings of a
-    refused render are not printed."""
+    refused render are not printed; ``included``: the view layer's Filter, whose Surfaces or Curves off
+    may leave the world alone to render (as Cycles renders it)."""
     if tracer_scene.triangle_count == 0 and missing:
         raise PrismInputError(f"Scene '{scene_name}' has no visible geometry: "
                               + "; ".join(library.sentence() for library in missing) + ".")
+    if tracer_scene.triangle_count == 0 and included.left_out():
+        if not tracer_scene.world.is_black():
+            return  # the world alone, as Cycles renders a layer whose filter leaves out every surface
+        raise PrismInputError(
+            f"Scene '{scene_name}' has nothing to render: View Layer '{included.layer_name}' ▸ Filter ▸ "
+            f"{' and '.join(included.left_out())} {'is' if len(included.left_out()) == 1 else 'are'} off, so no "
+            "geometry is rendered, and the world is black"
+            + (" (Filter ▸ Environment is off too)" if world_filtered_by else "")
+            + ": turn the filter on, or the image would be black.")
     if tracer_scene.triangle_count == 0:
         raise PrismInputError(
             f"Scene '{scene_name}' has no visible geometry: add a mesh object, or enable an object for "
@@ -118,5 +129,6 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None) -
         warnings.extend(camera_in_medium_warnings(tracer_scene))
     filtered_by = depsgraph.view_layer.name if scene.world is not None and not depsgraph.view_layer.use_sky else ""
     world_notes = [w for w in warnings or () if scene.world is not None and w.startswith(f"World '{scene.world.name}'")]
-    _check_something_to_see(scene.name, tracer_scene, missing, filtered_by, world_notes)
+    _check_something_to_see(scene.name, tracer_scene, missing, filtered_by, world_notes,
+                            layer_filter(depsgraph.view_layer))
     return tracer_scene

@@ -29,6 +29,7 @@ from .data_passes import data_pass_switches
 from .surface_attributes import SurfaceCollector
 from .texture_memory import TextureBudget
 from .unrendered import particle_hair_warnings, unrendered_type_warning
+from .view_layer_filter import layer_filter
 from .visibility import object_flags
 
 #: Types whose evaluated mesh arrives as a separate MESH instance.
@@ -119,6 +120,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     """Every rendered piece of geometry with the matrices of its instances."""
     pieces: dict[tuple, _Instances | None] = {}
     warned: set[str] = set()
+    included = layer_filter(getattr(depsgraph, "view_layer", None))  # View Layer ▸ Filter, as Cycles syncs it
 
     def warn_once(obj, messages):
         name = obj.original.name
@@ -132,7 +134,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
         kind = obj.type
         if kind == "MESH" and instance.show_particles and len(obj.particle_systems):
             warn_once(obj, particle_hair_warnings(obj))
-        if not instance.show_self or kind in _EVALUATED_AS_MESH_INSTANCE:
+        if not instance.show_self or kind in _EVALUATED_AS_MESH_INSTANCE or not included.renders(kind):
             continue
         if kind not in ("MESH", "CURVES"):
             message = unrendered_type_warning(obj)

@@ -16,14 +16,18 @@ import numpy as np
 
 from ..tracer.motion import Motion, motion_step_count, shutter_times
 from .camera import rigid_matrix
+from .view_layer_filter import layer_filter
 
 #: Where the shutter's middle lies relative to the frame, in shutter lengths (Cycles' motion position).
 _SHUTTER_CENTRE = {"START": 0.5, "CENTER": 0.0, "END": -0.5}
 _CURVE_SAMPLES = 256  # Cycles tabulates the shutter curve at 256 points (RAMP_TABLE_SIZE)
 
 
-def motion_blur_on(scene) -> bool:
-    return bool(scene.render.use_motion_blur) and float(scene.render.motion_blur_shutter) > 0.0
+def motion_blur_on(scene, view_layer=None) -> bool:
+    """Render ▸ Motion Blur on with an open shutter, and the rendered ``view_layer``'s Filter ▸ Motion Blur on
+    (Cycles needs both)."""
+    return (bool(scene.render.use_motion_blur) and float(scene.render.motion_blur_shutter) > 0.0
+            and layer_filter(view_layer).motion_blur)
 
 
 def step_frames(scene, count: int) -> np.ndarray:
@@ -69,7 +73,7 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     """Give ``tracer_scene`` (already exported at the frame) its motion blur: ``camera.shutter_times``,
     ``camera.motion_to_world`` and ``motion`` where something moves. ``frame_set(frame, subframe)``
     re-evaluates ``depsgraph``; ``export_meshes(depsgraph)`` exports its meshes as at the frame."""
-    if not motion_blur_on(scene):
+    if not motion_blur_on(scene, getattr(depsgraph, "view_layer", None)):
         return
     camera = tracer_scene.camera
     names = sorted(set(tracer_scene.object_names))
@@ -148,9 +152,9 @@ def _per_object(tracer_scene, settings, steps, corner, count, warnings) -> None:
                             "blurs only the object's transform).")
 
 
-def motion_setting_warnings(scene, light_tracing: str) -> list[str]:
+def motion_setting_warnings(scene, light_tracing: str, view_layer=None) -> list[str]:
     """Warnings for the motion blur settings Prism does not follow (rolling shutter; light tracing forced on)."""
-    if not motion_blur_on(scene):
+    if not motion_blur_on(scene, view_layer):
         return []
     found = []
     cycles = getattr(scene, "cycles", None)

@@ -6,15 +6,6 @@ from __future__ import annotations
 from .light_path_tricks import light_path_trick_warnings
 
 
-def surfaces_filter_warning(view_layer) -> str | None:
-    """The warning for View Layer ▸ Filter ▸ Surfaces turned off (Cycles then renders no surface at all,
-    leaving the world), else None."""
-    if view_layer is None or getattr(view_layer, "use_solid", True):
-        return None
-    return (f"View Layer '{view_layer.name}': Filter ▸ Surfaces is off, but Prism does not filter surfaces yet: "
-            "every surface is rendered as if it were on (Cycles renders the world alone).")
-
-
 def stereo_warning(scene) -> str | None:
     """The warning for Output ▸ Stereoscopy (multi-view) turned on, else None: Prism renders one view."""
     render = scene.render
@@ -50,6 +41,6 @@ def unrendered_setting_warnings(scene, view_layer=None) -> list[str]:
     from .motion import motion_setting_warnings
 
     prism = getattr(scene, "prism", None)
-    return [message for message in [surfaces_filter_warning(view_layer), stereo_warning(scene)] if message] + (
+    return [message for message in [stereo_warning(scene)] if message] + (
         light_path_trick_warnings(scene) + unrendered_pass_warnings(view_layer)) + motion_setting_warnings(
-        scene, getattr(prism, "light_tracing", "AUTO"))
+        scene, getattr(prism, "light_tracing", "AUTO"), view_layer)
