@@ -14,6 +14,7 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 
 from ..export import _check_something_to_see
+from ..export.view_layer_filter import layer_filter
 from ..export.lights import export_lights
 from ..export.meshes import export_meshes, read_geometry
 from ..export.missing_libraries import missing_libraries
@@ -184,6 +185,6 @@ class SceneSync:
         if scene is previous:
             return None, False
         missing = missing_libraries(depsgraph.scene) if scene.triangle_count == 0 else ()
-        _check_something_to_see(depsgraph.scene.name, scene, missing)
+        _check_something_to_see(depsgraph.scene.name, scene, missing, included=layer_filter(depsgraph.view_layer))
         self.scene = scene
         return scene, geometry_changed
