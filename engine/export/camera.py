@@ -54,11 +54,15 @@ def ortho_size_m(camera_data, width_px: float, height_px: float) -> tuple[float,
     return scale * width_px / height_px, scale
 
 
+def larger_side_factor(camera_data, width_px: float, height_px: float) -> float:
+    """Blender's shift is in units of the fitted side, the tracer's in units of the larger one: this ratio."""
+    fitted = width_px if _fits_horizontally(camera_data, width_px, height_px) else height_px
+    return fitted / max(width_px, height_px)
+
+
 def shift_in_larger_side(camera_data, width_px: float, height_px: float) -> tuple[float, float]:
-    """Blender's shift is in units of the fitted side; the tracer's in units of the larger one."""
-    horizontal = _fits_horizontally(camera_data, width_px, height_px)
-    fitted = width_px if horizontal else height_px
-    factor = fitted / max(width_px, height_px)
+    """The camera's Shift X / Y in the tracer's units (``larger_side_factor``)."""
+    factor = larger_side_factor(camera_data, width_px, height_px)
     return float(camera_data.shift_x) * factor, float(camera_data.shift_y) * factor
 
 

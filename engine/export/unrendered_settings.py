@@ -6,21 +6,6 @@ from __future__ import annotations
 from .light_path_tricks import light_path_trick_warnings
 
 
-def stereo_warning(scene) -> str | None:
-    """The warning for Output ▸ Stereoscopy (multi-view) turned on, else None: Prism renders one view."""
-    render = scene.render
-    if not render.use_multiview:
-        return None
-    views = [view.name for view in render.views if view.use] if render.views_format == "MULTIVIEW" else [
-        "left", "right"]
-    if len(views) < 2:
-        return None
-    others = ", ".join(f"'{name}'" for name in views[1:])
-    return (f"Scene '{scene.name}': Output ▸ Stereoscopy is on, but Prism renders one view: '{views[0]}' gets the "
-            f"image of the scene camera itself (no eye offset), and {others} stay{'s' if len(views) == 2 else ''} "
-            "black (Cycles renders every view).")
-
-
 #: View Layer ▸ Passes switches Prism does not render yet, with Blender's pass names.
 UNRENDERED_PASSES = (("use_pass_vector", "Vector"), ("use_pass_cryptomatte_object", "CryptoObject"),
                      ("use_pass_cryptomatte_material", "CryptoMaterial"),
@@ -41,6 +26,5 @@ def unrendered_setting_warnings(scene, view_layer=None) -> list[str]:
     from .motion import motion_setting_warnings
 
     prism = getattr(scene, "prism", None)
-    return [message for message in [stereo_warning(scene)] if message] + (
-        light_path_trick_warnings(scene) + unrendered_pass_warnings(view_layer)) + motion_setting_warnings(
+    return light_path_trick_warnings(scene) + unrendered_pass_warnings(view_layer) + motion_setting_warnings(
         scene, getattr(prism, "light_tracing", "AUTO"), view_layer)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import time
 import traceback
+from dataclasses import replace
 
 import numpy as np
 
@@ -26,6 +27,7 @@ from .fingerprint import render_fingerprint  # noqa: E402
 from .result_passes import bottom_up, denoising, enabled_passes, frame_plan, pass_request, write_passes  # noqa: E402
 from .request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
 from .stats import stats_line, timecode  # noqa: E402
+from .stereo import render_views  # noqa: E402
 from ..tracer.errors import PrismInputError  # noqa: E402
 
 
@@ -119,33 +121,45 @@ class RenderSession:
             passes=pass_request(scene, view_layer, for_render=True), spectral=spectral_path is not None,
         )
         self._apply_overrides(settings, warnings)
+        views = render_views(engine, self.depsgraph, tracer_scene.camera, warnings)
+        if len(views) > 1 and req.keep_film:
+            raise PrismInputError(f"Scene '{scene.name}': Output ▸ Stereoscopy is on, but a chunk (--chunk-seed) "
+                                  "holds one view: render stereo frames whole, or turn Stereoscopy off.")
+        if len(views) > 1 and spectral_path is not None:
+            warnings.append(f"Scene '{scene.name}': the spectral EXR holds the first view ('{views[0].name}') only; "
+                            "the other views are in the Render Result.")
         self.report.warnings = warnings
         for message in warnings if not engine.is_preview else ():  # Blender's preview scene: not the user's to fix
             self._report("WARNING", message)
-        engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
-        with Renderer(tracer_scene, settings) as renderer:
-            # The spectral film and the spectral EXR's RGB cover the whole frame: no tiles then.
-            plan = self._plan(renderer, scene, view_layer, width, height, whole=spectral_path is not None)
-            if req.sample_offset:
-                renderer.start_at_sample(req.sample_offset)
-            try:
-                self._passes(renderer, plan, border or (0, 0, width, height), warnings)
-            finally:
+        for index, view in enumerate(views):
+            engine.update_stats("", f"Prism | Preparing (BVH, spectra){notice}")
+            seen = tracer_scene if view.camera is tracer_scene.camera else replace(tracer_scene, camera=view.camera)
+            with Renderer(seen, settings) as renderer:
+                # The spectral film and the spectral EXR's RGB cover the whole frame: no tiles then.
+                plan = self._plan(renderer, scene, view_layer, width, height, whole=spectral_path is not None)
+                if req.sample_offset:
+                    renderer.start_at_sample(req.sample_offset)
+                try:
+                    self._passes(renderer, plan, border or (0, 0, width, height), warnings, view.name)
+                finally:
+                    if self.cancelled:
+                        renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
+                self._report_tracer_warnings(renderer, warnings)
                 if self.cancelled:
-                    renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
-            self._report_tracer_warnings(renderer, warnings)
-            if compiling and not self.cancelled:
-                kernel_cache.mark_compiled()
-            if spectral_path is not None and not self.cancelled:
-                self._write_spectral(renderer, spectral_path)
-            if req.keep_film and not self.cancelled:
-                self.report.film = FilmSnapshot(
-                    mean=renderer.frame_mean(),
-                    samples=renderer.samples_done - req.sample_offset,
-                    sample_offset=req.sample_offset,
-                    seed=settings.seed,
-                    fingerprint=render_fingerprint(tracer_scene, settings, scene.frame_current + scene.frame_subframe),
-                )
+                    return
+                if compiling:
+                    kernel_cache.mark_compiled()
+                if spectral_path is not None and index == 0:
+                    self._write_spectral(renderer, spectral_path)
+                if req.keep_film:
+                    self.report.film = FilmSnapshot(
+                        mean=renderer.frame_mean(),
+                        samples=renderer.samples_done - req.sample_offset,
+                        sample_offset=req.sample_offset,
+                        seed=settings.seed,
+                        fingerprint=render_fingerprint(tracer_scene, settings,
+                                                       scene.frame_current + scene.frame_subframe),
+                    )
 
     def _wait_for_warmup(self) -> bool:
         """While the kernels compile in a background warm-up (``engine.warmup``), wait for it instead of
@@ -200,8 +214,9 @@ class RenderSession:
         return frame_plan(scene, view_layer, width, height, renderer.region,
                           whole_film=whole or self.request.keep_film)
 
-    def _passes(self, renderer, plan, border, warnings) -> None:
-        """Every tile to all its samples, written to Blender's result as it finishes."""
+    def _passes(self, renderer, plan, border, warnings, view: str = "") -> None:
+        """Every tile to all its samples, written to Blender's result (its ``view``: '' unless the render is
+        stereo) as it finishes."""
         engine = self.engine
         scene = self.depsgraph.scene
         enabled = enabled_passes(scene, self.depsgraph.view_layer)
@@ -226,7 +241,7 @@ class RenderSession:
             renderer.set_region(tile, budget)
             x0, y0, x1, y1 = tile
             # Blender counts result rows from the bottom of the border.
-            result = engine.begin_result(x0 - bx0, by1 - y1, x1 - x0, y1 - y0, layer=layer)
+            result = engine.begin_result(x0 - bx0, by1 - y1, x1 - x0, y1 - y0, layer=layer, view=view)
             try:
                 self._sample(renderer, result, wanted, warnings, (index, len(tiles)))
             finally:
@@ -295,9 +310,11 @@ class RenderSession:
 
     def _report_tracer_warnings(self, renderer, exported: list[str]) -> None:
         """The tracer's own warnings (a lens, a glass used outside its range), once each, as they stand at the
-        end of the render; the status line only counts them."""
+        end of the render (of each view: ``exported`` grows, so a second view repeats none); the status line
+        only counts them."""
         found = [m for m in renderer.stats.get("warnings") or [] if m not in exported]
-        self.report.warnings = exported + found
+        exported.extend(found)
+        self.report.warnings = exported
         for message in found if not self.engine.is_preview else ():
             self._report("WARNING", message)
 

@@ -115,14 +115,3 @@ def test_pass_index_follows_each_object_and_instance(prism_addon, fresh_scene):
     assert len(index) == len(names) == 8  # A, B and two instances of C, two triangles each
     expected = {"A": 4.0, "B": 6.0, "C": 8.0}
     assert [float(v) for v in index] == [expected[n] for n in names]
-
-
-def test_stereoscopy_is_warned(prism_addon, fresh_scene):
-    import importlib
-
-    warnings = importlib.import_module(f"{prism_addon.__name__}.engine.export.unrendered_settings")
-    assert warnings.stereo_warning(fresh_scene) is None
-    fresh_scene.render.use_multiview = True
-    assert warnings.stereo_warning(fresh_scene) == (
-        "Scene 'Scene': Output ▸ Stereoscopy is on, but Prism renders one view: 'left' gets the image of the scene "
-        "camera itself (no eye offset), and 'right' stays black (Cycles renders every view).")
