@@ -31,10 +31,6 @@ def light_path_trick_warnings(scene) -> list[str]:
     """The tricks set on ``scene`` that Prism does not render as Cycles does."""
     tricks = light_path_tricks(scene)
     out = []
-    if tricks.filter_glossy > 0.0:
-        out.append(f"Scene '{scene.name}': Light Paths ▸ Filter Glossy is {tricks.filter_glossy:g}, but Prism does "
-                   "not blur glossy surfaces yet: they render unblurred after diffuse and rough bounces (as with "
-                   "Filter Glossy 0), with the noise of their caustics.")
     if not tricks.caustics_reflective and tricks.caustics_refractive:
         out.append(f"Scene '{scene.name}': Light Paths ▸ Caustics ▸ Reflective is off: Prism leaves out glossy "
                    "reflections after a diffuse bounce, as Cycles, but not the reflection of glass (Glass BSDF, "

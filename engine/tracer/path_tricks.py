@@ -9,7 +9,8 @@ Reflective / Refractive caustics toggles (``scene.cycles.sample_clamp_direct``, 
 - **Caustics toggles** (on = physical): after a diffuse reflection, the glossy reflection closures
   (Reflective off) or the refraction closures (Refractive off) of the surface hit are left out; a glass
   whose reflection and refraction are both off is left out whole (Cycles' ``svm/closure.h``).
-- **Filter Glossy** (0 = off) is read but not rendered (see ``docs/pipeline.md``).
+- **Filter Glossy** (0 = off): a microfacet lobe reached after unlikely bounces is shaded rougher, by
+  Cycles' rule (``stages.filter_glossy``).
 
 Prism's default is none of them: each biases the image, and Prism's images are meant to converge to the
 physical answer unless a scene asks otherwise.
@@ -29,7 +30,7 @@ class LightPathTricks:
     clamp_indirect: float = 0.0  # Cycles' sample_clamp_indirect (0: off)
     caustics_reflective: bool = True
     caustics_refractive: bool = True
-    filter_glossy: float = 0.0  # Cycles' blur_glossy (0: off); not rendered yet
+    filter_glossy: float = 0.0  # Cycles' blur_glossy (0: off)
 
     def validate(self) -> None:
         for name, value in (("Clamp Direct", self.clamp_direct), ("Clamp Indirect", self.clamp_indirect),
@@ -49,8 +50,8 @@ class LightPathTricks:
     @property
     def biased(self) -> bool:
         """Some trick changes which light is counted (light tracing then stays off: its caustics would
-        escape the clamps and toggles)."""
-        return self.clamping or self.caustics_filtered
+        escape the clamps, toggles and blur)."""
+        return self.clamping or self.caustics_filtered or self.filter_glossy > 0.0
 
     def kernel_limits(self) -> tuple[float, float]:
         """(direct, indirect) limits on |R| + |G| + |B| of a contribution: 3 × Cycles' value, inf when off."""

@@ -65,7 +65,8 @@ def _trick_settings(tricks) -> dict:
     direct, indirect = tricks.kernel_limits()
     return dict(clamping=tricks.clamping, clamp_direct=direct, clamp_indirect=indirect,
                 caustics_filtered=tricks.caustics_filtered, caustics_reflective=bool(tricks.caustics_reflective),
-                caustics_refractive=bool(tricks.caustics_refractive))
+                caustics_refractive=bool(tricks.caustics_refractive),
+                filter_glossy=1.0 / tricks.filter_glossy if tricks.filter_glossy > 0.0 else 0.0)
 
 
 class SceneTables:

@@ -20,7 +20,8 @@ deterministic). Embree reads the queues' float32 rays directly.
   along its ray, not a surface (``media.segment``);
 - ``medium`` int32: the medium the path's ray travels in (``MaterialArrays.media`` row, -1: none);
 - ``throughput`` and ``radiance`` float64 [n, K]; ``eta_scale`` float64 (Π eta'² of refractions, for
-  Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample);
+  Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample); ``min_pdf`` float64
+  (the smallest pdf of the path's non-specular bounces, inf before the first: Filter Glossy's measure);
 - ``origin``, ``direction`` float64 [n, 3] (the current ray, camera-relative metres),
   ``mis_origin`` float64 [n, 3] (the last vertex that was not a null film crossing: light pdfs of
   emitters hit later are measured from it);
@@ -54,7 +55,7 @@ _PATH_FIELDS = (
     ("wavelength", np.float64, ("K",)), ("wavelength_pdf", np.float64, ("K",)), ("hero", np.int32, ()),
     ("flags", np.int32, ()), ("medium", np.int32, ()),
     ("throughput", np.float64, ("K",)), ("radiance", np.float64, ("K",)),
-    ("eta_scale", np.float64, ()), ("prev_pdf", np.float64, ()),
+    ("eta_scale", np.float64, ()), ("prev_pdf", np.float64, ()), ("min_pdf", np.float64, ()),
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
     ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
     ("transparency", np.float64, ()), ("time", np.float64, ()),

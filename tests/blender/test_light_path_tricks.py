@@ -28,9 +28,13 @@ def test_cycles_defaults_are_not_applied_but_set_values_are(prism_addon, fresh_s
     assert tricks.light_path_trick_warnings(fresh_scene) == []
 
 
-def test_filter_glossy_and_reflective_only_are_warned(fresh_scene, tricks):
+def test_reflective_only_is_warned_and_filter_glossy_is_rendered(prism_addon, fresh_scene, tricks):
+    """Filter Glossy is rendered (``test_filter_glossy.py``), so it is read and not warned."""
+    settings = import_module(f"{prism_addon.__name__}.engine.export.settings")
     fresh_scene.cycles.blur_glossy = 1.0
     fresh_scene.cycles.caustics_reflective = False
     messages = tricks.light_path_trick_warnings(fresh_scene)
-    assert any(f"Scene '{fresh_scene.name}': Light Paths ▸ Filter Glossy is 1" in m for m in messages)
+    assert not any("Filter Glossy" in m for m in messages)
     assert any("Reflective is off" in m and "reflection of glass" in m for m in messages)
+    read = settings.export_settings(fresh_scene).light_path_tricks
+    assert read.filter_glossy == 1.0 and read.biased

@@ -32,8 +32,9 @@ def _render_to_rgba(scene) -> np.ndarray:
         return read_exr_rgba(path)
 
 
-def render_cycles_rgba(scene, samples: int, seed: int = 0, max_bounces: int = 8) -> np.ndarray:
-    """Cycles' scene-linear RGBA [H, W, 4] of ``scene`` (row 0 on top)."""
+def render_cycles_rgba(scene, samples: int, seed: int = 0, max_bounces: int = 8, filter_glossy: float = 0.0) -> np.ndarray:
+    """Cycles' scene-linear RGBA [H, W, 4] of ``scene`` (row 0 on top), unbiased (no clamps, caustics on) unless
+    ``filter_glossy`` is given (Light Paths ▸ Filter Glossy; it stays set on the scene, so Prism reads it too)."""
     engine = scene.render.engine
     scene.render.engine = "CYCLES"
     cycles = scene.cycles
@@ -46,7 +47,7 @@ def render_cycles_rgba(scene, samples: int, seed: int = 0, max_bounces: int = 8)
     cycles.sample_clamp_indirect = 0.0
     cycles.pixel_filter_type = "BOX"
     cycles.filter_width = 1.0
-    cycles.blur_glossy = 0.0
+    cycles.blur_glossy = filter_glossy
     cycles.caustics_reflective = cycles.caustics_refractive = True
     for name in ("max_bounces", "diffuse_bounces", "glossy_bounces", "transmission_bounces", "volume_bounces",
                  "transparent_max_bounces"):

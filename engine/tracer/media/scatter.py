@@ -66,6 +66,7 @@ def scatter_in_medium(state, i, lights, materials, spectra, geometry, settings, 
     if not (pdf > 0.0 and survives(state, i, depth, settings, state.flags[i] & COLLAPSED != 0)):
         return 0, lit
     state.prev_pdf[i] = pdf
+    state.min_pdf[i] = min(state.min_pdf[i], pdf)  # a phase sample counts for Filter Glossy, as in Cycles
     for c in range(3):
         state.mis_origin[i, c] = p[c]
     pushed = push_ray(state, next_rays, queued, i, p, d_out)

@@ -131,6 +131,7 @@ def start_path(state, i, pixel, sample, seed):
     state.transparency[i] = 0.0
     state.eta_scale[i] = 1.0
     state.prev_pdf[i] = 0.0
+    state.min_pdf[i] = math.inf  # no bounce yet: Filter Glossy leaves the first surface alone
     state.throughput[i, :] = 1.0
     state.radiance[i, :] = 0.0
     state.time[i] = 0.5

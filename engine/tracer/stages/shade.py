@@ -27,6 +27,7 @@ from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MED
 from ..vec3 import tangents, to_local, to_world
 from .caustic_split import classify_vertex
 from .caustics_toggles import filter_caustic_closures
+from .filter_glossy import blur_alpha, blur_glossy_closures
 from .nee import consistent, sample_direct
 from .pass_writes import first_bounce, first_hit, surface_features
 from .queue import push_ray
@@ -117,6 +118,9 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                                     registers, glass_clamps)
         if settings.caustics_filtered and depth > 0 and state.flags[i] & LAST_DIFFUSE:
             filter_caustic_closures(settings, rows, spectral, closures)
+        blurred = False
+        if settings.filter_glossy > 0.0:
+            blurred = blur_glossy_closures(rows, closures, blur_alpha(settings, state.min_pdf[i]))
         if backfacing and mflags & MAT_ONE_SIDED:
             n = (-n[0], -n[1], -n[2])
         tangent, bitangent = tangents(n)
@@ -124,7 +128,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         wo_l = to_local(wo, tangent, bitangent, n)
         if depth == 0 and layout.columns > 0:
             first_hit(state, passes, layout, settings, i, p, facing_ng, facing_ns, material, triangle)
-        if has_lights and not mflags & MAT_DELTA:
+        if has_lights and (not mflags & MAT_DELTA or blurred):
             lit = sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                 materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
                                 mix, passes, layout, geometry, scratch)
@@ -168,6 +172,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                 state.flags[i] |= PREV_DELTA
             else:
                 state.flags[i] &= ~PREV_DELTA
+                state.min_pdf[i] = min(state.min_pdf[i], pdf)  # Filter Glossy's measure of an unlikely path
             for c in range(3):
                 state.mis_origin[i, c] = p[c]
         if has_media and mflags & MAT_MEDIUM:
