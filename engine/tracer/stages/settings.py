@@ -13,10 +13,12 @@ from collections import namedtuple
 #: ``clamp_indirect`` (limits on |R| + |G| + |B| of one contribution, inf when off), ``caustics_filtered`` (a
 #: flag: a caustics toggle is off), ``caustics_reflective`` / ``caustics_refractive``; ``wavelengths`` the
 #: render's ``WavelengthSampling`` (a clamp measures a contribution in Rec.709); ``has_media``: some material
-#: has a volume inside (``media``): paths track their medium, and scenes without media skip that code.
+#: has a volume inside (``media``): paths track their medium, and scenes without media skip that code;
+#: ``light_linking`` / ``shadow_linking``: some emitter lights only some objects / has its shadows cast by
+#: only some objects (``light_linking``); scenes without either skip that code.
 KernelSettings = namedtuple(
     "KernelSettings",
     "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha "
     "clamping clamp_direct clamp_indirect caustics_filtered caustics_reflective caustics_refractive wavelengths "
-    "has_media",
+    "has_media light_linking shadow_linking",
 )
