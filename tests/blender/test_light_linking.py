@@ -163,3 +163,29 @@ def test_linking_export_and_no_warning(prism_addon, halves):
     assert links.object_light_sets[names.index("Panel")] == 1 << right
     assert not links.shadow_linking and links.light_linking
     assert not [w for w in warnings if "linking" in w]
+
+
+def test_child_collections_and_exclusions(prism_addon, halves):
+    """A child collection's state applies to its objects, an excluded object leaves an included child
+    collection (included minus excluded), and a collection of exclusions only shadows everything else."""
+    _, bulb, panel = halves
+    left, right = bpy.data.objects["Left"], bpy.data.objects["Right"]
+    floor = bpy.data.collections.new("Floor halves")
+    floor.objects.link(left)
+    floor.objects.link(right)
+    receivers = bpy.data.collections.new("Bulb receivers")
+    receivers.children.link(floor)
+    receivers.objects.link(right)
+    receivers.collection_objects[0].light_linking.link_state = "EXCLUDE"
+    bulb.light_linking.receiver_collection = receivers
+    panel.light_linking.receiver_collection = None
+    panel.light_linking.blocker_collection = _linked("Panel blockers", left, state="EXCLUDE")
+    export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
+    exported = export.export_scene(bpy.context.evaluated_depsgraph_get(), [])
+    links, names = exported.light_links, exported.object_names
+    lit = {n for i, n in enumerate(names) if links.light_sets["Bulb"] >> int(links.object_receiver_set[i]) & 1}
+    panel_shadows = links.object_shadow_sets[names.index("Panel")]
+    shadowing = {n for i, n in enumerate(names) if panel_shadows >> int(links.object_blocker_set[i]) & 1}
+    assert lit == {"Left"}
+    assert shadowing == {"Right", "Panel"}
+    assert links.light_linking and links.shadow_linking
