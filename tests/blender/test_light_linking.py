@@ -189,3 +189,12 @@ def test_child_collections_and_exclusions(prism_addon, halves):
     assert lit == {"Left"}
     assert shadowing == {"Right", "Panel"}
     assert links.light_linking and links.shadow_linking
+
+
+def test_viewport_warns_that_it_ignores_linking(prism_addon, halves):
+    """The rendered viewport does not apply linking: its sync says so once per linked emitter."""
+    sync_module = importlib.import_module(f"{prism_addon.__name__}.engine.viewport.scene_sync")
+    sync = sync_module.SceneSync()
+    sync.update(bpy.context.evaluated_depsgraph_get(), sync_module.Updates.everything())
+    linking = [w for w in sync.warnings if "Light Linking" in w]
+    assert len(linking) == 2 and any("'Bulb'" in w for w in linking) and any("'Panel'" in w for w in linking)
