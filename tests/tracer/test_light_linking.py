@@ -90,3 +90,24 @@ def test_unlinked_links_render_bit_for_bit():
     same, r = _render(scene)
     assert not (r.tables.kernel_settings.light_linking or r.tables.kernel_settings.shadow_linking)
     assert np.array_equal(plain, same)
+
+
+def test_light_tracing_is_off_with_linking():
+    """Light paths do not test light or shadow sets: with linking the analysis leaves caustics to path
+    tracing (which uses Cycles' receiver, the last specular vertex) and says why."""
+    from tracer.tracer_scenes import uv_sphere
+
+    scene = _two_halves(card=False)
+    ball = uv_sphere((0.0, 0.0, 0.5), 0.3, rings=8, segments=16)
+    scene.vertices = np.concatenate([scene.vertices, ball[0]])
+    scene.triangles = np.concatenate([scene.triangles, ball[1] + 8]).astype(np.int32)
+    scene.materials.append(Material("glass", kind="dielectric", glass="N-BK7"))
+    scene.triangle_material = np.concatenate([scene.triangle_material, np.full(len(ball[1]), 1, np.int32)])
+    scene.triangle_object = np.concatenate([scene.triangle_object, np.full(len(ball[1]), 2, np.int32)])
+    scene.object_names = ["Left", "Right", "Ball"]
+    with Renderer(scene, settings(light_tracing="on")) as r:
+        assert r.tables.analysis.light_tracing
+    scene.light_links = _links(3, receivers=[(LEFT, 1)], light_sets={"left": 0b10})
+    with Renderer(scene, settings(light_tracing="on")) as r:
+        assert not r.tables.analysis.light_tracing
+        assert "light linking" in r.tables.analysis.light_tracing_note
