@@ -111,3 +111,29 @@ def test_light_tracing_is_off_with_linking():
     with Renderer(scene, settings(light_tracing="on")) as r:
         assert not r.tables.analysis.light_tracing
         assert "light linking" in r.tables.analysis.light_tracing_note
+
+
+def test_linking_code_with_nothing_singled_out_changes_nothing():
+    """The linking code switched on (both flags, every emitter lighting and shadowed by set 0, every object
+    in set 0) renders bit for bit the image of the code switched off: it only gates, and shadow rays traced
+    layer by layer find what the occlusion query found."""
+    from engine.tracer.light_linking import LinkTables
+    from tracer.media.no_media_scene import no_media_scene
+
+    def render(linking_code):
+        r = Renderer(no_media_scene(), settings(samples=8, samples_per_pass=8, max_bounces=6))
+        if linking_code:
+            tables = r.tables
+            lights = tables.light_table.arrays
+            t, rows = len(tables.geometry.triangles), lights.rows.shape[0]
+            zeros, everything = np.zeros(t, np.int64), np.full(t, ALL_SETS, np.int64)
+            lights = lights._replace(links=LinkTables(zeros, zeros, everything, everything,
+                                                      np.full(rows, ALL_SETS, np.int64),
+                                                      np.full(rows, ALL_SETS, np.int64)))
+            tables.light_table.arrays = lights
+            tables.kernel_settings = tables.kernel_settings._replace(light_linking=True, shadow_linking=True)
+            tables.arrays = tables.arrays._replace(settings=tables.kernel_settings, lights=lights)
+        r.render_pass()
+        return np.asarray(r.image_rgb(), np.float64)
+
+    assert np.array_equal(render(False), render(True))
