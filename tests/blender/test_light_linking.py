@@ -148,6 +148,25 @@ def test_excluded_card_casts_no_shadow_from_the_light(prism_addon, card_under_li
     assert unlinked[1] < 0.8 * prism[1]  # unlinked, the card shades the ring
 
 
+def test_excluded_card_casts_no_shadow_from_an_emissive_panel(prism_addon, card_under_light):
+    """Shadow linking of an emissive mesh: the area light swapped for an emissive panel of the same size and
+    radiance (strength 100 / π / 0.25 m²), hidden from the camera (Ray Visibility ▸ Camera off, so Prism
+    traces each ray kind against its own scene); the card excluded from its blockers casts no shadow."""
+    scene, key = card_under_light
+    bpy.data.objects.remove(key)
+    panel = _emissive_panel("Panel", 0.5, (0.0, 0.0, 2.0), 100.0 / (math.pi * 0.25))
+    panel.visible_camera = False
+    panel.light_linking.blocker_collection = _linked("Panel blockers", bpy.data.objects["Card"], state="EXCLUDE")
+    prism, cycles = _renders(scene, _card_regions)
+    print(f"shadow linking, emissive panel: Prism {prism}, Cycles {cycles}, "
+          f"ratios {[p / c for p, c in zip(prism, cycles)]}")
+    for p, c in zip(prism, cycles):
+        assert p == pytest.approx(c, rel=0.02)
+    panel.light_linking.blocker_collection = None
+    unlinked = _card_regions(render_prism_rgba(scene, SAMPLES))
+    assert unlinked[1] < 0.8 * prism[1]
+
+
 def test_linking_export_and_no_warning(prism_addon, halves):
     """The export reads one receiver set per floor half and a one-bit mask per emitter (the bulb lights
     the left half's set only, the panel the right half's), leaves shadows unlinked, and no longer warns
