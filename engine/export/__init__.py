@@ -13,6 +13,7 @@ from ..tracer.scene import Scene
 from .border import render_border
 from .camera import export_camera, render_resolution
 from .data_passes import export_data_passes
+from .light_linking import export_light_links
 from .lights import export_lights
 from .meshes import export_meshes
 from .missing_libraries import missing_libraries
@@ -118,6 +119,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None) -
         world=export_world(depsgraph.scene_eval, warnings, depsgraph.view_layer),  # its world: evaluated
     )
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
+    tracer_scene.light_links = export_light_links(depsgraph, geometry.object_names, warnings)
     tracer_scene.data_passes = export_data_passes(scene, geometry)
     export_motion(scene, depsgraph, tracer_scene, frame_set or (lambda f, s: scene.frame_set(f, subframe=s)),
                   lambda evaluated: export_meshes(evaluated, None, camera_position=camera.camera_to_world[:3, 3]),

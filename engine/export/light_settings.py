@@ -31,9 +31,6 @@ def light_warnings(obj) -> list[str]:
     if getattr(data, "use_nodes", False) and data.node_tree is not None and len(data.node_tree.nodes) > 2:
         warnings.append(f"Light '{name}': its node tree is ignored; Prism uses the light's colour and power.")
     warnings += _collimated_area_warning(name, data)
-    linking = getattr(obj, "light_linking", None)
-    if linking is not None and (linking.receiver_collection is not None or linking.blocker_collection is not None):
-        warnings.append(f"Light '{name}': light and shadow linking are ignored; the light reaches every object.")
     return warnings
 
 

@@ -32,7 +32,9 @@ def render_fingerprint(scene, settings, frame: float) -> dict[str, str]:
     settings_fields = {
         f.name: getattr(settings, f.name) for f in dataclasses.fields(settings) if f.name not in _PER_CHUNK_SETTINGS
     }
-    values = (geometry, scene.materials, scene.lights, scene.camera, scene.world, settings_fields)
+    links = getattr(scene, "light_links", None)  # light and shadow linking count with the lights
+    lights = scene.lights if links is None else (scene.lights, links)
+    values = (geometry, scene.materials, lights, scene.camera, scene.world, settings_fields)
     return {"frame": frame_label(frame), **{part: _digest(value) for part, value in zip(PARTS[1:], values)}}
 
 

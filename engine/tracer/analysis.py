@@ -139,6 +139,8 @@ def analyse_scene(scene, settings, used, material_table, light_table, camera, ge
     only = _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes)
     if not only and (material_table.arrays.medium >= 0).any():
         only = "media"  # light paths do not track media
+    if not only and len(lights.links.receiver_set):
+        only = "light linking"  # light paths do not test light or shadow sets; path tracing honours them
     a.light_tracing, a.light_tracing_note = choose_light_tracing(
         settings.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
         any(kind != "world" for kind in light_table.kinds), only)

@@ -256,7 +256,8 @@ class Scene:
     uint8 [objects] (parallel to ``object_names``: ``visibility.RAY_*`` and ``HOLDOUT`` bits; None: every
     object seen by every ray, no holdout). ``data_passes``: what the Mist, UV, Index and AO passes read.
     ``motion`` (``motion.Motion``): the vertices at the shutter's time steps when motion blur is on and
-    something moves or deforms, else None.
+    something moves or deforms, else None. ``light_links`` (``light_linking.LightLinks``): Blender's light
+    and shadow linking, per object and per light, or None.
     """
 
     vertices: np.ndarray
@@ -274,6 +275,7 @@ class Scene:
     surface: SurfaceAttributes | None = None
     data_passes: DataPassInputs = field(default_factory=DataPassInputs)
     motion: object = None  # motion.Motion
+    light_links: object = None  # light_linking.LightLinks: light and shadow linking (None: none)
 
     @property
     def triangle_count(self) -> int:

@@ -69,6 +69,21 @@ def _trick_settings(tricks) -> dict:
                 filter_glossy=1.0 / tricks.filter_glossy if tricks.filter_glossy > 0.0 else 0.0)
 
 
+def _linking_settings(lights) -> dict:
+    """The ``KernelSettings`` flags of light and shadow linking (``light_linking``): on only where some
+    emitter of the render (a light row, an emissive triangle) is linked."""
+    from .light_linking import ALL_SETS
+
+    links = lights.links
+    if not len(links.receiver_set):
+        return dict(light_linking=False, shadow_linking=False)
+    emitting = lights.mesh.triangle
+    light = bool((links.row_light_sets != ALL_SETS).any() or (links.triangle_light_sets[emitting] != ALL_SETS).any())
+    shadow = bool((links.row_shadow_sets != ALL_SETS).any()
+                  or (links.triangle_shadow_sets[emitting] != ALL_SETS).any())
+    return dict(light_linking=light, shadow_linking=shadow)
+
+
 class SceneTables:
     """The tables of ``scene`` rendered with ``settings`` from ``camera`` (a ``cameras`` camera, whose
     ``origin`` the positions are relative to). Rebuild them only while no pass runs."""
@@ -103,7 +118,8 @@ class SceneTables:
         self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
                                         self.geometry.material, materials.emission_strength, camera.origin,
                                         light_groups=groups,
-                                        triangle_group=_triangle_groups(scene, self._original_triangle, groups))
+                                        triangle_group=_triangle_groups(scene, self._original_triangle, groups),
+                                        triangle_objects=_kept(scene.triangle_object, self._original_triangle))
         white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
         self.pass_layout = FilmLayout(settings.passes, white)
         self.aov_table = aov_table(scene.materials, settings.passes.aovs)
@@ -123,7 +139,7 @@ class SceneTables:
             transparent_glass=bool(settings.film_transparent and settings.transparent_glass),
             transparent_alpha=float(settings.transparent_roughness) ** 2,
             **_trick_settings(settings.light_path_tricks), wavelengths=self.wavelengths,
-            has_media=bool((materials.medium >= 0).any()))
+            has_media=bool((materials.medium >= 0).any()), **_linking_settings(self.light_table.arrays))
         self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.describe(scene, settings, camera)
 

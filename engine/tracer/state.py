@@ -29,7 +29,9 @@ deterministic). Embree reads the queues' float32 rays directly.
   stage to the shading stage);
 - ``transparency`` float64 (how much of the sample is see-through: 1 - its alpha);
 - ``time`` float64 (the path's ray time, 0..1 over the shutter as Embree reads it: every ray of the path —
-  camera ray, bounces, shadow rays — sees the scene at this one instant; 0.5 without motion blur).
+  camera ray, bounces, shadow rays — sees the scene at this one instant; 0.5 without motion blur);
+- ``receiver`` int64 (``light_linking``: the receiver light set of the path's last scattering vertex, -1 on
+  camera rays; scattering vertices write it only in scenes with light or shadow linking).
 """
 
 from __future__ import annotations
@@ -58,7 +60,7 @@ _PATH_FIELDS = (
     ("eta_scale", np.float64, ()), ("prev_pdf", np.float64, ()), ("min_pdf", np.float64, ()),
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
     ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
-    ("transparency", np.float64, ()), ("time", np.float64, ()),
+    ("transparency", np.float64, ()), ("time", np.float64, ()), ("receiver", np.int64, ()),
 )
 PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
 
@@ -71,7 +73,8 @@ RayQueue = namedtuple("RayQueue", "path origin direction tmax time")
 #: float64 ``origin`` / ``direction`` / ``distance`` let rays continue through free-standing films;
 #: ``group`` int32 [n] the light group of the light sampled (for its pass); ``medium`` int32 [n] the medium
 #: the shadow ray starts in (-1: none).
-ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance group medium")
+#: ``blockers`` int64 [n]: the blocker sets of the light sampled (``light_linking``; -1: every object blocks).
+ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance group medium blockers")
 
 #: Embree's answer for each queued ray: ``triangle`` int32 [n] (-1: a miss), ``t``, ``u``, ``v`` float32 [n].
 HitRecord = namedtuple("HitRecord", "triangle t u v")
@@ -110,7 +113,7 @@ def new_ray_queue(n: int, time=None) -> RayQueue:
 
 def new_shadow_queue(n: int, k: int, time=None) -> ShadowQueue:
     return ShadowQueue(new_ray_queue(n, time), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n),
-                       np.empty(n, np.int32), np.full(n, -1, np.int32))
+                       np.empty(n, np.int32), np.full(n, -1, np.int32), np.full(n, -1, np.int64))
 
 
 def new_shading_scratch(k: int, registers: int = 1) -> ShadingScratch:

@@ -14,6 +14,7 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 
 from ..export import _check_something_to_see
+from ..export.light_linking import viewport_linking_warnings
 from ..export.view_layer_filter import layer_filter
 from ..export.lights import export_lights
 from ..export.meshes import export_meshes, read_geometry
@@ -175,6 +176,7 @@ class SceneSync:
         if updates.lights:
             self._light_warnings = []
             lights = export_lights(depsgraph, self._light_warnings)
+            self._light_warnings += viewport_linking_warnings(depsgraph)
             if scene is None or not same(lights, scene.lights):
                 scene = replace(scene, lights=lights)
         if updates.world or updates.scene:

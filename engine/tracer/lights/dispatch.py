@@ -27,8 +27,9 @@ def pick_light(lights, u):
 @inlined
 def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wavelength_nm, li, rows, regs):
     """Sample one light for the point ``p``: (wi, distance (inf: distant), pdf including the light's
-    selection probability, delta, light group or -1); ``li[k]`` = incident radiance (irradiance for
-    delta lights). ``rows`` and ``regs`` are scratch memory for emissive materials whose emission varies
+    selection probability, delta, light group or -1, emitter: the light's row, or rows + the render
+    triangle sampled on an emissive mesh, for ``light_linking``); ``li[k]`` = incident radiance
+    (irradiance for delta lights). ``rows`` and ``regs`` are scratch memory for emissive materials whose emission varies
     over the surface."""
     index, u_rest = pick_light(lights, u_select)
     row = lights.rows[index]
@@ -44,11 +45,12 @@ def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wave
             sid = materials.emission_spectrum[material]
             for k in range(li.shape[0]):
                 li[k] = strength * spectrum_value(spectra, sid, wavelength_nm[k])
-        return wi, dist, pdf * lights.select_prob[index], False, lights.mesh.group[e]
+        return (wi, dist, pdf * lights.select_prob[index], False, lights.mesh.group[e],
+                lights.rows.shape[0] + lights.mesh.triangle[e])
     if kind == ENVIRONMENT:
         wi, pdf = environment.sample_li(lights.environment, u1, u2)
         environment.radiance(lights.environment, spectra, wi, wavelength_nm, li)
-        return wi, math.inf, pdf * lights.select_prob[index], False, lights.group[index]
+        return wi, math.inf, pdf * lights.select_prob[index], False, lights.group[index], index
     if kind == POINT or kind == SPHERE:
         wi, dist, pdf, factor = point.sample_li(row, p, u1, u2)
     elif kind == RECTANGLE or kind == DISK:
@@ -58,7 +60,7 @@ def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wave
     sid = int(row[L_SPECTRUM])
     for k in range(li.shape[0]):
         li[k] = factor * spectrum_value(spectra, sid, wavelength_nm[k])
-    return wi, dist, pdf * lights.select_prob[index], kind == POINT or kind == SUN, lights.group[index]
+    return wi, dist, pdf * lights.select_prob[index], kind == POINT or kind == SUN, lights.group[index], index
 
 
 @inlined

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import PrismInputError
+from ..light_linking import link_tables
 from .area import area_power, area_row
 from .environment import build_environment
 from .mesh import build_mesh_emitters
@@ -25,10 +26,10 @@ from .sun import sun_power, sun_row
 
 #: ``environment`` (``lights.environment.EnvironmentArrays``) and ``environment_index`` (its row, -1:
 #: not light-sampled); ``group`` int32 [rows] and ``world_group``: light group index of each light and of
-#: the world (-1: none).
+#: the world (-1: none); ``links`` the ``light_linking.LinkTables`` (empty without light or shadow linking).
 LightArrays = namedtuple(
     "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index environment environment_index group "
-    "world_group"
+    "world_group links"
 )
 
 
@@ -83,18 +84,20 @@ def _power(row, scene_radius_m, mesh_total, environment_total):
 
 
 def build_lights(scene, spectra, vertices, triangles, triangle_material, emission_strength, offset,
-                 use_mesh_lights=True, light_groups=(), triangle_group=None) -> LightTable:
+                 use_mesh_lights=True, light_groups=(), triangle_group=None, triangle_objects=None) -> LightTable:
     """Rows for the scene's lights; ``vertices``/``triangles``/``triangle_material`` are the render's
     camera-relative geometry, ``emission_strength`` [M] the materials' (0 = not emissive), ``offset``
     the camera position subtracted from every position. ``light_groups``: the names of the light groups
     with a pass (lights of another group count in none); ``triangle_group`` [T] the group index of each
-    triangle's object (None: none)."""
+    triangle's object (None: none). ``triangle_objects`` [T]: the object of each triangle, for
+    ``scene.light_links`` (None: no linking)."""
     group_index = {name: g for g, name in enumerate(light_groups)}
-    rows, names, kinds, groups = [], [], [], []
+    rows, names, kinds, groups, blender_lights = [], [], [], [], []
     for light in scene.lights:
         if _emits(light):
             rows.append(_light_row(light, spectra, offset))
             names.append(light.name)
+            blender_lights.append(light.name)
             kinds.append(light.kind)
             groups.append(group_index.get(light.light_group, -1))
     strength = np.asarray(emission_strength, np.float64) if use_mesh_lights else np.zeros(len(emission_strength))
@@ -142,7 +145,9 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
     table = np.array(rows, dtype=np.float64).reshape(-1, LIGHT_ROW)
     hittable = np.array([i for i, r in enumerate(rows) if int(r[L_KIND]) in (SPHERE, RECTANGLE, DISK)], np.int32)
     arrays = LightArrays(table if n else np.zeros((1, LIGHT_ROW)), prob, cdf, hittable, mesh, mesh_index,
-                         environment, environment_index, np.array(groups if n else [-1], np.int32), world_group)
+                         environment, environment_index, np.array(groups if n else [-1], np.int32), world_group,
+                         link_tables(getattr(scene, "light_links", None), triangle_objects,
+                                     blender_lights + [None] * (n - len(blender_lights))))
     return LightTable(arrays, names, kinds, power, radius, _world_description(world, environment_index),
                       _world_emission(world, environment_total, guide_spectrum, radius))
 

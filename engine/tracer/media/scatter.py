@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from ..jit import inlined
+from ..light_linking import ALL_SETS, emitter_sets, in_sets
 from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA
@@ -18,6 +19,10 @@ from ..stages.queue import push_ray, queue_shadow
 from ..stages.roulette import survives
 from ..warps import power_heuristic
 from .phase import hg_sample, hg_value
+
+#: The receiver light set of a medium vertex: Prism's media belong to materials, not objects, so a medium
+#: receives light as an object no linking singles out (set 0); Cycles uses the volume's object.
+MEDIUM_RECEIVER = 0
 
 
 @inlined
@@ -28,10 +33,17 @@ def _light_through_medium(state, i, p, d_in, g, lights, materials, spectra, geom
     u_select = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT))
     u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT_POINT))
     li = shading.li
-    wi, dist, pdf_light, delta, group = sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2,
-                                                     state.wavelength[i], li, shading.emitter_rows, shading.registers)
+    wi, dist, pdf_light, delta, group, emitter = sample_light(lights, materials, spectra, geometry, p, u_select, u1,
+                                                              u2, state.wavelength[i], li, shading.emitter_rows,
+                                                              shading.registers)
     if not pdf_light > 0.0:
         return 0
+    shadow_sets = ALL_SETS
+    if settings.light_linking or settings.shadow_linking:
+        light_sets, shadow_sets = emitter_sets(lights, emitter)
+        if settings.light_linking and not in_sets(light_sets, MEDIUM_RECEIVER):
+            return 0
+        delta = delta or shadow_sets != ALL_SETS  # counted by light sampling alone (``light_linking``)
     phase = hg_value(d_in[0] * wi[0] + d_in[1] * wi[1] + d_in[2] * wi[2], g)
     weight = 1.0 if (delta or not settings.use_mis) else power_heuristic(pdf_light, phase)
     scale = weight * phase / pdf_light
@@ -43,7 +55,7 @@ def _light_through_medium(state, i, p, d_in, g, lights, materials, spectra, geom
     distance = dist * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
     if not any_light:
         return 0
-    return queue_shadow(shadows, slot, i, p, wi, distance, group, state.medium[i])
+    return queue_shadow(shadows, slot, i, p, wi, distance, group, state.medium[i], shadow_sets)
 
 
 @inlined
@@ -69,6 +81,8 @@ def scatter_in_medium(state, i, lights, materials, spectra, geometry, settings, 
     state.min_pdf[i] = min(state.min_pdf[i], pdf)  # a phase sample counts for Filter Glossy, as in Cycles
     for c in range(3):
         state.mis_origin[i, c] = p[c]
+    if settings.light_linking or settings.shadow_linking:
+        state.receiver[i] = MEDIUM_RECEIVER
     pushed = push_ray(state, next_rays, queued, i, p, d_out)
     rejected[0] += 1 - pushed
     return pushed, lit

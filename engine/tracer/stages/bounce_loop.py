@@ -54,7 +54,8 @@ def _trace_shadows(loop, arrays, caster, passes, layout, count, see_through):
             closest_hits(caster, shadows.rays, count, True, hits)
             rays += count
             count = film_layer_kernel(loop.state, shadows, count, hits.triangle, hits.t, hits.u, hits.v,
-                                      arrays.geometry, arrays.materials, passes, layout, arrays.spectra, loop.scratch)
+                                      arrays.geometry, arrays.materials, passes, layout, arrays.spectra, loop.scratch,
+                                      arrays.lights)
     if count:
         occlusion(caster, shadows.rays, count, loop.occluded)
         rays += count

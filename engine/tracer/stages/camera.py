@@ -135,6 +135,7 @@ def start_path(state, i, pixel, sample, seed):
     state.throughput[i, :] = 1.0
     state.radiance[i, :] = 0.0
     state.time[i] = 0.5
+    state.receiver[i] = -1  # camera rays see every emitter (``light_linking``)
     return ps
 
 

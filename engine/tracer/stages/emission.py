@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 
 from ..jit import inlined, kernel
+from ..light_linking import hit_counts
 from ..lights import environment
 from ..lights.dispatch import (distant_hit, emitter_group, emitter_pdf, environment_pdf, is_distant, light_distance,
                                light_hit, light_spectrum, seen_by_camera)
@@ -60,7 +61,7 @@ def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, 
         if depth == 0 and not seen_by_camera(lights, index):
             continue
         t_light = light_distance(lights, index, o, d)
-        if t_light < t:
+        if t_light < t and hit_counts(state, i, settings, lights, index):
             factor, pdf = light_hit(lights, index, mis_origin, d, t_light + offset)
             _add(state, i, factor, light_spectrum(lights, index), spectra,
                  emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index],
@@ -102,7 +103,8 @@ def _add_background(state, i, d, lights, spectra, settings, depth, passes, layou
                 if layout.columns > 0:
                     deposit(passes, layout, i, k, value, lights.world_group, slot, True)
     for index in range(lights.rows.shape[0] if lights.select_prob.shape[0] > 0 else 0):
-        if is_distant(lights, index) and (depth > 0 or seen_by_camera(lights, index)):
+        if (is_distant(lights, index) and (depth > 0 or seen_by_camera(lights, index))
+                and hit_counts(state, i, settings, lights, index)):
             factor, pdf = distant_hit(lights, index, d)
             if factor > 0.0:
                 _add(state, i, factor, light_spectrum(lights, index), spectra,
@@ -154,7 +156,8 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
                 features_done(passes, layout, i)
             continue
         material = geometry.material[triangle]
-        if materials.flags[material] & MAT_EMISSIVE:
+        if materials.flags[material] & MAT_EMISSIVE and hit_counts(state, i, settings, lights,
+                                                                   lights.rows.shape[0] + triangle):
             t_mis = t + (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
             weight = 1.0 if depth == 0 else emitter_weight(state, i, emitter_pdf(lights, triangle, d, t_mis),
                                                           settings.use_mis)

@@ -13,6 +13,7 @@ import math
 from ..bsdf.dispatch import bsdf_evaluate
 from ..geometry import offset_origin
 from ..jit import inlined, kernel
+from ..light_linking import ALL_SETS, emitter_sets, in_sets
 from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..vec3 import to_local
@@ -42,10 +43,17 @@ def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, cou
     u_select = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT))
     u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT_POINT))
     lam = state.wavelength[i]
-    wi, dist, pdf_light, delta, group = sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, lam,
-                                                     li, shading.emitter_rows, shading.registers)
+    wi, dist, pdf_light, delta, group, emitter = sample_light(lights, materials, spectra, geometry, p, u_select, u1,
+                                                              u2, lam, li, shading.emitter_rows, shading.registers)
     if not pdf_light > 0.0:
         return 0
+    shadow_sets = ALL_SETS
+    if settings.light_linking or settings.shadow_linking:
+        light_sets, shadow_sets = emitter_sets(lights, emitter)
+        if settings.light_linking and not in_sets(light_sets, lights.links.receiver_set[state.hit_triangle[i]]):
+            return 0
+        # a shadow-linked emitter is counted by light sampling alone (``light_linking``)
+        delta = delta or shadow_sets != ALL_SETS
     wi_l = to_local(wi, frame[0], frame[1], frame[2])
     cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
     if not consistent(cos_og, cos_ig, wo_l[2], wi_l[2]):
@@ -66,7 +74,8 @@ def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, cou
             contribution[k] *= factor
     distance = dist * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
     # the medium: the path's; the shading stage corrects it where the surface bounds a medium
-    if not queue_shadow(shadows, slot, i, offset_origin(p, ng, wi), wi, distance, group, state.medium[i]):
+    if not queue_shadow(shadows, slot, i, offset_origin(p, ng, wi), wi, distance, group, state.medium[i],
+                        shadow_sets):
         return 0
     if depth == 0 and layout.light >= 0:
         lobe_shares(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, scratch[0],

@@ -175,6 +175,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                 state.min_pdf[i] = min(state.min_pdf[i], pdf)  # Filter Glossy's measure of an unlikely path
             for c in range(3):
                 state.mis_origin[i, c] = p[c]
+            if settings.light_linking or settings.shadow_linking:  # the receiver of what this ray finds
+                state.receiver[i] = lights.links.receiver_set[triangle]
         if has_media and mflags & MAT_MEDIUM:
             state.medium[i] = side_medium(materials, material, wi, ng)
         pushed = push_ray(state, next_rays, queued, i, offset_origin(p, ng, wi), wi)

@@ -8,6 +8,8 @@ crossed such a surface, attenuated and moved past it; anything else blocks), up 
 one occlusion query settles the rest. With media (``KernelSettings.has_media``) shadow rays are always
 traced layer by layer: each stretch inside a medium attenuates them by its transmittance exp(-σ_t(λ) d)
 (analytic: the media are homogeneous), and crossing a volume's null boundary changes their medium.
+With shadow linking (``light_linking``) they are traced layer by layer too: an object outside the blocker
+sets of the ray's light (``ShadowQueue.blockers``) is passed through untouched, as Cycles skips it.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import math
 from ..bsdf.thin_film import film_reflectance
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
+from ..light_linking import blocks
 from ..materials.surface import surface_transparency
 from ..materials.table import MAT_MEDIUM, MAT_NULL, MAT_TRANSPARENT
 from ..media.coefficients import attenuate
@@ -51,11 +54,12 @@ def shadow_kernel(state, shadows, count, occluded, passes, layout):
 
 @kernel
 def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, passes, layout,
-                      spectra, scratch):
+                      spectra, scratch, lights):
     """One layer of closest hits (before each ray's ``tmax``): rays that hit nothing deliver their
     contribution; rays that hit a film or a cut-out are attenuated, moved past it and kept (compacted to
-    the front); others are blocked. Returns the number kept. ``passes`` / ``layout``: see ``stages.pass_writes``;
-    ``scratch`` is a ``state.ShadingScratch``."""
+    the front), as are rays that hit an object which does not block their light (shadow linking); others
+    are blocked. Returns the number kept. ``passes`` / ``layout``: see ``stages.pass_writes``; ``scratch``
+    is a ``state.ShadingScratch``; ``lights`` the ``LightArrays`` (their ``links``)."""
     kept = 0
     for j in range(count):
         i = shadows.rays.path[j]
@@ -72,14 +76,18 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
             continue
         material = geometry.material[triangle]
         mflags = materials.flags[material]
-        if not mflags & (MAT_NULL | MAT_TRANSPARENT):
+        blocker = blocks(lights, shadows.blockers[j], triangle)
+        if blocker and not mflags & (MAT_NULL | MAT_TRANSPARENT):
             continue
         d = (shadows.direction[j, 0], shadows.direction[j, 1], shadows.direction[j, 2])
         u, v = float(hit_u[j]), float(hit_v[j])
         p, ng, ns = surface_at(geometry, triangle, u, v, state.time[i])
         if mflags & MAT_MEDIUM:  # a volume's boundary: the ray enters (against ng) or leaves its medium
             medium = materials.medium[material] if d[0] * ng[0] + d[1] * ng[1] + d[2] * ng[2] < 0.0 else -1
-        if mflags & MAT_NULL:
+        if not blocker:  # shadow linking: this object casts no shadow from the ray's light
+            for k in range(state.radiance.shape[1]):
+                shadows.contribution[kept, k] = shadows.contribution[j, k]
+        elif mflags & MAT_NULL:
             row = materials.closures[materials.closure_start[material]]
             cos = min(abs(d[0] * ng[0] + d[1] * ng[1] + d[2] * ng[2]), 1.0)
             for k in range(state.radiance.shape[1]):
@@ -112,5 +120,6 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
         shadows.rays.path[kept] = i
         shadows.group[kept] = shadows.group[j]
         shadows.medium[kept] = medium
+        shadows.blockers[kept] = shadows.blockers[j]
         kept += 1
     return kept

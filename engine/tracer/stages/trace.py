@@ -45,14 +45,14 @@ def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
     accel = tables.accel if tables.ray_classes is None else tables.ray_classes
     rays = 0
     if (tables.analysis.see_through_films or tables.analysis.see_through_cutouts
-            or tables.kernel_settings.has_media):
+            or tables.kernel_settings.has_media or tables.kernel_settings.shadow_linking):
         for _ in range(MAX_FILM_LAYERS):
             if count == 0:
                 return rays
             hit = accel.intersect_before(shadows.rays, count)
             rays += count
             count = film_layer_kernel(state, shadows, count, *hit, tables.geometry, tables.material_table.arrays,
-                                      passes, layout, tables.spectra, scratch)
+                                      passes, layout, tables.spectra, scratch, tables.light_table.arrays)
     if count:
         occluded = accel.occluded(shadows.rays, count)
         rays += count
@@ -87,7 +87,7 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     if layout.columns:
         reset_kernel(passes, layout, count)
     see_through = bool(tables.analysis.see_through_films or tables.analysis.see_through_cutouts
-                        or tables.kernel_settings.has_media)
+                        or tables.kernel_settings.has_media or tables.kernel_settings.shadow_linking)
     if tables.ray_classes is None and tables.accel.compiled_loops:
         accel = tables.accel  # held until the call returns: it owns the Embree scene the loop traces
         rays_cast = bounce_loop_kernel(buffers.loop, tables.arrays, accel.caster(), renderer.camera.data, passes,

@@ -16,7 +16,7 @@ from engine.tracer.state import new_shading_scratch
 @kernel
 def _sample_many(lights, materials, spectra, geometry, p, u, lam, wi, dist, li, pdf, delta, rows, registers):
     for i in range(p.shape[0]):
-        w, d, q, is_delta, _ = sample_light(lights, materials, spectra, geometry, (p[i, 0], p[i, 1], p[i, 2]),
+        w, d, q, is_delta, _, _ = sample_light(lights, materials, spectra, geometry, (p[i, 0], p[i, 1], p[i, 2]),
                                             u[i, 2], u[i, 0], u[i, 1], lam[i], li[i], rows, registers)
         wi[i, 0], wi[i, 1], wi[i, 2] = w
         dist[i] = d
