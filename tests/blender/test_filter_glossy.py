@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from mathutils import Vector
 
-from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+from helpers.bpy_scenes import add_camera, add_plane, add_point_light, shader_material
 from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
 
 SAMPLES = 256  # the caustic blocks' seed-to-seed spread is about 5 % at 64 samples
@@ -27,15 +27,7 @@ def _glass_ball_on_floor(scene):
     bpy.ops.mesh.primitive_uv_sphere_add(radius=0.5, location=(0.0, 0.0, 0.5), segments=64, ring_count=32)
     ball = bpy.context.object
     bpy.ops.object.shade_smooth()
-    glass = bpy.data.materials.new("Glass")
-    glass.use_nodes = True
-    nodes = glass.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    bsdf = nodes.new("ShaderNodeBsdfGlass")
-    bsdf.inputs["Roughness"].default_value = 0.0
-    bsdf.inputs["IOR"].default_value = 1.5
-    glass.node_tree.links.new(bsdf.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
-    ball.data.materials.append(glass)
+    ball.data.materials.append(shader_material("Glass", "ShaderNodeBsdfGlass", Roughness=0.0, IOR=1.5))
     add_point_light("Bulb", 400.0, (2.0, 0.0, 2.0))
     camera = add_camera((-0.8, -3.0, 2.5), (0.0, 0.0, 0.0), lens_mm=35.0, resolution=(48, 32))
     camera.rotation_euler = Vector((0.1, 3.0, -2.5)).to_track_quat("-Z", "Y").to_euler()  # at (-0.7, 0, 0)

@@ -11,7 +11,7 @@ import bpy
 import numpy as np
 import pytest
 
-from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+from helpers.bpy_scenes import add_camera, add_plane, add_point_light, shader_material
 from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
 from helpers.node_scenes import black_world
 
@@ -43,14 +43,7 @@ def _emissive_panel(name, size_m, location, strength):
     bpy.ops.mesh.primitive_plane_add(size=size_m, location=location, rotation=(math.pi, 0.0, 0.0))
     panel = bpy.context.active_object
     panel.name = name
-    material = bpy.data.materials.new(f"{name} emission")
-    material.use_nodes = True
-    nodes = material.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    emission = nodes.new("ShaderNodeEmission")
-    emission.inputs["Strength"].default_value = strength
-    material.node_tree.links.new(emission.outputs[0], nodes["Material Output"].inputs["Surface"])
-    panel.data.materials.append(material)
+    panel.data.materials.append(shader_material(f"{name} emission", "ShaderNodeEmission", Strength=strength))
     return panel
 
 

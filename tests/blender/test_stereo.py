@@ -13,7 +13,7 @@ import bpy
 import numpy as np
 import pytest
 
-from helpers.bpy_scenes import add_camera
+from helpers.bpy_scenes import add_camera, shader_material
 from helpers.cycles import luminance
 
 WIDTH, HEIGHT = 48, 16
@@ -27,13 +27,7 @@ def _emissive_card(size_m: float, location):
     half = size_m / 2
     mesh = bpy.data.meshes.new("Card")
     mesh.from_pydata([(-half, -half, 0), (half, -half, 0), (half, half, 0), (-half, half, 0)], [], [(0, 1, 2, 3)])
-    material = bpy.data.materials.new("Glow")
-    material.use_nodes = True
-    nodes = material.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    emission = nodes.new("ShaderNodeEmission")
-    material.node_tree.links.new(emission.outputs["Emission"], nodes["Material Output"].inputs["Surface"])
-    mesh.materials.append(material)
+    mesh.materials.append(shader_material("Glow", "ShaderNodeEmission"))
     card = bpy.data.objects.new("Card", mesh)
     card.location = location
     bpy.context.scene.collection.objects.link(card)

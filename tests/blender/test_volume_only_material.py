@@ -10,7 +10,7 @@ import bpy
 import pytest
 
 from helpers.batch_outcome import batch_warning
-from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+from helpers.bpy_scenes import add_camera, add_plane, add_point_light, shader_material
 from helpers.error_scenes import base_scene
 from helpers.node_scenes import black_world
 
@@ -18,13 +18,7 @@ from helpers.node_scenes import black_world
 def _volume_only(obj, density=1.0):
     """Replace ``obj``'s material by one whose Material Output has a Principled Volume of ``density`` and no
     Surface."""
-    material = bpy.data.materials.new("Fog")
-    material.use_nodes = True
-    nodes = material.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    volume = nodes.new("ShaderNodeVolumePrincipled")
-    volume.inputs["Density"].default_value = density
-    material.node_tree.links.new(volume.outputs[0], nodes["Material Output"].inputs["Volume"])
+    material = shader_material("Fog", "ShaderNodeVolumePrincipled", output="Volume", Density=density)
     obj.data.materials[0] = material
     return material
 

@@ -26,6 +26,20 @@ def add_plane(name: str, size_m: float, color=(0.5, 0.5, 0.5), location=(0.0, 0.
     return obj
 
 
+def shader_material(name: str, node_type: str, output: str = "Surface", **inputs):
+    """A material whose Material Output's ``output`` socket takes one shader node of ``node_type`` (the
+    Principled BSDF of a new material removed), its inputs set by name (underscores for spaces)."""
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    shader = nodes.new(node_type)
+    for socket, value in inputs.items():
+        shader.inputs[socket.replace("_", " ")].default_value = value
+    material.node_tree.links.new(shader.outputs[0], nodes["Material Output"].inputs[output])
+    return material
+
+
 def add_point_light(name: str, power_w: float, location, color=(1.0, 1.0, 1.0)):
     data = bpy.data.lights.new(name, "POINT")
     data.energy, data.color, data.shadow_soft_size = power_w, color, 0.0
