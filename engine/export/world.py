@@ -17,7 +17,7 @@ from ..properties.node_links import is_linked
 from .animated import settings_source
 from .environment_image import image_rgb, replace_bad_texels
 from .float_range import check_light_value
-from .world_background import BackgroundTerm, background_term, background_terms
+from .world_background import BackgroundTerm, background_term, background_terms, has_camera_ray_mix
 from .world_mapping import texture_matrix
 
 _INTERPOLATION = {"Linear": "linear", "Closest": "closest"}
@@ -78,16 +78,17 @@ def _sky(world, node, exported: World, warnings) -> None:
         exported.to_texture = texture_matrix(vector, where, warnings)
 
 
-def _surface_terms(world, tree, warnings) -> list[BackgroundTerm]:
-    """The Backgrounds of the active World Output's Surface; with nothing linked there (or no World Output),
-    the tree's first Background node, as Prism has always read such worlds."""
+def _surface_terms(world, tree, warnings, camera_rays: bool = False) -> list[BackgroundTerm]:
+    """The Backgrounds of the active World Output's Surface (as camera rays see them with ``camera_rays``);
+    with nothing linked there (or no World Output), the tree's first Background node, as Prism has always
+    read such worlds."""
     output = tree.get_output_node("ALL")
     volume = output.inputs.get("Volume") if output is not None else None
-    if volume is not None and is_linked(volume) and warnings is not None:
+    if volume is not None and is_linked(volume) and warnings is not None and not camera_rays:
         warnings.append(f"World '{world.name}': its World Output has a Volume shader (fog); Prism renders media "
                         "inside closed meshes only, not in the world yet, so it renders the world without fog.")
     if output is not None and is_linked(output.inputs["Surface"]):
-        return background_terms(world, output.inputs["Surface"], warnings)
+        return background_terms(world, output.inputs["Surface"], warnings, camera_rays)
     node = next((n for n in tree.nodes if n.type == "BACKGROUND"), None)
     return [] if node is None else [background_term(world, node, 1.0, warnings)]
 
@@ -125,17 +126,32 @@ def _textured_world(world, term, constant, exported: World, warnings) -> World:
 
 def export_world(scene, warnings: list[str] | None = None, view_layer=None) -> World:
     """The background of ``scene.world`` (a black one when there is no world, or when ``view_layer``'s
-    Filter ▸ Environment is off: Cycles then neither shows nor samples the world, it lights nothing)."""
+    Filter ▸ Environment is off: Cycles then neither shows nor samples the world, it lights nothing). A world
+    whose Surface picks a shader by Light Path ▸ Is Camera Ray (a backplate) carries what camera rays see
+    as its ``camera_background``."""
     world = scene.world
     if world is None:
         return World(color=(0.0, 0.0, 0.0), strength=0.0)
     world = settings_source(world)  # the evaluated copy where animated: ``animated``
     if view_layer is not None and not view_layer.use_sky:
         return World(color=(0.0, 0.0, 0.0), strength=0.0, name=world.name)
+    tree = world.node_tree if world.use_nodes else None
+    exported = _world_as_seen(world, tree, warnings, camera_rays=False)
+    output = tree.get_output_node("ALL") if tree is not None else None
+    if output is not None and has_camera_ray_mix(world, output.inputs["Surface"]):
+        exported.camera_background = _world_as_seen(world, tree, None, camera_rays=True)
+        if exported.camera_background.kind == "sky":
+            raise PrismInputError(f"World '{world.name}': camera rays see a Sky Texture through Light Path ▸ Is "
+                                  "Camera Ray; Prism shows a constant colour or an Environment Texture there: "
+                                  "light with the Sky and show an image, or use the Sky for both.")
+    return exported
+
+
+def _world_as_seen(world, tree, warnings, camera_rays: bool) -> World:
+    """The world's background as rays other than camera rays see it, or as camera rays do."""
     cycles = getattr(world, "cycles", None)
     sampled = getattr(cycles, "sampling_method", "AUTOMATIC") != "NONE"
-    tree = world.node_tree if world.use_nodes else None
-    terms = _surface_terms(world, tree, warnings) if tree is not None else None
+    terms = _surface_terms(world, tree, warnings, camera_rays) if tree is not None else None
     if terms is None or (not terms and not any(n.type == "BACKGROUND" for n in tree.nodes)):
         color = tuple(float(c) for c in world.color)
         _check(world, color, 1.0)

@@ -1,8 +1,10 @@
 """A world's Surface as Cycles sums it: Background nodes under Add Shader and Mix Shader nodes, each with
 its weight, strength and colour (a constant, or the Environment or Sky Texture feeding it).
 
-Constants linked in from Value and RGB nodes are folded; any other link into a Background's Strength or
-Color (or a Mix Shader's Fac) is reported as ignored, with the socket's own value that is used instead.
+Constants linked in from Value and RGB nodes are folded; a Mix Shader's Fac taken from Light Path ▸ Is
+Camera Ray splits what camera rays see from what lights the scene (Cycles' backplate set-up); any other
+link into a Background's Strength or Color (or a Mix Shader's Fac) is reported as ignored, with the
+socket's own value that is used instead.
 """
 
 from __future__ import annotations
@@ -70,8 +72,33 @@ def background_term(world, node, weight, warnings) -> BackgroundTerm:
     return BackgroundTerm(node, weight, strength, constant_input(world, node, "Color", warnings))
 
 
-def background_terms(world, surface_socket, warnings) -> list[BackgroundTerm]:
-    """The Background terms feeding the World Output's Surface ``surface_socket`` (empty when none does)."""
+def is_camera_ray_mix(node) -> bool:
+    """Whether ``node`` is a Mix Shader whose Fac is a Light Path node's Is Camera Ray: Cycles' backplate
+    set-up, where camera rays see the second shader and every other ray the first."""
+    if node.type != "MIX_SHADER":
+        return False
+    source, output = upstream(node.inputs["Fac"])
+    return source is not None and source.type == "LIGHT_PATH" and output.identifier == "Is Camera Ray"
+
+
+def has_camera_ray_mix(world, surface_socket) -> bool:
+    """Whether a Mix Shader under the World Output's Surface picks its shader by Is Camera Ray."""
+    def found(socket, depth):
+        node, _ = upstream(socket)
+        if node is None or depth > MAX_SHADER_DEPTH:
+            return False
+        if is_camera_ray_mix(node):
+            return True
+        return node.type in ("ADD_SHADER", "MIX_SHADER") and any(
+            found(node.inputs[i], depth + 1) for i in ((0, 1) if node.type == "ADD_SHADER" else (1, 2)))
+
+    return found(surface_socket, 0)
+
+
+def background_terms(world, surface_socket, warnings, camera_rays: bool = False) -> list[BackgroundTerm]:
+    """The Background terms feeding the World Output's Surface ``surface_socket`` (empty when none does), as
+    rays other than camera rays see them (``camera_rays``: as camera rays see them; the two differ only
+    under a Mix Shader driven by Is Camera Ray, ``is_camera_ray_mix``)."""
     terms: list[BackgroundTerm] = []
 
     def walk(socket, weight, depth):
@@ -86,6 +113,8 @@ def background_terms(world, surface_socket, warnings) -> list[BackgroundTerm]:
         elif node.type == "ADD_SHADER":
             walk(node.inputs[0], weight, depth + 1)
             walk(node.inputs[1], weight, depth + 1)
+        elif is_camera_ray_mix(node):  # Is Camera Ray is exactly 0 or 1
+            walk(node.inputs[2 if camera_rays else 1], weight, depth + 1)
         elif node.type == "MIX_SHADER":
             fac = constant_input(world, node, "Fac", warnings)
             if not math.isfinite(fac):

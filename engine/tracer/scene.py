@@ -207,6 +207,9 @@ class World:
     to_texture: np.ndarray = field(default_factory=lambda: np.eye(3))
     sampled: bool = True
     name: str = "World"
+    # What camera rays see instead, when the Surface picks a shader by Light Path ▸ Is Camera Ray (a backplate:
+    # one background lights the scene, another is seen); None: camera rays see this world too.
+    camera_background: "World | None" = None
 
     def is_black(self) -> bool:
         """True when the background emits nothing (no light to sample or to see)."""

@@ -21,15 +21,18 @@ from .area import area_power, area_row
 from .environment import build_environment
 from .mesh import build_mesh_emitters
 from .point import point_power, point_row
-from .row import DISK, ENVIRONMENT, KIND_NAMES, L_KIND, LIGHT_ROW, MESH, POINT, RECTANGLE, SPHERE, SUN, SUN_DISK
+from .row import (DISK, ENVIRONMENT, KIND_NAMES, L_CAMERA, L_KIND, LIGHT_ROW, MESH, POINT, RECTANGLE, SPHERE, SUN,
+                  SUN_DISK)
 from .sun import sun_power, sun_row
 
 #: ``environment`` (``lights.environment.EnvironmentArrays``) and ``environment_index`` (its row, -1:
-#: not light-sampled); ``group`` int32 [rows] and ``world_group``: light group index of each light and of
-#: the world (-1: none); ``links`` the ``light_linking.LinkTables`` (empty without light or shadow linking).
+#: not light-sampled); ``camera_environment`` the background camera rays see (``World.camera_background``, a
+#: backplate; else ``environment`` itself) and ``backplate`` whether it differs; ``group`` int32 [rows] and
+#: ``world_group``: light group index of each light and of the world (-1: none); ``links`` the
+#: ``light_linking.LinkTables`` (empty without light or shadow linking).
 LightArrays = namedtuple(
     "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index environment environment_index group "
-    "world_group links"
+    "world_group links camera_environment backplate"
 )
 
 
@@ -114,7 +117,11 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
     world = scene.world
     world_group = group_index.get(getattr(world, "light_group", ""), -1) if world is not None else -1
     environment, environment_total, sky_rows, guide_spectrum = build_environment(world, spectra)
+    backplate = getattr(world, "camera_background", None)
+    camera_environment = build_environment(backplate, spectra).arrays if backplate is not None else environment
     for row in sky_rows:
+        if backplate is not None:
+            row[L_CAMERA] = 0.0  # camera rays see the backplate, not the lighting sky's sun
         rows.append(row)
         names.append(f"{world.name} sun")
         kinds.append("sun")
@@ -147,7 +154,8 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
     arrays = LightArrays(table if n else np.zeros((1, LIGHT_ROW)), prob, cdf, hittable, mesh, mesh_index,
                          environment, environment_index, np.array(groups if n else [-1], np.int32), world_group,
                          link_tables(getattr(scene, "light_links", None), triangle_objects,
-                                     blender_lights + [None] * (n - len(blender_lights))))
+                                     blender_lights + [None] * (n - len(blender_lights))),
+                         camera_environment, backplate is not None)
     return LightTable(arrays, names, kinds, power, radius, _world_description(world, environment_index),
                       _world_emission(world, environment_total, guide_spectrum, radius))
 

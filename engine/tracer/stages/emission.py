@@ -85,10 +85,11 @@ def _add_background(state, i, d, lights, spectra, settings, depth, passes, layou
         _see_through(state, i)
         return
     slot = camera_slot(layout, depth, True)
-    env = lights.environment
+    backplate = lights.backplate and state.flags[i] & CAMERA_PATH != 0  # Light Path ▸ Is Camera Ray's background
+    env = lights.camera_environment if backplate else lights.environment
     if env.kind != environment.ENV_NONE:
         weight = 1.0
-        if lights.environment_index >= 0 and not state.flags[i] & PREV_DELTA:
+        if not backplate and lights.environment_index >= 0 and not state.flags[i] & PREV_DELTA:
             weight = emitter_weight(state, i, environment_pdf(lights, d), settings.use_mis)
         if weight > 0.0:
             fp = environment.footprint(env, d)
