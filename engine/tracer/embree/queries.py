@@ -15,17 +15,20 @@ import numpy as np
 from numba.core import types
 
 from ..jit import inlined, kernel
+from ..octahedral import encode
 from . import library
-from .layout import ALL_MASK, DIR_X, FLAGS, GEOM_ID, INST_ID, INVALID_ID, MASK, ORG_X, PRIM_ID, RAY_ID, TFAR, TIME, \
-    TNEAR, U, V
+from .layout import ALL_MASK, DIR_X, FLAGS, GEOM_ID, INST_ID, INVALID_ID, MASK, NG_X, ORG_X, PRIM_ID, RAY_ID, TFAR, \
+    TIME, TNEAR, U, V
 
 #: What a compiled loop traces against: ``scene`` the committed ``RTCScene`` handle (``scene.Scene.handle``),
 #: this thread's ``RTCRayHit`` record as its float32 ``words`` and uint32 ``ids`` views, and how Embree's
 #: (geometry, primitive) ids map to rows of the render's triangles: ``moving_geometry`` the geometry id of
 #: the moving triangles (-1: one geometry whose primitive ids are the rows), ``triangle_of`` int32 (the
-#: static geometry's rows, then the moving one's) and ``first_moving`` (where the moving rows start in it).
-RayCaster = namedtuple("RayCaster", "scene words ids moving_geometry triangle_of first_moving",
-                       defaults=(-1, np.zeros(1, np.int32), 0))
+#: static geometry's rows, then the moving one's) and ``first_moving`` (where the moving rows start in it);
+#: ``sphere_geometry`` the geometry id of the sphere points (-1: none) and ``first_sphere`` the row of its
+#: sphere 0 (spheres follow the triangles: row = ``first_sphere`` + primitive id).
+RayCaster = namedtuple("RayCaster", "scene words ids moving_geometry triangle_of first_moving sphere_geometry "
+                       "first_sphere", defaults=(-1, np.zeros(1, np.int32), 0, -1, 0))
 
 library.load()  # before any kernel below is compiled or loaded: they link to its symbols by name
 
@@ -54,8 +57,9 @@ def _set_ray(words, ids, ox, oy, oz, dx, dy, dz, tmax, time):
 
 @inlined
 def closest_hit(caster, ox, oy, oz, dx, dy, dz, tmax, time):
-    """Closest triangle along the ray before ``tmax`` in ``caster.scene`` at ray time ``time`` (0..1):
-    (triangle row, or -1 for a miss; t; u; v). On a miss t is ``tmax``."""
+    """Closest triangle or sphere along the ray before ``tmax`` in ``caster.scene`` at ray time ``time``
+    (0..1): (row, or -1 for a miss; t; u; v). On a miss t is ``tmax``. Rows past the triangles are
+    spheres; their (u, v) is the octahedral code of the outward normal (``octahedral.encode``)."""
     words = caster.words
     ids = caster.ids
     _set_ray(words, ids, ox, oy, oz, dx, dy, dz, tmax, time)
@@ -65,6 +69,10 @@ def closest_hit(caster, ox, oy, oz, dx, dy, dz, tmax, time):
     _rtc_intersect1(caster.scene, words.ctypes.data, 0)
     if ids[GEOM_ID] == INVALID_ID:
         return -1, words[TFAR], np.float32(0.0), np.float32(0.0)
+    if np.int64(ids[GEOM_ID]) == caster.sphere_geometry:
+        nu, nv = encode(float(words[NG_X]), float(words[NG_X + 1]), float(words[NG_X + 2]))
+        return (np.int32(caster.first_sphere + np.int64(ids[PRIM_ID])), words[TFAR], np.float32(nu),
+                np.float32(nv))
     if caster.moving_geometry < 0:
         return np.int32(ids[PRIM_ID]), words[TFAR], words[U], words[V]
     row = np.int64(ids[PRIM_ID])
