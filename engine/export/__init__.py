@@ -10,6 +10,7 @@ import numpy as np
 
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Scene
+from ..tracer.spheres import rendered_rows
 from .border import render_border
 from .camera import export_camera, render_resolution
 from .data_passes import export_data_passes
@@ -44,10 +45,11 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
     the world (a link Prism ignored may be why it is black), told with the refusal since the warnings of a
     refused render are not printed; ``included``: the view layer's Filter, whose Surfaces or Curves off
     may leave the world alone to render (as Cycles renders it)."""
-    if tracer_scene.triangle_count == 0 and missing:
+    points = tracer_scene.points is not None and len(rendered_rows(tracer_scene.points)) > 0
+    if tracer_scene.triangle_count == 0 and not points and missing:
         raise PrismInputError(f"Scene '{scene_name}' has no visible geometry: "
                               + "; ".join(library.sentence() for library in missing) + ".")
-    if tracer_scene.triangle_count == 0 and included.left_out():
+    if tracer_scene.triangle_count == 0 and not points and included.left_out():
         if not tracer_scene.world.is_black():
             return  # the world alone, as Cycles renders a layer whose filter leaves out every surface
         raise PrismInputError(
@@ -56,20 +58,28 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
             "geometry is rendered, and the world is black"
             + (" (Filter ▸ Environment is off too)" if world_filtered_by else "")
             + ": turn the filter on, or the image would be black.")
-    if tracer_scene.triangle_count == 0:
+    if tracer_scene.triangle_count == 0 and not points and tracer_scene.points is not None:
+        names = sorted({tracer_scene.object_names[int(i)] for i in np.unique(tracer_scene.points.object)})
+        raise PrismInputError(
+            f"Scene '{scene_name}' has no visible geometry: every point of point cloud "
+            + ", ".join(f"'{name}'" for name in names) + " has a radius of 0 (or not a number): give the points a "
+            "radius (Geometry Nodes ▸ Set Point Radius, or the radius attribute), or add a mesh.")
+    if tracer_scene.triangle_count == 0 and not points:
         raise PrismInputError(
             f"Scene '{scene_name}' has no visible geometry: add a mesh object, or enable an object for "
             "rendering (Outliner ▸ camera icon), before rendering."
         )
     flat = zero_area_objects(tracer_scene.vertices, tracer_scene.triangles, tracer_scene.triangle_object,
                              tracer_scene.object_names)
-    if flat:
+    if flat and not points:
         raise PrismInputError(
             f"Scene '{scene_name}' has no visible geometry: {zero_area_sentence(flat)}, so no ray can hit them: "
             "give the mesh some size (Edit Mode: check for merged vertices and a zero Scale), or add a mesh."
         )
     world_lit = not tracer_scene.world.is_black()
     used = {int(i) for i in np.unique(tracer_scene.triangle_material)}
+    if points:
+        used |= {int(i) for i in np.unique(tracer_scene.points.material)}
     emissive = any(_emits(tracer_scene.materials[i]) for i in used)
     if not (tracer_scene.lights or world_lit or emissive) and world_filtered_by:
         raise PrismInputError(
@@ -112,6 +122,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None) -
         object_light_groups=geometry.object_light_groups,
         corner_normals=geometry.corner_normals,
         surface=geometry.surface,
+        points=geometry.points,
         object_flags=geometry.object_flags,
         materials=geometry.materials,
         camera=camera,

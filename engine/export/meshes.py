@@ -3,8 +3,8 @@
 Blender evaluates Text, Curve, Surface and Metaball objects to meshes and lists
 each such mesh as an instance of its own in ``depsgraph.object_instances``; the
 objects themselves are skipped here (as Cycles does), so their surfaces are not
-exported twice. Hair Curves become ribbons (``hair``); point clouds, volumes and
-particle hair are reported (``unrendered``).
+exported twice. Hair Curves become ribbons (``hair``); point clouds become spheres
+(``point_clouds``, ``tracer.spheres``); volumes and particle hair are reported (``unrendered``).
 
 The instances of one mesh are gathered while iterating (the only Python work per
 instance is reading its key and matrix) and placed in one numpy step per mesh
@@ -20,11 +20,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..tracer.scene import Material
+from ..tracer.spheres import SpherePoints
 from .hair import LocalHair, hair_ribbons, read_hair
 from .instancing import WorldTriangles, instance_triangles
 from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
+from .point_clouds import LocalPoints, place_points, point_random, read_points
 from .data_passes import data_pass_switches
 from .surface_attributes import SurfaceCollector
 from .texture_memory import TextureBudget
@@ -54,6 +56,7 @@ class ExportedGeometry:
     triangle_pass_index: np.ndarray | None = None
     pass_uv: np.ndarray | None = None
     material_pass_index: tuple = ()
+    points: SpherePoints | None = None  # the points of point clouds (objects numbered after the triangles')
 
 
 @dataclass
@@ -61,7 +64,7 @@ class _Instances:
     """One piece of evaluated geometry and where it is placed."""
 
     name: str
-    geometry: LocalMesh | LocalHair
+    geometry: LocalMesh | LocalHair | LocalPoints
     matrices: list = field(default_factory=list)  # 16 floats each, row-major
     infos: list = field(default_factory=list)  # (colour RGBA, pass index, random id) per instance
     light_group: str = ""  # Object ▸ Shading ▸ Light Group
@@ -110,10 +113,13 @@ class _Materials:
         return request
 
 
-def read_geometry(key: tuple, obj, request: AttributeRequest | None = None, warn=None) -> LocalMesh | LocalHair | None:
+def read_geometry(key: tuple, obj, request: AttributeRequest | None = None,
+                  warn=None) -> LocalMesh | LocalHair | LocalPoints | None:
     """The evaluated geometry of ``obj`` (``key``: (type, original name, data pointer), the piece it is)
     with the per-corner data ``request`` names (meshes)."""
-    return read_mesh(obj, request, warn) if key[0] == "MESH" else read_hair(obj)
+    if key[0] == "MESH":
+        return read_mesh(obj, request, warn)
+    return read_points(obj) if key[0] == "POINTCLOUD" else read_hair(obj)
 
 
 def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
@@ -136,14 +142,14 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             warn_once(obj, particle_hair_warnings(obj))
         if not instance.show_self or kind in _EVALUATED_AS_MESH_INSTANCE or not included.renders(kind):
             continue
-        if kind not in ("MESH", "CURVES"):
+        if kind not in ("MESH", "CURVES", "POINTCLOUD"):
             message = unrendered_type_warning(obj)
             if message:
                 warn_once(obj, [message])
             continue
         key = (kind, obj.original.name, obj.data.as_pointer())
         if key not in pieces:
-            request = materials.request([slot.material for slot in obj.material_slots]) if kind == "MESH" else None
+            request = materials.request([slot.material for slot in obj.material_slots]) if kind != "CURVES" else None
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
@@ -179,9 +185,13 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     surface = SurfaceCollector(materials.exporter.slots)
     pass_index: list[np.ndarray] = []
     has_uv: list[np.ndarray] = []  # per triangle: its mesh has the render UV map (the UV pass's A)
+    clouds = []
     for piece in pieces:
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
         lookup = materials.slot_lookup(piece.geometry.slot_materials)
+        if isinstance(piece.geometry, LocalPoints):
+            clouds.append((piece, matrices, lookup))
+            continue
         if isinstance(piece.geometry, LocalHair):
             for matrix in matrices:  # ribbons face the camera from where each instance stands
                 placed, slots = hair_ribbons(piece.geometry, matrix, camera)
@@ -207,6 +217,8 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
             pass_index.append(np.repeat(np.asarray([info[1] for info in piece.infos], np.float32),
                                         len(local.triangles)))
     geometry = _assemble(parts, names, materials.materials)
+    geometry.points = _points(clouds, names, groups, flags, surface)
+    geometry.object_names = list(names)
     geometry.object_light_groups = groups
     geometry.surface = surface.surface()
     geometry.object_flags = np.asarray(flags, np.uint8)
@@ -219,6 +231,31 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     if passes.material_index:
         geometry.material_pass_index = tuple(materials.pass_index)
     return geometry
+
+
+def _points(clouds, names, groups, flags, surface) -> SpherePoints | None:
+    """The points of every point cloud instance (objects appended to ``names``, ``groups`` and ``flags``)."""
+    if not clouds:
+        return None
+    centres, radii, material, objects, instance, pass_index, random = [], [], [], [], [], [], []
+    for piece, matrices, lookup in clouds:
+        local = piece.geometry
+        placed, scaled = place_points(local, matrices)
+        count = len(local.radii)
+        centres.append(placed)
+        radii.append(scaled)
+        material.append(np.tile(lookup[np.clip(local.slot, 0, len(lookup) - 1)], len(matrices)))
+        objects.append(np.full(len(scaled), len(names), np.int32))
+        names.append(piece.name)
+        groups.append(piece.light_group)
+        flags.append(piece.flags)
+        rows = surface.add_points(matrices, piece.infos, local.texture_space)
+        instance.append(np.repeat(rows, count) if rows is not None else np.full(len(scaled), -1, np.int32))
+        pass_index.append(np.repeat(np.asarray([info[1] for info in piece.infos], np.float32), count))
+        random.append(np.tile(point_random(count), len(matrices)))
+    return SpherePoints(np.concatenate(centres), np.concatenate(radii), np.concatenate(material).astype(np.int32),
+                        np.concatenate(objects), np.concatenate(instance).astype(np.int32), np.concatenate(pass_index),
+                        np.concatenate(random))
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

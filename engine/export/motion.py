@@ -16,6 +16,7 @@ import numpy as np
 
 from ..tracer.motion import Motion, motion_step_count, shutter_times
 from .camera import rigid_matrix
+from .point_clouds import moving_point_cloud_warning
 from .view_layer_filter import layer_filter
 
 #: Where the shutter's middle lies relative to the frame, in shutter lengths (Cycles' motion position).
@@ -83,7 +84,7 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     count = max([camera_steps] + [motion_step_count(s[1]) for s in settings.values() if s[0]])
     frames = step_frames(scene, count)
     frame, subframe = scene.frame_current, scene.frame_subframe
-    vertices, normals, cameras, changed = [], [], [], False
+    vertices, normals, cameras, changed, clouds = [], [], [], False, []
     try:
         for time in frames:
             whole = int(np.floor(time))
@@ -95,6 +96,7 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
             else:
                 vertices.append(geometry.vertices)
                 normals.append(geometry.corner_normals)
+            clouds.append(getattr(geometry, "points", None))
             cameras.append(rigid_matrix(camera_object.evaluated_get(depsgraph).matrix_world))
     finally:
         frame_set(frame, subframe)
@@ -102,6 +104,7 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     cameras = np.asarray(cameras)
     if not np.allclose(cameras, cameras[:1], rtol=0.0, atol=1e-12):
         camera.motion_to_world = cameras
+    warnings.extend(moving_point_cloud_warning(name) for name in _moving_clouds(tracer_scene, clouds, settings))
     if changed:
         warnings.append(f"Scene '{scene.name}': Motion Blur: a mesh changes its vertices or faces during the shutter "
                         "(a modifier that adds or removes geometry over time), so Prism cannot follow its vertices: "
@@ -114,6 +117,22 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     _per_object(tracer_scene, settings, steps, corner, count, warnings)
     if not np.array_equal(steps, np.broadcast_to(steps[:1], steps.shape)):  # still moving after Object settings
         tracer_scene.motion = Motion(steps, corner)
+
+
+def _moving_clouds(tracer_scene, steps, settings) -> list[str]:
+    """Names of the point clouds (with Object ▸ Motion Blur on) whose points at the shutter's time steps
+    ``steps`` (``SpherePoints`` or None each) differ from the frame's."""
+    points = tracer_scene.points
+    if points is None or not len(points):
+        return []
+    moving = np.zeros(len(points), bool)
+    for step in steps:
+        if step is None or len(step) != len(points):
+            moving[:] = True
+            break
+        moving |= (step.centres != points.centres).any(axis=1) | (step.radii != points.radii)
+    names = sorted({tracer_scene.object_names[int(i)] for i in np.unique(points.object[moving])})
+    return [name for name in names if settings.get(name, (True,))[0]]
 
 
 def _per_object(tracer_scene, settings, steps, corner, count, warnings) -> None:

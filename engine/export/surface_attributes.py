@@ -79,6 +79,15 @@ class SurfaceCollector:
         placed[mirrored] = placed[mirrored][:, :, [0, 2, 1]]
         return placed.reshape(-1, *values.shape[1:])
 
+    def add_points(self, matrices, infos, texture_space):
+        """Object rows of a point cloud's instances at ``matrices`` [K, 4, 4]: int32 [K] (None when no
+        material reads object data). Points have no corner data."""
+        if not (self.active and self.slots.objects):
+            return None
+        first = sum(len(r) for r in self.rows)
+        self.rows.append(object_rows(matrices, infos, texture_space))
+        return np.arange(first, first + len(matrices), dtype=np.int32)
+
     def add_other(self, triangles):
         """Triangles without corner data (hair ribbons)."""
         self.parts.append((triangles, {}, None))

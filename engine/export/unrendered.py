@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 _BY_TYPE = {
-    "POINTCLOUD": "Point cloud '{name}' is not rendered: Prism renders meshes and hair curves. "
-    "To see its points, instance a small mesh on them (Geometry Nodes ▸ Instance on Points).",
     "VOLUME": "Volume '{name}' is not rendered: Prism has no volume rendering yet, so it renders as empty space.",
 }
 

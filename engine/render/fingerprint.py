@@ -29,6 +29,8 @@ def render_fingerprint(scene, settings, frame: float) -> dict[str, str]:
     """Part name → 16 hex digits (the frame: its number), for a ``tracer.Scene`` exported at
     ``frame`` (Blender's current frame plus subframe) and its ``tracer.RenderSettings``."""
     geometry = (scene.vertices, scene.triangles, scene.triangle_material, scene.corner_normals)
+    if getattr(scene, "points", None) is not None:  # point clouds (absent: the hashes of scenes before them)
+        geometry += (scene.points,)
     settings_fields = {
         f.name: getattr(settings, f.name) for f in dataclasses.fields(settings) if f.name not in _PER_CHUNK_SETTINGS
     }

@@ -15,10 +15,12 @@ import numpy as np
 
 
 class Accel:
-    """Queries against a ``geometry.Geometry`` (camera-relative float32 vertices)."""
+    """Queries against a ``geometry.Geometry`` (camera-relative float32 vertices; its spheres, rows after
+    the triangles, as one more Embree geometry of sphere points)."""
 
     def __init__(self, geometry):
         from .embree.scene import Scene, TriangleGeometry
+        from .embree.spheres import SphereGeometry
 
         self._rows = {}  # RayCaster's id mapping; none: Embree's primitive ids are the rows
         moving = moving_triangles(geometry)
@@ -32,6 +34,9 @@ class Accel:
             geometries.append(TriangleGeometry(list(geometry.motion), geometry.triangles[moving_rows]))
             self._rows = dict(moving_geometry=len(geometries) - 1, first_moving=len(static_rows),
                               triangle_of=np.concatenate([static_rows, moving_rows]).astype(np.int32))
+        if len(geometry.spheres):
+            geometries.append(SphereGeometry(geometry.spheres))
+            self._rows.update(sphere_geometry=len(geometries) - 1, first_sphere=len(geometry.triangles))
         self._scene = Scene(geometries)
         self._local = threading.local()
         #: Chunks trace in compiled loops that query Embree themselves; False makes them call this

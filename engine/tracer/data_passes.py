@@ -39,9 +39,13 @@ class DataPassInputs:
 FirstHitTables = namedtuple("FirstHitTables", "first_hit_data object_index material_index triangle_uv")
 
 
-def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, layout, orthographic: bool):
+def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, layout, orthographic: bool,
+                     sphere_pass_index=None):
     """The kernels' arrays for ``inputs`` with triangles kept as ``original_triangle`` (their scene
-    indices), ``materials`` scene materials and the passes of ``layout`` (``PassLayout``)."""
+    indices), ``materials`` scene materials and the passes of ``layout`` (``PassLayout``); the rendered
+    spheres, rows after the triangles, with Object ▸ Pass Index ``sphere_pass_index`` float32 [S] and no UV
+    map (0, 0, 0, as a mesh without one)."""
+    spheres = np.zeros(0, np.float32) if sphere_pass_index is None else np.asarray(sphere_pass_index, np.float32)
     data = np.zeros(FIRST_HIT_DATA)
     data[MIST_START] = inputs.mist_start_m
     data[MIST_INV_DEPTH] = 1.0 / inputs.mist_depth_m if inputs.mist_depth_m > 0.0 else 0.0
@@ -50,10 +54,12 @@ def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, 
     data[AO_DISTANCE] = min(float(inputs.ao_distance_m), AO_FAR_M)
     object_index = np.zeros(0, np.float32)
     if layout.object_index >= 0 and inputs.object_pass_index is not None:
-        object_index = np.ascontiguousarray(np.asarray(inputs.object_pass_index, np.float32)[original_triangle])
+        object_index = np.ascontiguousarray(np.concatenate(
+            [np.asarray(inputs.object_pass_index, np.float32)[original_triangle], spheres]))
     material_index = np.zeros(max(materials, 1))
     material_index[:len(inputs.material_pass_index)] = inputs.material_pass_index
     uv = np.zeros((0, 3, 3), np.float32)
     if layout.uv >= 0 and inputs.uv is not None:
-        uv = np.ascontiguousarray(np.asarray(inputs.uv, np.float32)[original_triangle])
+        uv = np.ascontiguousarray(np.concatenate([np.asarray(inputs.uv, np.float32)[original_triangle],
+                                                  np.zeros((len(spheres), 3, 3), np.float32)]))
     return FirstHitTables(data, object_index, material_index, uv)

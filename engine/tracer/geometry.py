@@ -13,6 +13,9 @@ whether it is a holdout), ``motion`` float32 [S, V, 3] (with motion blur: the ve
 times of the shutter, camera-relative; [0, 0, 3] without) and ``motion_normals`` float32 [S, T, 3, 3] (the
 corner normals at those times; [0, 0, 3, 3] without, or for flat shading). A ray at time τ (0..1) sees
 vertices interpolated linearly between the two steps around τ·(S-1), as Embree interpolates them.
+``spheres`` float32 [S, 4] (``spheres``: the points of point clouds, camera-relative centre and radius; [0, 4]
+without) and ``sphere_random`` float32 [S] (each point's Point Info ▸ Random): rows T .. T + S - 1 of the render's primitives, so ``material``, ``flags`` (and
+``attributes.instance`` when it is not empty) hold T + S entries; the per-corner tables hold T.
 """
 
 from __future__ import annotations
@@ -23,8 +26,10 @@ from collections import namedtuple
 import numpy as np
 
 from .jit import inlined, kernel
+from .spheres import camera_relative, no_spheres, point_random, rendered_rows, sphere_surface
 
-Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags motion motion_normals")
+Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags motion motion_normals spheres "
+                      "sphere_random", defaults=(no_spheres(), np.zeros(0, np.float32)))
 
 #: A ``surface_at`` time that reads the positions at the frame (``Geometry.vertices``), where the light
 #: table's emitters stand, instead of those at a ray time of the shutter.
@@ -49,7 +54,8 @@ OFFSET_ABSOLUTE = 1e-7
 
 def prepare_geometry(scene, offset):
     """(``Geometry``, original triangle index [T] int64, dropped count) for ``scene`` with ``offset``
-    (the camera position, m) subtracted."""
+    (the camera position, m) subtracted; the spheres of ``scene.points`` that render follow the triangles
+    (``spheres.rendered_rows``)."""
     vertices = np.asarray(scene.vertices, dtype=np.float64) - np.asarray(offset, dtype=np.float64)
     triangles = np.asarray(scene.triangles, dtype=np.int64).reshape(-1, 3)
     relative32 = vertices.astype(np.float32)
@@ -60,11 +66,23 @@ def prepare_geometry(scene, offset):
     normals = np.zeros((0, 3, 3), np.float32)
     if scene.corner_normals is not None and len(scene.corner_normals) == len(triangles):
         normals = np.ascontiguousarray(np.asarray(scene.corner_normals, dtype=np.float32)[original])
-    from .visibility import triangle_flags
+    from .visibility import sphere_flags, triangle_flags
 
+    points = getattr(scene, "points", None)
+    rows = rendered_rows(points)
+    flags = triangle_flags(scene, original)
+    attributes = surface_arrays(scene.surface, original, offset)
+    if len(rows):
+        material = np.concatenate([material, np.asarray(points.material, np.int32)[rows]])
+        flags = np.concatenate([flags, sphere_flags(scene, rows)])
+        if scene.surface is not None and scene.surface.triangle_instance is not None:
+            of_sphere = (np.asarray(points.instance, np.int32)[rows] if points.instance is not None
+                         else np.full(len(rows), -1, np.int32))
+            attributes = attributes._replace(instance=np.concatenate([attributes.instance, of_sphere]))
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
-                        np.ascontiguousarray(material), normals, surface_arrays(scene.surface, original, offset),
-                        triangle_flags(scene, original), *_motion_arrays(scene, original, offset, len(normals)))
+                        np.ascontiguousarray(material), normals, attributes, np.ascontiguousarray(flags),
+                        *_motion_arrays(scene, original, offset, len(normals)), camera_relative(points, rows, offset),
+                        point_random(points, rows))
     return geometry, original, int(len(triangles) - len(original))
 
 
@@ -161,7 +179,10 @@ def _corner_normal(geometry, triangle, corner, time):
 def surface_at(geometry, triangle, u, v, time):
     """(point, unit geometric normal, unit shading normal on the geometric normal's side) at
     barycentrics (u, v) of ``triangle`` (corner weights 1 - u - v, u, v) at ray time ``time`` (0..1 over
-    the shutter; ``FRAME_TIME`` or no motion: the frame's vertices)."""
+    the shutter; ``FRAME_TIME`` or no motion: the frame's vertices). Rows past the triangles are spheres,
+    (u, v) then the octahedral code of the normal (``spheres``)."""
+    if triangle >= geometry.triangles.shape[0]:
+        return sphere_surface(geometry.spheres, triangle - geometry.triangles.shape[0], u, v)
     a = geometry.triangles[triangle, 0]
     b = geometry.triangles[triangle, 1]
     c = geometry.triangles[triangle, 2]

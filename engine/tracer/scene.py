@@ -14,6 +14,7 @@ import numpy as np
 
 from .data_passes import DataPassInputs
 from .errors import PrismInputError
+from .spheres import SpherePoints
 from .spectrum_specs import ReflectanceSpec, SampledSpectrum, SpectrumSpec  # noqa: F401 - part of the scene's API
 
 
@@ -260,7 +261,8 @@ class Scene:
     object seen by every ray, no holdout). ``data_passes``: what the Mist, UV, Index and AO passes read.
     ``motion`` (``motion.Motion``): the vertices at the shutter's time steps when motion blur is on and
     something moves or deforms, else None. ``light_links`` (``light_linking.LightLinks``): Blender's light
-    and shadow linking, per object and per light, or None.
+    and shadow linking, per object and per light, or None. ``points`` (``spheres.SpherePoints``): the points
+    of point clouds, one sphere each, or None.
     """
 
     vertices: np.ndarray
@@ -279,6 +281,7 @@ class Scene:
     data_passes: DataPassInputs = field(default_factory=DataPassInputs)
     motion: object = None  # motion.Motion
     light_links: object = None  # light_linking.LightLinks: light and shadow linking (None: none)
+    points: SpherePoints | None = None
 
     @property
     def triangle_count(self) -> int:
@@ -299,6 +302,8 @@ class Scene:
         self._validate_camera()
         if triangles and len(self.triangles):
             self._validate_triangles()
+        if triangles and self.points is not None and len(self.points):
+            self._validate_points()
         for light in self.lights:
             _check_position(f"Light '{light.name}'", light.position)
 
@@ -344,6 +349,25 @@ class Scene:
                 f"from the world origin; Prism renders scenes within {MAX_DISTANCE_M:.0e} m of it: check the "
                 "object's scale and location (Object ▸ Transform), or delete stray vertices."
             )
+
+
+    def _validate_points(self) -> None:
+        points = self.points
+        materials = np.asarray(points.material)
+        if materials.min() < 0 or materials.max() >= len(self.materials):
+            raise PrismInputError(
+                f"Scene points refer to material {int(materials.max())} but there are only {len(self.materials)} "
+                "materials: the exported materials are inconsistent.")
+        centres = np.asarray(points.centres, np.float64)
+        with np.errstate(invalid="ignore"):
+            reach = np.abs(centres).max(axis=1)
+        for bad, problem in ((~np.isfinite(reach), "has points whose position is NaN or infinite: fix or delete them"),
+                             (reach > MAX_DISTANCE_M, f"has points more than {MAX_DISTANCE_M:.0e} m from the world "
+                              "origin, beyond what Prism renders: check the object's scale and location")):
+            if bad.any():
+                first = int(np.flatnonzero(bad)[0])
+                name = self.object_names[int(points.object[first])] if self.object_names else f"point {first}"
+                raise PrismInputError(f"Point cloud '{name}' {problem} before rendering.")
 
 
 #: Positions beyond this (m, about 6700 astronomical units) leave too little float32 range for the

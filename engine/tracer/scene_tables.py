@@ -37,6 +37,7 @@ from .scene import SpectrumSpec
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
 from .spectra.wavelength_guide import build_guide
+from .spheres import rendered_rows
 from .stages.bounce_loop import SceneArrays
 from .stages.camera import ORTHOGRAPHIC
 from .stages.settings import KernelSettings
@@ -51,6 +52,15 @@ def _triangle_groups(scene, original_triangle, light_groups):
     index = {name: g for g, name in enumerate(light_groups)}
     of_object = np.array([index.get(name, -1) for name in scene.object_light_groups], np.int32)
     return of_object[np.asarray(scene.triangle_object)[original_triangle]]
+
+
+def _sphere_pass_index(scene):
+    """Object ▸ Pass Index of each rendered sphere (float32 [S]; empty without point clouds)."""
+    points = getattr(scene, "points", None)
+    rows = rendered_rows(points)
+    if not len(rows) or points.pass_index is None:
+        return np.zeros(len(rows), np.float32)
+    return np.asarray(points.pass_index, np.float32)[rows]
 
 
 def _kept(triangle_object, original):
@@ -115,8 +125,9 @@ class SceneTables:
         self.material_table = build_materials(scene.materials, set(used), spectra)
         materials = self.material_table.arrays
         groups = tuple(settings.passes.light_groups)
+        triangles = len(self.geometry.triangles)  # spheres follow them in ``material``; none is light-sampled
         self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
-                                        self.geometry.material, materials.emission_strength, camera.origin,
+                                        self.geometry.material[:triangles], materials.emission_strength, camera.origin,
                                         light_groups=groups,
                                         triangle_group=_triangle_groups(scene, self._original_triangle, groups),
                                         triangle_objects=_kept(scene.triangle_object, self._original_triangle))
@@ -124,7 +135,8 @@ class SceneTables:
         self.pass_layout = FilmLayout(settings.passes, white)
         self.aov_table = aov_table(scene.materials, settings.passes.aovs)
         self.first_hit = first_hit_tables(scene.data_passes, self._original_triangle, len(scene.materials),
-                                          self.pass_layout.kernel, camera.data.projection == ORTHOGRAPHIC)
+                                          self.pass_layout.kernel, camera.data.projection == ORTHOGRAPHIC,
+                                          _sphere_pass_index(scene))
         self.spectra = spectra.arrays()
         guide = None
         if settings.wavelength_mode == "cie":

@@ -29,3 +29,16 @@ def triangle_flags(scene, original) -> np.ndarray:
     if holdout_materials.any() and count:
         flags[holdout_materials[np.asarray(scene.triangle_material)[original]]] |= HOLDOUT
     return np.ascontiguousarray(flags)
+
+
+def sphere_flags(scene, rows) -> np.ndarray:
+    """uint8 [S] of the spheres ``rows`` of ``scene.points`` (as ``triangle_flags``: their object's rays and
+    holdout)."""
+    points = scene.points
+    flags = np.full(len(rows), ALL_RAYS, np.uint8)
+    if scene.object_flags is not None and len(rows):
+        flags = np.asarray(scene.object_flags, np.uint8)[np.asarray(points.object)[rows]].copy()
+    holdout_materials = np.array([bool(getattr(m, "holdout", False)) for m in scene.materials], bool)
+    if holdout_materials.any() and len(rows):
+        flags[holdout_materials[np.asarray(points.material)[rows]]] |= HOLDOUT
+    return np.ascontiguousarray(flags)

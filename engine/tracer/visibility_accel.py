@@ -25,12 +25,17 @@ def needs_ray_classes(geometry) -> bool:
 
 
 class _Subset:
+    """The rows ``chosen`` (triangles, then spheres) as a geometry of their own; ``ids`` its rows' render rows."""
+
     def __init__(self, geometry, chosen):
         self.ids = np.flatnonzero(chosen).astype(np.int32)
-        sub = Geometry(geometry.vertices, np.ascontiguousarray(geometry.triangles[self.ids]),
+        count = len(geometry.triangles)
+        triangles, spheres = self.ids[self.ids < count], self.ids[self.ids >= count] - count
+        sub = Geometry(geometry.vertices, np.ascontiguousarray(geometry.triangles[triangles]),
                        geometry.material[self.ids], geometry.normals[:0], geometry.attributes,
                        geometry.flags[self.ids], geometry.motion,
-                       geometry.motion_normals[:, self.ids] if len(geometry.motion_normals) else geometry.motion_normals)
+                       geometry.motion_normals[:, triangles] if len(geometry.motion_normals) else geometry.motion_normals,
+                       np.ascontiguousarray(geometry.spheres[spheres]), geometry.sphere_random[spheres])
         self.accel = Accel(sub)
 
     def _map(self, hit):

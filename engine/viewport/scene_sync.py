@@ -166,11 +166,11 @@ class SceneSync:
                 camera=PLACEHOLDER_CAMERA, triangle_object=exported.triangle_object,
                 object_names=exported.object_names, corner_normals=exported.corner_normals,
                 lights=previous.lights if previous else [], world=previous.world if previous else World(),
-                surface=exported.surface,
+                surface=exported.surface, points=exported.points,
             )
             geometry_changed = previous is None or not all(
                 same(getattr(candidate, name), getattr(previous, name))
-                for name in ("vertices", "triangles", "triangle_material", "corner_normals", "surface"))
+                for name in ("vertices", "triangles", "triangle_material", "corner_normals", "surface", "points"))
             if geometry_changed or not same(candidate.materials, previous.materials):
                 scene = candidate if geometry_changed else replace(previous, materials=candidate.materials)
         if updates.lights:

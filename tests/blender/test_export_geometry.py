@@ -134,11 +134,6 @@ def _triangles_of_vertices(scene, name):
     return np.unique(scene.triangles[_triangles_of(scene, name)])
 
 
-def _point_cloud():
-    cloud = bpy.data.pointclouds.new("Dust")
-    bpy.context.scene.collection.objects.link(bpy.data.objects.new("Dust", cloud))
-
-
 def _volume():
     bpy.context.scene.collection.objects.link(bpy.data.objects.new("Smoke", bpy.data.volumes.new("Smoke")))
 
@@ -154,7 +149,6 @@ def _particle_hair():
 
 
 WARNING_CASES = {
-    "point cloud": (_point_cloud, "Point cloud 'Dust' is not rendered: Prism renders meshes and hair curves"),
     "volume": (_volume, "Volume 'Smoke' is not rendered: Prism has no volume rendering yet"),
     "particle hair": (_particle_hair, "Object 'Scalp': particle hair 'Hair' is not rendered: Prism renders hair as "
                       "Curves objects. Convert it with Object ▸ Convert ▸ Curves."),

@@ -112,6 +112,13 @@ def object_info(c, node, context, variant, identifier):
     return {identifier: (c.hit(op.OBJECT_INFO, variant, mode=field, width=width), kind)}
 
 
+def point_info(c, node, context, variant, identifier):
+    """Cycles' Point Info: the point's centre (world, m), radius (m), random number; 0 off point clouds."""
+    field = {"Position": 0, "Radius": 1, "Random": 2}[identifier]
+    return {identifier: (c.hit(op.POINT_INFO, variant, mode=field, width=3 if field == 0 else 1),
+                         VECTOR if field == 0 else FLOAT)}
+
+
 def tangent(c, node, context, variant, identifier):
     if node.direction_type != "UV_MAP":
         c.warn(node, "radial tangents are not supported; Prism uses the default UV map's tangent.")
@@ -138,6 +145,7 @@ HANDLERS = {
     "ShaderNodeVertexColor": color_attribute,
     "ShaderNodeNewGeometry": geometry,
     "ShaderNodeObjectInfo": object_info,
+    "ShaderNodePointInfo": point_info,
     "ShaderNodeTangent": tangent,
     "ShaderNodeValue": value,
     "ShaderNodeRGB": rgb,

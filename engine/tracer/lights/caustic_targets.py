@@ -48,13 +48,15 @@ def build_caustic_targets(geometry, material_flags, delta_flag, triangle_object=
     object (``triangle_object`` [T], rows of ``geometry``), else per material; one sphere for them all if
     that still leaves more than ``MAX_TARGETS``. Empty when no material is purely specular."""
     vertices = np.asarray(geometry.vertices, np.float64)
-    if len(vertices):
-        lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    points = np.asarray(geometry.spheres, np.float64)
+    extent = np.concatenate([vertices, points[:, :3] - points[:, 3:], points[:, :3] + points[:, 3:]])
+    if len(extent):
+        lo, hi = extent.min(axis=0), extent.max(axis=0)
         centre = 0.5 * (lo + hi)
         radius = float(np.linalg.norm(hi - lo)) * 0.5 + 1e-3
     else:
         centre, radius = np.zeros(3), 1.0
-    materials = np.asarray(geometry.material)
+    materials = np.asarray(geometry.material)[:len(geometry.triangles)]
     specular = np.flatnonzero(np.asarray(material_flags)[materials] & delta_flag) if len(materials) else []
     spheres = np.zeros((0, 4))
     if len(specular):
@@ -68,7 +70,24 @@ def build_caustic_targets(geometry, material_flags, delta_flag, triangle_object=
             groups = [specular]
         triangles = np.asarray(geometry.triangles)
         spheres = np.array([_bounding_sphere(vertices[triangles[g]].reshape(-1, 3)) for g in groups])
+    spheres = _with_specular_points(geometry, material_flags, delta_flag, spheres)
     return CausticTargets(np.ascontiguousarray(spheres), np.ascontiguousarray(centre, np.float64), radius)
+
+
+def _with_specular_points(geometry, material_flags, delta_flag, spheres):
+    """``spheres`` and one more around the point-cloud spheres (``Geometry.spheres``) whose material is
+    purely specular, so light paths aim at glass and mirror points too."""
+    points = np.asarray(geometry.spheres, np.float64)
+    if not len(points):
+        return spheres
+    materials = np.asarray(geometry.material)[len(geometry.triangles):]
+    specular = points[(np.asarray(material_flags)[materials] & delta_flag) != 0]
+    if not len(specular):
+        return spheres
+    lo = (specular[:, :3] - specular[:, 3:]).min(axis=0)
+    hi = (specular[:, :3] + specular[:, 3:]).max(axis=0)
+    around = np.concatenate([0.5 * (lo + hi), [0.5 * float(np.linalg.norm(hi - lo)) + 1e-3]])
+    return np.vstack([np.reshape(spheres, (-1, 4)), around[None]])
 
 
 @inlined

@@ -98,8 +98,9 @@ def light_hit(lights, index, o, d, t):
 
 @inlined
 def emitter_pdf(lights, triangle, d, t):
-    """Light-sampling pdf (incl. selection) of an emissive triangle hit along ``d`` at distance ``t``."""
-    if lights.mesh_index < 0:
+    """Light-sampling pdf (incl. selection) of an emissive triangle hit along ``d`` at distance ``t`` (0 for
+    a sphere: rows past the triangles are never light-sampled)."""
+    if lights.mesh_index < 0 or triangle >= lights.mesh.of_triangle.shape[0]:
         return 0.0
     return mesh.pdf_li(lights.mesh, triangle, d, t) * lights.select_prob[lights.mesh_index]
 
@@ -138,6 +139,8 @@ def distant_hit(lights, index, d):
 
 @inlined
 def emitter_group(lights, triangle):
-    """Light group of an emissive triangle (-1: none)."""
+    """Light group of an emissive triangle (-1: none, and for spheres)."""
+    if triangle >= lights.mesh.of_triangle.shape[0]:
+        return -1
     e = lights.mesh.of_triangle[triangle]
     return lights.mesh.group[e] if e >= 0 else -1

@@ -3,7 +3,9 @@ and UV tangents (``geometry.SurfaceArrays``), object and texture-space coordinat
 
 Corner data is interpolated with the hit's barycentrics (corner weights 1 - u - v, u, v). Bump mapping
 evaluates heights at the point moved a small step along the surface (``bump_step``): the inputs then read
-the moved point (``moved``), so textures see consistent coordinates.
+the moved point (``moved``), so textures see consistent coordinates. Rows past the triangles are spheres
+(``spheres``): no corner data (UVs, colours and tangents read as on a mesh without them), (u, v) the
+normal's octahedral code.
 """
 
 from __future__ import annotations
@@ -11,6 +13,8 @@ from __future__ import annotations
 import math
 
 from ..jit import inlined, kernel
+from ..octahedral import decode
+from ..spheres import any_tangent
 
 # ``SurfaceArrays.objects`` columns: world→object affine (row-major 3 x 4, camera offset folded in),
 # generated-coordinate scale and offset (object space → 0-1 over the texture space), world location,
@@ -32,15 +36,19 @@ _BUMP_FLOOR_M = 1e-7
 
 @inlined
 def bump_step(geometry, triangle, p, ng):
-    """(dP_x, dP_y): two orthogonal small steps in the triangle's plane, right-handed about ``ng``."""
-    tri = geometry.triangles[triangle]
-    vs = geometry.vertices
-    ex = float(vs[tri[1], 0]) - float(vs[tri[0], 0])
-    ey = float(vs[tri[1], 1]) - float(vs[tri[0], 1])
-    ez = float(vs[tri[1], 2]) - float(vs[tri[0], 2])
-    n = math.sqrt(ex * ex + ey * ey + ez * ez)
+    """(dP_x, dP_y): two orthogonal small steps in the triangle's plane (a sphere's tangent plane),
+    right-handed about ``ng``."""
     eps = max(_BUMP_RELATIVE * math.sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), _BUMP_FLOOR_M)
-    tx, ty, tz = ex / n, ey / n, ez / n
+    if triangle >= geometry.triangles.shape[0]:
+        tx, ty, tz = any_tangent(ng)
+    else:
+        tri = geometry.triangles[triangle]
+        vs = geometry.vertices
+        ex = float(vs[tri[1], 0]) - float(vs[tri[0], 0])
+        ey = float(vs[tri[1], 1]) - float(vs[tri[0], 1])
+        ez = float(vs[tri[1], 2]) - float(vs[tri[0], 2])
+        n = math.sqrt(ex * ex + ey * ey + ez * ez)
+        tx, ty, tz = ex / n, ey / n, ez / n
     bx = ng[1] * tz - ng[2] * ty
     by = ng[2] * tx - ng[0] * tz
     bz = ng[0] * ty - ng[1] * tx
@@ -49,7 +57,10 @@ def bump_step(geometry, triangle, p, ng):
 
 @inlined
 def moved(geometry, triangle, u, v, p, step):
-    """Barycentrics and position of the hit moved by ``step`` (in the triangle's plane)."""
+    """Barycentrics and position of the hit moved by ``step`` (in the triangle's plane; on a sphere the
+    normal's code stays)."""
+    if triangle >= geometry.triangles.shape[0]:
+        return u, v, (p[0] + step[0], p[1] + step[1], p[2] + step[2])
     tri = geometry.triangles[triangle]
     vs = geometry.vertices
     a0, a1, a2 = float(vs[tri[0], 0]), float(vs[tri[0], 1]), float(vs[tri[0], 2])
@@ -70,7 +81,7 @@ def moved(geometry, triangle, u, v, p, step):
 
 @kernel
 def corner_uv(uvs, slot, triangle, u, v):
-    if slot >= uvs.shape[0]:
+    if slot >= uvs.shape[0] or triangle >= uvs.shape[1]:
         return 0.0, 0.0
     c = uvs[slot, triangle]
     w = 1.0 - u - v
@@ -81,7 +92,7 @@ def corner_uv(uvs, slot, triangle, u, v):
 @kernel
 def corner_color(colors, slot, triangle, u, v):
     """(r, g, b, a) of a colour attribute (missing: black, alpha 0 as Blender)."""
-    if slot >= colors.shape[0]:
+    if slot >= colors.shape[0] or triangle >= colors.shape[1]:
         return 0.0, 0.0, 0.0, 0.0
     c = colors[slot, triangle]
     w = 1.0 - u - v
@@ -94,7 +105,7 @@ def corner_color(colors, slot, triangle, u, v):
 @kernel
 def corner_tangent(tangents, slot, triangle, u, v):
     """(interpolated unnormalised tangent, bitangent sign) of UV tangent slot ``slot``."""
-    if slot >= tangents.shape[0]:
+    if slot >= tangents.shape[0] or triangle >= tangents.shape[1]:
         return (0.0, 0.0, 0.0), 1.0
     c = tangents[slot, triangle]
     w = 1.0 - u - v
@@ -108,7 +119,7 @@ def corner_tangent(tangents, slot, triangle, u, v):
 @kernel
 def object_row(attributes, triangle):
     """Row of ``attributes.objects`` for the instance ``triangle`` belongs to, or -1."""
-    if attributes.instance.shape[0] == 0:
+    if attributes.instance.shape[0] <= triangle:
         return -1
     return attributes.instance[triangle]
 
@@ -118,7 +129,7 @@ def object_point(attributes, triangle, u, v, row, p):
     """The hit in its instance's object space: the interpolated object-space corners when exported, else
     camera-relative ``p`` through the world→object transform (world space without objects)."""
     positions = attributes.positions
-    if positions.shape[0] > 0:
+    if positions.shape[0] > triangle:
         c = positions[triangle]
         w = 1.0 - u - v
         return (w * float(c[0, 0]) + u * float(c[1, 0]) + v * float(c[2, 0]),
@@ -144,7 +155,10 @@ def generated(objects, row, p_object):
 
 @inlined
 def raw_normal(geometry, triangle, u, v):
-    """The interpolated corner normal, unnormalised and not flipped (the geometric normal when flat)."""
+    """The interpolated corner normal, unnormalised and not flipped (the geometric normal when flat; a
+    sphere's outward normal)."""
+    if triangle >= geometry.triangles.shape[0]:
+        return decode(u, v)
     if geometry.normals.shape[0] == 0:
         tri = geometry.triangles[triangle]
         vs = geometry.vertices

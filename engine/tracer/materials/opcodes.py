@@ -27,6 +27,7 @@ OBJECT_INFO = 9  # mode: OBJECT_INFO_FIELDS → (location xyz) or a scalar
 BACKFACING = 10  # 1 if the ray arrived on the back of the surface
 TANGENT = 11  # a = UV slot → unit tangent (xyz) and bitangent sign (+3), world space
 PARAMETRIC = 12  # barycentric (1 - u - v, u, 0)
+POINT_INFO = 13  # mode: POINT_INFO_FIELDS → the point's centre (world, m), radius (m) or random; 0 off points
 
 # Arithmetic.
 COPY = 20  # dst[0:mode] = a[0:mode]
@@ -113,6 +114,7 @@ WAVE_BANDS_DIRECTIONS = ["X", "Y", "Z", "DIAGONAL"]
 WAVE_RINGS_DIRECTIONS = ["X", "Y", "Z", "SPHERICAL"]
 WAVE_PROFILES = ["SIN", "SAW", "TRI"]
 OBJECT_INFO_FIELDS = ["LOCATION", "COLOR", "ALPHA", "OBJECT_INDEX", "MATERIAL_INDEX", "RANDOM"]
+POINT_INFO_FIELDS = ["POSITION", "RADIUS", "RANDOM"]
 #: LAYER_ALBEDO: the directional albedo factor s of a GGX reflection lobe whose Fresnel F(cos) is
 #: remapped from [F0, 1] to [f0, f90]: albedo ≈ mix(f0, f90, s) (``materials.layering``).
 LAYER_ALBEDO_KINDS = ["DIELECTRIC", "SCHLICK", "SHEEN"]

@@ -16,7 +16,7 @@ import math
 from collections import namedtuple
 
 from ..bsdf.sheen import ltc_fit
-from ..jit import kernel
+from ..jit import inlined, kernel
 from ..node_eval import colour as col
 from ..node_eval import math as nmath
 from ..node_eval import vector as vec
@@ -53,6 +53,25 @@ def _optional3(regs, r, fallback):
     return (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else fallback
 
 
+@inlined
+def _point_info(regs, dst, mode, geometry, triangle, offset):
+    """Cycles' Point Info node on sphere row ``triangle``: its centre (world, m), radius (m) or random
+    number (``mode``: ``opcodes.POINT_INFO_FIELDS``); 0 on triangles, as on a mesh in Blender."""
+    s = triangle - geometry.triangles.shape[0]
+    if mode == 0:
+        if s < 0:
+            _put3(regs, dst, (0.0, 0.0, 0.0))
+        else:
+            sp = geometry.spheres
+            _put3(regs, dst, (float(sp[s, 0]) + offset[0], float(sp[s, 1]) + offset[1], float(sp[s, 2]) + offset[2]))
+    elif s < 0:
+        regs[dst] = 0.0
+    elif mode == 1:
+        regs[dst] = float(geometry.spheres[s, 3])
+    else:
+        regs[dst] = float(geometry.sphere_random[s])
+
+
 @kernel
 def run_program(instructions, first, count, regs, rows, tables, textures, geometry, triangle, u, v, p, ng, n, wo,
                 backfacing):
@@ -69,7 +88,7 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
         a, b, c, d, e, f, g = ins[3], ins[4], ins[5], ins[6], ins[7], ins[8], ins[9]
         if code == op.EXTRA:
             continue
-        if code <= op.PARAMETRIC:
+        if code <= op.POINT_INFO:
             hu, hv, hp = u, v, p
             if g == 1:
                 hu, hv, hp = hit.moved(geometry, triangle, u, v, p, step_x)
@@ -94,6 +113,8 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
                 regs[dst] = 1.0 if backfacing else 0.0
             elif code == op.PARAMETRIC:
                 _put3(regs, dst, (1.0 - hu - hv, hu, 0.0))
+            elif code == op.POINT_INFO:
+                _point_info(regs, dst, mode, geometry, triangle, attrs.offset)
             elif code == op.TANGENT:
                 t3, _ = hit.corner_tangent(attrs.tangents, a, triangle, hu, hv)
                 length = math.sqrt(t3[0] * t3[0] + t3[1] * t3[1] + t3[2] * t3[2])

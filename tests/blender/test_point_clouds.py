@@ -1,0 +1,230 @@
+"""Point clouds as spheres: Geometry Nodes point clouds (Mesh to Points, Distribute Points on Faces), their
+instances and their radius attribute exported as ``SpherePoints`` in world space; diffuse spheres on a floor
+under a sun and a grey world, and emissive spheres reading the Point Info node, against Cycles 4.5 in
+absolute mean luminance; a cloud whose points all have radius 0 refused, a moving cloud warned."""
+
+from __future__ import annotations
+
+import importlib
+
+import bpy
+import numpy as np
+import pytest
+
+from helpers.batch import run_batch, run_batch_stderr
+from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
+from helpers.node_scenes import black_world, camera, material, node
+
+GRID = [(x, y, 0.0) for x in (-1.2, -0.4, 0.4, 1.2) for y in (-1.2, -0.4, 0.4, 1.2)]
+
+
+def _export(prism_addon, warnings=None):
+    export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
+    return export.export_scene(bpy.context.evaluated_depsgraph_get(), warnings)
+
+
+def _points_object(name, positions, mat=None, radius=0.3, random_radius=None, location=(0.0, 0.0, 0.0)):
+    """A mesh of loose vertices turned into a point cloud by Geometry Nodes (Mesh to Points of ``radius``,
+    or per point a Random Value in ``random_radius`` (min, max)), with Set Material ``mat``."""
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(positions, [], [])
+    obj = bpy.data.objects.new(name, mesh)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    tree = bpy.data.node_groups.new(name, "GeometryNodeTree")
+    tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+    tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    nodes, links = tree.nodes, tree.links
+    given, out = nodes.new("NodeGroupInput"), nodes.new("NodeGroupOutput")
+    to_points = nodes.new("GeometryNodeMeshToPoints")
+    to_points.inputs["Radius"].default_value = radius
+    links.new(given.outputs[0], to_points.inputs["Mesh"])
+    last = to_points.outputs[0]
+    if random_radius is not None:
+        random = nodes.new("FunctionNodeRandomValue")
+        random.data_type = "FLOAT"
+        random.inputs[2].default_value, random.inputs[3].default_value = random_radius  # Min, Max (float)
+        links.new(random.outputs[1], to_points.inputs["Radius"])
+    if mat is not None:
+        set_material = nodes.new("GeometryNodeSetMaterial")
+        set_material.inputs["Material"].default_value = mat
+        links.new(last, set_material.inputs["Geometry"])
+        last = set_material.outputs[0]
+    links.new(last, out.inputs[0])
+    obj.modifiers.new("Points", "NODES").node_group = tree
+    return obj
+
+
+def _evaluated_points(obj):
+    """(positions [P, 3] world, radii [P]) of the point cloud Blender evaluates for ``obj``."""
+    for instance in bpy.context.evaluated_depsgraph_get().object_instances:
+        if instance.object.type == "POINTCLOUD" and instance.object.original.name == obj.name:
+            cloud = instance.object.data
+            positions = np.empty(len(cloud.points) * 3, np.float32)
+            cloud.points.foreach_get("co", positions)
+            radii = np.empty(len(cloud.points), np.float32)
+            cloud.points.foreach_get("radius", radii)
+            matrix = np.array(instance.matrix_world)
+            return positions.reshape(-1, 3) @ matrix[:3, :3].T + matrix[:3, 3], radii
+    raise AssertionError(f"no point cloud evaluated for {obj.name}")
+
+
+def _diffuse(name, colour):
+    mat, nodes, link = material(name)
+    bsdf = node(nodes, "ShaderNodeBsdfDiffuse", Color=colour)
+    link(bsdf.outputs[0], nodes["Output"].inputs["Surface"])
+    return mat
+
+
+def _lit(scene):
+    world = black_world()
+    background = world.node_tree.nodes["Background"]
+    background.inputs["Color"].default_value = (0.5, 0.55, 0.6, 1.0)
+    background.inputs["Strength"].default_value = 0.6
+    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    sun.data.energy = 3.0
+    sun.rotation_euler = (0.5, 0.3, 0.8)
+    scene.collection.objects.link(sun)
+
+
+def test_mesh_to_points_exports_world_spheres_with_their_radii(prism_addon, fresh_scene):
+    _lit(fresh_scene)
+    camera((0.0, -8.0, 3.0), (0.0, 0.0, 0.0))
+    mat = _diffuse("Clay", (0.6, 0.5, 0.4))
+    cloud = _points_object("Cloud", GRID, mat, random_radius=(0.1, 0.3), location=(0.5, 0.25, 1.0))
+    cloud.scale = (2.0, 2.0, 2.0)
+    warnings = []
+    scene = _export(prism_addon, warnings)
+    assert warnings == []
+    points = scene.points
+    positions, radii = _evaluated_points(cloud)
+    order = np.lexsort(points.centres.T)
+    expected = np.lexsort(positions.T)
+    np.testing.assert_allclose(points.centres[order], positions[expected], atol=1e-5)
+    np.testing.assert_allclose(points.radii[order], 2.0 * radii[expected], rtol=1e-6)  # object scale 2
+    assert 0.2 <= points.radii.min() and points.radii.max() <= 0.6 and np.ptp(points.radii) > 0.05
+    assert scene.materials[int(points.material[0])].name == "Clay" and len(set(points.material)) == 1
+    assert [scene.object_names[i] for i in set(points.object.tolist())] == ["Cloud"]
+    assert len(scene.triangles) == 0
+
+
+def test_instances_and_distributed_points_arrive_as_the_depsgraph_gives_them(prism_addon, fresh_scene):
+    _lit(fresh_scene)
+    camera((0.0, -8.0, 3.0), (0.0, 0.0, 0.0))
+    cloud = _points_object("Cloud", GRID[:3], radius=0.1)
+    group = bpy.data.collections.new("Clouds")
+    fresh_scene.collection.objects.unlink(cloud)
+    group.objects.link(cloud)
+    fresh_scene.collection.children.link(group)
+    for k, offset in enumerate([(5.0, 0.0, 0.0), (0.0, 5.0, 0.0)]):
+        empty = bpy.data.objects.new(f"Copy{k}", None)
+        empty.instance_type, empty.instance_collection = "COLLECTION", group
+        empty.location = offset
+        empty.scale = (1.0 + k, 1.0 + k, 1.0 + k)
+        fresh_scene.collection.objects.link(empty)
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(0.0, 0.0, -3.0))
+    plane = bpy.context.active_object
+    tree = bpy.data.node_groups.new("Scatter", "GeometryNodeTree")
+    tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+    tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    given, out = tree.nodes.new("NodeGroupInput"), tree.nodes.new("NodeGroupOutput")
+    scatter = tree.nodes.new("GeometryNodeDistributePointsOnFaces")
+    scatter.inputs["Density"].default_value = 20.0
+    tree.links.new(given.outputs[0], scatter.inputs["Mesh"])
+    tree.links.new(scatter.outputs["Points"], out.inputs[0])
+    plane.modifiers.new("Scatter", "NODES").node_group = tree
+    warnings = []
+    scene = _export(prism_addon, warnings)
+    assert warnings == []
+    points = scene.points
+    base = np.array(GRID[:3])
+    by_object = {name: points.centres[points.object == i] for i, name in enumerate(scene.object_names)}
+    clouds = points.centres[np.isin(points.object, [i for i, n in enumerate(scene.object_names) if n == "Cloud"])]
+    expected = np.concatenate([base, base + (5.0, 0.0, 0.0), 2.0 * base + (0.0, 5.0, 0.0)])
+    assert sorted(map(tuple, np.round(clouds, 6))) == sorted(map(tuple, np.round(expected, 6)))
+    scattered, scattered_radii = _evaluated_points(plane)
+    assert len(by_object["Plane"]) == len(scattered) > 20
+    np.testing.assert_allclose(by_object["Plane"][:, 2], -3.0, atol=1e-6)
+    np.testing.assert_allclose(np.sort(points.radii[points.object == scene.object_names.index("Plane")]),
+                               np.sort(scattered_radii), rtol=1e-6)
+    radii = {round(float(r), 6) for r in points.radii[np.isin(points.centres[:, 2], [0.0])]}
+    assert radii == {0.1, 0.2}  # the instance scaled by 2 has twice the radius
+
+
+def _compare(scene, samples, what):
+    cycles = luminance(render_cycles_rgba(scene, samples))
+    prism = luminance(render_prism_rgba(scene, samples))
+    c, p = cycles.mean(), prism.mean()
+    print(f"MEASURED {what}: Prism {p:.5f}, Cycles {c:.5f}, ratio {p / c:.4f}")
+    return p / c
+
+
+def test_diffuse_points_on_a_floor_match_cycles(prism_addon, fresh_scene):
+    _lit(fresh_scene)
+    camera((0.0, -7.0, 4.0), (0.0, 0.0, 0.0), resolution=(32, 24))
+    _points_object("Cloud", GRID, _diffuse("Clay", (0.7, 0.5, 0.3)), random_radius=(0.15, 0.4),
+                   location=(0.0, 0.0, 0.45))
+    bpy.ops.mesh.primitive_plane_add(size=8.0)
+    bpy.context.active_object.data.materials.append(_diffuse("Floor", (0.5, 0.5, 0.5)))
+    ratio = _compare(fresh_scene, 64, "diffuse points on a floor, sun and world")
+    assert ratio == pytest.approx(1.0, abs=0.02)
+
+
+def test_point_info_matches_cycles(prism_addon, fresh_scene):
+    """Emission Colour = Point Info ▸ Position, Strength = 4 × Point Info ▸ Radius, in a black world."""
+    black_world()
+    camera((0.6, -6.0, 0.6), (0.6, 0.0, 0.6), resolution=(24, 24))
+    mat, nodes, link = material("Info")
+    info = nodes.new("ShaderNodePointInfo")
+    scale = node(nodes, "ShaderNodeMath")
+    scale.operation = "MULTIPLY"
+    scale.inputs[1].default_value = 4.0
+    emission = nodes.new("ShaderNodeEmission")
+    link(info.outputs["Position"], emission.inputs["Color"])
+    link(info.outputs["Radius"], scale.inputs[0])
+    link(scale.outputs[0], emission.inputs["Strength"])
+    link(emission.outputs[0], nodes["Output"].inputs["Surface"])
+    positions = [(x, 0.0, z) for x in (0.2, 0.6, 1.0) for z in (0.2, 0.6, 1.0)]
+    _points_object("Glow", positions, mat, random_radius=(0.08, 0.18))
+    warnings = []
+    _export(prism_addon, warnings)
+    assert warnings == []
+    ratio = _compare(fresh_scene, 16, "Point Info Position x Radius emission")
+    assert ratio == pytest.approx(1.0, abs=0.02)
+
+
+def test_points_of_radius_zero_alone_are_refused(prism_addon, fresh_scene, capsys, tmp_path, bad_input):
+    _lit(fresh_scene)
+    camera((0.0, -8.0, 3.0), (0.0, 0.0, 0.0))
+    _points_object("Dust", GRID, radius=0.0)
+    errors = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.errors")
+    with pytest.raises(errors.PrismInputError) as refused:
+        _export(prism_addon)
+    assert "point cloud 'Dust' has a radius of 0" in str(refused.value)
+    status, line = run_batch(capsys, "--samples", 1, "--output", tmp_path / "x.png")
+    assert (status, line) == (1, f"Prism: error: {refused.value}")
+    bad_input("a scene whose only geometry is a point cloud with radius 0", status, line)
+
+
+def test_a_moving_point_cloud_is_warned_under_motion_blur(prism_addon, fresh_scene, capsys, tmp_path, bad_input):
+    _lit(fresh_scene)
+    camera((0.0, -8.0, 3.0), (0.0, 0.0, 0.0))
+    cloud = _points_object("Dust", GRID, radius=0.2)
+    for frame, x in ((1, 0.0), (2, 1.0)):
+        cloud.location.x = x
+        cloud.keyframe_insert("location", frame=frame)
+    fresh_scene.frame_set(1)
+    fresh_scene.render.use_motion_blur = True
+    warnings = []
+    _export(prism_addon, warnings)
+    message = ("Point cloud 'Dust' moves during the shutter, but Prism renders point clouds without motion blur: "
+               "its points are sharp where they stand at the frame.")
+    assert warnings == [message]
+    status, stderr = run_batch_stderr(capsys, "--samples", 1, "--output", tmp_path / "x.png")
+    assert status == 0 and stderr.count(f"Prism: warning: {message}") == 1
+    bad_input("a point cloud that moves with Render ▸ Motion Blur on (a warning; the render goes on)", status,
+              f"Prism: warning: {message}")
+    fresh_scene.render.use_motion_blur = False
+    warnings = []
+    _export(prism_addon, warnings)
+    assert warnings == []

@@ -1,0 +1,68 @@
+"""Point clouds as spheres (``spheres``), rendered: a white furnace (albedo-1 spheres vanish under a uniform
+sky, pixel for pixel), and a diffuse sphere lit by a point light and the sky against the same sphere as a
+fine triangle mesh (absolute mean within its Monte Carlo error)."""
+
+import numpy as np
+
+from engine.tracer.renderer import Renderer
+from engine.tracer.scene import Camera, Light, Material, World
+from engine.tracer.spheres import SpherePoints
+
+from .tracer_scenes import look_at, make_scene, settings, uv_sphere
+
+
+def _points(centres, radii, material=0):
+    centres = np.asarray(centres, np.float64).reshape(-1, 3)
+    count = len(centres)
+    return SpherePoints(centres, np.broadcast_to(np.asarray(radii, np.float64), (count,)).copy(),
+                        np.full(count, material, np.int32), np.zeros(count, np.int32))
+
+
+def _cloud(count=40, seed=4):
+    rng = np.random.default_rng(seed)
+    return _points(rng.uniform(-1.0, 1.0, (count, 3)), rng.uniform(0.05, 0.3, count))
+
+
+def _camera(size):
+    return Camera("cam", look_at((0, -4.0, 0.3), (0, 0, 0)), (size, size), film_width_mm=36.0, film_height_mm=36.0)
+
+
+def test_white_furnace_of_points():
+    """Albedo-1 spheres (overlapping, so paths also bounce between them) under a sky of radiance 1: every
+    pixel equals the empty sky rendered with the same seed."""
+    s = settings(samples=4, samples_per_pass=4, max_bounces=64)
+    scene = make_scene([], [Material("white", base_color=(1.0, 1.0, 1.0))], _camera(24),
+                       world=World(color=(1.0, 1.0, 1.0), strength=1.0))
+    scene.points = _cloud()
+    scene.object_names = ["Cloud"]
+    r = Renderer(scene, s)
+    r.render_pass()
+    assert r.stats["nan_samples"] == 0
+    image = r.image_rgb().astype(np.float64)
+    scene.points = None
+    sky = Renderer(scene, s)
+    sky.render_pass()
+    assert np.allclose(image, sky.image_rgb(), rtol=1e-5, atol=0)
+
+
+def test_diffuse_sphere_point_matches_its_triangle_mesh():
+    """One grey sphere as a point and as a 128 x 256 triangle mesh, lit by a point light and a dim sky: the
+    same absolute mean (4 standard errors + the mesh's 0.03 % area deficit)."""
+    s = settings(samples=64, samples_per_pass=64)
+    light = Light("lamp", "point", np.array([2.0, -2.0, 3.0]), power_w=300.0)
+    world = World(color=(0.1, 0.12, 0.15), strength=1.0)
+    grey = [Material("grey", base_color=(0.6, 0.5, 0.4))]
+    point = make_scene([], grey, _camera(32), [light], world)
+    point.points = _points([[0.0, 0.0, 0.0]], 1.0)
+    point.object_names = ["Cloud"]
+    mesh = make_scene([(*uv_sphere((0, 0, 0), 1.0, rings=128, segments=256), 0)], grey, _camera(32), [light], world)
+    means, errors = [], []
+    for scene in (point, mesh):
+        r = Renderer(scene, s)
+        r.render_pass()
+        assert r.stats["nan_samples"] == 0
+        image = r.image_rgb().astype(np.float64)
+        means.append(image.mean((0, 1)))
+        errors.append(np.sqrt(r.variance_rgb().astype(np.float64).mean((0, 1)) / image[..., 0].size))
+    difference = np.abs(means[0] - means[1])
+    assert np.all(difference < 4 * np.hypot(*errors) + 3e-4 * means[1]), (means[0] / means[1], errors)
