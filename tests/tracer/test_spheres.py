@@ -65,4 +65,57 @@ def test_diffuse_sphere_point_matches_its_triangle_mesh():
         means.append(image.mean((0, 1)))
         errors.append(np.sqrt(r.variance_rgb().astype(np.float64).mean((0, 1)) / image[..., 0].size))
     difference = np.abs(means[0] - means[1])
+    print(f"MEASURED point / mesh mean RGB {means[0] / means[1]}, standard error {np.hypot(*errors) / means[1]}")
     assert np.all(difference < 4 * np.hypot(*errors) + 3e-4 * means[1]), (means[0] / means[1], errors)
+
+
+def test_light_tracing_aims_at_a_glass_point_as_at_a_glass_mesh():
+    """A glass ball on a floor under an area light, as a sphere point and as a 64 x 128 triangle mesh, both
+    with caustics by light tracing: the analysis chooses it for the point too (the ball is a caustic target),
+    the light paths splat through it, and the images agree block by block (the caustic included)."""
+    from .test_light_tracing import _blocks, _light_part, _render
+    from .tracer_scenes import quad
+
+    floor = quad((0, 0, 0), (2, 0, 0), (0, 2, 0))
+    materials = [Material("floor", base_color=(0.8, 0.8, 0.8)), Material("glass", kind="dielectric", ior=1.5)]
+    light = Light("key", "area", np.array([0.3, 0.0, 2.5]), direction=np.array([-0.1, 0, -1.0]), power_w=1800.0,
+                  size_u_m=2.0, size_v_m=2.0)
+    cam = Camera("cam", look_at((0, -3.0, 2.5), (0, 0, 0.3)), (32, 24), film_width_mm=36, film_height_mm=27)
+    point = make_scene([(*floor, 0)], materials, cam, [light])
+    point.points = _points([[0.0, 0.0, 0.5]], 0.5, material=1)
+    point.object_names = ["Floor", "Ball"]
+    point.points.object[:] = 1
+    mesh = make_scene([(*floor, 0), (*uv_sphere((0, 0, 0.5), 0.5, rings=64, segments=128), 1)], materials, cam,
+                      [light])
+    renders = [_render(scene, samples=256, samples_per_pass=256, max_bounces=6, light_tracing="auto", seed=3)
+               for scene in (point, mesh)]
+    for r in renders:
+        assert "caustics by light tracing (glass)" in r.strategy and r.stats["light_splats"] > 10_000
+        assert r.stats["nan_samples"] == 0
+    a, b = (_blocks(r.image_rgb().astype(np.float64), 4).mean(-1) for r in renders)
+    var = sum(_blocks(r.variance_rgb().astype(np.float64), 4).mean(-1) / 16 for r in renders)
+    z = (a - b) / np.sqrt(var + 1e-12)
+    caustic = _blocks(_light_part(renders[1]), 4).mean(-1) > 0.25 * b
+    assert caustic.sum() >= 2
+    assert np.all(np.abs(z) < 4.5), z
+    assert abs(a[caustic].sum() - b[caustic].sum()) < 3.5 * np.sqrt(var[caustic].sum())
+
+
+def test_points_hidden_from_camera_rays_leave_the_sky():
+    """Object ▸ Visibility ▸ Camera off for a cloud of dark spheres: camera rays pass through them (one Embree
+    scene per kind of ray, spheres included), so the image is the empty sky."""
+    from engine.tracer.visibility import ALL_RAYS, RAY_CAMERA
+
+    s = settings(samples=4, samples_per_pass=4)
+    scene = make_scene([], [Material("dark", base_color=(0.2, 0.2, 0.2))], _camera(24),
+                       world=World(color=(1.0, 1.0, 1.0), strength=1.0))
+    scene.points = _cloud()
+    scene.object_names = ["Cloud"]
+    scene.object_flags = np.array([ALL_RAYS & ~RAY_CAMERA], np.uint8)
+    hidden = Renderer(scene, s)
+    hidden.render_pass()
+    assert hidden.tables.ray_classes is not None
+    scene.points = None
+    sky = Renderer(scene, s)
+    sky.render_pass()
+    assert np.array_equal(hidden.image_rgb(), sky.image_rgb())
