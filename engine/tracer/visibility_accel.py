@@ -40,6 +40,8 @@ class _Subset:
 
     def _map(self, hit):
         triangle, t, u, v = hit
+        if not len(self.ids):  # nothing this kind of ray sees (every object hidden from it): all rays miss
+            return np.full(len(triangle), -1, np.int32), t, u, v
         mapped = np.where(triangle >= 0, self.ids[np.maximum(triangle, 0)], -1).astype(np.int32)
         return mapped, t, u, v
 

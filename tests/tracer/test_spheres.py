@@ -71,7 +71,7 @@ def test_diffuse_sphere_point_matches_its_triangle_mesh():
 
 def test_light_tracing_aims_at_a_glass_point_as_at_a_glass_mesh():
     """A glass ball on a floor under an area light, as a sphere point and as a 64 x 128 triangle mesh, both
-    with caustics by light tracing: the analysis chooses it for the point too (the ball is a caustic target),
+    with caustics by light tracing (On): the ball point is a caustic target as the mesh is,
     the light paths splat through it, and the images agree block by block (the caustic included)."""
     from .test_light_tracing import _blocks, _light_part, _render
     from .tracer_scenes import quad
@@ -87,7 +87,7 @@ def test_light_tracing_aims_at_a_glass_point_as_at_a_glass_mesh():
     point.points.object[:] = 1
     mesh = make_scene([(*floor, 0), (*uv_sphere((0, 0, 0.5), 0.5, rings=64, segments=128), 1)], materials, cam,
                       [light])
-    renders = [_render(scene, samples=256, samples_per_pass=256, max_bounces=6, light_tracing="auto", seed=3)
+    renders = [_render(scene, samples=256, samples_per_pass=256, max_bounces=6, light_tracing="on", seed=3)
                for scene in (point, mesh)]
     for r in renders:
         assert "caustics by light tracing (glass)" in r.strategy and r.stats["light_splats"] > 10_000
@@ -102,8 +102,9 @@ def test_light_tracing_aims_at_a_glass_point_as_at_a_glass_mesh():
 
 
 def test_points_hidden_from_camera_rays_leave_the_sky():
-    """Object ▸ Visibility ▸ Camera off for a cloud of dark spheres: camera rays pass through them (one Embree
-    scene per kind of ray, spheres included), so the image is the empty sky."""
+    """Object ▸ Visibility ▸ Camera off for a cloud of dark spheres, the scene's only object: camera rays pass
+    through them (one Embree scene per kind of ray, spheres included; the camera rays' scene is empty), so the
+    image is the empty sky."""
     from engine.tracer.visibility import ALL_RAYS, RAY_CAMERA
 
     s = settings(samples=4, samples_per_pass=4)
