@@ -70,6 +70,16 @@ def _kept(triangle_object, original):
     return np.asarray(triangle_object)[original]
 
 
+def _row_objects(scene, original):
+    """The object of each render row: the kept triangles', then the rendered spheres' (so light and shadow
+    linking read a sphere hit's object as a triangle's), or None."""
+    kept = _kept(scene.triangle_object, original)
+    rows = rendered_rows(getattr(scene, "points", None))
+    if kept is None or not len(rows):
+        return kept
+    return np.concatenate([kept, np.asarray(scene.points.object)[rows]]).astype(kept.dtype)
+
+
 def _trick_settings(tricks) -> dict:
     """The ``KernelSettings`` fields of Cycles' Light Paths tricks (``path_tricks``)."""
     direct, indirect = tricks.kernel_limits()
@@ -130,7 +140,7 @@ class SceneTables:
                                         self.geometry.material[:triangles], materials.emission_strength, camera.origin,
                                         light_groups=groups,
                                         triangle_group=_triangle_groups(scene, self._original_triangle, groups),
-                                        triangle_objects=_kept(scene.triangle_object, self._original_triangle))
+                                        triangle_objects=_row_objects(scene, self._original_triangle))
         white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
         self.pass_layout = FilmLayout(settings.passes, white)
         self.aov_table = aov_table(scene.materials, settings.passes.aovs)
