@@ -120,3 +120,26 @@ def test_points_hidden_from_camera_rays_leave_the_sky():
     sky = Renderer(scene, s)
     sky.render_pass()
     assert np.array_equal(hidden.image_rgb(), sky.image_rgb())
+
+
+def test_a_point_outside_a_lights_blocker_sets_casts_none_of_its_shadow():
+    """Shadow linking reads a sphere hit's object: a ball point (blocker set 1) 1.5 m under the left light of
+    ``test_light_linking``'s two floor halves shades the floor under it; outside the left light's blocker sets
+    (set 0 only) it casts none of that light's shadow."""
+    from .test_light_linking import _links, _render, _two_halves
+
+    def with_ball(links=None):
+        scene = _two_halves(card=False)
+        scene.points = _points([[-1.0, 0.0, 1.5]], 0.25)
+        scene.points.object[:] = 2
+        scene.object_names = ["Left", "Right", "Ball"]
+        scene.light_links = links
+        return scene
+
+    free, _ = _render(_two_halves(card=False))
+    shadowed, _ = _render(with_ball())
+    linked, r = _render(with_ball(_links(3, blockers=[(2, 1)], shadow_sets={"left": 0b1})))
+    assert r.tables.kernel_settings.shadow_linking
+    spot = (slice(6, 10), slice(5, 9))
+    assert shadowed[spot].mean() < 0.7 * free[spot].mean()
+    np.testing.assert_allclose(linked[spot].mean(), free[spot].mean(), rtol=0.02)
