@@ -4,8 +4,8 @@ blurs motion.
 Cycles' Blender sync gives a mesh no triangles when Filter ▸ Surfaces (``use_solid``) is off, so neither
 its surface nor a volume inside it renders; hair curves are left out when Filter ▸ Curves
 (``use_strand``) is off; Volume objects when Filter ▸ Volumes is off; and motion blur needs both Render ▸
-Motion Blur and the layer's Filter ▸ Motion Blur. Lights are objects of their own and stay. Environment
-(``use_sky``) is read by ``world``.
+Motion Blur and the layer's Filter ▸ Motion Blur. Lights are objects of their own and stay, and so do point
+clouds (Cycles' sync has no switch for them yet). Environment (``use_sky``) is read by ``world``.
 """
 
 from __future__ import annotations
