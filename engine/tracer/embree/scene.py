@@ -12,6 +12,8 @@ blur needs; other geometry kinds (curves, points, user geometry) attach the same
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import numpy as np
 
 from .device import Device, shared_device
@@ -25,6 +27,23 @@ FORMAT_UINT3 = 0x5003
 FORMAT_FLOAT3 = 0x9003
 SCENE_FLAG_ROBUST = 1 << 2  # watertight traversal, as embreex builds its scenes: the same hits
 BUILD_QUALITY_MEDIUM = 1
+
+
+@contextmanager
+def new_geometry(device: Device, scene_handle, kind: int, created: str, built: str):
+    """An Embree geometry of ``kind`` for the block to fill with buffers; committed and attached to
+    ``scene_handle`` after it, and released whatever happens (the scene holds its own reference). Embree's
+    errors name what failed: ``created`` (e.g. "a sphere geometry") or ``built`` (e.g. "12 spheres")."""
+    library = device.library
+    geometry = library.rtcNewGeometry(device.handle, kind)
+    device.check(f"create {created}")
+    try:
+        yield geometry
+        library.rtcCommitGeometry(geometry)
+        library.rtcAttachGeometry(scene_handle, geometry)
+        device.check(f"build {built}")
+    finally:
+        library.rtcReleaseGeometry(geometry)
 
 
 def _padded_float3(points: np.ndarray) -> np.ndarray:
@@ -58,9 +77,8 @@ class TriangleGeometry:
 
     def attach(self, device: Device, scene_handle) -> None:
         library = device.library
-        geometry = library.rtcNewGeometry(device.handle, GEOMETRY_TYPE_TRIANGLE)
-        device.check("create a triangle geometry")
-        try:
+        with new_geometry(device, scene_handle, GEOMETRY_TYPE_TRIANGLE, "a triangle geometry",
+                          f"a mesh of {self.triangle_count} triangles") as geometry:
             if self.time_steps > 1:
                 library.rtcSetGeometryTimeStepCount(geometry, self.time_steps)
             for step, vertices in enumerate(self._vertices):
@@ -68,11 +86,6 @@ class TriangleGeometry:
                                                    vertices.ctypes.data, 0, 12, self.vertex_count)
             library.rtcSetSharedGeometryBuffer(geometry, BUFFER_TYPE_INDEX, 0, FORMAT_UINT3,
                                                self._indices.ctypes.data, 0, 12, self.triangle_count)
-            library.rtcCommitGeometry(geometry)
-            library.rtcAttachGeometry(scene_handle, geometry)
-            device.check(f"build a mesh of {self.triangle_count} triangles")
-        finally:
-            library.rtcReleaseGeometry(geometry)  # the scene holds its own reference
 
 
 class Scene:

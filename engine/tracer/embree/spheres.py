@@ -14,7 +14,7 @@ import numpy as np
 
 from .device import Device
 from .errors import EmbreeError
-from .scene import BUFFER_TYPE_VERTEX
+from .scene import BUFFER_TYPE_VERTEX, new_geometry
 
 # Embree 4 enums (include/embree4/rtcore_geometry.h, rtcore_buffer.h / rtcore_common.h)
 GEOMETRY_TYPE_SPHERE_POINT = 50
@@ -38,14 +38,7 @@ class SphereGeometry:
         return 1
 
     def attach(self, device: Device, scene_handle) -> None:
-        library = device.library
-        geometry = library.rtcNewGeometry(device.handle, GEOMETRY_TYPE_SPHERE_POINT)
-        device.check("create a sphere geometry")
-        try:
-            library.rtcSetSharedGeometryBuffer(geometry, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT4,
-                                               self._points.ctypes.data, 0, 16, self.count)
-            library.rtcCommitGeometry(geometry)
-            library.rtcAttachGeometry(scene_handle, geometry)
-            device.check(f"build {self.count} spheres")
-        finally:
-            library.rtcReleaseGeometry(geometry)  # the scene holds its own reference
+        with new_geometry(device, scene_handle, GEOMETRY_TYPE_SPHERE_POINT, "a sphere geometry",
+                          f"{self.count} spheres") as geometry:
+            device.library.rtcSetSharedGeometryBuffer(geometry, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT4,
+                                                      self._points.ctypes.data, 0, 16, self.count)
