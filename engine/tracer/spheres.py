@@ -13,7 +13,6 @@ lights (an emissive sphere is found by rays, as Cycles finds emissive points).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -82,14 +81,3 @@ def sphere_surface(spheres, s, u, v):
     n = decode(u, v)
     cx, cy, cz, r = float(spheres[s, 0]), float(spheres[s, 1]), float(spheres[s, 2]), float(spheres[s, 3])
     return (cx + r * n[0], cy + r * n[1], cz + r * n[2]), n, n
-
-
-@inlined
-def any_tangent(n):
-    """A unit vector perpendicular to the unit vector ``n``."""
-    if abs(n[0]) < 0.9:
-        tx, ty, tz = 0.0, n[2], -n[1]
-    else:
-        tx, ty, tz = -n[2], 0.0, n[0]
-    length = math.sqrt(tx * tx + ty * ty + tz * tz)
-    return tx / length, ty / length, tz / length

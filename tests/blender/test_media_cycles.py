@@ -70,17 +70,23 @@ def test_principled_volume_cube_matches_cycles(prism_addon, fresh_scene):
     assert ratio == pytest.approx(1.0, abs=0.03)
 
 
+def _glowing_cube_ratio(fresh_scene, name, label, **volume_inputs) -> float:
+    """Prism / Cycles of a cube filled with a Principled Volume of ``volume_inputs`` in a black world, seen
+    face on (128 spp, the cube's middle 12 × 12 pixels)."""
+    black_world()
+    mat, nodes, link = material(name)
+    volume = node(nodes, "ShaderNodeVolumePrincipled", **volume_inputs)
+    link(volume.outputs[0], nodes["Output"].inputs["Volume"])
+    _cube(name, mat)
+    camera((0.0, -8.0, 1.0), (0.0, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
+    return _compare(fresh_scene, 128, (slice(6, 18), slice(6, 18)), label)
+
+
 def test_emitting_principled_volume_matches_cycles(prism_addon, fresh_scene):
     """Emission Strength × Emission Color is radiance per metre, not scaled by density, in a scattering and
     absorbing medium, in a black world: all the light is the medium's own."""
-    black_world()
-    mat, nodes, link = material("Glow")
-    volume = node(nodes, "ShaderNodeVolumePrincipled", Color=(0.6, 0.6, 0.6), Density=1.5,
-                  Emission_Strength=0.4, Emission_Color=(1.0, 0.6, 0.3))
-    link(volume.outputs[0], nodes["Output"].inputs["Volume"])
-    _cube("Glow", mat)
-    camera((0.0, -8.0, 1.0), (0.0, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
-    ratio = _compare(fresh_scene, 128, (slice(6, 18), slice(6, 18)), "emitting Principled Volume cube")
+    ratio = _glowing_cube_ratio(fresh_scene, "Glow", "emitting Principled Volume cube", Color=(0.6, 0.6, 0.6),
+                                Density=1.5, Emission_Strength=0.4, Emission_Color=(1.0, 0.6, 0.3))
     assert ratio == pytest.approx(1.0, abs=0.03)
 
 
@@ -119,14 +125,8 @@ def test_volume_settings_export_as_a_medium_and_textured_density_is_warned(prism
 def test_blackbody_principled_volume_matches_cycles(prism_addon, fresh_scene):
     """Blackbody Intensity 1 at 1800 K: σ_SB T⁴ × 10⁻⁶ / π of luminance-1 blackbody light per metre (Cycles'
     Stefan-Boltzmann scaling), in an absorbing, scattering medium in the dark."""
-    black_world()
-    mat, nodes, link = material("Flame")
-    volume = node(nodes, "ShaderNodeVolumePrincipled", Color=(0.5, 0.5, 0.5), Density=1.0,
-                  Blackbody_Intensity=1.0, Temperature=1800.0)
-    link(volume.outputs[0], nodes["Output"].inputs["Volume"])
-    _cube("Flame", mat)
-    camera((0.0, -8.0, 1.0), (0.0, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
-    ratio = _compare(fresh_scene, 128, (slice(6, 18), slice(6, 18)), "blackbody Principled Volume cube")
+    ratio = _glowing_cube_ratio(fresh_scene, "Flame", "blackbody Principled Volume cube", Color=(0.5, 0.5, 0.5),
+                                Density=1.0, Blackbody_Intensity=1.0, Temperature=1800.0)
     assert ratio == pytest.approx(1.0, abs=0.03)
 
 

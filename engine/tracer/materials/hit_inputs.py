@@ -14,7 +14,7 @@ import math
 
 from ..jit import inlined, kernel
 from ..octahedral import decode
-from ..spheres import any_tangent
+from ..vec3 import tangents
 
 # ``SurfaceArrays.objects`` columns: world→object affine (row-major 3 x 4, camera offset folded in),
 # generated-coordinate scale and offset (object space → 0-1 over the texture space), world location,
@@ -40,7 +40,7 @@ def bump_step(geometry, triangle, p, ng):
     right-handed about ``ng``."""
     eps = max(_BUMP_RELATIVE * math.sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), _BUMP_FLOOR_M)
     if triangle >= geometry.triangles.shape[0]:
-        tx, ty, tz = any_tangent(ng)
+        tx, ty, tz = tangents(ng)[0]  # any unit vector in the sphere's tangent plane
     else:
         tri = geometry.triangles[triangle]
         vs = geometry.vertices
