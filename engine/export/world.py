@@ -139,7 +139,10 @@ def export_world(scene, warnings: list[str] | None = None, view_layer=None) -> W
     exported = _world_as_seen(world, tree, warnings, camera_rays=False)
     output = tree.get_output_node("ALL") if tree is not None else None
     if output is not None and has_camera_ray_mix(world, output.inputs["Surface"]):
-        exported.camera_background = _world_as_seen(world, tree, None, camera_rays=True)
+        seen_warnings: list[str] = []  # the backplate's own; what both sides share is told once
+        exported.camera_background = _world_as_seen(world, tree, seen_warnings, camera_rays=True)
+        if warnings is not None:
+            warnings.extend(w for w in dict.fromkeys(seen_warnings) if w not in warnings)
         if exported.camera_background.kind == "sky":
             raise PrismInputError(f"World '{world.name}': camera rays see a Sky Texture through Light Path ▸ Is "
                                   "Camera Ray; Prism shows a constant colour or an Environment Texture there: "

@@ -65,3 +65,17 @@ def test_the_export_keeps_both_backgrounds(prism_addon, fresh_scene):
     assert world.color == pytest.approx(LIGHTING) and world.strength == 1.0
     assert world.camera_background.color == pytest.approx(BACKPLATE) and world.camera_background.strength == 2.0
     assert warnings == []  # the Light Path link is understood, not reported as ignored
+
+
+def test_a_link_prism_ignores_in_the_backplate_is_reported_once(prism_addon, fresh_scene):
+    """A link into the backplate's Strength that Prism cannot fold is named, as on the lighting side."""
+    _backplate_world()
+    nodes, links = fresh_scene.world.node_tree.nodes, fresh_scene.world.node_tree.links
+    seen = next(n for n in nodes if n.type == "BACKGROUND" and n.name != "Background")
+    links.new(nodes.new("ShaderNodeLightPath").outputs["Is Shadow Ray"], seen.inputs["Strength"])
+    export = importlib.import_module(f"{prism_addon.__name__}.engine.export.world")
+    warnings = []
+    world = export.export_world(fresh_scene, warnings)
+    named = [w for w in warnings if f"Background '{seen.name}' Strength is ignored" in w]
+    assert len(named) == 1, warnings
+    assert world.camera_background.strength == 2.0  # the socket's own value
