@@ -20,6 +20,7 @@ from .meshes import export_meshes
 from .missing_libraries import missing_libraries
 from .motion import export_motion
 from .unrendered_settings import unrendered_setting_warnings
+from .vector_pass import export_vector_pass
 from .view_layer_filter import LayerFilter, layer_filter
 from .world import export_world
 from .zero_area import zero_area_objects, zero_area_sentence
@@ -100,7 +101,8 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None) -
 
     With Render ▸ Motion Blur on, the scene is evaluated again at the shutter's times through
     ``frame_set(frame, subframe)`` (a render passes its engine's, which re-evaluates ``depsgraph``; default:
-    the scene's own ``frame_set``) and set back to its frame afterwards (``motion``).
+    the scene's own ``frame_set``) and set back to its frame afterwards (``motion``); with the Vector pass
+    on and motion blur off, at the previous and next frames (``vector_pass``).
 
     Raises ``PrismInputError`` (naming the object and the fix) for scenes that
     cannot render: no camera, unsupported camera, NaN geometry, unknown glass, ...
@@ -132,9 +134,10 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None) -
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.light_links = export_light_links(depsgraph, geometry.object_names, warnings)
     tracer_scene.data_passes = export_data_passes(scene, geometry)
-    export_motion(scene, depsgraph, tracer_scene, frame_set or (lambda f, s: scene.frame_set(f, subframe=s)),
-                  lambda evaluated: export_meshes(evaluated, None, camera_position=camera.camera_to_world[:3, 3]),
-                  warnings if warnings is not None else [])
+    frame_set = frame_set or (lambda f, s: scene.frame_set(f, subframe=s))
+    meshes_again = lambda evaluated: export_meshes(evaluated, None, camera_position=camera.camera_to_world[:3, 3])  # noqa: E731
+    export_motion(scene, depsgraph, tracer_scene, frame_set, meshes_again, warnings if warnings is not None else [])
+    export_vector_pass(scene, depsgraph, tracer_scene, frame_set, meshes_again, warnings if warnings is not None else [])
     tracer_scene.validate()
     if warnings is not None:
         from .camera_in_medium import camera_in_medium_warnings

@@ -7,7 +7,7 @@ from .light_path_tricks import light_path_trick_warnings
 
 
 #: View Layer ▸ Passes switches Prism does not render yet, with Blender's pass names.
-UNRENDERED_PASSES = (("use_pass_vector", "Vector"), ("use_pass_cryptomatte_object", "CryptoObject"),
+UNRENDERED_PASSES = (("use_pass_cryptomatte_object", "CryptoObject"),
                      ("use_pass_cryptomatte_material", "CryptoMaterial"),
                      ("use_pass_cryptomatte_asset", "CryptoAsset"))
 

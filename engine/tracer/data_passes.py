@@ -1,4 +1,4 @@
-"""What the data passes read besides the hit itself (Mist, UV, Object and Material Index, AO), from the
+"""What the data passes read besides the hit itself (Mist, UV, Object and Material Index, AO, Vector), from the
 scene (``DataPassInputs``, filled by the export) to the kernels' arrays (``first_hit_tables``)."""
 
 from __future__ import annotations
@@ -24,7 +24,13 @@ class DataPassInputs:
     """``object_pass_index`` float32 [T] (Object ▸ Relations ▸ Pass Index per triangle) and ``uv`` float32
     [T, 3, 3] (the render UV map per triangle corner as u, v, 1; 0, 0, 0 on a mesh without one, as Cycles): None unless their pass is asked
     for; ``material_pass_index`` one per scene material; World ▸ Mist Pass (m; falloff a ``MIST_FALLOFFS``
-    key) and World ▸ Ambient Occlusion ▸ Distance (m). Defaults are Blender's."""
+    key) and World ▸ Ambient Occlusion ▸ Distance (m). Defaults are Blender's.
+
+    The Vector pass (None unless asked for, and with Render ▸ Motion Blur off, as Cycles):
+    ``triangle_motion`` float32 [T, 2, 3, 3], per triangle corner its world displacement to where it is at
+    the previous frame (row 0) and at the next frame (row 1), m; ``world_to_raster`` float64 [3, 4, 4], the
+    camera's projection from world to pixels (x right, y up, from the image's lower left corner) at the
+    previous frame, the frame and the next frame."""
 
     object_pass_index: np.ndarray | None = None
     uv: np.ndarray | None = None
@@ -33,10 +39,13 @@ class DataPassInputs:
     mist_depth_m: float = 25.0
     mist_falloff: str = "QUADRATIC"
     ao_distance_m: float = 10.0
+    triangle_motion: np.ndarray | None = None
+    world_to_raster: np.ndarray | None = None
 
 
 #: The ``stages.pass_writes.PassData`` arrays of a render: see there.
-FirstHitTables = namedtuple("FirstHitTables", "first_hit_data object_index material_index triangle_uv")
+FirstHitTables = namedtuple("FirstHitTables", "first_hit_data object_index material_index triangle_uv "
+                                               "triangle_motion world_to_raster")
 
 
 def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, layout, orthographic: bool,
@@ -62,4 +71,10 @@ def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, 
     if layout.uv >= 0 and inputs.uv is not None:
         uv = np.ascontiguousarray(np.concatenate([np.asarray(inputs.uv, np.float32)[original_triangle],
                                                   np.zeros((len(spheres), 3, 3), np.float32)]))
-    return FirstHitTables(data, object_index, material_index, uv)
+    motion = np.zeros((0, 2, 3, 3), np.float32)
+    world_to_raster = np.zeros((3, 4, 4))
+    if layout.vector >= 0 and inputs.triangle_motion is not None:  # spheres: still (their motion is not read)
+        motion = np.ascontiguousarray(np.concatenate([np.asarray(inputs.triangle_motion, np.float32)[original_triangle],
+                                                      np.zeros((len(spheres), 2, 3, 3), np.float32)]))
+        world_to_raster = np.ascontiguousarray(inputs.world_to_raster, np.float64)
+    return FirstHitTables(data, object_index, material_index, uv, motion, world_to_raster)

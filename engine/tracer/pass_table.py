@@ -51,15 +51,18 @@ BUFFERS = {b.key: b for b in (
     Buffer("material_index", 2),  # the same for its material
     Buffer("uv"),  # u, v, 1 of the first surface's render UV map
     Buffer("ao", 1),  # 1 where the first surface's ambient-occlusion ray is free
+    Buffer("vector", 5),  # the first surface's motion in pixels to the previous / from the next frame, and 1
 
     *(Buffer(key, spectral=True) for key in LIGHT_SLOTS),
 )}
 
 
 #: How a pass is made from its buffer's per-pixel mean (``Pass.reduce``): the mean itself; DEPTH: sum /
-#: count, 1e10 where no sample counted; FIRST: the same, 0 where none (values of sample 0 only);
-#: COMPLEMENT: 1 - the mean; GREY: a 1-wide mean as R = G = B.
-MEAN, DEPTH, FIRST, COMPLEMENT, GREY = "mean", "depth", "first", "complement", "grey"
+#: count (the buffer's last channel), 1e10 where no sample counted; FIRST: the same, 0 where none (values
+#: of sample 0 only); SURFACE: the same, 0 where none (the mean over the samples that hit a surface, as
+#: Cycles divides its Vector pass by its motion weight); COMPLEMENT: 1 - the mean; GREY: a 1-wide mean as
+#: R = G = B.
+MEAN, DEPTH, FIRST, SURFACE, COMPLEMENT, GREY = "mean", "depth", "first", "surface", "complement", "grey"
 
 
 @dataclass(frozen=True)
@@ -86,6 +89,10 @@ PASSES = {p.name: p for p in (
     Pass("Position", "XYZ", "VECTOR", "position", meaning="world position of the surface first seen (m)"),
     Pass("Normal", "XYZ", "VECTOR", "normal", meaning="world-space shading normal of the surface first seen, "
          "facing the camera"),
+    Pass("Vector", "XYZW", "VECTOR", "vector", meaning="motion of the surface first seen, in pixels (x right, y "
+         "up): X, Y = its position in the previous frame - now, Z, W = now - in the next frame (camera motion "
+         "included); the mean over the samples that hit a surface, 0 where none; 0 with Render ▸ Motion Blur "
+         "on, as Cycles", reduce=SURFACE),
     Pass("UV", "UVA", "VECTOR", "uv", meaning="the render UV map of the surface first seen (u, v, 1; 0 where "
          "none or without UV map)"),
     Pass("IndexOB", "X", "VALUE", "object_index", meaning="Object ▸ Relations ▸ Pass Index of the object sample "
@@ -118,6 +125,7 @@ PASSES = {p.name: p for p in (
 #: Blender's view-layer switch of each pass (``ViewLayer.use_pass_*``), for the Blender side.
 VIEW_LAYER_SWITCH = {
     "Depth": "use_pass_z", "Mist": "use_pass_mist", "Position": "use_pass_position", "Normal": "use_pass_normal",
+    "Vector": "use_pass_vector",
     "UV": "use_pass_uv", "IndexOB": "use_pass_object_index", "IndexMA": "use_pass_material_index",
     "AO": "use_pass_ambient_occlusion", "Emit": "use_pass_emit",
     "Env": "use_pass_environment", "DiffDir": "use_pass_diffuse_direct", "DiffInd": "use_pass_diffuse_indirect",
@@ -161,7 +169,7 @@ class PassRequest:
 PassLayout = namedtuple(
     "PassLayout",
     "depth position normal denoising_normal denoising_depth denoising_albedo light group groups aov aovs "
-    "columns slots rgb_column white mist object_index material_index uv ao",
+    "columns slots rgb_column white mist object_index material_index uv ao vector",
 )
 
 
@@ -205,7 +213,7 @@ class FilmLayout:
             slot.get("denoising_albedo", -1), slot.get(LIGHT_SLOTS[0], -1),
             slot["group:" + request.light_groups[0]] if groups else -1, groups,
             aov_column if self.aov_names else -1, len(self.aov_names), column, len(self.slot_keys), rgb_column,
-            int(white_spectrum), col["mist"], col["object_index"], col["material_index"], col["uv"], col["ao"])
+            int(white_spectrum), col["mist"], col["object_index"], col["material_index"], col["uv"], col["ao"], col["vector"])
 
     def images(self, aux_mean: np.ndarray, exposure: float = 1.0) -> dict[str, np.ndarray]:
         """Every requested pass from the film's per-pixel ``aux_mean`` [..., width] (sums divided by the
@@ -215,10 +223,10 @@ class FilmLayout:
         for name in self.request.passes:
             p = PASSES[name]
             image = self._buffer(aux_mean, p.buffer)
-            if p.reduce in (DEPTH, FIRST):  # a sum over the samples that counted, and their count
-                hits = image[..., 1:2]
+            if p.reduce in (DEPTH, FIRST, SURFACE):  # sums over the samples that counted, and their count
+                hits = image[..., -1:]
                 empty = BACKGROUND_DEPTH_M if p.reduce == DEPTH else 0.0
-                image = np.divide(image[..., :1], hits, out=np.full_like(hits, empty), where=hits > 0)
+                image = np.divide(image[..., :-1], hits, out=np.full_like(image[..., :-1], empty), where=hits > 0)
             elif p.reduce == COMPLEMENT:
                 image = 1.0 - image
             elif p.reduce == GREY:

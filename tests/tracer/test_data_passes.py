@@ -109,3 +109,47 @@ def test_ambient_occlusion_of_an_open_floor_and_beside_a_wall():
         band = (h >= low) & (h < high)
         assert abs(ao[..., 0][band].mean() - expected[band].mean()) < 0.03, (low, ao[..., 0][band].mean(),
                                                                               expected[band].mean())
+
+
+def _pinhole_world_to_raster(camera_to_world, focal_mm, film_mm, size):
+    """[4, 4] world → pixels (x right, y up from the lower left corner) of a square pinhole camera, written
+    from the pinhole model (not from the tracer's camera code)."""
+    scale = focal_mm / film_mm * size
+    camera_to_raster = np.array([[scale, 0.0, -0.5 * size, 0.0], [0.0, scale, -0.5 * size, 0.0],
+                                 [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, -1.0, 0.0]])  # w = depth d = -z: x / d · scale + size / 2
+    return camera_to_raster @ np.linalg.inv(camera_to_world)
+
+
+def test_vector_pass_is_the_screen_motion_to_the_previous_and_from_the_next_frame():
+    """The wall moves -0.1 m in x from the previous frame and will be 0.3 m up in the next, while the camera
+    (at rest, then) steps 0.2 m back by the next frame: previous - now and now - next in pixels, exactly the
+    pinhole projection of those positions; pixels seeing nothing hold 0."""
+    scene = _wide_wall(3.0)
+    triangles = len(scene.triangles)
+    motion = np.zeros((triangles, 2, 3, 3), np.float32)
+    motion[:, 0, :, 0] = -0.1  # where each corner was at the previous frame, relative to now
+    motion[:, 1, :, 2] = 0.3  # and where it will be at the next
+    now = _pinhole_world_to_raster(scene.camera.camera_to_world, 15.0, 36.0, 16)
+    moved_camera = scene.camera.camera_to_world.copy()
+    moved_camera[1, 3] -= 0.2  # the camera backs away along -y by the next frame
+    after = _pinhole_world_to_raster(moved_camera, 15.0, 36.0, 16)
+    scene.data_passes = DataPassInputs(triangle_motion=motion, world_to_raster=np.stack([now, now, after]))
+    p = _passes(scene, ["Vector", "Depth"], samples=16, samples_per_pass=16)
+    vector, depth = p["Vector"], p["Depth"][..., 0]
+    assert vector.shape == (16, 16, 4)
+    per_metre = 15.0 / 36.0 * 16 / 3.0  # pixels per metre on the wall, 3 m away
+    full = np.zeros((16, 16), bool)
+    full[5:11, 5:11] = True  # pixels wholly on the wall (it covers pixels 3.6 to 12.4)
+    assert np.allclose(vector[full, 0], -0.1 * per_metre, atol=1e-4)
+    assert np.allclose(vector[full, 1], 0.0, atol=1e-4)
+    # Next frame: the point 0.3 m higher, seen 3.2 m away: now - next per pixel from its centre's offset.
+    ys, xs = np.nonzero(full)
+    on_wall_x = ((xs + 0.5) - 8.0) / (15.0 / 36.0 * 16) * 3.0  # each pixel's mean wall point (m)
+    on_wall_z = (8.0 - (ys + 0.5)) / (15.0 / 36.0 * 16) * 3.0
+    next_x = 8.0 + on_wall_x * 15.0 / 36.0 * 16 / 3.2
+    next_y = 8.0 + (on_wall_z + 0.3) * 15.0 / 36.0 * 16 / 3.2
+    now_y = 8.0 + on_wall_z * 15.0 / 36.0 * 16 / 3.0
+    assert np.allclose(vector[full, 2], (8.0 + on_wall_x * per_metre) - next_x, atol=2e-3)
+    assert np.allclose(vector[full, 3], now_y - next_y, atol=2e-3)
+    background = depth > 1e9
+    assert background.sum() > 60 and np.all(vector[background] == 0.0)

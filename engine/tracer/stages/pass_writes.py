@@ -38,8 +38,8 @@ from ..vec3 import tangents, to_world
 from ..warps import cosine_hemisphere
 
 PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table "
-                                   "first_hit_data object_index material_index triangle_uv ao_rays ao_free ao_weight "
-                                   "ao_count")
+                                   "first_hit_data object_index material_index triangle_uv triangle_motion "
+                                   "world_to_raster ao_rays ao_free ao_weight ao_count")
 
 #: The sampler slot of the AO pass's direction (2-D): far past any bounce's slots.
 SLOT_AO = 1 << 20
@@ -64,7 +64,7 @@ def new_pass_data(n: int, k: int, film_layout) -> PassData:
                     np.zeros((light, 2, 3, k)), np.zeros(features, np.int8),
                     np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)),
                     np.zeros(FIRST_HIT_DATA), np.zeros(0, np.float32), np.zeros(1), np.zeros((0, 3, 3), np.float32),
-                    new_ray_queue(ao), np.zeros(ao, np.int32), np.zeros(ao), np.zeros(1, np.int64))
+                    np.zeros((0, 2, 3, 3), np.float32), np.zeros((3, 4, 4)), new_ray_queue(ao), np.zeros(ao, np.int32), np.zeros(ao), np.zeros(1, np.int64))
 
 
 @kernel
@@ -132,6 +132,41 @@ def _mist(passes, p):
 
 
 @inlined
+def _raster(passes, frame, x, y, z):
+    """Pixel position (x, y) of the world point (x, y, z) in the camera of ``frame`` (0 previous, 1 now, 2 next)."""
+    m = passes.world_to_raster[frame]
+    w = m[3, 0] * x + m[3, 1] * y + m[3, 2] * z + m[3, 3]
+    w = w if w != 0.0 else 1e-30
+    return ((m[0, 0] * x + m[0, 1] * y + m[0, 2] * z + m[0, 3]) / w,
+            (m[1, 0] * x + m[1, 1] * y + m[1, 2] * z + m[1, 3]) / w)
+
+
+@inlined
+def _vector(state, passes, layout, i, p, triangle):
+    """The Vector pass of the hit at ``p`` (Cycles' ``camera_motion_vector``): the surface point where it is
+    at the previous and next frames (its triangle's corners moved by their displacements, same
+    barycentrics), each projected by that frame's camera; previous - now, now - next, in pixels."""
+    u, v = state.hit_u[i], state.hit_v[i]
+    motion = passes.triangle_motion[triangle]
+    x = p[0] + passes.render_origin[0]
+    y = p[1] + passes.render_origin[1]
+    z = p[2] + passes.render_origin[2]
+    now_x, now_y = _raster(passes, 1, x, y, z)
+    w = 1.0 - u - v
+    pre_x, pre_y = _raster(passes, 0, x + w * motion[0, 0, 0] + u * motion[0, 1, 0] + v * motion[0, 2, 0],
+                           y + w * motion[0, 0, 1] + u * motion[0, 1, 1] + v * motion[0, 2, 1],
+                           z + w * motion[0, 0, 2] + u * motion[0, 1, 2] + v * motion[0, 2, 2])
+    post_x, post_y = _raster(passes, 2, x + w * motion[1, 0, 0] + u * motion[1, 1, 0] + v * motion[1, 2, 0],
+                             y + w * motion[1, 0, 1] + u * motion[1, 1, 1] + v * motion[1, 2, 1],
+                             z + w * motion[1, 0, 2] + u * motion[1, 1, 2] + v * motion[1, 2, 2])
+    passes.values[i, layout.vector] = pre_x - now_x
+    passes.values[i, layout.vector + 1] = pre_y - now_y
+    passes.values[i, layout.vector + 2] = now_x - post_x
+    passes.values[i, layout.vector + 3] = now_y - post_y
+    passes.values[i, layout.vector + 4] = 1.0
+
+
+@inlined
 def _queue_ao_ray(state, passes, settings, i, p, ng, n):
     """The first surface's ambient-occlusion ray (Cycles' ``integrate_surface_ao``: a cosine-weighted
     direction about the shading normal, as far as World ▸ Ambient Occlusion ▸ Distance)."""
@@ -165,7 +200,7 @@ def ao_kernel(passes, layout, count):
 
 @inlined
 def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle):
-    """Depth, Mist, Position, Normal, UV, Object and Material Index, AO and AOVs of the surface the camera
+    """Depth, Mist, Position, Normal, UV, Object and Material Index, AO, Vector and AOVs of the surface the camera
     ray hit at ``p`` (in the render's space) with normals ``ng`` and ``n`` (facing the camera)."""
     if layout.mist >= 0:
         passes.values[i, layout.mist] = _mist(passes, p)
@@ -184,6 +219,8 @@ def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle):
             passes.values[i, layout.material_index + 1] = 1.0
     if layout.ao >= 0:
         _queue_ao_ray(state, passes, settings, i, p, ng, n)
+    if layout.vector >= 0 and passes.triangle_motion.shape[0] > 0:
+        _vector(state, passes, layout, i, p, triangle)
     for a in range(layout.aovs):
         for c in range(4):
             passes.values[i, layout.aov + 4 * a + c] = passes.aov_table[material, a, c]
