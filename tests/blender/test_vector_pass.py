@@ -107,3 +107,18 @@ def test_vector_pass_is_read_only_when_asked(prism_addon, moving_scene):
     scene = export.export_scene(bpy.context.evaluated_depsgraph_get(), [])
     assert scene.data_passes.triangle_motion.shape == (len(scene.triangles), 2, 3, 3)
     assert not math.isnan(float(scene.data_passes.world_to_raster.sum()))
+
+
+def test_vector_pass_of_a_real_lens_camera_is_warned(prism_addon, moving_scene):
+    """A real lens's distortion is not in the projection: said, and the pass is still written."""
+    export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
+    vector_pass = importlib.import_module(f"{prism_addon.__name__}.engine.export.vector_pass")
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    tracer_scene = export.export_scene(depsgraph, [])
+    moving_scene.camera.data.prism.lens_model = "REAL_LENS"
+    warnings: list[str] = []
+    vector_pass.export_vector_pass(moving_scene, depsgraph, tracer_scene, lambda f, s: moving_scene.frame_set(
+        f, subframe=s), lambda evaluated: export.export_meshes(evaluated, None), warnings)
+    assert any("the Vector pass of camera 'Camera' is projected through Blender's camera (a pinhole of its focal "
+               "length), not through its real lens" in w for w in warnings), warnings
+    assert tracer_scene.data_passes.triangle_motion is not None
