@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 
 from .lights.apparent_size import small_lights
 from .lights.caustic_targets import build_caustic_targets
+from .materials.light_path import reads_light_path
 from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, MAT_TRANSPARENT
 from .stages.camera import ORTHOGRAPHIC, PERSPECTIVE
 from .visibility import HOLDOUT
@@ -141,6 +142,8 @@ def analyse_scene(scene, settings, used, material_table, light_table, camera, ge
         only = "media"  # light paths do not track media
     if not only and len(lights.links.receiver_set):
         only = "light linking"  # light paths do not test light or shadow sets; path tracing honours them
+    if not only and reads_light_path(material_table.arrays):
+        only = "Light Path node"  # light paths carry no camera-path ray kinds; path tracing honours them
     a.light_tracing, a.light_tracing_note = choose_light_tracing(
         settings.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
         any(kind != "world" for kind in light_table.kinds), only)

@@ -16,6 +16,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .materials.light_path import FIELDS as LIGHT_PATH_FIELDS
 from .stages.pass_writes import new_pass_data
 from .state import ChunkBuffers
 
@@ -45,7 +46,7 @@ class ChunkTracer:
         registers = tables.material_table.register_count
         if (buffers is None or buffers.capacity < paths or buffers.k != tables.wavelengths.count
                 or buffers.passes.values.shape[1] != layout.columns or buffers.passes.spectral.shape[1] != layout.slots
-                or buffers.scratch.registers.shape[0] < registers):
+                or buffers.scratch.registers.shape[0] < registers + LIGHT_PATH_FIELDS):
             passes = new_pass_data(paths, tables.wavelengths.count, tables.pass_layout)
             buffers = self._local.buffers = ChunkBuffers(paths, tables.wavelengths.count, passes, registers)
         return buffers

@@ -26,6 +26,7 @@ import numpy as np
 from .accel import Accel
 from .analysis import analyse_scene
 from .data_passes import first_hit_tables
+from .materials.light_path import reads_light_path
 from .errors import PrismInputError
 from .geometry import prepare_geometry
 from .lights.emitters import emitter_spectra
@@ -161,7 +162,8 @@ class SceneTables:
             transparent_glass=bool(settings.film_transparent and settings.transparent_glass),
             transparent_alpha=float(settings.transparent_roughness) ** 2,
             **_trick_settings(settings.light_path_tricks), wavelengths=self.wavelengths,
-            has_media=bool((materials.medium >= 0).any()), **_linking_settings(self.light_table.arrays))
+            has_media=bool((materials.medium >= 0).any()), **_linking_settings(self.light_table.arrays),
+            light_path=reads_light_path(materials))
         self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.describe(scene, settings, camera)
 

@@ -31,7 +31,11 @@ deterministic). Embree reads the queues' float32 rays directly.
 - ``time`` float64 (the path's ray time, 0..1 over the shutter as Embree reads it: every ray of the path —
   camera ray, bounces, shadow rays — sees the scene at this one instant; 0.5 without motion blur);
 - ``receiver`` int64 (``light_linking``: the receiver light set of the path's last scattering vertex, -1 on
-  camera rays; scattering vertices write it only in scenes with light or shadow linking).
+  camera rays; scattering vertices write it only in scenes with light or shadow linking);
+- ``light_path`` int32 [n, 6] (``materials.light_path``: the kind of ray the path travels on and its bounce
+  counts, for Blender's Light Path node) and ``ray_travelled`` float64 (how far the ray came before the
+  cut-outs and films it went straight through: its Ray Length counts from where it started, as Cycles'
+  does); kept only in scenes whose materials read the node.
 """
 
 from __future__ import annotations
@@ -61,6 +65,7 @@ _PATH_FIELDS = (
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
     ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
     ("transparency", np.float64, ()), ("time", np.float64, ()), ("receiver", np.int64, ()),
+    ("light_path", np.int32, (6,)), ("ray_travelled", np.float64, ()),
 )
 PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
 
@@ -90,7 +95,8 @@ PathList = namedtuple("PathList", "path")
 #: Per-thread working memory of the shading kernel (kernels allocate nothing): the resolved closures of
 #: one material (``rows`` [MAX_CLOSURES, CLOSURE_ROW], ``spectral`` [MAX_CLOSURES, 3, K], ``eta``
 #: [MAX_CLOSURES]), spectral values [K] (``weight``, ``li``, ``f``, ``mix`` [2, K]) and the register
-#: file of material programs (``registers``, as long as the render's largest program needs) with the
+#: file of material programs (``registers``, as long as the render's largest program needs, and the Light Path
+#: node's outputs after that: ``materials.light_path.FIELDS`` more) with the
 #: closure rows an emitter's program may write while the vertex's are in use (``emitter_rows``).
 ShadingScratch = namedtuple("ShadingScratch", "rows spectral eta weight li f mix registers emitter_rows")
 
@@ -118,10 +124,11 @@ def new_shadow_queue(n: int, k: int, time=None) -> ShadowQueue:
 
 def new_shading_scratch(k: int, registers: int = 1) -> ShadingScratch:
     from .bsdf.closure import CLOSURE_ROW, MAX_CLOSURES
+    from .materials.light_path import FIELDS
 
     return ShadingScratch(np.empty((MAX_CLOSURES, CLOSURE_ROW)), np.empty((MAX_CLOSURES, 3, k)),
                           np.empty(MAX_CLOSURES), np.empty(k), np.empty(k), np.empty(k), np.empty((2, k)),
-                          np.zeros(max(int(registers), 1)), np.empty((MAX_CLOSURES, CLOSURE_ROW)))
+                          np.zeros(max(int(registers), 1) + FIELDS), np.empty((MAX_CLOSURES, CLOSURE_ROW)))
 
 
 class ChunkBuffers:

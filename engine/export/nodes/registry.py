@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from . import converters, inputs, shaders, textures, vectors, wavelength
+from . import converters, inputs, light_path, shaders, textures, vectors, wavelength
 
 NODE_HANDLERS = {**inputs.HANDLERS, **converters.HANDLERS, **textures.HANDLERS, **vectors.HANDLERS,
-                 **wavelength.HANDLERS}
+                 **wavelength.HANDLERS, **light_path.HANDLERS}
 SHADER_HANDLERS = dict(shaders.SHADER_HANDLERS)

@@ -7,6 +7,7 @@ import math
 from ..geometry import FRAME_TIME
 from ..jit import inlined
 from ..materials.emitters import emission_at
+from ..materials.light_path import sampled_distance
 from ..materials.table import MAT_EMISSION_VARIES
 from ..spectra.table import spectrum_value
 from ..warps import cdf_index
@@ -38,6 +39,7 @@ def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wave
         wi, dist, pdf, e, b1, b2 = mesh.sample_point(lights.mesh, p, u_rest, u1, u2)
         material = lights.mesh.material[e]
         if materials.flags[material] & MAT_EMISSION_VARIES:
+            sampled_distance(regs, dist)  # the Light Path node's Ray Length, if the emitter reads it
             emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, FRAME_TIME,
                         (-wi[0], -wi[1], -wi[2]), wavelength_nm, rows, regs, li)
         else:

@@ -28,6 +28,7 @@ BACKFACING = 10  # 1 if the ray arrived on the back of the surface
 TANGENT = 11  # a = UV slot → unit tangent (xyz) and bitangent sign (+3), world space
 PARAMETRIC = 12  # barycentric (1 - u - v, u, 0)
 POINT_INFO = 13  # mode: POINT_INFO_FIELDS → the point's centre (world, m), radius (m) or random; 0 off points
+LIGHT_PATH = 15  # mode: ``light_path.OUTPUTS`` index → what the ray that reached the point was (written by the caller)
 
 # Arithmetic.
 COPY = 20  # dst[0:mode] = a[0:mode]

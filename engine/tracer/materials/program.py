@@ -27,6 +27,7 @@ from ..textures.voronoi import voronoi_texture
 from . import hit_inputs as hit
 from . import opcodes as op
 from .layering import dielectric_darkening, dielectric_s
+from .light_path import light_path_output
 
 #: Per material: instruction range ``start`` / ``count``, register-file range ``const_start`` /
 #: ``const_count`` in ``constants``; ``normal``, ``emission`` (colour) and ``emission_scale`` registers (-1:
@@ -87,6 +88,9 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
         dst = ins[op.DST]
         a, b, c, d, e, f, g = ins[3], ins[4], ins[5], ins[6], ins[7], ins[8], ins[9]
         if code == op.EXTRA:
+            continue
+        if code == op.LIGHT_PATH:
+            regs[dst] = light_path_output(regs, mode)
             continue
         if code <= op.POINT_INFO:
             hu, hv, hp = u, v, p

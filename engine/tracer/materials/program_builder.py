@@ -22,10 +22,10 @@ import numpy as np
 
 from . import opcodes as op
 
-#: Instructions that read the hit, an image or write the closure rows: never folded.
+#: Instructions that read the hit, the ray, an image or write the closure rows: never folded.
 NEVER_FOLDED = {op.UV, op.COLOR_ATTRIBUTE, op.POSITION, op.NORMAL, op.TRUE_NORMAL, op.INCOMING, op.GENERATED,
                 op.OBJECT_COORDINATES, op.OBJECT_INFO, op.BACKFACING, op.TANGENT, op.PARAMETRIC, op.POINT_INFO, op.FRESNEL,
-                op.LAYER_WEIGHT, op.NORMAL_MAP, op.BUMP, op.BIND, op.BIND_RGB, op.IMAGE}
+                op.LAYER_WEIGHT, op.NORMAL_MAP, op.BUMP, op.BIND, op.BIND_RGB, op.IMAGE, op.LIGHT_PATH}
 
 
 @dataclass(frozen=True)

@@ -12,6 +12,7 @@ import math
 from ..jit import inlined
 from ..light_linking import ALL_SETS, emitter_sets, in_sets
 from ..lights.dispatch import sample_light
+from ..materials.light_path import after_volume_scatter, emission_sample
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA
 from ..stages.nee import FAR, SHADOW_SHORTEN
@@ -33,6 +34,8 @@ def _light_through_medium(state, i, p, d_in, g, lights, materials, spectra, geom
     u_select = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT))
     u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT_POINT))
     li = shading.li
+    if settings.light_path:
+        emission_sample(shading.registers, state, i)
     wi, dist, pdf_light, delta, group, emitter = sample_light(lights, materials, spectra, geometry, p, u_select, u1,
                                                               u2, state.wavelength[i], li, shading.emitter_rows,
                                                               shading.registers)
@@ -75,6 +78,8 @@ def scatter_in_medium(state, i, lights, materials, spectra, geometry, settings, 
     u1, u2 = sample_2d(settings.sampler, state.seed[i], state.sample[i], bounce_slot(depth, BOUNCE_DIRECTION))
     d_out, pdf = hg_sample(d_in, g, u1, u2)
     state.flags[i] &= ~(CAMERA_PATH | PREV_DELTA | LAST_DIFFUSE | LAST_TRANSMISSION)
+    if settings.light_path:
+        after_volume_scatter(state, i)
     if not (pdf > 0.0 and survives(state, i, depth, settings, state.flags[i] & COLLAPSED != 0)):
         return 0, lit
     state.prev_pdf[i] = pdf

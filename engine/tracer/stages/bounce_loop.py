@@ -48,14 +48,14 @@ def _trace_shadows(loop, arrays, caster, passes, layout, count, see_through):
     hits = loop.hits
     rays = 0
     if see_through:
-        for _ in range(MAX_FILM_LAYERS):
+        for layer in range(MAX_FILM_LAYERS):
             if count == 0:
                 return rays
             closest_hits(caster, shadows.rays, count, True, hits)
             rays += count
             count = film_layer_kernel(loop.state, shadows, count, hits.triangle, hits.t, hits.u, hits.v,
                                       arrays.geometry, arrays.materials, passes, layout, arrays.spectra, loop.scratch,
-                                      arrays.lights)
+                                      arrays.lights, layer)
     if count:
         occlusion(caster, shadows.rays, count, loop.occluded)
         rays += count

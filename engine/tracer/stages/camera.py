@@ -23,6 +23,7 @@ from collections import namedtuple
 import numpy as np
 
 from ..jit import inlined, kernel
+from ..materials.light_path import start_camera_ray
 from ..sampler import SLOT_HERO, SLOT_LENS, SLOT_PIXEL, SLOT_TIME, SLOT_WAVELENGTH, pixel_seed, sample_1d, sample_2d
 from ..spectra.wavelength_sampling import MODE_GAUSSIAN_RGB, inverse_normal_cdf, sample_wavelengths
 from ..state import CAMERA_PATH, PREV_DELTA
@@ -136,6 +137,7 @@ def start_path(state, i, pixel, sample, seed):
     state.radiance[i, :] = 0.0
     state.time[i] = 0.5
     state.receiver[i] = -1  # camera rays see every emitter (``light_linking``)
+    start_camera_ray(state, i)
     return ps
 
 

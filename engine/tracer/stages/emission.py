@@ -26,6 +26,7 @@ from ..lights import environment
 from ..lights.dispatch import (distant_hit, emitter_group, emitter_pdf, environment_pdf, is_distant, light_distance,
                                light_hit, light_spectrum, seen_by_camera)
 from ..materials.emitters import emission_at
+from ..materials.light_path import path_ray
 from ..media.segment import cross_medium
 from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE
 from ..spectra.table import spectrum_value
@@ -165,6 +166,8 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
             group, slot = emitter_group(lights, triangle), camera_slot(layout, depth, False)
             if materials.flags[material] & MAT_EMISSION_VARIES:
                 radiance = scratch.li
+                if settings.light_path:
+                    path_ray(scratch.registers, state, i, t)
                 emission_at(materials, spectra, geometry, material, triangle, float(hit_u[j]), float(hit_v[j]), state.time[i],
                             (-d[0], -d[1], -d[2]), state.wavelength[i], scratch.rows, scratch.registers, radiance)
                 if settings.clamping:

@@ -16,10 +16,11 @@ from collections import namedtuple
 #: has a volume inside (``media``): paths track their medium, and scenes without media skip that code;
 #: ``filter_glossy``: 1 / Cycles' Filter Glossy, 0 when off (``stages.filter_glossy``);
 #: ``light_linking`` / ``shadow_linking``: some emitter lights only some objects / has its shadows cast by
-#: only some objects (``light_linking``); scenes without either skip that code.
+#: only some objects (``light_linking``); scenes without either skip that code; ``light_path``: some material
+#: reads Blender's Light Path node (``materials.light_path``): paths keep their ray kind and bounce counts.
 KernelSettings = namedtuple(
     "KernelSettings",
     "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha "
     "clamping clamp_direct clamp_indirect caustics_filtered caustics_reflective caustics_refractive wavelengths "
-    "has_media filter_glossy light_linking shadow_linking",
+    "has_media filter_glossy light_linking shadow_linking light_path",
 )

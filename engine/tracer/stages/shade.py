@@ -19,6 +19,7 @@ from ..bsdf.closure import C_ALPHA, SAMPLED_DELTA, SAMPLED_DIFFUSE, SAMPLED_NULL
 from ..bsdf.dispatch import bsdf_sample
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
+from ..materials.light_path import after_scattering, after_transparent, emission_sample, path_ray
 from ..materials.surface import shade_surface
 from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_MEDIUM, MAT_NULL, MAT_ONE_SIDED
 from ..media.scatter import scatter_in_medium
@@ -113,6 +114,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         facing_ns = (-ns[0], -ns[1], -ns[2]) if backfacing else ns
         lam = state.wavelength[i]
         hero = state.hero[i]
+        if settings.light_path:
+            path_ray(registers, state, i, state.hit_t[i])
         closures, n = shade_surface(materials, spectra, geometry, material, triangle, state.hit_u[i], state.hit_v[i],
                                     p, facing_ng, facing_ns, wo, backfacing, lam, hero, rows, spectral, eta,
                                     registers, glass_clamps)
@@ -129,6 +132,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         if depth == 0 and layout.columns > 0:
             first_hit(state, passes, layout, settings, i, p, facing_ng, facing_ns, material, triangle)
         if has_lights and (not mflags & MAT_DELTA or blurred):
+            if settings.light_path:
+                emission_sample(registers, state, i)
             lit = sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
                                 materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
                                 mix, passes, layout, geometry, scratch)
@@ -164,6 +169,11 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         # paths end at cut-outs (they are not specular), so for the caustic split only films are null.
         film_crossing = (mflags & MAT_NULL) != 0 and wo_l[2] * wi_l[2] < 0.0
         null_crossing = film_crossing or (sampled & SAMPLED_NULL) != 0
+        if settings.light_path:
+            if null_crossing:
+                after_transparent(state, i)
+            else:
+                after_scattering(state, i, sampled)
         if settings.light_tracing:
             classify_vertex(state, i, mflags, sampled, film_crossing)
         if not null_crossing:

@@ -20,6 +20,7 @@ from ..bsdf.thin_film import film_reflectance
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..light_linking import blocks
+from ..materials.light_path import shadow_ray
 from ..materials.surface import surface_transparency
 from ..materials.table import MAT_MEDIUM, MAT_NULL, MAT_TRANSPARENT
 from ..media.coefficients import attenuate
@@ -54,12 +55,13 @@ def shadow_kernel(state, shadows, count, occluded, passes, layout):
 
 @kernel
 def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, passes, layout,
-                      spectra, scratch, lights):
+                      spectra, scratch, lights, layer):
     """One layer of closest hits (before each ray's ``tmax``): rays that hit nothing deliver their
     contribution; rays that hit a film or a cut-out are attenuated, moved past it and kept (compacted to
     the front), as are rays that hit an object which does not block their light (shadow linking); others
     are blocked. Returns the number kept. ``passes`` / ``layout``: see ``stages.pass_writes``; ``scratch``
-    is a ``state.ShadingScratch``; ``lights`` the ``LightArrays`` (their ``links``)."""
+    is a ``state.ShadingScratch``; ``lights`` the ``LightArrays`` (their ``links``); ``layer`` how many layers
+    the rays crossed before (the Light Path node's Transparent Depth of a shadow ray)."""
     kept = 0
     for j in range(count):
         i = shadows.rays.path[j]
@@ -95,6 +97,7 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
                     1.0 - min(max(film_reflectance(row, cos, state.wavelength[i, k]), 0.0), 1.0))
         else:
             transparency = scratch.weight
+            shadow_ray(scratch.registers, state, i, layer, float(hit_t[j]))
             _cut_out(materials, spectra, geometry, material, triangle, u, v, p, ng, ns, d, state.wavelength[i],
                      scratch, transparency)
             largest = 0.0

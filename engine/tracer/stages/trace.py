@@ -46,13 +46,13 @@ def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
     rays = 0
     if (tables.analysis.see_through_films or tables.analysis.see_through_cutouts
             or tables.kernel_settings.has_media or tables.kernel_settings.shadow_linking):
-        for _ in range(MAX_FILM_LAYERS):
+        for layer in range(MAX_FILM_LAYERS):
             if count == 0:
                 return rays
             hit = accel.intersect_before(shadows.rays, count)
             rays += count
             count = film_layer_kernel(state, shadows, count, *hit, tables.geometry, tables.material_table.arrays,
-                                      passes, layout, tables.spectra, scratch, tables.light_table.arrays)
+                                      passes, layout, tables.spectra, scratch, tables.light_table.arrays, layer)
     if count:
         occluded = accel.occluded(shadows.rays, count)
         rays += count
