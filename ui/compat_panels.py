@@ -48,6 +48,7 @@ COMPATIBLE_PANELS = frozenset(
         # Material: slots and the node tree's surface
         "EEVEE_MATERIAL_PT_context_material",
         "EEVEE_MATERIAL_PT_surface",
+        "EEVEE_MATERIAL_PT_volume",  # the Material Output's Volume: a medium inside the mesh
         "MATERIAL_PT_custom_props",
         # View layer: use for rendering, the Passes parent Prism's pass panels sit in, AOVs, light groups
         "VIEWLAYER_PT_layer",
@@ -58,6 +59,7 @@ COMPATIBLE_PANELS = frozenset(
         # World
         "WORLD_PT_context_world",
         "EEVEE_WORLD_PT_surface",
+        "EEVEE_WORLD_PT_volume",  # the World Output's Volume: fog
         "WORLD_PT_custom_props",
     }
 )

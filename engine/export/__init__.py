@@ -47,6 +47,8 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
     refused render are not printed; ``included``: the view layer's Filter, whose Surfaces or Curves off
     may leave the world alone to render (as Cycles renders it)."""
     points = tracer_scene.points is not None and len(rendered_rows(tracer_scene.points)) > 0
+    if tracer_scene.world.medium is not None and tracer_scene.triangle_count == 0 and not points:
+        return  # fog in the world is something to see (lit by the lights in it), as Cycles renders it
     if tracer_scene.triangle_count == 0 and not points and missing:
         raise PrismInputError(f"Scene '{scene_name}' has no visible geometry: "
                               + "; ".join(library.sentence() for library in missing) + ".")

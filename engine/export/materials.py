@@ -16,7 +16,7 @@ from ..tracer.bsdf.closure import CONDUCTOR, DIELECTRIC, FRESNEL_CONDUCTOR, FRES
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Material, SpectrumSpec
 from .animated import settings_source
-from .aovs import read_aovs
+from .aovs import merge_compiled, read_aovs
 from .nodes import AttributeSlots, compile_material
 from .nodes.overrides import check_film
 from .spectra import material_emission_source, material_reflectance_source
@@ -135,7 +135,7 @@ class MaterialExporter:
             self.warnings.extend(compiled.warnings)
         self.needs[material.name] = compiled.needs
         exported = _summary(material, compiled)
-        exported.aovs = read_aovs(material, self.warnings)
+        exported.aovs = merge_compiled(read_aovs(material), compiled.shader)
         exported.reflectance = reflectance  # for messages: the closures carry it (``nodes.measured_base``)
         return exported
 

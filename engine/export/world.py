@@ -19,6 +19,7 @@ from .environment_image import image_rgb, replace_bad_texels
 from .float_range import check_light_value
 from .world_background import BackgroundTerm, background_term, background_terms, has_camera_ray_mix
 from .world_mapping import texture_matrix
+from .world_volume import export_world_volume
 
 _INTERPOLATION = {"Linear": "linear", "Closest": "closest"}
 
@@ -83,10 +84,6 @@ def _surface_terms(world, tree, warnings, camera_rays: bool = False) -> list[Bac
     with nothing linked there (or no World Output), the tree's first Background node, as Prism has always
     read such worlds."""
     output = tree.get_output_node("ALL")
-    volume = output.inputs.get("Volume") if output is not None else None
-    if volume is not None and is_linked(volume) and warnings is not None and not camera_rays:
-        warnings.append(f"World '{world.name}': its World Output has a Volume shader (fog); Prism renders media "
-                        "inside closed meshes only, not in the world yet, so it renders the world without fog.")
     if output is not None and is_linked(output.inputs["Surface"]):
         return background_terms(world, output.inputs["Surface"], warnings, camera_rays)
     node = next((n for n in tree.nodes if n.type == "BACKGROUND"), None)
@@ -137,6 +134,7 @@ def export_world(scene, warnings: list[str] | None = None, view_layer=None) -> W
         return World(color=(0.0, 0.0, 0.0), strength=0.0, name=world.name)
     tree = world.node_tree if world.use_nodes else None
     exported = _world_as_seen(world, tree, warnings, camera_rays=False)
+    exported.medium = export_world_volume(world, tree, warnings)
     output = tree.get_output_node("ALL") if tree is not None else None
     if output is not None and has_camera_ray_mix(world, output.inputs["Surface"]):
         seen_warnings: list[str] = []  # the backplate's own; what both sides share is told once

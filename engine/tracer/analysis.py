@@ -138,7 +138,7 @@ def analyse_scene(scene, settings, used, material_table, light_table, camera, ge
         small = small_lights(lights.rows[:len(light_table.names)], light_table.names, lights.mesh, targets)
     a.motion_note = _motion_note(camera, geometry)
     only = _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes)
-    if not only and (material_table.arrays.medium >= 0).any():
+    if not only and ((material_table.arrays.medium >= 0).any() or material_table.outside_medium >= 0):
         only = "media"  # light paths do not track media
     if not only and len(lights.links.receiver_set):
         only = "light linking"  # light paths do not test light or shadow sets; path tracing honours them

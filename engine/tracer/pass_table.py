@@ -262,6 +262,22 @@ def aov_table(materials, aovs: dict) -> np.ndarray:
     return table
 
 
+def aov_registers(materials, aovs: dict) -> np.ndarray:
+    """int32 [materials, AOVs, 2]: where each material's program leaves an AOV that varies per hit (its
+    AOV Output's linked socket): the first register and how many (3 for a colour AOV's r, g, b, 1 for a value
+    AOV); -1, 0 where the AOV is a constant of ``aov_table``."""
+    table = np.zeros((max(1, len(materials)), len(aovs), 2), np.int32)
+    table[..., 0] = -1
+    for m, material in enumerate(materials):
+        shader = getattr(material, "shader", None)
+        registers = shader.aov_registers if shader is not None else {}
+        for a, (name, kind) in enumerate(aovs.items()):
+            socket = "Value" if kind == "VALUE" else "Color"
+            if socket in registers.get(name, {}):
+                table[m, a] = (registers[name][socket], 1 if kind == "VALUE" else 3)
+    return table
+
+
 def blender_passes(request: PassRequest) -> list[tuple[str, str, str]]:
     """(name, channel ids, kind) of every pass ``request`` produces besides Combined, in Blender's order."""
     out = [(name, PASSES[name].channels, PASSES[name].kind) for name in PASSES if name in request.passes]

@@ -223,7 +223,8 @@ class Renderer:
         return buffers.passes._replace(camera_axes=np.ascontiguousarray(axes),
                                        camera_at=np.asarray(self.camera.position - self.origin, np.float64),
                                        render_origin=np.asarray(self.origin, np.float64),
-                                       aov_table=self.tables.aov_table, **self.tables.first_hit._asdict())
+                                       aov_table=self.tables.aov_table, aov_registers=self.tables.aov_registers,
+                                       **self.tables.first_hit._asdict())
 
     def start_at_sample(self, first_sample: int) -> None:
         """Continue the seed's sample sequence from sample ``first_sample`` (a multiple of

@@ -211,6 +211,9 @@ class World:
     # What camera rays see instead, when the Surface picks a shader by Light Path ▸ Is Camera Ray (a backplate:
     # one background lights the scene, another is seen); None: camera rays see this world too.
     camera_background: "World | None" = None
+    # The World Output's Volume (a ``media.spec.MediumSpec``): fog everywhere outside the meshes that hold a
+    # medium, the camera included; None: vacuum.
+    medium: object = None
 
     def is_black(self) -> bool:
         """True when the background emits nothing (no light to sample or to see)."""

@@ -32,7 +32,7 @@ from .geometry import prepare_geometry
 from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
 from .materials.table import build_materials
-from .pass_table import FilmLayout, aov_table
+from .pass_table import FilmLayout, aov_registers, aov_table
 from .sampler import SAMPLERS
 from .scene import SpectrumSpec
 from .spectra import wavelength_sampling
@@ -133,7 +133,7 @@ class SceneTables:
         if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
             raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
         spectra = SpectrumTable()
-        self.material_table = build_materials(scene.materials, set(used), spectra)
+        self.material_table = build_materials(scene.materials, set(used), spectra, scene.world.medium)
         materials = self.material_table.arrays
         groups = tuple(settings.passes.light_groups)
         triangles = len(self.geometry.triangles)  # spheres follow them in ``material``; none is light-sampled
@@ -145,6 +145,7 @@ class SceneTables:
         white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
         self.pass_layout = FilmLayout(settings.passes, white)
         self.aov_table = aov_table(scene.materials, settings.passes.aovs)
+        self.aov_registers = aov_registers(scene.materials, settings.passes.aovs)
         self.first_hit = first_hit_tables(scene.data_passes, self._original_triangle, len(scene.materials),
                                           self.pass_layout.kernel, camera.data.projection == ORTHOGRAPHIC,
                                           _sphere_pass_index(scene))
@@ -162,7 +163,8 @@ class SceneTables:
             transparent_glass=bool(settings.film_transparent and settings.transparent_glass),
             transparent_alpha=float(settings.transparent_roughness) ** 2,
             **_trick_settings(settings.light_path_tricks), wavelengths=self.wavelengths,
-            has_media=bool((materials.medium >= 0).any()), **_linking_settings(self.light_table.arrays),
+            has_media=bool((materials.medium >= 0).any()) or self.material_table.outside_medium >= 0,
+            outside_medium=int(self.material_table.outside_medium), **_linking_settings(self.light_table.arrays),
             light_path=reads_light_path(materials))
         self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.describe(scene, settings, camera)

@@ -51,6 +51,7 @@ class MaterialCompiler:
     overrides: dict = field(default_factory=dict)  # see ``nodes.compile_material``
     measured_nodes: list = field(default_factory=list)  # names of the nodes whose colour ``reflectance`` replaced
     medium: object = None  # tracer.media.spec.MediumSpec of the Volume socket, or None
+    aov_outputs: dict = field(default_factory=dict)  # linked AOV Output sockets (``aov_outputs``)
     _outputs: dict = field(default_factory=dict)
     _warned: set = field(default_factory=set)
     _depth: int = 0  # nodes between the Material Output and the node being compiled
@@ -308,4 +309,7 @@ class MaterialCompiler:
             self.add_closure(PendingClosure(TRANSPARENT, one, out))
         else:
             self.shader(surface, (), one)
+        from .aov_outputs import compile_aov_outputs
+
+        self.aov_outputs = compile_aov_outputs(self, tree)
         return True

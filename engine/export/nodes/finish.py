@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from ...tracer.bsdf.closure import C_ALPHA, C_ETA, C_TINT_SCALE, CONDUCTOR, DIELECTRIC, FRESNEL_DIELECTRIC
 from ...tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
+from .aov_outputs import aov_results
 from .vectors import displacement_bump
 
 _LUMINANCE = (0.2126729, 0.7151522, 0.0721750)
@@ -126,6 +127,9 @@ def _read_registers(program) -> set[int]:
         live.update(range(program.emission.register, program.emission.register + 3))
     if program.emission_scale >= 0:
         live.add(program.emission_scale)
+    for registers in program.aov_registers.values():  # read at the first hit (the AOV passes)
+        for name, register in registers.items():
+            live.update(range(register, register + (3 if name == "Color" else 1)))
     return live
 
 
@@ -140,6 +144,7 @@ def finish(c) -> ShaderProgram:
     program = ShaderProgram(closures)
     _emission(c, program)
     program.normal = normal.register if normal is not None else -1
+    program.aov_registers, program.aov_constants = aov_results(c, c.aov_outputs)
     program.instructions = c.builder.instructions(live=_read_registers(program))
     program.constants = c.builder.initial_registers()
     program.register_count = c.builder.register_count

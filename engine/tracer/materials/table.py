@@ -80,6 +80,7 @@ class MaterialTable:
     glasses: list = field(default_factory=list)  # the Glass object of each glass row (names, warnings)
     features: list = field(default_factory=list)  # e.g. "smooth dielectric", for the render stats
     register_count: int = 1  # registers a program needs at most (the scratch size)
+    outside_medium: int = -1  # the ``media`` row of the World's Volume (fog outside every mesh medium), or -1
 
 
 def _source(colour, spectra, name, bounded=True):
@@ -159,9 +160,10 @@ def _is_delta(spec):
     return spec.kind in (CONDUCTOR, DIELECTRIC) and spec.alpha < SMOOTH_ALPHA
 
 
-def build_materials(materials, used, spectra) -> MaterialTable:
+def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTable:
     """Tables for ``materials`` (``scene.Material``); only indices in ``used`` get closures.
-    ``spectra`` is the render's ``SpectrumTable``."""
+    ``spectra`` is the render's ``SpectrumTable``; ``outside_medium`` the World's Volume (a ``MediumSpec``) or
+    None."""
     from ..spectra.rgb_lut import empty_lut, load_lut
     from ..media.table import build_media
     from ..textures.image import build_textures
@@ -270,11 +272,13 @@ def build_materials(materials, used, spectra) -> MaterialTable:
                              np.array(instructions or [[0] * op.INSTRUCTION], dtype=np.int32).reshape(-1, op.INSTRUCTION),
                              np.array(constants or [0.0], dtype=np.float64), load_tables())
     white = spectra.emission(SpectrumSpec()) if needs_lut else 0
-    medium, media = build_media(materials, used, spectra)
+    medium, media, outside = build_media(materials, used, spectra, outside_medium)
     flags[medium >= 0] |= MAT_MEDIUM
     if (medium >= 0).any():
         features.add("homogeneous media")
+    if outside >= 0:
+        features.add("world fog")
     arrays = MaterialArrays(flags, start, closure_count, emission_spectrum, emission_strength,
                             closure_rows if len(closure_rows) else np.zeros((1, CLOSURE_ROW)), glass_rows, programs,
                             build_textures(images), load_lut() if needs_lut else empty_lut(), white, medium, media)
-    return MaterialTable(arrays, glasses, sorted(features), register_count)
+    return MaterialTable(arrays, glasses, sorted(features), register_count, outside)

@@ -79,18 +79,21 @@ def _check(spec):
         raise PrismInputError(f"Material '{spec.name}': a volume setting is NaN or infinite; set it again.")
 
 
-def build_media(materials, used, spectra):
-    """(medium index int32 [len(materials)] (-1: none), ``MediaArrays``) for the ``scene.Material`` list;
-    only indices in ``used`` get a medium. ``spectra``: the render's ``SpectrumTable``."""
+def build_media(materials, used, spectra, outside=None):
+    """(medium index int32 [len(materials)] (-1: none), ``MediaArrays``, the row of ``outside`` or -1) for the
+    ``scene.Material`` list, whose indices in ``used`` get a medium, and ``outside`` (a ``MediumSpec``: the
+    World's Volume, the medium everywhere outside meshes that hold one; None: vacuum). ``spectra``: the
+    render's ``SpectrumTable``."""
     index = np.full(len(materials), -1, np.int32)
     scattering, absorption, emission, strength, anisotropy = [], [], [], [], []
-    for m, material in enumerate(materials):
-        spec = getattr(material, "medium", None)
-        if spec is None or m not in used:
+    specs = [(m, getattr(material, "medium", None)) for m, material in enumerate(materials) if m in used]
+    for m, spec in specs + [(-1, outside)]:
+        if spec is None:
             continue
         _check(spec)
         sigma_s, sigma_a = coefficient_spectra(spec)
-        index[m] = len(scattering)
+        if m >= 0:
+            index[m] = len(scattering)
         key = ("medium", m, spec.name)
         scattering.append(spectra.tabulated(key + ("sigma_s",), float(VISIBLE_MIN_NM), 1.0, sigma_s))
         absorption.append(spectra.tabulated(key + ("sigma_a",), float(VISIBLE_MIN_NM), 1.0, sigma_a))
@@ -105,4 +108,4 @@ def build_media(materials, used, spectra):
     arrays = MediaArrays(np.array(scattering or [0], np.int32), np.array(absorption or [0], np.int32),
                          np.array(emission or [-1], np.int32), np.array(strength or [0.0]),
                          np.array(anisotropy or [0.0]))
-    return index, arrays
+    return index, arrays, (len(scattering) - 1 if outside is not None else -1)

@@ -6,7 +6,8 @@ Per path (``PassData``): ``values`` [n, columns] (data passes and AOVs, written 
 [n] (1 once the denoising features are written). Render constants (``Renderer.pass_data``):
 ``camera_axes`` [3, 3] (camera to world: right, up, back columns), ``camera_at`` [3] (the camera in the
 render's space, m), ``render_origin`` [3] (world position of the render space's origin, m) and
-``aov_table`` [materials, AOVs, 4] (what each material's AOV Outputs write).
+``aov_table`` [materials, AOVs, 4] (what each material's AOV Outputs write) and ``aov_registers``
+[materials, AOVs, 2] (where an AOV that varies per hit is in the material's registers, ``pass_table.aov_registers``).
 
 The light split (Cycles' meaning): light that reaches the camera straight from an emitter or the world
 is Emission or Environment; any other light is attributed to the lobes of the first surface it met,
@@ -38,6 +39,7 @@ from ..vec3 import tangents, to_world
 from ..warps import cosine_hemisphere
 
 PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table "
+                                   "aov_registers "
                                    "first_hit_data object_index material_index triangle_uv triangle_motion "
                                    "world_to_raster ao_rays ao_free ao_weight ao_count")
 
@@ -63,6 +65,7 @@ def new_pass_data(n: int, k: int, film_layout) -> PassData:
     return PassData(np.empty((n, layout.columns)), np.zeros((n, layout.slots, k)), np.zeros((light, k)),
                     np.zeros((light, 2, 3, k)), np.zeros(features, np.int8),
                     np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)),
+                    np.full((1, len(film_layout.aov_names), 2), -1, np.int32),
                     np.zeros(FIRST_HIT_DATA), np.zeros(0, np.float32), np.zeros(1), np.zeros((0, 3, 3), np.float32),
                     np.zeros((0, 2, 3, 3), np.float32), np.zeros((3, 4, 4)), new_ray_queue(ao), np.zeros(ao, np.int32), np.zeros(ao), np.zeros(1, np.int64))
 
@@ -199,9 +202,10 @@ def ao_kernel(passes, layout, count):
 
 
 @inlined
-def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle):
+def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle, regs):
     """Depth, Mist, Position, Normal, UV, Object and Material Index, AO, Vector and AOVs of the surface the camera
-    ray hit at ``p`` (in the render's space) with normals ``ng`` and ``n`` (facing the camera)."""
+    ray hit at ``p`` (in the render's space) with normals ``ng`` and ``n`` (facing the camera); ``regs`` the
+    register file of the material's program, just run for this hit."""
     if layout.mist >= 0:
         passes.values[i, layout.mist] = _mist(passes, p)
     if layout.uv >= 0 and passes.triangle_uv.shape[0] > 0:
@@ -224,6 +228,9 @@ def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle):
     for a in range(layout.aovs):
         for c in range(4):
             passes.values[i, layout.aov + 4 * a + c] = passes.aov_table[material, a, c]
+        first = passes.aov_registers[material, a, 0]
+        for c in range(passes.aov_registers[material, a, 1]):  # a linked AOV Output socket
+            passes.values[i, layout.aov + 4 * a + c] = regs[first + c]
     if layout.depth >= 0:
         passes.values[i, layout.depth] = _camera_depth(passes, p)
         passes.values[i, layout.depth + 1] = 1.0

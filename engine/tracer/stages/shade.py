@@ -46,11 +46,12 @@ def collapse_to_hero(state, i):
 
 
 @inlined
-def side_medium(materials, material, direction, ng):
+def side_medium(materials, material, direction, ng, outside):
     """The medium a ray leaving a surface of ``material`` (which holds a medium) along ``direction`` travels
-    in: the material's inward (against the geometric normal ``ng``), none outward (media do not nest)."""
+    in: the material's inward (against the geometric normal ``ng``), ``outside`` outward (the World's Volume or
+    -1: mesh media do not nest)."""
     inward = direction[0] * ng[0] + direction[1] * ng[1] + direction[2] * ng[2] < 0.0
-    return materials.medium[material] if inward else -1
+    return materials.medium[material] if inward else outside
 
 
 @inlined
@@ -130,7 +131,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         frame = (tangent, bitangent, n)
         wo_l = to_local(wo, tangent, bitangent, n)
         if depth == 0 and layout.columns > 0:
-            first_hit(state, passes, layout, settings, i, p, facing_ng, facing_ns, material, triangle)
+            first_hit(state, passes, layout, settings, i, p, facing_ng, facing_ns, material, triangle, registers)
         if has_lights and (not mflags & MAT_DELTA or blurred):
             if settings.light_path:
                 emission_sample(registers, state, i)
@@ -138,7 +139,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                                 materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
                                 mix, passes, layout, geometry, scratch)
             if lit and has_media and mflags & MAT_MEDIUM:
-                shadows.medium[shadowed] = side_medium(materials, material, shadows.direction[shadowed], ng)
+                shadows.medium[shadowed] = side_medium(materials, material, shadows.direction[shadowed], ng,
+                                                       settings.outside_medium)
             shadowed += lit
         wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
                                                                        closures, wo_l, frame, collapsed, weight, mix)
@@ -188,7 +190,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             if settings.light_linking or settings.shadow_linking:  # the receiver of what this ray finds
                 state.receiver[i] = lights.links.receiver_set[triangle]
         if has_media and mflags & MAT_MEDIUM:
-            state.medium[i] = side_medium(materials, material, wi, ng)
+            state.medium[i] = side_medium(materials, material, wi, ng, settings.outside_medium)
         pushed = push_ray(state, next_rays, queued, i, offset_origin(p, ng, wi), wi)
         queued += pushed
         rejected[0] += 1 - pushed

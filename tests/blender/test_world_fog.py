@@ -1,0 +1,116 @@
+"""World fog (the World Output's Volume) as Cycles 4.5 renders it, in absolute light: Beer-Lambert through
+absorbing fog against the closed form per pixel, a point light in scattering fog against Cycles, and
+sunlight, which fog that fills all space does not let through (in Cycles as in Prism)."""
+
+from __future__ import annotations
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from helpers.bpy_scenes import add_camera, add_plane, add_point_light, shader_material
+from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
+
+
+def _fog_world(kind, **inputs):
+    """A black world whose Volume is one ``kind`` node with ``inputs`` (names with spaces as given)."""
+    world = bpy.data.worlds.new("Fog")
+    world.use_nodes = True
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    nodes["Background"].inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    volume = nodes.new(kind)
+    for name, value in inputs.items():
+        volume.inputs[name].default_value = value
+    links.new(volume.outputs[0], nodes["World Output"].inputs["Volume"])
+    bpy.context.scene.world = world
+    return world
+
+
+def test_absorbing_fog_dims_an_emitter_by_beer_lambert(prism_addon, fresh_scene):
+    """An emitting wall 5 m ahead in black fog of absorption 0.2 /m: each pixel is exp(-0.2 (5 m - clip
+    start) / cos) of the wall's radiance (the camera ray starts at the clip start, in the fog)."""
+    density = 0.2
+    _fog_world("ShaderNodeVolumeAbsorption", Density=density, Color=(0.0, 0.0, 0.0, 1.0))
+    wall = add_plane("Wall", 20.0, location=(0.0, 5.0, 0.0))
+    wall.rotation_euler = (math.pi / 2, 0.0, 0.0)
+    wall.data.materials[0] = shader_material("Glow", "ShaderNodeEmission", Strength=2.0)
+    clip = add_camera((0.0, 0.0, 0.0), (math.pi / 2, 0.0, 0.0), resolution=(32, 16)).data.clip_start
+    prism = luminance(render_prism_rgba(fresh_scene, 16))
+    cycles = luminance(render_cycles_rgba(fresh_scene, 16))
+    tan = 18.0 / 50.0
+    x = ((np.arange(32) + 0.5) / 32 - 0.5) * 2 * tan
+    y = ((np.arange(16) + 0.5) / 16 - 0.5) * tan
+    secant = np.sqrt(1.0 + x[None, :] ** 2 + y[:, None] ** 2)
+    closed = 2.0 * np.exp(-density * (5.0 - clip) * secant)
+    print(f"MEASURED Beer-Lambert: Prism mean {prism.mean():.5f}, Cycles {cycles.mean():.5f}, closed form "
+          f"{closed.mean():.5f}; worst pixel {np.abs(prism / closed - 1).max():.5f}")
+    assert np.abs(prism / closed - 1.0).max() < 0.005
+    assert prism.mean() == pytest.approx(cycles.mean(), rel=0.01)
+
+
+def _lit_floor(fresh_scene, light):
+    add_plane("Floor", 8.0, color=(0.5, 0.5, 0.5), specular=0.0)
+    light()
+    add_camera((0.0, -4.0, 2.0), (1.2, 0.0, 0.0), resolution=(32, 24))
+
+
+def test_a_point_light_in_scattering_fog_as_cycles(prism_addon, fresh_scene):
+    """A point light above and behind the camera over a grey floor in white fog (Volume Scatter, density
+    0.15 /m): the lit fog and the dimmed floor, Prism against Cycles in absolute mean luminance (multiple
+    scattering, 8 bounces). The light stays out of the view: Prism samples distances in fog by the
+    scattering coefficient, not towards lights (equiangular sampling is not done yet), whose variance
+    near a point light seen in the image has no bound."""
+    _fog_world("ShaderNodeVolumeScatter", Density=0.15, Color=(1.0, 1.0, 1.0, 1.0))
+    _lit_floor(fresh_scene, lambda: add_point_light("Bulb", 400.0, (0.0, -5.0, 3.5)))
+    fresh_scene.prism.max_bounces = 8
+    prism = render_prism_rgba(fresh_scene, 1024)
+    cycles = render_cycles_rgba(fresh_scene, 1024, max_bounces=8)
+    p, c = luminance(prism).mean(), luminance(cycles).mean()
+    floor_only = fresh_scene.world
+    fresh_scene.world = None
+    clear = luminance(render_prism_rgba(fresh_scene, 16)).mean()
+    fresh_scene.world = floor_only
+    print(f"MEASURED point light in fog: Prism {p:.4f}, Cycles {c:.4f}, ratio {p / c:.4f}; without fog {clear:.4f}")
+    assert p == pytest.approx(c, rel=0.02)
+    assert abs(p - clear) > 0.05 * clear  # the fog changes the image
+
+
+def test_sunlight_does_not_cross_fog_that_fills_all_space(prism_addon, fresh_scene):
+    """A Sun over the floor in absorbing fog: its light would cross infinite fog, so nothing is lit, in
+    Cycles and in Prism; without the fog the floor is lit."""
+    _fog_world("ShaderNodeVolumeAbsorption", Density=0.05, Color=(0.0, 0.0, 0.0, 1.0))
+
+    def sun():
+        data = bpy.data.lights.new("Sun", "SUN")
+        data.energy = 3.0
+        obj = bpy.data.objects.new("Sun", data)
+        bpy.context.scene.collection.objects.link(obj)
+
+    _lit_floor(fresh_scene, sun)
+    prism = luminance(render_prism_rgba(fresh_scene, 4))
+    cycles = luminance(render_cycles_rgba(fresh_scene, 4))
+    print(f"MEASURED sun in fog: Prism max {prism.max():.6f}, Cycles max {cycles.max():.6f}")
+    assert prism.max() == 0.0 and cycles.max() < 1e-6
+    fresh_scene.world = None
+    assert luminance(render_prism_rgba(fresh_scene, 4)).mean() > 0.1
+
+
+def test_world_fog_is_not_warned_any_more(prism_addon, fresh_scene):
+    from importlib import import_module
+
+    world_module = import_module(f"{prism_addon.__name__}.engine.export.world")
+    _fog_world("ShaderNodeVolumeScatter", Density=0.1)
+    warnings: list[str] = []
+    world = world_module.export_world(fresh_scene, warnings)
+    assert world.medium is not None and not any("Volume" in w or "fog" in w for w in warnings), warnings
+
+
+def test_fog_and_a_light_alone_render(prism_addon, fresh_scene):
+    """No mesh at all: the lit fog is what there is to see (Cycles renders it too), so Prism does not refuse
+    the scene as empty."""
+    _fog_world("ShaderNodeVolumeScatter", Density=0.2)
+    add_point_light("Bulb", 100.0, (0.0, 4.0, 0.0))
+    add_camera((0.0, 0.0, 0.0), (math.pi / 2, 0.0, 0.0), resolution=(16, 8))
+    assert luminance(render_prism_rgba(fresh_scene, 4)).mean() > 0.0
