@@ -41,6 +41,7 @@ BOUNCE_ROULETTE = 4  # 1-D: Russian roulette
 #: 2-D per bounce, in a range of its own so scenes without media keep every other slot: the distance to
 #: a collision in a medium and the wavelength whose extinction samples it (``media.segment``).
 SLOT_MEDIUM = 1 << 24
+MEDIUM_LIGHT_OFFSET = 1 << 16  # medium_light_slot: past every bounce's medium_slot
 # 1-D: the path's ray time in the shutter (motion blur). Numbered far beyond every bounce's slots, so
 # turning motion blur on leaves every other dimension, and so still images, as they were.
 SLOT_TIME = 1 << 20
@@ -166,3 +167,10 @@ def bounce_slot(depth, which):
 def medium_slot(depth):
     """The 2-D slot of the medium decisions of the ray traced at bounce ``depth``."""
     return SLOT_MEDIUM + depth
+
+
+@kernel
+def medium_light_slot(depth):
+    """The 2-D slot of the equiangular decisions (strategy and light, distance) of the ray traced at bounce
+    ``depth`` (``media.equiangular``): apart from ``medium_slot``, so scenes without them sample as before."""
+    return SLOT_MEDIUM + MEDIUM_LIGHT_OFFSET + depth

@@ -27,6 +27,7 @@ from .accel import Accel
 from .analysis import analyse_scene
 from .data_passes import first_hit_tables
 from .materials.light_path import reads_light_path
+from .media.equiangular import has_positional_lights
 from .errors import PrismInputError
 from .geometry import prepare_geometry
 from .lights.emitters import emitter_spectra
@@ -155,6 +156,7 @@ class SceneTables:
             guide = build_guide(self.spectra, emitter_spectra(self.light_table, materials))
         self.wavelengths = wavelength_sampling.build(settings, guide)
         self.guide = guide
+        has_media = bool((materials.medium >= 0).any()) or self.material_table.outside_medium >= 0
         self.kernel_settings = KernelSettings(
             max_bounces=int(settings.max_bounces), roulette_depth=int(settings.russian_roulette_depth),
             use_mis=bool(settings.use_mis), sampler=SAMPLERS[settings.sampler], seed=int(settings.seed) & 0xFFFFFFFF,
@@ -163,9 +165,9 @@ class SceneTables:
             transparent_glass=bool(settings.film_transparent and settings.transparent_glass),
             transparent_alpha=float(settings.transparent_roughness) ** 2,
             **_trick_settings(settings.light_path_tricks), wavelengths=self.wavelengths,
-            has_media=bool((materials.medium >= 0).any()) or self.material_table.outside_medium >= 0,
-            outside_medium=int(self.material_table.outside_medium), **_linking_settings(self.light_table.arrays),
-            light_path=reads_light_path(materials))
+            has_media=has_media, outside_medium=int(self.material_table.outside_medium),
+            equiangular=has_media and has_positional_lights(self.light_table.arrays),
+            **_linking_settings(self.light_table.arrays), light_path=reads_light_path(materials))
         self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.describe(scene, settings, camera)
 

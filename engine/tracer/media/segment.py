@@ -20,10 +20,12 @@ from __future__ import annotations
 import math
 
 from ..jit import inlined
-from ..sampler import medium_slot, sample_2d
+from ..lights.dispatch import pick_light
+from ..sampler import medium_light_slot, medium_slot, sample_2d
 from ..spectra.table import spectrum_value
 from ..state import COLLAPSED
 from .coefficients import coefficients_at
+from .equiangular import equiangular_distance, light_line, positional_mixture
 
 
 @inlined
@@ -39,10 +41,12 @@ def _add_emission(state, i, media, spectra, medium, t, sigma_t):
 
 
 @inlined
-def cross_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s):
+def cross_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s, lights):
     """Path ``i``'s ray, inside its medium, reaches a surface at ``t`` (inf: none). Adds the medium's
     emission along it and returns where the path scatters (< t, throughput weighted for it) or inf (it
-    reaches the surface, throughput weighted by the transmittance). ``sigma_t``, ``sigma_s``: scratch [K]."""
+    reaches the surface, throughput weighted by the transmittance). ``sigma_t``, ``sigma_s``: scratch [K].
+    With ``settings.equiangular``, half the segments sample the collision equiangularly toward a light of
+    ``lights`` (``equiangular``) and every weight divides by the two strategies' mixture."""
     medium = state.medium[i]
     lam = state.wavelength[i]
     k = lam.shape[0]
@@ -53,6 +57,16 @@ def cross_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s)
     channel = state.hero[i] if collapsed else min(int(u_channel * k), k - 1)
     chosen = sigma_s[channel]
     s = -math.log1p(-u_distance) / chosen if chosen > 0.0 else math.inf
+    o = (state.origin[i, 0], state.origin[i, 1], state.origin[i, 2])
+    d = (state.direction[i, 0], state.direction[i, 1], state.direction[i, 2])
+    if settings.equiangular:
+        u_strategy, u_equiangular = sample_2d(settings.sampler, state.seed[i], state.sample[i],
+                                              medium_light_slot(depth))
+        if u_strategy >= 0.5:  # toward a light picked as light sampling picks one, if it has a position
+            light, _ = pick_light(lights, 2.0 * u_strategy - 1.0)
+            usable, delta, h = light_line(lights, light, o, d)
+            if usable:
+                s = equiangular_distance(delta, h, t, u_equiangular)
     scatters = s < t
     at = s if scatters else t
     # The mixture's density (a collision at s) or probability (no collision before t).
@@ -64,6 +78,12 @@ def cross_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s)
         mixture += sigma_s[c] * survival if scatters else survival
     if not collapsed:
         mixture /= k
+    if settings.equiangular:
+        # Distance sampling: half the segments, and the other half's picks of lights without a position.
+        equiangular, positional = positional_mixture(lights, o, d, t, at)
+        mixture *= 0.5 * (2.0 - positional)
+        if scatters:
+            mixture += 0.5 * equiangular
     for c in range(k):
         if not mixture > 0.0:
             state.throughput[i, c] = 0.0
