@@ -27,6 +27,7 @@ from .accel import Accel
 from .analysis import analyse_scene
 from .data_passes import first_hit_tables
 from .materials.light_path import reads_light_path
+from .media.enclosure import enclosing_media
 from .media.equiangular import has_positional_lights
 from .errors import PrismInputError
 from .geometry import prepare_geometry
@@ -166,10 +167,20 @@ class SceneTables:
             transparent_alpha=float(settings.transparent_roughness) ** 2,
             **_trick_settings(settings.light_path_tricks), wavelengths=self.wavelengths,
             has_media=has_media, outside_medium=int(self.material_table.outside_medium),
+            camera_medium=self._camera_medium(scene, camera) if has_media else -1,
             equiangular=has_media and has_positional_lights(self.light_table.arrays),
             **_linking_settings(self.light_table.arrays), light_path=reads_light_path(materials))
         self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
         self.describe(scene, settings, camera)
+
+    def _camera_medium(self, scene, camera) -> int:
+        """The ``media`` row camera rays start in: the medium whose mesh encloses the camera (the first, if
+        several: the export warns), else the World's Volume, else -1."""
+        inside = enclosing_media(camera.position, scene.vertices, scene.triangles, scene.triangle_material,
+                                 scene.materials)
+        rows = [int(self.material_table.arrays.medium[m]) for m in inside]
+        rows = [row for row in rows if row >= 0]
+        return rows[0] if rows else int(self.material_table.outside_medium)
 
     def describe(self, scene, settings, camera) -> None:
         """What the scene needs seen from ``camera``: ``analysis``, light tracing on or off (with its

@@ -121,15 +121,15 @@ def film_direction(camera, x, y):
 
 
 @inlined
-def start_path(state, i, pixel, sample, seed, outside_medium):
-    """Reset path ``i`` as sample ``sample`` of ``pixel``, in ``outside_medium`` (the World's Volume, or -1);
+def start_path(state, i, pixel, sample, seed, medium):
+    """Reset path ``i`` as sample ``sample`` of ``pixel``, in ``medium`` (``KernelSettings.camera_medium``);
     returns the pixel's sampler seed."""
     ps = pixel_seed(pixel, seed)
     state.pixel[i] = pixel
     state.sample[i] = sample
     state.seed[i] = ps
     state.flags[i] = PREV_DELTA | CAMERA_PATH
-    state.medium[i] = outside_medium  # cameras inside mesh media are not modelled (the export warns)
+    state.medium[i] = medium
     state.transparency[i] = 0.0
     state.eta_scale[i] = 1.0
     state.prev_pdf[i] = 0.0
@@ -249,7 +249,7 @@ def camera_kernel(state, rays, camera, ws, settings, pixels, first, count, sampl
         p = first + i
         pixel = pixels[p // samples_per_pixel]
         sample = first_sample + p % samples_per_pixel
-        ps = start_path(state, i, pixel, sample, settings.seed, settings.outside_medium)
+        ps = start_path(state, i, pixel, sample, settings.seed, settings.camera_medium)
         draw_wavelengths(state, i, ws, settings.sampler, ps, sample)
         ux, uy = sample_2d(settings.sampler, ps, sample, SLOT_PIXEL)
         lu, lv = sample_2d(settings.sampler, ps, sample, SLOT_LENS)

@@ -29,7 +29,7 @@ def real_lens_kernel(state, rays, camera, lens, ws, settings, pixels, first, cou
         p = first + i
         pixel = pixels[p // samples_per_pixel]
         sample = first_sample + p % samples_per_pixel
-        ps = start_path(state, i, pixel, sample, settings.seed, settings.outside_medium)
+        ps = start_path(state, i, pixel, sample, settings.seed, settings.camera_medium)
         draw_wavelengths(state, i, ws, settings.sampler, ps, sample)
         ux, uy = sample_2d(settings.sampler, ps, sample, SLOT_PIXEL)
         lu, lv = sample_2d(settings.sampler, ps, sample, SLOT_LENS)
