@@ -21,13 +21,7 @@ from .nodes.compiler import MaterialCompiler
 class _WorldCompiler(MaterialCompiler):
     """The material compiler for a world's node tree: its warnings name the world."""
 
-    def warn(self, node, what):
-        key = (node.name if node is not None else None, what)
-        if key in self._warned:
-            return
-        self._warned.add(key)
-        where = f"the '{node.name}' node ({node.bl_label}) " if node is not None else ""
-        self.warnings.append(f"World '{self.material.name}': {where}{what}")
+    subject = "World"
 
 
 def export_world_volume(world, tree, warnings: list[str] | None):

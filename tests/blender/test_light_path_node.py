@@ -17,15 +17,20 @@ from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
 SAMPLES = 64
 
 
-def _mix_material(name, output, first, second):
-    """A material whose Mix Shader takes Light Path ▸ ``output`` as its factor: ``first`` where it is 0,
-    ``second`` where it is 1 (each a (node type, {input: value}) pair)."""
+def _light_path_material(name):
+    """(material, its nodes, its links, a Light Path node): a node material without its Principled BSDF."""
     material = bpy.data.materials.new(name)
     material.use_nodes = True
     nodes, links = material.node_tree.nodes, material.node_tree.links
     nodes.remove(nodes["Principled BSDF"])
+    return material, nodes, links, nodes.new("ShaderNodeLightPath")
+
+
+def _mix_material(name, output, first, second):
+    """A material whose Mix Shader takes Light Path ▸ ``output`` as its factor: ``first`` where it is 0,
+    ``second`` where it is 1 (each a (node type, {input: value}) pair)."""
+    material, nodes, links, path = _light_path_material(name)
     mix = nodes.new("ShaderNodeMixShader")
-    path = nodes.new("ShaderNodeLightPath")
     links.new(path.outputs[output], mix.inputs["Fac"])
     for slot, (kind, values) in ((1, first), (2, second)):
         shader = nodes.new(kind)
@@ -120,11 +125,7 @@ def _top_view(scene):
 def _info_material(name, channels):
     """An Emission of strength 1 whose colour channels are sums of Light Path outputs: ``channels`` a list of
     three lists of (output, scale, offset)."""
-    material = bpy.data.materials.new(name)
-    material.use_nodes = True
-    nodes, links = material.node_tree.nodes, material.node_tree.links
-    nodes.remove(nodes["Principled BSDF"])
-    path = nodes.new("ShaderNodeLightPath")
+    material, nodes, links, path = _light_path_material(name)
     combine = nodes.new("ShaderNodeCombineColor")
     for channel, terms in enumerate(channels):
         total = None
@@ -187,23 +188,8 @@ def test_ray_length_and_depths_read_as_cycles(prism_addon, fresh_scene):
     8 (a camera ray starts at the clip start, as in Cycles), G = B = 1/4; through the card R is the same (a ray
     crossing a cut-out goes on: its length counts from where it started), B = 2/4; both as in Cycles."""
     _dark_world(fresh_scene)
-    material = bpy.data.materials.new("Ray info")
-    material.use_nodes = True
-    nodes, links = material.node_tree.nodes, material.node_tree.links
-    nodes.remove(nodes["Principled BSDF"])
-    path = nodes.new("ShaderNodeLightPath")
-    combine = nodes.new("ShaderNodeCombineColor")
-    for channel, output, offset, scale in ((0, "Ray Length", 0.0, 1 / 8), (1, "Ray Depth", 1.0, 0.25),
-                                           (2, "Transparent Depth", 1.0, 0.25)):
-        math_node = nodes.new("ShaderNodeMath")
-        math_node.operation = "MULTIPLY_ADD"
-        links.new(path.outputs[output], math_node.inputs[0])
-        math_node.inputs[1].default_value = scale
-        math_node.inputs[2].default_value = offset * scale
-        links.new(math_node.outputs[0], combine.inputs[channel])
-    emission = nodes.new("ShaderNodeEmission")
-    links.new(combine.outputs[0], emission.inputs["Color"])
-    links.new(emission.outputs[0], nodes["Material Output"].inputs["Surface"])
+    material = _info_material("Ray info", [[("Ray Length", 1 / 8, 0.0)], [("Ray Depth", 0.25, 0.25)],
+                                            [("Transparent Depth", 0.25, 0.25)]])
     wall = add_plane("Wall", 12.0, location=(0.0, 4.0, 0.0))
     wall.rotation_euler = (math.pi / 2, 0.0, 0.0)  # facing -y, towards the camera
     wall.data.materials[0] = material

@@ -61,6 +61,9 @@ class MaterialCompiler:
             self.builder = ProgramBuilder(self.evaluate)
 
     # -- messages ----------------------------------------------------------------------------------
+    #: What the warnings name first (a world's tree is compiled by a subclass that says "World").
+    subject = "Material"
+
     def warn(self, node, what):
         """One warning per node and message: ``Material 'M': the 'N' node (Label) <what>.``"""
         key = (node.name if node is not None else None, what)
@@ -68,7 +71,7 @@ class MaterialCompiler:
             return
         self._warned.add(key)
         where = f"the '{node.name}' node ({node.bl_label}) " if node is not None else ""
-        self.warnings.append(f"Material '{self.material.name}': {where}{what}")
+        self.warnings.append(f"{self.subject} '{self.material.name}': {where}{what}")
 
     # -- constants and arithmetic --------------------------------------------------------------------
     def const(self, *values) -> Value:
