@@ -1,0 +1,79 @@
+"""World fog rendered by Prism and by Cycles from the same scene, side by side: docs/images/world_fog.png.
+
+    .venv/bin/python tools/world_fog_picture.py [--samples 128]
+
+A floor with three pillars in white fog (the World Output's Volume: Volume Scatter, density 0.12 /m), lit
+by a warm point light among the pillars and a cool one behind them. Prints each image's mean luminance and
+their ratio (absolute light, no normalisation); the picture shows both with the same view transform.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+OUTPUT = ROOT / "docs" / "images" / "world_fog.png"
+
+
+def _scene(bpy, helpers):
+    add_camera, add_plane, add_point_light = helpers
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    world = bpy.data.worlds.new("Fog")
+    world.use_nodes = True
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    nodes["Background"].inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    fog = nodes.new("ShaderNodeVolumeScatter")
+    fog.inputs["Density"].default_value = 0.12
+    links.new(fog.outputs[0], nodes["World Output"].inputs["Volume"])
+    bpy.context.scene.world = world
+    add_plane("Floor", 30.0, color=(0.5, 0.5, 0.5), specular=0.0)
+    for x in (-2.0, 0.0, 2.0):
+        bpy.ops.mesh.primitive_cylinder_add(radius=0.25, depth=3.0, location=(x, 2.0, 1.5))
+    add_point_light("Warm", 600.0, (0.8, 1.2, 1.2), color=(1.0, 0.6, 0.3))
+    add_point_light("Cool", 900.0, (-1.0, 4.5, 2.5), color=(0.4, 0.6, 1.0))
+    return add_camera((0.0, -5.0, 1.6), (1.45, 0.0, 0.0), lens_mm=28.0, resolution=(240, 150))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--samples", type=int, default=128)
+    arguments = parser.parse_args()
+    sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
+    import bpy
+    import numpy as np
+    from PIL import Image, ImageDraw
+
+    from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+    from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
+    from render import load_addon_package
+
+    load_addon_package().register()
+    _scene(bpy, (add_camera, add_plane, add_point_light))
+    scene = bpy.context.scene
+    scene.prism.max_bounces = 8
+    prism = render_prism_rgba(scene, arguments.samples)[..., :3]
+    cycles = render_cycles_rgba(scene, arguments.samples, max_bounces=8)[..., :3]
+    p, c = float(luminance(prism).mean()), float(luminance(cycles).mean())
+    print(f"mean luminance: Prism {p:.4f}, Cycles {c:.4f}, Prism / Cycles {p / c:.4f}")
+
+    def display(rgb):  # sRGB of the scene-linear image, clipped: the same transform for both
+        rgb = np.clip(rgb, 0.0, 1.0)
+        srgb = np.where(rgb <= 0.0031308, 12.92 * rgb, 1.055 * rgb ** (1 / 2.4) - 0.055)
+        return (srgb * 255 + 0.5).astype(np.uint8)
+
+    height, width = prism.shape[:2]
+    canvas = Image.new("RGB", (2 * width + 6, height + 18), (255, 255, 255))
+    canvas.paste(Image.fromarray(display(prism)), (0, 18))
+    canvas.paste(Image.fromarray(display(cycles)), (width + 6, 18))
+    draw = ImageDraw.Draw(canvas)
+    draw.text((4, 3), f"Prism (mean {p:.3f})", fill=(0, 0, 0))
+    draw.text((width + 10, 3), f"Cycles 4.5 (mean {c:.3f})", fill=(0, 0, 0))
+    OUTPUT.parent.mkdir(parents=True, exist_ok=True)
+    canvas.save(OUTPUT)
+    print(f"wrote {OUTPUT}")
+
+
+if __name__ == "__main__":
+    main()
