@@ -12,6 +12,7 @@
     renderer.finished               # every pixel has its samples, converged (adaptive) or time is up
     renderer.pass_images()          # the requested passes of the region: name -> float32 [h, w, C]
     renderer.set_region(box)        # render another rectangle (a tile) from sample 0, with a new film
+    renderer.set_bake_rays(rays, pixels)  # a bake: the region's paths start from a ray table, not the camera
     renderer.cancel()               # from any thread: stop the current pass after running chunks
     renderer.close()                # free the thread pool (or use ``with Renderer(...) as r:``)
 
@@ -180,6 +181,7 @@ class Renderer:
         self.region = tuple(int(v) for v in region)
         self._film = None  # allocated when first used: a frame that is tiled never holds a whole-frame film
         self._region_pixels = self._pixels = None
+        self.bake_rays = None  # a new region starts from the camera again
         self.samples_done = self._first_sample
         self._passes = self._first_sample // self.settings.samples_per_pass
         limit = self.settings.time_limit_s if time_limit_s is None else time_limit_s
@@ -189,6 +191,16 @@ class Renderer:
         self._converged_checked_at = 0
         self.converged = False
         self.time_up = False
+
+    def set_bake_rays(self, rays, pixels) -> None:
+        """Bake the region set last: its paths start from ``rays`` (``stages.bake_camera.BakeRays``, covering
+        that region) instead of the camera, at ``pixels`` only (frame pixel indices, int64: the texels that
+        have a surface point). Light tracing stays off (its paths would splat through the camera) and
+        adaptive sampling must be off (it counts the region's every pixel)."""
+        if self.tables.analysis.light_tracing or self.settings.adaptive_threshold > 0.0:
+            raise ValueError("a bake renders without light tracing and adaptive sampling")
+        self.bake_rays = rays
+        self._region_pixels = self._pixels = np.ascontiguousarray(pixels, dtype=np.int64)
 
     @property
     def film(self) -> Film:

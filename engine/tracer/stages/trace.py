@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from ..camera_clip import clip_far_hits
 from ..jit import Launch
+from . import bake_camera as _bake_camera
 from . import bounce_loop as _bounce_loop
 from . import camera as _camera
 from . import emission as _emission
@@ -23,6 +24,7 @@ from .shadow import MAX_FILM_LAYERS
 
 # Called per bounce of every chunk: launched without the dispatcher's per-call typing (``jit.Launch``).
 camera_kernel = Launch(_camera.camera_kernel)
+bake_camera_kernel = Launch(_bake_camera.bake_camera_kernel)
 real_lens_kernel = Launch(_real_lens.real_lens_kernel)
 emission_kernel = Launch(_emission.emission_kernel)
 shade_kernel = Launch(_shade.shade_kernel)
@@ -75,7 +77,10 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     rejected = buffers.counters
     rejected[0] = 0
     current = buffers.rays[0]
-    if renderer.camera.lens is None:
+    if renderer.bake_rays is not None:  # a bake: each pixel's ray from the renderer's table
+        queued = bake_camera_kernel(state, current, renderer.bake_rays, wavelengths, settings, renderer._pixels,
+                                    first, count, samples_per_pixel, first_sample)
+    elif renderer.camera.lens is None:
         queued = camera_kernel(state, current, renderer.camera.data, wavelengths, settings,
                                renderer._pixels, first, count, samples_per_pixel, first_sample)
     else:
