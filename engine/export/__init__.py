@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..tracer.errors import PrismInputError
-from ..tracer.scene import Scene
+from ..tracer.scene import Camera, Scene
 from ..tracer.spheres import rendered_rows
 from .border import render_border
 from .camera import export_camera, render_resolution
@@ -98,13 +98,18 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
         )
 
 
-def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None) -> Scene:
+def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, camera: Camera | None = None,
+                 motion: bool = True) -> Scene:
     """Build the tracer scene from an evaluated depsgraph.
 
     With Render ▸ Motion Blur on, the scene is evaluated again at the shutter's times through
     ``frame_set(frame, subframe)`` (a render passes its engine's, which re-evaluates ``depsgraph``; default:
     the scene's own ``frame_set``) and set back to its frame afterwards (``motion``); with the Vector pass
     on and motion blur off, at the previous and next frames (``vector_pass``).
+
+    ``camera``: the camera to render from instead of the scene's (a bake's, which only places the render's
+    origin: a scene without a camera bakes); ``motion`` False: neither motion blur nor the Vector pass's
+    other frames (a bake's surface points are where the objects are at the frame).
 
     Raises ``PrismInputError`` (naming the object and the fix) for scenes that
     cannot render: no camera, unsupported camera, NaN geometry, unknown glass, ...
@@ -115,7 +120,8 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None) -
     if warnings is not None:
         warnings.extend(unrendered_setting_warnings(scene, depsgraph.view_layer))
         warnings.extend(f"Scene '{scene.name}': {library.sentence()}." for library in missing)
-    camera = export_camera(scene, depsgraph, warnings)
+    if camera is None:
+        camera = export_camera(scene, depsgraph, warnings)
     geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
     tracer_scene = Scene(
         vertices=geometry.vertices,
@@ -136,10 +142,12 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None) -
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.light_links = export_light_links(depsgraph, geometry.object_names, warnings)
     tracer_scene.data_passes = export_data_passes(scene, geometry)
-    frame_set = frame_set or (lambda f, s: scene.frame_set(f, subframe=s))
-    meshes_again = lambda evaluated: export_meshes(evaluated, None, camera_position=camera.camera_to_world[:3, 3])  # noqa: E731
-    export_motion(scene, depsgraph, tracer_scene, frame_set, meshes_again, warnings if warnings is not None else [])
-    export_vector_pass(scene, depsgraph, tracer_scene, frame_set, meshes_again, warnings if warnings is not None else [])
+    if motion:
+        frame_set = frame_set or (lambda f, s: scene.frame_set(f, subframe=s))
+        meshes_again = lambda evaluated: export_meshes(evaluated, None, camera_position=camera.camera_to_world[:3, 3])  # noqa: E731
+        export_motion(scene, depsgraph, tracer_scene, frame_set, meshes_again, warnings if warnings is not None else [])
+        export_vector_pass(scene, depsgraph, tracer_scene, frame_set, meshes_again,
+                           warnings if warnings is not None else [])
     tracer_scene.validate()
     if warnings is not None:
         from .camera_in_medium import camera_in_medium_warnings

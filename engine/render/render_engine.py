@@ -1,5 +1,5 @@
-"""Prism's ``RenderEngine``: thin, it hands every render to a ``RenderSession`` and the rendered
-viewport to a ``ViewportSession``."""
+"""Prism's ``RenderEngine``: thin, it hands every render to a ``RenderSession``, every bake to a
+``BakeSession`` and the rendered viewport to a ``ViewportSession``."""
 
 import sys
 
@@ -25,6 +25,11 @@ class PrismRenderEngine(bpy.types.RenderEngine):
         from .session import RenderSession
 
         RenderSession(self, depsgraph, *handed_over()).run()
+
+    def bake(self, depsgraph, object, pass_type, pass_filter, width, height):  # noqa: A002 - Blender's name
+        from .bake_session import BakeSession
+
+        BakeSession(self, depsgraph, object, pass_type, pass_filter, width, height).run()
 
     def view_update(self, context, depsgraph):
         from ..viewport.session import session_of

@@ -36,6 +36,15 @@ def render_cycles_rgba(scene, samples: int, seed: int = 0, max_bounces: int = 8,
     """Cycles' scene-linear RGBA [H, W, 4] of ``scene`` (row 0 on top), unbiased (no clamps, caustics on) unless
     ``filter_glossy`` is given (Light Paths ▸ Filter Glossy; it stays set on the scene, so Prism reads it too)."""
     engine = scene.render.engine
+    configure_cycles(scene, samples, seed, max_bounces, filter_glossy)
+    try:
+        return _render_to_rgba(scene)
+    finally:
+        scene.render.engine = engine
+
+
+def configure_cycles(scene, samples: int, seed: int = 0, max_bounces: int = 8, filter_glossy: float = 0.0) -> None:
+    """Make Cycles ``scene``'s engine, set up as ``render_cycles_rgba`` renders (for a bake, too)."""
     scene.render.engine = "CYCLES"
     cycles = scene.cycles
     cycles.device = "CPU"
@@ -54,10 +63,6 @@ def render_cycles_rgba(scene, samples: int, seed: int = 0, max_bounces: int = 8,
         setattr(cycles, name, max_bounces)
     scene.render.threads_mode = "FIXED"
     scene.render.threads = 2
-    try:
-        return _render_to_rgba(scene)
-    finally:
-        scene.render.engine = engine
 
 
 def render_prism_rgba(scene, samples: int, seed: int = 0) -> np.ndarray:

@@ -1,0 +1,22 @@
+"""Bake types Prism does not bake (Shadow, Position, UV, Roughness, Environment) are refused with one error
+naming the object, the bake type and the setting, and the bake writes nothing."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from helpers.bake_scenes import bake, baked_image, node_material, uv_plane
+
+
+@pytest.mark.parametrize("bake_type, name", [("SHADOW", "Shadow"), ("POSITION", "Position"), ("UV", "UV"),
+                                             ("ROUGHNESS", "Roughness"), ("ENVIRONMENT", "Environment")])
+def test_unsupported_bake_types_are_refused_by_name(prism_addon, fresh_scene, bad_input, bake_type, name):
+    material = node_material("Grey", "ShaderNodeBsdfDiffuse")
+    plane = uv_plane("Floor", 2.0, material)
+    with pytest.raises(RuntimeError) as refused:
+        bake(fresh_scene, "PRISM", plane, bake_type, 4)
+    assert np.all(baked_image(material)[..., :3] == 0.0)
+    message = str(refused.value)
+    assert f"Prism cannot bake '{name}' (Render ▸ Bake ▸ Bake Type)" in message and "'Floor'" in message
+    bad_input(f"Bake type {name}", 1, message.splitlines()[0].removeprefix("Error: "))
