@@ -162,9 +162,8 @@ def test_selected_to_active_bakes_the_selected_objects_surface(prism_addon, fres
         assert np.allclose(_mean(prism), _mean(cycles), rtol=0.02), bake_type
 
 
-def test_an_image_larger_than_a_tile_bakes_every_texel_in_its_place(prism_addon, fresh_scene):
-    """300 x 300 texels (tiles of 256: four uneven ones) of an emission whose strength is u + 2 v of the UV map:
-    each texel gets its own centre's value, so tiles land where they belong."""
+def _ramp_material():
+    """An emission whose strength is u + 2 v of the UV map (white), into an image to bake."""
     material = node_material("Ramp", "ShaderNodeEmission")
     nodes, links = material.node_tree.nodes, material.node_tree.links
     emission = next(n for n in nodes if n.type == "EMISSION")
@@ -176,19 +175,64 @@ def test_an_image_larger_than_a_tile_bakes_every_texel_in_its_place(prism_addon,
     links.new(split.outputs["X"], total.inputs[0])
     links.new(twice.outputs[0], total.inputs[1])
     links.new(total.outputs[0], emission.inputs["Strength"])
+    return material
+
+
+def _ramp_error(image, size: int, block: int = 10) -> float:
+    """The largest relative error of the baked ramp's means over blocks of ``block`` texels a side (the
+    spectral noise of single texels averaged out) against each texel centre's u + 2 v."""
+    block = min(block, size // 8)
+    centre = (np.arange(size) + 0.5) / size
+    expected = centre[None, :] + 2.0 * centre[:, None]  # rows from the bottom: v; columns: u
+
+    def blocks(a):
+        return a.reshape(size // block, block, size // block, block).mean(axis=(1, 3))
+
+    return float(np.abs(blocks(image[..., 0]) / blocks(expected) - 1.0).max())
+
+
+def test_an_image_larger_than_a_tile_bakes_every_texel_in_its_place(prism_addon, fresh_scene):
+    """300 x 300 texels (tiles of 256: four uneven ones) of an emission whose strength is u + 2 v of the UV map:
+    each texel gets its own centre's value, so tiles land where they belong."""
+    material = _ramp_material()
     size = 300
     material.node_tree.nodes.active.image.scale(size, size)
     plane = uv_plane("Ramp", 2.0, material)
     image = bake(fresh_scene, "PRISM", plane, "EMIT", 16)
-    centre = (np.arange(size) + 0.5) / size
-    expected = centre[None, :] + 2.0 * centre[:, None]  # rows from the bottom: v; columns: u
+    error = _ramp_error(image, size)
+    print(f"MEASURED {size} x {size} Emit ramp: blocks of 10 x 10 texels within {error:.4f} (relative)")
+    assert error < 0.03
 
-    def blocks(a):  # means of 10 x 10 texels: the spectral noise of single texels averaged out
-        return a.reshape(size // 10, 10, size // 10, 10).mean(axis=(1, 3))
 
-    error = np.abs(blocks(image[..., 0]) / blocks(expected) - 1.0)
-    print(f"MEASURED {size} x {size} Emit ramp: blocks of 10 x 10 texels within {error.max():.4f} (relative)")
-    assert error.max() < 0.03
+def test_a_smooth_sphere_bakes_its_interpolated_normals_as_cycles_does(prism_addon, fresh_scene):
+    """A smooth UV sphere (512 loop triangles, their corner normals interpolated) baked to an object-space
+    Normal map: texel by texel as Cycles bakes it (Cycles jitters within the texel, Prism takes its centre)."""
+    uniform_world()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=1.0)
+    sphere = bpy.context.active_object
+    sphere.data.shade_smooth()
+    sphere.rotation_euler = (0.3, 0.2, 0.1)
+    sphere.data.materials.append(node_material("Ball", "ShaderNodeBsdfDiffuse"))
+    prism, cycles = _both(fresh_scene, sphere, "NORMAL", normal_space="OBJECT")
+    covered = np.linalg.norm(prism[..., :3] - 0.5, axis=-1) > 0.4  # texels with a point (the rest stay black)
+    error = np.abs(prism[..., :3] - cycles[..., :3])[covered]
+    print(f"MEASURED smooth sphere Normal: {covered.sum()} texels, mean |error| {error.mean():.5f}, "
+          f"max {error.max():.4f}")
+    assert covered.mean() > 0.8
+    assert error.mean() < 0.002 and error.max() < 0.02
+
+
+def test_a_subdivided_mesh_bakes_each_triangle_where_blender_maps_it(prism_addon, fresh_scene):
+    """The UV ramp of ``test_an_image_larger_than_a_tile...`` on a plane under a Subdivision Surface modifier
+    (level 2, simple: 32 loop triangles of the evaluated mesh): each texel still gets its own UV's value."""
+    material = _ramp_material()
+    plane = uv_plane("Ramp", 2.0, material)
+    modifier = plane.modifiers.new("Subdivision", "SUBSURF")
+    modifier.subdivision_type, modifier.levels, modifier.render_levels = "SIMPLE", 2, 2
+    image = bake(fresh_scene, "PRISM", plane, "EMIT", 16)
+    error = _ramp_error(image, 32)
+    print(f"MEASURED subdivided plane Emit ramp: blocks of 4 x 4 texels within {error:.4f} (relative)")
+    assert error < 0.03
 
 
 def test_a_bake_stops_when_asked(prism_addon, fresh_scene, monkeypatch):
