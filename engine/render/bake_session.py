@@ -182,7 +182,7 @@ class BakeSession:
             texels = np.flatnonzero(primitive >= 0)
             if len(texels) == 0:
                 return
-            stopped = self._render_tile(renderer, recipe, tile, primitive_pass, primitive, texels, position)
+            stopped = self._render_tile(renderer, tile, primitive_pass, primitive, texels, position)
             if not stopped:
                 self._write(passes["Combined"], renderer, recipe, texels, w * h)
         finally:
@@ -191,7 +191,7 @@ class BakeSession:
         if stopped:
             raise _Stopped
 
-    def _render_tile(self, renderer, recipe, tile, primitive_pass, primitive, texels, position) -> bool:
+    def _render_tile(self, renderer, tile, primitive_pass, primitive, texels, position) -> bool:
         """Every sample of the tile's ``texels``; True when stopped."""
         x, y, w, h = tile
         index, count = position
