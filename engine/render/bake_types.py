@@ -10,7 +10,7 @@ the pass filter as an int of ``BakeSettings.pass_filter``'s bits. Prism bakes as
   on (without it, the light divided by the colour, as Cycles' passes store it); Color alone: the colour.
 - Emit: the surface's own emission. Normal: its world-space shading normal (bump and normal maps
   included; Blender turns it into the bake's space and swizzle). Ambient Occlusion: the AO pass within
-  World ▸ Ambient Occlusion ▸ Distance.
+  World ▸ Ambient Occlusion ▸ Distance. Position: the point in world space.
 
 Everything else is refused by name (``refusal``). Imports nothing heavy.
 """
@@ -35,10 +35,11 @@ LOBES = {"DIFFUSE": (FILTER_DIFFUSE, "Diff"), "GLOSSY": (FILTER_GLOSSY, "Gloss")
 WHOLE_IMAGE = "Combined"
 #: Bake types Prism renders (Blender's identifiers) and their names in Render ▸ Bake ▸ Bake Type.
 SUPPORTED = {"COMBINED": "Combined", "DIFFUSE": "Diffuse", "GLOSSY": "Glossy", "TRANSMISSION": "Transmission",
-             "EMIT": "Emit", "NORMAL": "Normal", "AO": "Ambient Occlusion"}
+             "EMIT": "Emit", "NORMAL": "Normal", "AO": "Ambient Occlusion", "POSITION": "Position"}
+#: Bake types written from one pass of the first surface (the bake type → Prism's pass).
+FIRST_HIT_PASSES = {"EMIT": "Emit", "NORMAL": "Normal", "AO": "AO", "POSITION": "Position"}
 #: Bake types Prism refuses, by their names in the Bake Type menu.
-REFUSED = {"SHADOW": "Shadow", "POSITION": "Position", "UV": "UV", "ROUGHNESS": "Roughness",
-           "ENVIRONMENT": "Environment"}
+REFUSED = {"SHADOW": "Shadow", "UV": "UV", "ROUGHNESS": "Roughness", "ENVIRONMENT": "Environment"}
 
 
 class BakeTerm(NamedTuple):
@@ -96,12 +97,9 @@ def bake_recipe(pass_type: str, pass_filter: int) -> BakeRecipe:
         terms = _combined_terms(pass_filter)
     elif pass_type in LOBES:
         terms = _lobe_terms(LOBES[pass_type][1], pass_filter)
-    elif pass_type == "EMIT":
-        return BakeRecipe(("Emit",), (BakeTerm(("Emit",)),), first_hit_only=True)
-    elif pass_type == "NORMAL":
-        return BakeRecipe(("Normal",), (BakeTerm(("Normal",)),), first_hit_only=True)
-    elif pass_type == "AO":
-        return BakeRecipe(("AO",), (BakeTerm(("AO",)),), first_hit_only=True)
+    elif pass_type in FIRST_HIT_PASSES:
+        name = FIRST_HIT_PASSES[pass_type]
+        return BakeRecipe((name,), (BakeTerm((name,)),), first_hit_only=True)
     else:
         raise ValueError(f"bake type {pass_type} is refused, not baked")
     needed = {name for term in terms for name in (*term.light, term.color) if name and name != WHOLE_IMAGE}

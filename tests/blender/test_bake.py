@@ -235,6 +235,27 @@ def test_a_subdivided_mesh_bakes_each_triangle_where_blender_maps_it(prism_addon
     assert error < 0.03
 
 
+def test_position_bakes_each_texels_world_point(prism_addon, fresh_scene):
+    """A plane moved and turned: Position bakes each texel's world point (closed form: the texel centre's point
+    of the plane), as Cycles bakes it at 1 sample (its texel centre; Cycles 4.5 adds this pass up over the
+    samples without dividing: at 64 samples it bakes 64 × the point)."""
+    plane = _grey_plane()
+    plane.location, plane.rotation_euler = (0.3, -0.2, 0.5), (0.4, -0.3, 0.2)
+    bpy.context.view_layer.update()
+    centre = (np.arange(32) + 0.5) / 32
+    u, v = np.meshgrid(centre, centre)  # rows from the bottom: v
+    local = np.stack([2.0 * u - 1.0, 2.0 * v - 1.0, np.zeros_like(u), np.ones_like(u)], axis=-1)
+    expected = (local @ np.array(plane.matrix_world).T)[..., :3]
+    prism = bake(fresh_scene, "PRISM", plane, "POSITION", SAMPLES)
+    cycles = bake(fresh_scene, "CYCLES", plane, "POSITION", 1)
+    error = np.abs(prism[..., :3] - cycles[..., :3])
+    print(f"MEASURED Position: Prism / Cycles (1 sample) texel by texel max |error| {error.max():.2e} m, "
+          f"closed form {np.abs(prism[..., :3] - expected).max():.2e} m")
+    assert error.max() < 1e-4
+    # Blender's rasteriser puts each texel's point 1.25e-4 of the UV square off the texel's centre
+    assert np.allclose(prism[..., :3], expected, atol=5e-4)
+
+
 def test_a_bake_stops_when_asked(prism_addon, fresh_scene, monkeypatch):
     """Esc (``test_break``) after the first pass of samples stops the bake there: Blender gets nothing for the
     unfinished tile (the image stays as cleared) and no further pass runs."""

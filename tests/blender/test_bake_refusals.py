@@ -1,4 +1,4 @@
-"""Bake types Prism does not bake (Shadow, Position, UV, Roughness, Environment) are refused with one error
+"""Bake types Prism does not bake (Shadow, UV, Roughness, Environment) are refused with one error
 naming the object, the bake type and the setting, and the bake writes nothing."""
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ import pytest
 from helpers.bake_scenes import bake, baked_image, node_material, uv_plane
 
 
-@pytest.mark.parametrize("bake_type, name", [("SHADOW", "Shadow"), ("POSITION", "Position"), ("UV", "UV"),
-                                             ("ROUGHNESS", "Roughness"), ("ENVIRONMENT", "Environment")])
+@pytest.mark.parametrize("bake_type, name", [("SHADOW", "Shadow"), ("UV", "UV"), ("ROUGHNESS", "Roughness"),
+                                             ("ENVIRONMENT", "Environment")])
 def test_unsupported_bake_types_are_refused_by_name(prism_addon, fresh_scene, bad_input, bake_type, name):
     material = node_material("Grey", "ShaderNodeBsdfDiffuse")
     plane = uv_plane("Floor", 2.0, material)

@@ -30,7 +30,7 @@ def test_the_combined_filter_sums_what_is_left_on():
 
 
 def test_first_hit_types_need_no_bounce():
-    for bake_type, name in (("EMIT", "Emit"), ("NORMAL", "Normal"), ("AO", "AO")):
+    for bake_type, name in (("EMIT", "Emit"), ("NORMAL", "Normal"), ("AO", "AO"), ("POSITION", "Position")):
         recipe = bake_recipe(bake_type, EVERYTHING)
         assert recipe.first_hit_only and recipe.passes == (name,)
 
@@ -46,7 +46,7 @@ def test_the_baked_value_adds_light_times_colour():
     assert np.allclose(baked_value(combined, image, {**passes, "GlossDir": passes["Emit"]}), 0.9)
 
 
-@pytest.mark.parametrize("bake_type", ["SHADOW", "POSITION", "UV", "ROUGHNESS", "ENVIRONMENT", "SOMETHING_NEW"])
+@pytest.mark.parametrize("bake_type", ["SHADOW", "UV", "ROUGHNESS", "ENVIRONMENT", "SOMETHING_NEW"])
 def test_other_types_are_refused_by_their_menu_name(bake_type):
     message = refusal(bake_type)
     assert message.startswith("Prism cannot bake '") and "Render ▸ Bake ▸ Bake Type" in message
