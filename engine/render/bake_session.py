@@ -131,6 +131,9 @@ class BakeSession:
         notice = f" | {compiling}" if compiling else ""
         engine.update_stats("", f"Prism | Exporting scene for baking{notice}")
         evaluated = self.object if self.object.is_evaluated else self.object.evaluated_get(self.depsgraph)
+        if not evaluated.visible_camera:  # Prism's bake rays are camera rays: they would pass through it
+            raise PrismInputError(f"Object '{name}' is hidden from camera rays (Object ▸ Visibility ▸ Ray Visibility "
+                                  "▸ Camera), and Prism bakes what camera rays see: turn Camera on to bake it.")
         triangles = self.triangles = bake_triangles(evaluated)
         self.view = _camera_view(scene, self.depsgraph, name)
         warnings: list[str] = []

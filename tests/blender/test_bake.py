@@ -256,6 +256,19 @@ def test_position_bakes_each_texels_world_point(prism_addon, fresh_scene):
     assert np.allclose(prism[..., :3], expected, atol=5e-4)
 
 
+def test_a_bake_into_vertex_colours(prism_addon, fresh_scene):
+    """Output ▸ Target ▸ Active Color Attribute: each corner gets its point's value (an Emission of strength 2)."""
+    uniform_world()
+    plane = uv_plane("Lamp", 2.0, node_material("Lamp", "ShaderNodeEmission", Strength=2.0))
+    colours = plane.data.color_attributes.new("Baked", "FLOAT_COLOR", "CORNER")
+    plane.data.color_attributes.active_color = colours
+    bake(fresh_scene, "PRISM", plane, "EMIT", SAMPLES, target="VERTEX_COLORS")
+    values = np.empty(len(colours.data) * 4, np.float32)
+    colours.data.foreach_get("color", values)
+    print(f"MEASURED vertex colours: {np.round(values.reshape(-1, 4)[:, :3].mean(axis=0), 4)} (closed form 2)")
+    assert np.allclose(values.reshape(-1, 4)[:, :3], 2.0, rtol=0.02)
+
+
 def test_a_bake_stops_when_asked(prism_addon, fresh_scene, monkeypatch):
     """Esc (``test_break``) after the first pass of samples stops the bake there: Blender gets nothing for the
     unfinished tile (the image stays as cleared) and no further pass runs."""
