@@ -196,11 +196,16 @@ class Renderer:
         """Bake the region set last: its paths start from ``rays`` (``stages.bake_camera.BakeRays``, covering
         that region) instead of the camera, at ``pixels`` only (frame pixel indices, int64: the texels that
         have a surface point). Light tracing stays off (its paths would splat through the camera) and
-        adaptive sampling must be off (it counts the region's every pixel)."""
+        adaptive sampling must be off (it counts the region's every pixel). From then on the first-hit Normal
+        and AO passes take the shading normal (``KernelSettings.shaded_normals``)."""
         if self.tables.analysis.light_tracing or self.settings.adaptive_threshold > 0.0:
             raise ValueError("a bake renders without light tracing and adaptive sampling")
         self.bake_rays = rays
         self._region_pixels = self._pixels = np.ascontiguousarray(pixels, dtype=np.int64)
+        tables = self.tables
+        if not tables.kernel_settings.shaded_normals:  # Normal and AO at the bumped normal, as Cycles bakes
+            tables.kernel_settings = tables.kernel_settings._replace(shaded_normals=True)
+            tables.arrays = tables.arrays._replace(settings=tables.kernel_settings)
 
     @property
     def film(self) -> Film:

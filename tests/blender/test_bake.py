@@ -74,6 +74,25 @@ def test_a_flat_plane_bakes_the_flat_tangent_space_normal(prism_addon, fresh_sce
     assert np.allclose(world[..., :3], (0.5, 0.5, 1.0), atol=1e-3)  # +Z of the object, compressed
 
 
+def test_a_normal_map_bakes_into_the_normal_it_gives(prism_addon, fresh_scene):
+    """A tangent-space Normal Map node of constant colour c on the plane's material: the baked tangent-space
+    Normal is normalize(2c - 1), compressed (as Cycles bakes the shading normal)."""
+    plane = _grey_plane()
+    material = plane.active_material
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    normal_map = nodes.new("ShaderNodeNormalMap")
+    colour = np.array([0.7, 0.5, 0.8])
+    normal_map.inputs["Color"].default_value = (*colour, 1.0)
+    links.new(normal_map.outputs["Normal"], next(n for n in nodes if n.type == "BSDF_DIFFUSE").inputs["Normal"])
+    tilted = 2.0 * colour - 1.0
+    expected = (tilted / np.linalg.norm(tilted) + 1.0) / 2.0
+    prism, cycles = _both(fresh_scene, plane, "NORMAL")
+    print(f"MEASURED Normal Map: Prism {np.round(_mean(prism), 4)}, Cycles {np.round(_mean(cycles), 4)}, "
+          f"closed form {np.round(expected, 4)}")
+    assert np.allclose(prism[..., :3], expected, atol=2e-3)
+    assert np.allclose(_mean(prism), _mean(cycles), atol=2e-3)
+
+
 def test_glossy_and_the_combined_filter_bake_as_cycles_does(prism_addon, fresh_scene):
     uniform_world(strength=RADIANCE)
     material = node_material("Metal", "ShaderNodeBsdfGlossy", Color=(0.9, 0.7, 0.4, 1.0), Roughness=0.4)

@@ -21,10 +21,15 @@ from collections import namedtuple
 #: ``filter_glossy``: 1 / Cycles' Filter Glossy, 0 when off (``stages.filter_glossy``);
 #: ``light_linking`` / ``shadow_linking``: some emitter lights only some objects / has its shadows cast by
 #: only some objects (``light_linking``); scenes without either skip that code; ``light_path``: some material
-#: reads Blender's Light Path node (``materials.light_path``): paths keep their ray kind and bounce counts.
+#: reads Blender's Light Path node (``materials.light_path``): paths keep their ray kind and bounce counts;
+#: ``shaded_normals``: the first surface's Normal and AO passes take its shading normal (Bump, Normal Map)
+#: instead of the interpolated one, as Cycles bakes them (a bake sets it: ``Renderer.set_bake_rays``;
+#: renders keep False).
 KernelSettings = namedtuple(
     "KernelSettings",
     "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha "
     "clamping clamp_direct clamp_indirect caustics_filtered caustics_reflective caustics_refractive wavelengths "
-    "has_media outside_medium camera_medium equiangular filter_glossy light_linking shadow_linking light_path",
+    "has_media outside_medium camera_medium equiangular filter_glossy light_linking shadow_linking light_path "
+    "shaded_normals",
+    defaults=(False,),
 )

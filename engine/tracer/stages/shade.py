@@ -125,13 +125,14 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         blurred = False
         if settings.filter_glossy > 0.0:
             blurred = blur_glossy_closures(rows, closures, blur_alpha(settings, state.min_pdf[i]))
+        seen_n = n if settings.shaded_normals else facing_ns  # the first-hit passes' normal, facing the ray
         if backfacing and mflags & MAT_ONE_SIDED:
             n = (-n[0], -n[1], -n[2])
         tangent, bitangent = tangents(n)
         frame = (tangent, bitangent, n)
         wo_l = to_local(wo, tangent, bitangent, n)
         if depth == 0 and layout.columns > 0:
-            first_hit(state, passes, layout, settings, i, p, facing_ng, facing_ns, material, triangle, registers)
+            first_hit(state, passes, layout, settings, i, p, facing_ng, seen_n, material, triangle, registers)
         if has_lights and (not mflags & MAT_DELTA or blurred):
             if settings.light_path:
                 emission_sample(registers, state, i)
