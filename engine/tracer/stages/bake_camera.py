@@ -36,7 +36,7 @@ def bake_camera_kernel(state, rays, bake, ws, settings, pixels, first, count, sa
         p = first + i
         pixel = pixels[p // samples_per_pixel]
         sample = first_sample + p % samples_per_pixel
-        ps = start_path(state, i, pixel, sample, settings.seed)
+        ps = start_path(state, i, pixel, sample, settings.seed, settings.outside_medium)  # in the World's Volume, if any
         draw_wavelengths(state, i, ws, settings.sampler, ps, sample)
         row = (pixel // bake.frame_width - bake.y0) * bake.width + pixel % bake.frame_width - bake.x0
         d = (bake.direction[row, 0], bake.direction[row, 1], bake.direction[row, 2])
