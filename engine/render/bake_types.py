@@ -9,8 +9,9 @@ the pass filter as an int of ``BakeSettings.pass_filter``'s bits. Prism bakes as
 - Diffuse, Glossy, Transmission: that kind's Direct and/or Indirect light, times its Color when Color is
   on (without it, the light divided by the colour, as Cycles' passes store it); Color alone: the colour.
 - Emit: the surface's own emission. Normal: its world-space shading normal (bump and normal maps
-  included: ``KernelSettings.shaded_normals``; Blender turns it into the bake's space and swizzle). Ambient Occlusion: the AO pass within
-  World ▸ Ambient Occlusion ▸ Distance. Position: the point in world space.
+  included: ``KernelSettings.shaded_normals``; Blender turns it into the bake's space and swizzle).
+  Ambient Occlusion: the AO pass within World ▸ Ambient Occlusion ▸ Distance. Position: the point in
+  world space.
 
 Everything else is refused by name (``refusal``). Imports nothing heavy.
 """
