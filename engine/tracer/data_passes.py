@@ -41,19 +41,22 @@ class DataPassInputs:
     ao_distance_m: float = 10.0
     triangle_motion: np.ndarray | None = None
     world_to_raster: np.ndarray | None = None
+    asset_names: tuple = ()  # Cryptomatte: per scene object, its topmost parent's name (empty: its own)
+    material_names: tuple = ()  # Cryptomatte: per scene material, Cycles' name of it (empty: Material.name)
 
 
 #: The ``stages.pass_writes.PassData`` arrays of a render: see there.
 FirstHitTables = namedtuple("FirstHitTables", "first_hit_data object_index material_index triangle_uv "
-                                               "triangle_motion world_to_raster")
+                                               "triangle_motion world_to_raster row_object")
 
 
 def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, layout, orthographic: bool,
-                     sphere_pass_index=None):
+                     sphere_pass_index=None, row_objects=None):
     """The kernels' arrays for ``inputs`` with triangles kept as ``original_triangle`` (their scene
     indices), ``materials`` scene materials and the passes of ``layout`` (``PassLayout``); the rendered
     spheres, rows after the triangles, with Object ▸ Pass Index ``sphere_pass_index`` float32 [S] and no UV
-    map (0, 0, 0, as a mesh without one)."""
+    map (0, 0, 0, as a mesh without one). ``row_objects`` [rows]: the scene object of each row (None:
+    object 0), read by Cryptomatte only."""
     spheres = np.zeros(0, np.float32) if sphere_pass_index is None else np.asarray(sphere_pass_index, np.float32)
     data = np.zeros(FIRST_HIT_DATA)
     data[MIST_START] = inputs.mist_start_m
@@ -77,4 +80,9 @@ def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, 
         motion = np.ascontiguousarray(np.concatenate([np.asarray(inputs.triangle_motion, np.float32)[original_triangle],
                                                       np.zeros((len(spheres), 2, 3, 3), np.float32)]))
         world_to_raster = np.ascontiguousarray(inputs.world_to_raster, np.float64)
-    return FirstHitTables(data, object_index, material_index, uv, motion, world_to_raster)
+    row_object = np.zeros(0)
+    if layout.cryptomatte >= 0:
+        rows = len(original_triangle) + len(spheres)
+        row_object = (np.zeros(rows) if row_objects is None
+                      else np.ascontiguousarray(np.asarray(row_objects, np.float64)))
+    return FirstHitTables(data, object_index, material_index, uv, motion, world_to_raster, row_object)

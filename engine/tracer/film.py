@@ -12,12 +12,17 @@ index in the frame (y · frame width + x), so a tile's image is the same as that
 Light tracing (``stages.light_paths``) adds a pass's splats separately (``add_light``): its estimate of
 a pixel is the sum of its splats over the number of light paths traced, whichever pixel they hit (those
 outside the region are dropped), and is added to the camera samples' mean.
+
+Cryptomatte (``cryptomatte_film``) is counted beside the sums, from the two index columns that follow
+the layout's film columns in each sample's values.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .cryptomatte_film import COLUMNS as CRYPTOMATTE_COLUMNS
+from .cryptomatte_film import CryptomatteFilm
 from .frame_plan import film_bytes_per_pixel
 from .stages.film import splat, splat_alpha
 from .stages.light_splat import add_pass_splats
@@ -40,6 +45,8 @@ class Film:
         self._count = np.zeros(count, dtype=np.int64)
         columns = layout.width if layout is not None else 0
         self._aux = np.zeros((count, columns))
+        crypto = getattr(layout, "cryptomatte_column", -1)
+        self.cryptomatte = CryptomatteFilm(count) if crypto >= 0 else None
         self._alpha = None  # sums of the samples' alpha, once a render has any transparency
         self.nan_samples = 0
         self.exposure = 1.0  # Film ▸ Exposure: scales what mean() and variance_of_mean() report, not the sums
@@ -58,6 +65,10 @@ class Film:
         x0, y0 = self.origin
         self.nan_samples += int(splat(self._sum, self._sum_sq, self._count, self._aux, pixel_index, rgb, aux,
                                       len(pixel_index), self.frame_width, x0, y0, self.width))
+        if self.cryptomatte is not None and aux.shape[1] > self.layout.cryptomatte_column:
+            local = (pixel_index // self.frame_width - y0) * self.width + (pixel_index % self.frame_width - x0)
+            first = self.layout.cryptomatte_column
+            self.cryptomatte.add(local, aux[:, first:first + CRYPTOMATTE_COLUMNS])
 
     def add_alpha(self, pixel_index: np.ndarray, alpha: np.ndarray) -> None:
         """Add the alpha (1 - transparency) of the samples ``add`` just took, in the same order."""
@@ -118,6 +129,15 @@ class Film:
         """The pass columns per pixel, float64 [H, W, layout width]: the mean of each over the samples."""
         n = np.maximum(self._count, 1)[:, None]
         return (self._aux / n).reshape(self.height, self.width, -1)
+
+    def cryptomatte_images(self, names) -> dict[str, np.ndarray]:
+        """The layout's Cryptomatte passes (none when off) with ids made of ``names``
+        (``cryptomatte.CryptomatteNames``): name → float32 [H, W, 4]."""
+        if self.cryptomatte is None:
+            return {}
+        request = self.layout.request
+        return self.cryptomatte.images(request.cryptomatte, request.cryptomatte_levels, names, self._count,
+                                       (self.height, self.width))
 
     def variance_of_mean(self) -> np.ndarray:
         """Per-pixel variance of the mean estimate, float64 [H, W, 3]:

@@ -23,6 +23,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .cryptomatte import CHANNELS as CRYPTOMATTE_CHANNELS
+from .cryptomatte import DEFAULT_LEVELS
+from .cryptomatte import KINDS as CRYPTOMATTE_KINDS
+from .cryptomatte import pass_names as cryptomatte_pass_names
+from .cryptomatte_film import COLUMNS as CRYPTOMATTE_COLUMNS
+
 BACKGROUND_DEPTH_M = 1e10  # Depth of pixels that see no surface (Blender's value)
 
 
@@ -146,6 +152,8 @@ class PassRequest:
     passes: tuple[str, ...] = ()
     light_groups: tuple[str, ...] = ()
     aovs: dict[str, str] = field(default_factory=dict)
+    cryptomatte: tuple[str, ...] = ()  # kinds of ``cryptomatte.KINDS`` (Object, Material, Asset)
+    cryptomatte_levels: int = DEFAULT_LEVELS
 
     def validate(self) -> None:
         from .errors import PrismInputError
@@ -153,23 +161,29 @@ class PassRequest:
         for name in self.passes:
             if name not in PASSES:
                 raise PrismInputError(f"Render pass '{name}' is unknown: use one of {', '.join(PASSES)}.")
+        for kind in self.cryptomatte:
+            if kind not in CRYPTOMATTE_KINDS:
+                raise PrismInputError(
+                    f"Cryptomatte kind '{kind}' is unknown: use one of {', '.join(CRYPTOMATTE_KINDS)}.")
         if len(set(self.light_groups)) != len(self.light_groups):
             raise PrismInputError("Two light groups have the same name: rename one (View Layer ▸ Light Groups).")
 
     @property
     def empty(self) -> bool:
-        return not (self.passes or self.light_groups or self.aovs)
+        return not (self.passes or self.light_groups or self.aovs or self.cryptomatte)
 
 
 #: For the kernels: the column (values) or spectral slot of each buffer, -1 when off; ``light`` the
 #: first of the LIGHT_SLOTS slots (consecutive); ``group`` / ``groups`` the first light-group slot and
 #: their count; ``aov`` / ``aovs`` the first AOV column (4 columns each); ``columns`` / ``slots`` the
 #: sizes; ``rgb_column`` where spectral slot s lands (3 columns from rgb_column + 3 s); ``white`` the
-#: spectrum id of a white emitter (reflectances are converted through it).
+#: spectrum id of a white emitter (reflectances are converted through it); ``cryptomatte`` the first of the
+#: two columns after the film's (object and material index + 1 of the first surface, not summed by the
+#: film: ``cryptomatte_film``), -1 when no Cryptomatte pass is on.
 PassLayout = namedtuple(
     "PassLayout",
     "depth position normal denoising_normal denoising_depth denoising_albedo light group groups aov aovs "
-    "columns slots rgb_column white mist object_index material_index uv ao vector",
+    "columns slots rgb_column white mist object_index material_index uv ao vector cryptomatte",
 )
 
 
@@ -204,7 +218,10 @@ class FilmLayout:
         for key in self.slot_keys:
             self.columns[key] = (column, 3)
             column += 3
-        self.width = column
+        self.width = column  # the film's columns: the Cryptomatte indices follow them, per sample only
+        self.cryptomatte_column = column if request.cryptomatte else -1
+        if request.cryptomatte:
+            column += CRYPTOMATTE_COLUMNS
         slot = {key: s for s, key in enumerate(self.slot_keys)}
         col = {key: self.columns[key][0] if key in self.columns else -1 for key in BUFFERS}
         groups = len(request.light_groups)
@@ -213,7 +230,8 @@ class FilmLayout:
             slot.get("denoising_albedo", -1), slot.get(LIGHT_SLOTS[0], -1),
             slot["group:" + request.light_groups[0]] if groups else -1, groups,
             aov_column if self.aov_names else -1, len(self.aov_names), column, len(self.slot_keys), rgb_column,
-            int(white_spectrum), col["mist"], col["object_index"], col["material_index"], col["uv"], col["ao"], col["vector"])
+            int(white_spectrum), col["mist"], col["object_index"], col["material_index"], col["uv"], col["ao"],
+            col["vector"], self.cryptomatte_column)
 
     def images(self, aux_mean: np.ndarray, exposure: float = 1.0) -> dict[str, np.ndarray]:
         """Every requested pass from the film's per-pixel ``aux_mean`` [..., width] (sums divided by the
@@ -283,4 +301,6 @@ def blender_passes(request: PassRequest) -> list[tuple[str, str, str]]:
     out = [(name, PASSES[name].channels, PASSES[name].kind) for name in PASSES if name in request.passes]
     out += [(name, "X" if kind == "VALUE" else "RGBA", kind) for name, kind in request.aovs.items()]
     out += [(LIGHT_GROUP_PREFIX + g, "RGB", "COLOR") for g in request.light_groups]
+    out += [(name, CRYPTOMATTE_CHANNELS, "COLOR") for kind in CRYPTOMATTE_KINDS if kind in request.cryptomatte
+            for name in cryptomatte_pass_names(kind, request.cryptomatte_levels)]
     return out

@@ -42,6 +42,7 @@ from .cameras import make_camera
 from .chunk_pool import ChunkPool
 from .chunk_tracer import ChunkTracer
 from .errors import PrismInputError
+from .cryptomatte import scene_names
 from .film import Film
 from .sampler import SAMPLERS
 from .scene_tables import SceneTables
@@ -395,9 +396,10 @@ class Renderer:
     def pass_images(self) -> dict[str, np.ndarray]:
         """The requested passes of the region (``settings.passes``): Blender pass name → float32 [h, w, C]."""
         layout = self.tables.pass_layout
-        if layout.width == 0:
-            return {}
-        return layout.images(self.film.aux_mean(), exposure=self.settings.film_exposure)
+        images = layout.images(self.film.aux_mean(), exposure=self.settings.film_exposure) if layout.width else {}
+        if layout.cryptomatte_column >= 0:
+            images.update(self.film.cryptomatte_images(scene_names(self.scene)))
+        return images
 
     def close(self) -> None:
         """Cancel outstanding work and free the thread pool (idempotent)."""

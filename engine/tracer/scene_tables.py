@@ -150,7 +150,7 @@ class SceneTables:
         self.aov_registers = aov_registers(scene.materials, settings.passes.aovs)
         self.first_hit = first_hit_tables(scene.data_passes, self._original_triangle, len(scene.materials),
                                           self.pass_layout.kernel, camera.data.projection == ORTHOGRAPHIC,
-                                          _sphere_pass_index(scene))
+                                          _sphere_pass_index(scene), _row_objects(scene, self._original_triangle))
         self.spectra = spectra.arrays()
         guide = None
         if settings.wavelength_mode == "cie":

@@ -41,7 +41,7 @@ from ..warps import cosine_hemisphere
 PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table "
                                    "aov_registers "
                                    "first_hit_data object_index material_index triangle_uv triangle_motion "
-                                   "world_to_raster ao_rays ao_free ao_weight ao_count")
+                                   "world_to_raster ao_rays ao_free ao_weight ao_count row_object")
 
 #: The sampler slot of the AO pass's direction (2-D): far past any bounce's slots.
 SLOT_AO = 1 << 20
@@ -67,7 +67,8 @@ def new_pass_data(n: int, k: int, film_layout) -> PassData:
                     np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)),
                     np.full((1, len(film_layout.aov_names), 2), -1, np.int32),
                     np.zeros(FIRST_HIT_DATA), np.zeros(0, np.float32), np.zeros(1), np.zeros((0, 3, 3), np.float32),
-                    np.zeros((0, 2, 3, 3), np.float32), np.zeros((3, 4, 4)), new_ray_queue(ao), np.zeros(ao, np.int32), np.zeros(ao), np.zeros(1, np.int64))
+                    np.zeros((0, 2, 3, 3), np.float32), np.zeros((3, 4, 4)), new_ray_queue(ao), np.zeros(ao, np.int32),
+                    np.zeros(ao), np.zeros(1, np.int64), np.zeros(0))
 
 
 @kernel
@@ -214,6 +215,9 @@ def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle, 
         for c in range(3):  # u, v and A (1 where the mesh has the UV map)
             passes.values[i, layout.uv + c] = ((1.0 - u - v) * corners[0, c] + u * corners[1, c]
                                                + v * corners[2, c])
+    if layout.cryptomatte >= 0 and passes.row_object.shape[0] > 0:  # every sample: coverage counts them
+        passes.values[i, layout.cryptomatte] = passes.row_object[triangle] + 1.0
+        passes.values[i, layout.cryptomatte + 1] = material + 1.0
     if state.sample[i] == 0:  # Cycles writes the indices of sample 0 only, never a blend
         if layout.object_index >= 0 and passes.object_index.shape[0] > 0:
             passes.values[i, layout.object_index] = passes.object_index[triangle]
