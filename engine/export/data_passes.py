@@ -22,7 +22,9 @@ def data_pass_switches(view_layer) -> DataPassSwitches:
 def export_data_passes(scene, geometry) -> DataPassInputs:
     """The data passes' inputs of ``scene`` whose meshes are ``geometry`` (``meshes.ExportedGeometry``)."""
     inputs = DataPassInputs(object_pass_index=geometry.triangle_pass_index, uv=geometry.pass_uv,
-                            material_pass_index=tuple(geometry.material_pass_index))
+                            material_pass_index=tuple(geometry.material_pass_index),
+                            asset_names=tuple(geometry.object_asset_names),
+                            material_names=tuple(geometry.material_names))
     world = scene.world
     if world is not None:
         mist = world.mist_settings

@@ -23,6 +23,7 @@ from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
 from .hair import LocalHair, hair_ribbons, read_hair
 from .instancing import WorldTriangles, instance_triangles
+from .cryptomatte_names import asset_name, material_name
 from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
@@ -57,6 +58,8 @@ class ExportedGeometry:
     pass_uv: np.ndarray | None = None
     material_pass_index: tuple = ()
     points: SpherePoints | None = None  # the points of point clouds (objects numbered after the triangles')
+    object_asset_names: list[str] = field(default_factory=list)  # per object_names entry (Cryptomatte Asset)
+    material_names: list[str] = field(default_factory=list)  # per material, Cycles' name (Cryptomatte Material)
 
 
 @dataclass
@@ -69,6 +72,7 @@ class _Instances:
     infos: list = field(default_factory=list)  # (colour RGBA, pass index, random id) per instance
     light_group: str = ""  # Object ▸ Shading ▸ Light Group
     flags: int = 0
+    asset: str = ""  # the name of the object's topmost parent (Cryptomatte Asset)
 
 
 class _Materials:
@@ -81,6 +85,7 @@ class _Materials:
         self.materials: list[Material] = []
         self.uv_pass_slot: int | None = None  # the render UV map's slot when the UV pass is on
         self.pass_index: list[float] = []  # Material ▸ Settings ▸ Pass Index of each material
+        self.cryptomatte_names: list[str] = []  # Cycles' name of each material (``cryptomatte_names``)
 
     def slot_lookup(self, slot_materials: list) -> np.ndarray:
         return np.asarray([self._of(m) for m in slot_materials] or [self._of(None)], dtype=np.int32)
@@ -91,6 +96,7 @@ class _Materials:
             self.index[key] = len(self.materials)
             self.materials.append(self.exporter.export(material) if material is not None else DEFAULT_MATERIAL)
             self.pass_index.append(float(material.pass_index) if material is not None else 0.0)
+            self.cryptomatte_names.append(material_name(material))
         return self.index[key]
 
     def request(self, slot_materials: list) -> AttributeRequest:
@@ -153,7 +159,8 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
-            pieces[key] = (_Instances(obj.name, geometry, light_group=obj.lightgroup, flags=flags)
+            pieces[key] = (_Instances(obj.name, geometry, light_group=obj.lightgroup, flags=flags,
+                                      asset=asset_name(obj))
                            if geometry is not None else None)
         piece = pieces[key]
         if piece is not None:
@@ -175,6 +182,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     materials = _Materials(warnings, TextureBudget.for_scene(depsgraph.scene))
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
+    assets: list[str] = []  # parallel to names
     flags: list[int] = []
     groups: list[str] = []
     camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
@@ -197,6 +205,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                 placed, slots = hair_ribbons(piece.geometry, matrix, camera)
                 parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
                 names.append(piece.name)
+                assets.append(piece.asset)
                 groups.append(piece.light_group)
                 surface.add_other(len(placed.triangles))
                 flags.append(piece.flags)
@@ -208,6 +217,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
         slots = lookup[np.clip(local.slot_index, 0, len(lookup) - 1)]
         parts.append((placed, np.tile(slots, len(matrices))))
         names.append(piece.name)
+        assets.append(piece.asset)
         groups.append(piece.light_group)
         surface.add_mesh(local, matrices, piece.infos, np.linalg.det(matrices[:, :3, :3]) < 0)
         flags.append(piece.flags)
@@ -217,8 +227,10 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
             pass_index.append(np.repeat(np.asarray([info[1] for info in piece.infos], np.float32),
                                         len(local.triangles)))
     geometry = _assemble(parts, names, materials.materials)
-    geometry.points = _points(clouds, names, groups, flags, surface)
+    geometry.points = _points(clouds, names, groups, flags, surface, assets)
     geometry.object_names = list(names)
+    geometry.object_asset_names = list(assets)
+    geometry.material_names = list(materials.cryptomatte_names)
     geometry.object_light_groups = groups
     geometry.surface = surface.surface()
     geometry.object_flags = np.asarray(flags, np.uint8)
@@ -233,8 +245,9 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     return geometry
 
 
-def _points(clouds, names, groups, flags, surface) -> SpherePoints | None:
-    """The points of every point cloud instance (objects appended to ``names``, ``groups`` and ``flags``)."""
+def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | None:
+    """The points of every point cloud instance (objects appended to ``names``, ``groups``, ``flags`` and
+    ``assets``)."""
     if not clouds:
         return None
     centres, radii, material, objects, instance, pass_index, random = [], [], [], [], [], [], []
@@ -247,6 +260,7 @@ def _points(clouds, names, groups, flags, surface) -> SpherePoints | None:
         material.append(np.tile(lookup[np.clip(local.slot, 0, len(lookup) - 1)], len(matrices)))
         objects.append(np.full(len(scaled), len(names), np.int32))
         names.append(piece.name)
+        assets.append(piece.asset)
         groups.append(piece.light_group)
         flags.append(piece.flags)
         rows = surface.add_points(matrices, piece.infos, local.texture_space)

@@ -7,9 +7,7 @@ from .light_path_tricks import light_path_trick_warnings
 
 
 #: View Layer ▸ Passes switches Prism does not render yet, with Blender's pass names.
-UNRENDERED_PASSES = (("use_pass_cryptomatte_object", "CryptoObject"),
-                     ("use_pass_cryptomatte_material", "CryptoMaterial"),
-                     ("use_pass_cryptomatte_asset", "CryptoAsset"))
+UNRENDERED_PASSES = ()  # none at present: Vector and Cryptomatte are written
 
 
 def unrendered_pass_warnings(view_layer) -> list[str]:

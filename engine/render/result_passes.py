@@ -9,9 +9,14 @@ Imports no numpy until pixels are written (``update_render_passes`` runs in the 
 
 from __future__ import annotations
 
+from ..tracer.cryptomatte import DEFAULT_LEVELS
 from ..tracer.errors import PrismInputError
 from ..tracer.frame_plan import DEFAULT_TILE_SIZE, film_bytes_per_pixel, plan_frame
 from ..tracer.pass_table import DENOISING_PASSES, PASSES, VIEW_LAYER_SWITCH, FilmLayout, PassRequest, blender_passes
+
+#: View Layer ▸ Passes ▸ Cryptomatte: the switch of each kind (``tracer.cryptomatte.KINDS``).
+CRYPTOMATTE_SWITCH = {"Object": "use_pass_cryptomatte_object", "Material": "use_pass_cryptomatte_material",
+                      "Asset": "use_pass_cryptomatte_asset"}
 
 COMBINED = ("Combined", "RGBA", "COLOR")
 NOISY_IMAGE = ("Noisy Image", "RGBA", "COLOR")
@@ -45,11 +50,14 @@ def pass_request(scene, view_layer=None, for_render: bool = False) -> PassReques
         names += DENOISING_PASSES
     if for_render and denoising(scene):
         names += [name for name in DENOISER_GUIDES if name not in names]
-    groups, aovs = (), {}
+    groups, aovs, crypto, levels = (), {}, (), DEFAULT_LEVELS
     if layer is not None:
         groups = tuple(dict.fromkeys(g.name for g in layer.lightgroups if g.name))
         aovs = {aov.name: aov.type for aov in layer.aovs if aov.name and getattr(aov, "is_valid", True)}
-    return PassRequest(passes=tuple(n for n in PASSES if n in names), light_groups=groups, aovs=aovs)
+        crypto = tuple(kind for kind, switch in CRYPTOMATTE_SWITCH.items() if getattr(layer, switch, False))
+        levels = int(getattr(layer, "pass_cryptomatte_depth", levels))
+    return PassRequest(passes=tuple(n for n in PASSES if n in names), light_groups=groups, aovs=aovs,
+                       cryptomatte=crypto, cryptomatte_levels=levels)
 
 
 def enabled_passes(scene, view_layer=None) -> list[tuple[str, int, str, str]]:

@@ -23,6 +23,8 @@ from ..output.denoise import denoise as denoise_image  # noqa: E402
 from ..export import export_scene  # noqa: E402
 from ..export.border import render_border  # noqa: E402
 from ..export.settings import export_settings  # noqa: E402
+from ..tracer.cryptomatte import scene_names  # noqa: E402
+from .cryptomatte_metadata import stamp_cryptomatte  # noqa: E402
 from .fingerprint import render_fingerprint  # noqa: E402
 from .result_passes import bottom_up, denoising, enabled_passes, frame_plan, pass_request, write_passes  # noqa: E402
 from .request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
@@ -144,6 +146,8 @@ class RenderSession:
                 finally:
                     if self.cancelled:
                         renderer.cancel()  # drop queued chunks: Esc returns within a chunk's time
+                if index == 0 and not self.cancelled:
+                    stamp_cryptomatte(engine, view_layer.name, settings.passes, scene_names(tracer_scene))
                 self._report_tracer_warnings(renderer, warnings)
                 if self.cancelled:
                     return

@@ -71,15 +71,15 @@ def test_data_passes_match_cycles(prism_addon, data_scene, tmp_path):
     assert np.abs(ao_p - ao_c).max() < 0.25  # per pixel: 64 Bernoulli samples each
 
 
-def test_cryptomatte_is_warned_and_vector_is_not(prism_addon, fresh_scene):
+def test_vector_and_cryptomatte_are_not_warned(prism_addon, fresh_scene):
     from importlib import import_module
 
     warnings = import_module(f"{prism_addon.__name__}.engine.export.unrendered_settings")
     layer = fresh_scene.view_layers[0]
-    layer.use_pass_vector = layer.use_pass_cryptomatte_object = True
+    layer.use_pass_vector = layer.use_pass_cryptomatte_object = layer.use_pass_cryptomatte_asset = True
     messages = warnings.unrendered_setting_warnings(fresh_scene, layer)
     assert not any("Vector pass" in m for m in messages)  # written (tests/blender/test_vector_pass.py)
-    assert any("CryptoObject pass" in m for m in messages)
+    assert not any("Crypto" in m for m in messages)  # written (tests/blender/test_cryptomatte.py)
 
 
 def test_pass_index_follows_each_object_and_instance(prism_addon, fresh_scene):
