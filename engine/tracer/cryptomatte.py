@@ -95,18 +95,27 @@ def rank_images(pixel, ids, weight, samples, levels: int) -> np.ndarray:
     coverages: the smaller hash first), (0, 0) past the last id."""
     slots = 2 * layers(levels)
     out = np.zeros((len(samples), 2 * slots), np.float32)
-    if not len(pixel):
+    pixel = np.asarray(pixel, np.int64)
+    ids, weight = np.asarray(ids, np.int64), np.asarray(weight, np.float64)
+    samples = np.asarray(samples, np.float64)
+    single = np.bincount(pixel, minlength=len(samples))[pixel] == 1  # most pixels: nothing to sort
+    _write_rank(out, pixel[single], np.zeros(int(single.sum()), np.int64), ids[single], weight[single], samples)
+    if single.all():
         return out
-    key = (np.asarray(pixel, np.int64) << 32) | np.asarray(ids, np.int64)
+    key = (pixel[~single] << 32) | ids[~single]
     unique, inverse = np.unique(key, return_inverse=True)
-    total = np.bincount(inverse.ravel(), weights=np.asarray(weight, np.float64), minlength=len(unique))
+    total = np.bincount(inverse.ravel(), weights=weight[~single], minlength=len(unique))
     pix, hashes = unique >> 32, unique & 0xFFFFFFFF
     order = np.lexsort((hashes, -total, pix))
     pix, hashes, total = pix[order], hashes[order], total[order]
     rank = np.arange(len(pix)) - np.searchsorted(pix, pix, side="left")
     kept = rank < slots
-    pix, rank = pix[kept], rank[kept]
-    out[pix, 2 * rank] = hash_to_float(hashes[kept])
-    n = np.asarray(samples, np.float64)[pix]
-    out[pix, 2 * rank + 1] = np.where(n > 0, total[kept] / np.maximum(n, 1.0), 0.0)
+    _write_rank(out, pix[kept], rank[kept], hashes[kept], total[kept], samples)
     return out
+
+
+def _write_rank(out, pixel, rank, hashes, total, samples) -> None:
+    """Rank ``rank`` of each ``pixel``: its id and coverage (``total`` of the pixel's ``samples``)."""
+    out[pixel, 2 * rank] = hash_to_float(hashes)
+    n = samples[pixel]
+    out[pixel, 2 * rank + 1] = np.where(n > 0, total / np.maximum(n, 1.0), 0.0)

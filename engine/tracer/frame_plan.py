@@ -14,6 +14,7 @@ import os
 import sys
 from dataclasses import dataclass
 
+from .cryptomatte_film import BYTES_PER_PIXEL as CRYPTOMATTE_BYTES
 from .errors import PrismInputError
 
 GB = 1024**3
@@ -50,8 +51,12 @@ class FramePlan:
 
 
 def film_bytes_per_pixel(layout=None) -> int:
-    """Memory one pixel of a film takes (bytes): Combined and the columns of ``layout``'s passes."""
-    return COMBINED_BYTES + 8 * (layout.width if layout is not None else 0)
+    """Memory one pixel of a film takes (bytes): Combined, the columns of ``layout``'s passes and its
+    Cryptomatte counts (the dense part: a pixel's first object and material)."""
+    if layout is None:
+        return COMBINED_BYTES
+    cryptomatte = CRYPTOMATTE_BYTES if getattr(layout, "cryptomatte_column", -1) >= 0 else 0
+    return COMBINED_BYTES + 8 * layout.width + cryptomatte
 
 
 def split_tiles(region, tile_size: int) -> list[tuple[int, int, int, int]]:

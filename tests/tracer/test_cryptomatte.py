@@ -106,3 +106,31 @@ def test_off_costs_nothing():
     assert plain.kernel.cryptomatte == -1 and plain.kernel.columns == 0 and plain.width == 0
     crypto = FilmLayout(PassRequest(cryptomatte=("Object",)))
     assert crypto.kernel.cryptomatte == 0 and crypto.kernel.columns == 2 and crypto.width == 0  # nothing summed
+
+
+def test_film_counts_match_a_brute_force_count_for_any_chunking():
+    """Many ids a pixel (more than Levels): the ranks are the largest counts of a plain count over all
+    samples, whichever way the samples were cut into chunks."""
+    from engine.tracer.cryptomatte import CryptomatteNames
+    from engine.tracer.cryptomatte_film import CryptomatteFilm
+
+    rng = np.random.default_rng(7)
+    pixels, spp = 12, 200
+    pixel = np.repeat(np.arange(pixels), spp)
+    objects = rng.integers(0, 9, len(pixel)) * (rng.random(len(pixel)) < 0.9)  # 0: background
+    indices = np.stack([objects, np.minimum(objects, 2)], -1).astype(np.float64)
+    names = CryptomatteNames(tuple(f"o{i}" for i in range(8)), tuple(f"a{i}" for i in range(8)), ("m0", "m1"))
+    results = []
+    for cuts in ([], [spp * 3 + 17, spp * 7], list(range(0, len(pixel), 333))):
+        film = CryptomatteFilm(pixels)
+        for part in np.split(np.arange(len(pixel)), cuts):
+            film.add(pixel[part], indices[part])
+        results.append(film.images(("Object", "Material"), 4, names, np.full(pixels, spp), (3, 4)))
+    for other in results[1:]:
+        assert all(np.array_equal(results[0][k], other[k]) for k in results[0])
+    ob = np.concatenate([results[0]["CryptoObject00"], results[0]["CryptoObject01"]], -1).reshape(pixels, 4, 2)
+    for p in range(pixels):
+        counts = np.bincount(objects[pixel == p], minlength=9)[1:]
+        top = sorted(((-c, murmurhash3_32(f"o{i}"), i) for i, c in enumerate(counts) if c), key=lambda t: t[:2])[:4]
+        assert [float(v) for v in ob[p, :, 1]] == [np.float32(-c / spp) for c, _, _ in top]
+        assert ob[p, :, 0].tolist() == [_id(f"o{i}") for _, _, i in top]
