@@ -181,3 +181,33 @@ def test_batch_script_writes_the_passes_and_metadata_into_the_exr(prism_addon, c
     assert fields[key + "/conversion"] == "uint32_to_float32"
     assert json.loads(fields[key + "/manifest"]) == {"Plane A": "c6a3fefd", "Plane B": "a53d11e4"}  # Cycles' hashes
     assert len(fields) == 12
+
+
+def test_instances_and_parents_are_named_as_cycles_names_them(prism_addon, crypto_scene, tmp_path):
+    """Two instances of a collection holding 'Child' under 'Parent': every instance is 'Child', its asset
+    'Parent' (the instanced object's own topmost parent, not the instancer), as in Cycles' passes."""
+    group = bpy.data.collections.new("Group")
+    parent = bpy.data.objects.new("Parent", None)
+    child = bpy.data.objects.new("Child", bpy.data.objects["Plane A"].data)
+    child.parent, child.scale = parent, (0.4, 0.4, 1.0)
+    for obj in (parent, child):
+        group.objects.link(obj)
+    for x in (-0.6, 3.0):
+        instancer = bpy.data.objects.new(f"Instancer {x}", None)
+        instancer.instance_type, instancer.instance_collection = "COLLECTION", group
+        instancer.location = (x, -1.2, 0.5)
+        crypto_scene.collection.objects.link(instancer)
+    prism = _render_layers(prism_addon, crypto_scene, tmp_path / "prism.exr")
+    prism_meta = _metadata(prism_addon, tmp_path / "prism.exr")
+    cycles = _render_layers(prism_addon, crypto_scene, tmp_path / "cycles.exr", engine="CYCLES")
+    cycles_meta = _metadata(prism_addon, tmp_path / "cycles.exr")
+    manifests = {prism_meta[k[:-len("manifest")] + "name"]: (json.loads(v), json.loads(cycles_meta[k]))
+                 for k, v in prism_meta.items() if k.endswith("/manifest")}
+    mine, theirs = manifests["ViewLayer.CryptoObject"]
+    assert mine.keys() == {"Plane A", "Plane B", "Child"} and mine.items() <= theirs.items()
+    mine, theirs = manifests["ViewLayer.CryptoAsset"]
+    assert mine.keys() == {"Root", "Plane B", "Parent"} and mine.items() <= theirs.items()
+    for kind, name in (("Object", "Child"), ("Asset", "Parent")):
+        matte_id = _float_id(prism_addon, name)
+        a, b = _coverage_of(_ranks(prism, kind), matte_id), _coverage_of(_ranks(cycles, kind), matte_id)
+        assert (b == 1.0).sum() >= 4 and np.all(a[b == 1.0] > 0.9) and np.all(a[b == 0.0] < 0.1), kind
