@@ -211,3 +211,27 @@ def test_instances_and_parents_are_named_as_cycles_names_them(prism_addon, crypt
         matte_id = _float_id(prism_addon, name)
         a, b = _coverage_of(_ranks(prism, kind), matte_id), _coverage_of(_ranks(cycles, kind), matte_id)
         assert (b == 1.0).sum() >= 4 and np.all(a[b == 1.0] > 0.9) and np.all(a[b == 0.0] < 0.1), kind
+
+
+def test_a_cut_out_shares_its_pixels_with_what_is_behind_it_as_in_cycles(prism_addon, crypto_scene, tmp_path):
+    """'Veil' (Principled Alpha 0.6) half a metre above 'Plane B': where it covers B, Cycles writes the veil
+    with its opacity 0.6 and goes on to B with the remaining 0.4; Prism's camera paths cross the cut-out
+    by that chance, so the coverages agree (and are not the veil's 1)."""
+    veil = bpy.data.objects.new("Veil", bpy.data.meshes.new("Veil"))
+    veil.data.from_pydata([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [], [(0, 1, 2, 3)])
+    material = bpy.data.materials.new("Half")
+    material.use_nodes = True
+    material.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value = 0.6
+    veil.data.materials.append(material)
+    veil.location, veil.scale = (2.3, 0.3, 0.5), (0.6, 0.6, 1.0)
+    crypto_scene.collection.objects.link(veil)
+    crypto_scene.prism.samples = crypto_scene.prism.samples_per_pass = crypto_scene.cycles.samples = 256
+    prism = _ranks(_render_layers(prism_addon, crypto_scene, tmp_path / "prism.exr"), "Object")
+    cycles = _ranks(_render_layers(prism_addon, crypto_scene, tmp_path / "cycles.exr", engine="CYCLES"), "Object")
+    veil_id, b_id = _float_id(prism_addon, "Veil"), _float_id(prism_addon, "Plane B")
+    over = (np.abs(_coverage_of(cycles, veil_id) - 0.6) < 1e-3) & (np.abs(_coverage_of(cycles, b_id) - 0.4) < 1e-3)
+    assert over.sum() >= 9
+    for matte_id, expected in ((veil_id, 0.6), (b_id, 0.4)):
+        coverage = _coverage_of(prism, matte_id)[over]
+        print("cut-out:", expected, "Prism mean", coverage.mean(), "min", coverage.min(), "max", coverage.max())
+        assert abs(coverage.mean() - expected) < 0.02 and np.abs(coverage - expected).max() < 0.1

@@ -215,9 +215,6 @@ def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle, 
         for c in range(3):  # u, v and A (1 where the mesh has the UV map)
             passes.values[i, layout.uv + c] = ((1.0 - u - v) * corners[0, c] + u * corners[1, c]
                                                + v * corners[2, c])
-    if layout.cryptomatte >= 0 and passes.row_object.shape[0] > 0:  # every sample: coverage counts them
-        passes.values[i, layout.cryptomatte] = passes.row_object[triangle] + 1.0
-        passes.values[i, layout.cryptomatte + 1] = material + 1.0
     if state.sample[i] == 0:  # Cycles writes the indices of sample 0 only, never a blend
         if layout.object_index >= 0 and passes.object_index.shape[0] > 0:
             passes.values[i, layout.object_index] = passes.object_index[triangle]
@@ -244,6 +241,17 @@ def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle, 
     if layout.normal >= 0:
         for c in range(3):
             passes.values[i, layout.normal + c] = n[c]
+
+
+@inlined
+def cryptomatte_hit(passes, layout, i, triangle, material):
+    """Cryptomatte's object and material (index + 1) of the surface where camera path ``i`` first does more
+    than cross a cut-out, every sample (coverage counts them). Cycles writes at each cut-out it crosses,
+    weighted by its opacity, and goes on with the rest: choosing the see-through lobe by its weight, as
+    the path does, writes each surface with the same expected weight."""
+    if passes.row_object.shape[0] > 0 and passes.values[i, layout.cryptomatte] == 0.0:
+        passes.values[i, layout.cryptomatte] = passes.row_object[triangle] + 1.0
+        passes.values[i, layout.cryptomatte + 1] = material + 1.0
 
 
 @kernel

@@ -30,7 +30,7 @@ from .caustic_split import classify_vertex
 from .caustics_toggles import filter_caustic_closures
 from .filter_glossy import blur_alpha, blur_glossy_closures
 from .nee import consistent, sample_direct
-from .pass_writes import first_bounce, first_hit, surface_features
+from .pass_writes import cryptomatte_hit, first_bounce, first_hit, surface_features
 from .queue import push_ray
 from .roulette import survives
 
@@ -148,6 +148,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
         valid = largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])
         if layout.columns > 0:
+            if layout.cryptomatte >= 0 and state.flags[i] & CAMERA_PATH and not sampled & SAMPLED_NULL:
+                cryptomatte_hit(passes, layout, i, triangle, material)
             if not valid:
                 weight[:] = 0.0
             if not mflags & MAT_DELTA:
