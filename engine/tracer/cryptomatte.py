@@ -16,6 +16,7 @@ made even: two ranks a four-channel pass, ``Crypto<Kind>00``, ``01``, ….
 from __future__ import annotations
 
 import json
+from functools import lru_cache
 from typing import NamedTuple
 
 import numpy as np
@@ -53,9 +54,15 @@ def hash_to_float(hashes) -> np.ndarray:
     return bits.view(np.float32)
 
 
+@lru_cache(maxsize=1 << 16)
+def _name_hash(name: str) -> int:
+    return murmurhash3_32(name)
+
+
 def name_hashes(names) -> np.ndarray:
-    """uint32 MurmurHash3_32 of each name."""
-    return np.array([murmurhash3_32(str(name)) for name in names], np.uint32)
+    """uint32 MurmurHash3_32 of each name (remembered: the passes are made again at every refresh of
+    the image, and the pure-Python hash takes ~7 µs a name)."""
+    return np.array([_name_hash(str(name)) for name in names], np.uint32)
 
 
 def manifest(names) -> str:

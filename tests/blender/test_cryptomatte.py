@@ -235,3 +235,18 @@ def test_a_cut_out_shares_its_pixels_with_what_is_behind_it_as_in_cycles(prism_a
         coverage = _coverage_of(prism, matte_id)[over]
         print("cut-out:", expected, "Prism mean", coverage.mean(), "min", coverage.min(), "max", coverage.max())
         assert abs(coverage.mean() - expected) < 0.02 and np.abs(coverage - expected).max() < 0.1
+
+
+def test_passes_follow_the_view_layers_switches_and_levels(prism_addon, fresh_scene):
+    """What Prism registers (the compositor's Render Layers sockets, the Render Result's passes): Cycles'
+    names, four channels r, g, b, a, Levels made even (two ranks a pass), nothing when off."""
+    from importlib import import_module
+
+    result_passes = import_module(f"{prism_addon.__name__}.engine.render.result_passes")
+    layer = fresh_scene.view_layers[0]
+    assert not [p for p in result_passes.enabled_passes(fresh_scene, layer) if p[0].startswith("Crypto")]
+    layer.use_pass_cryptomatte_material = True
+    for levels, passes in ((6, 3), (3, 2), (2, 1), (16, 8)):
+        layer.pass_cryptomatte_depth = levels
+        crypto = [p for p in result_passes.enabled_passes(fresh_scene, layer) if p[0].startswith("Crypto")]
+        assert crypto == [(f"CryptoMaterial{i:02d}", 4, "rgba", "COLOR") for i in range(passes)], levels
