@@ -13,8 +13,8 @@ Light tracing (``stages.light_paths``) adds a pass's splats separately (``add_li
 a pixel is the sum of its splats over the number of light paths traced, whichever pixel they hit (those
 outside the region are dropped), and is added to the camera samples' mean.
 
-Cryptomatte (``cryptomatte_film``) is counted beside the sums, from the two index columns that follow
-the layout's film columns in each sample's values.
+Cryptomatte (``cryptomatte_film``) is summed beside, from the columns that follow the layout's film
+columns in each sample's values (object, material, weight).
 """
 
 from __future__ import annotations

@@ -178,8 +178,9 @@ class PassRequest:
 #: their count; ``aov`` / ``aovs`` the first AOV column (4 columns each); ``columns`` / ``slots`` the
 #: sizes; ``rgb_column`` where spectral slot s lands (3 columns from rgb_column + 3 s); ``white`` the
 #: spectrum id of a white emitter (reflectances are converted through it); ``cryptomatte`` the first of the
-#: two columns after the film's (object and material index + 1 of the first surface, not summed by the
-#: film: ``cryptomatte_film``), -1 when no Cryptomatte pass is on.
+#: columns after the film's (object and material index + 1 and weight of the surface a camera sample is
+#: attributed to: ``stages.cryptomatte_write``; not summed by the film: ``cryptomatte_film``), -1 when no
+#: Cryptomatte pass is on.
 PassLayout = namedtuple(
     "PassLayout",
     "depth position normal denoising_normal denoising_depth denoising_albedo light group groups aov aovs "

@@ -213,28 +213,44 @@ def test_instances_and_parents_are_named_as_cycles_names_them(prism_addon, crypt
         assert (b == 1.0).sum() >= 4 and np.all(a[b == 1.0] > 0.9) and np.all(a[b == 0.0] < 0.1), kind
 
 
-def test_a_cut_out_shares_its_pixels_with_what_is_behind_it_as_in_cycles(prism_addon, crypto_scene, tmp_path):
-    """'Veil' (Principled Alpha 0.6) half a metre above 'Plane B': where it covers B, Cycles writes the veil
-    with its opacity 0.6 and goes on to B with the remaining 0.4; Prism's camera paths cross the cut-out
-    by that chance, so the coverages agree (and are not the veil's 1)."""
-    veil = bpy.data.objects.new("Veil", bpy.data.meshes.new("Veil"))
-    veil.data.from_pydata([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [], [(0, 1, 2, 3)])
-    material = bpy.data.materials.new("Half")
-    material.use_nodes = True
-    material.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value = 0.6
-    veil.data.materials.append(material)
-    veil.location, veil.scale = (2.3, 0.3, 0.5), (0.6, 0.6, 1.0)
-    crypto_scene.collection.objects.link(veil)
+def _square(name, location, scale, material):
+    obj = bpy.data.objects.new(name, bpy.data.meshes.new(name))
+    obj.data.from_pydata([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [], [(0, 1, 2, 3)])
+    obj.data.materials.append(material)
+    obj.location, obj.scale = location, (scale, scale, 1.0)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def test_cut_outs_share_their_pixels_with_what_is_behind_them_as_in_cycles(prism_addon, crypto_scene, tmp_path):
+    """'Veil' (Principled Alpha 0.6) over 'Plane B' and 'Filter' (a grey Transparent BSDF alone, 50 %) over
+    'Plane A': Cycles writes a cut-out with its opacity and goes on with the rest (0.6 / 0.4, 0.5 / 0.5);
+    Prism's paths take one lobe each and carry the weight, so the coverages agree in expectation."""
+    veil = bpy.data.materials.new("Half")
+    veil.use_nodes = True
+    veil.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value = 0.6
+    grey = bpy.data.materials.new("Grey filter")
+    grey.use_nodes = True
+    nodes = grey.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    transparent = nodes.new("ShaderNodeBsdfTransparent")
+    transparent.inputs["Color"].default_value = (0.5, 0.5, 0.5, 1.0)
+    grey.node_tree.links.new(transparent.outputs[0], nodes["Material Output"].inputs["Surface"])
+    _square("Veil", (2.3, 0.3, 0.5), 0.6, veil)
+    _square("Filter", (0.0, 0.0, 0.5), 0.6, grey)
     crypto_scene.prism.samples = crypto_scene.prism.samples_per_pass = crypto_scene.cycles.samples = 256
     prism = _ranks(_render_layers(prism_addon, crypto_scene, tmp_path / "prism.exr"), "Object")
     cycles = _ranks(_render_layers(prism_addon, crypto_scene, tmp_path / "cycles.exr", engine="CYCLES"), "Object")
-    veil_id, b_id = _float_id(prism_addon, "Veil"), _float_id(prism_addon, "Plane B")
-    over = (np.abs(_coverage_of(cycles, veil_id) - 0.6) < 1e-3) & (np.abs(_coverage_of(cycles, b_id) - 0.4) < 1e-3)
-    assert over.sum() >= 9
-    for matte_id, expected in ((veil_id, 0.6), (b_id, 0.4)):
-        coverage = _coverage_of(prism, matte_id)[over]
-        print("cut-out:", expected, "Prism mean", coverage.mean(), "min", coverage.min(), "max", coverage.max())
-        assert abs(coverage.mean() - expected) < 0.02 and np.abs(coverage - expected).max() < 0.1
+    for front, back, opacity in (("Veil", "Plane B", 0.6), ("Filter", "Plane A", 0.5)):
+        front_id, back_id = _float_id(prism_addon, front), _float_id(prism_addon, back)
+        over = ((np.abs(_coverage_of(cycles, front_id) - opacity) < 1e-3)
+                & (np.abs(_coverage_of(cycles, back_id) - (1.0 - opacity)) < 1e-3))
+        assert over.sum() >= 9, front
+        for matte_id, expected in ((front_id, opacity), (back_id, 1.0 - opacity)):
+            coverage = _coverage_of(prism, matte_id)[over]
+            print("cut-out", front, expected, "Prism mean", coverage.mean(), "min", coverage.min(),
+                  "max", coverage.max())
+            assert abs(coverage.mean() - expected) < 0.02 and np.abs(coverage - expected).max() < 0.1, front
 
 
 def test_passes_follow_the_view_layers_switches_and_levels(prism_addon, fresh_scene):

@@ -105,7 +105,7 @@ def test_off_costs_nothing():
     plain = FilmLayout(PassRequest())
     assert plain.kernel.cryptomatte == -1 and plain.kernel.columns == 0 and plain.width == 0
     crypto = FilmLayout(PassRequest(cryptomatte=("Object",)))
-    assert crypto.kernel.cryptomatte == 0 and crypto.kernel.columns == 2 and crypto.width == 0  # nothing summed
+    assert crypto.kernel.cryptomatte == 0 and crypto.kernel.columns == 3 and crypto.width == 0  # nothing summed
 
 
 def test_film_counts_match_a_brute_force_count_for_any_chunking():
@@ -118,7 +118,7 @@ def test_film_counts_match_a_brute_force_count_for_any_chunking():
     pixels, spp = 12, 200
     pixel = np.repeat(np.arange(pixels), spp)
     objects = rng.integers(0, 9, len(pixel)) * (rng.random(len(pixel)) < 0.9)  # 0: background
-    indices = np.stack([objects, np.minimum(objects, 2)], -1).astype(np.float64)
+    indices = np.stack([objects, np.minimum(objects, 2), np.ones(len(objects))], -1)  # weight 1: opaque
     names = CryptomatteNames(tuple(f"o{i}" for i in range(8)), tuple(f"a{i}" for i in range(8)), ("m0", "m1"))
     results = []
     for cuts in ([], [spp * 3 + 17, spp * 7], list(range(0, len(pixel), 333))):

@@ -243,17 +243,6 @@ def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle, 
             passes.values[i, layout.normal + c] = n[c]
 
 
-@inlined
-def cryptomatte_hit(passes, layout, i, triangle, material):
-    """Cryptomatte's object and material (index + 1) of the surface where camera path ``i`` first does more
-    than cross a cut-out, every sample (coverage counts them). Cycles writes at each cut-out it crosses,
-    weighted by its opacity, and goes on with the rest: choosing the see-through lobe by its weight, as
-    the path does, writes each surface with the same expected weight."""
-    if passes.row_object.shape[0] > 0 and passes.values[i, layout.cryptomatte] == 0.0:
-        passes.values[i, layout.cryptomatte] = passes.row_object[triangle] + 1.0
-        passes.values[i, layout.cryptomatte + 1] = material + 1.0
-
-
 @kernel
 def surface_features(state, passes, layout, i, p, n, weight, spectra):
     """Denoising features of the first surface that is not all mirror or glass: its camera-space

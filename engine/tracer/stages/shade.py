@@ -30,7 +30,8 @@ from .caustic_split import classify_vertex
 from .caustics_toggles import filter_caustic_closures
 from .filter_glossy import blur_alpha, blur_glossy_closures
 from .nee import consistent, sample_direct
-from .pass_writes import cryptomatte_hit, first_bounce, first_hit, surface_features
+from .cryptomatte_write import cryptomatte_vertex
+from .pass_writes import first_bounce, first_hit, surface_features
 from .queue import push_ray
 from .roulette import survives
 
@@ -148,8 +149,9 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
         valid = largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])
         if layout.columns > 0:
-            if layout.cryptomatte >= 0 and state.flags[i] & CAMERA_PATH and not sampled & SAMPLED_NULL:
-                cryptomatte_hit(passes, layout, i, triangle, material)
+            if layout.cryptomatte >= 0 and state.flags[i] & CAMERA_PATH:
+                cryptomatte_vertex(state, passes, layout, settings, i, depth, triangle, material, rows, spectral,
+                                   closures, sampled)
             if not valid:
                 weight[:] = 0.0
             if not mflags & MAT_DELTA:
