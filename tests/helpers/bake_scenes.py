@@ -5,6 +5,7 @@ from __future__ import annotations
 import bpy
 import numpy as np
 
+from helpers.bpy_scenes import shader_material
 from helpers.cycles import configure_cycles
 
 IMAGE_PX = 32  # texels a side of the images baked
@@ -23,16 +24,10 @@ def uniform_world(color=(1.0, 1.0, 1.0), strength: float = 1.0):
 def node_material(name: str, node_type: str, **inputs):
     """A material of one shader node (inputs by name, underscores for spaces) and, active, the Image Texture
     node of the image a bake writes (``IMAGE_PX`` square, float)."""
-    material = bpy.data.materials.new(name)
-    material.use_nodes = True
+    material = shader_material(name, node_type, **inputs)
     nodes = material.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    shader = nodes.new(node_type)
-    for socket, value in inputs.items():
-        shader.inputs[socket.replace("_", " ")].default_value = value
     if node_type == "ShaderNodeBsdfGlossy":
-        shader.distribution = "GGX"  # single scattering, as Prism's GGX
-    material.node_tree.links.new(shader.outputs[0], nodes["Material Output"].inputs["Surface"])
+        nodes["Glossy BSDF"].distribution = "GGX"  # single scattering, as Prism's GGX
     target = nodes.new("ShaderNodeTexImage")
     target.image = bpy.data.images.new(f"{name} bake", IMAGE_PX, IMAGE_PX, float_buffer=True)
     nodes.active = target

@@ -8,8 +8,9 @@ with probability q, transparency T) multiplies the carried weight by T / q; taki
 attribution there with weight carried × (1 - T) / (1 - q). Each surface then gets Cycles' weight in
 expectation, and an opaque surface seen directly exactly 1. A surface that is all see-through (q = 1,
 e.g. a grey Transparent BSDF) is attributed with probability 1 - T by a number of its own. A camera
-path that scatters in a medium first is attributed to nothing (Cycles writes surfaces only, weighted by
-what the medium let through: the paths that reach the surface).
+path that scatters in a medium first is attributed to nothing: the scattering ends its ``CAMERA_PATH``
+flag, so no later surface writes (Cycles writes surfaces only, weighted by what the medium let through:
+the paths that reach the surface).
 """
 
 from __future__ import annotations
@@ -68,10 +69,3 @@ def cryptomatte_vertex(state, passes, layout, settings, i, depth, triangle, mate
     passes.values[i, column + 1] = material + 1.0
     passes.values[i, column + 2] = weight
 
-
-@inlined
-def cryptomatte_scattered(passes, layout, i):
-    """Camera path ``i`` scattered in a medium before any surface was attributed: none will be (object
-    column -1, which the film skips)."""
-    if passes.values[i, layout.cryptomatte] == 0.0:
-        passes.values[i, layout.cryptomatte] = -1.0

@@ -30,7 +30,7 @@ from .caustic_split import classify_vertex
 from .caustics_toggles import filter_caustic_closures
 from .filter_glossy import blur_alpha, blur_glossy_closures
 from .nee import consistent, sample_direct
-from .cryptomatte_write import cryptomatte_scattered, cryptomatte_vertex
+from .cryptomatte_write import cryptomatte_vertex
 from .pass_writes import first_bounce, first_hit, surface_features
 from .queue import push_ray
 from .roulette import survives
@@ -101,9 +101,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                                             queued, shadows, shadowed, scratch, rejected)
             queued += pushed
             shadowed += lit
-            if layout.cryptomatte >= 0 and state.flags[i] & CAMERA_PATH:
-                cryptomatte_scattered(passes, layout, i)
-            continue
+            continue  # a camera path is no longer one after a medium vertex: Cryptomatte attributes it to nothing
         triangle = state.hit_triangle[i]
         p, ng, ns = surface_at(geometry, triangle, state.hit_u[i], state.hit_v[i], state.time[i])
         material = geometry.material[triangle]
