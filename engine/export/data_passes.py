@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections import namedtuple
 
-from ..tracer.data_passes import DataPassInputs
+from ..tracer.data_passes import AO_DISTANCE_DEFAULT, DataPassInputs
 
 #: Which data passes the rendered view layer asks for (the per-triangle data is read only for those).
 DataPassSwitches = namedtuple("DataPassSwitches", "uv object_index material_index")
@@ -31,5 +31,14 @@ def export_data_passes(scene, geometry) -> DataPassInputs:
         inputs.mist_start_m = float(mist.start)
         inputs.mist_depth_m = float(mist.depth)
         inputs.mist_falloff = str(mist.falloff)
-        inputs.ao_distance_m = float(world.light_settings.distance)
+        inputs.ao_distance_m = world_ao_distance(scene)
     return inputs
+
+
+def world_ao_distance(scene) -> float:
+    """World ▸ Ambient Occlusion ▸ Distance (m): the AO pass's rays' length, and an Ambient Occlusion node's
+    where its own Distance is 0 (Cycles' ``ao_bounces_distance``); Blender's default without a world."""
+    world = getattr(scene, "world", None)
+    if world is None:
+        return AO_DISTANCE_DEFAULT
+    return float(world.light_settings.distance)

@@ -14,6 +14,7 @@ import math
 from ..properties.principled import surface_node
 from ..tracer.bsdf.closure import CONDUCTOR, DIELECTRIC, FRESNEL_CONDUCTOR, FRESNEL_F82
 from ..tracer.errors import PrismInputError
+from ..tracer.data_passes import AO_DISTANCE_DEFAULT
 from ..tracer.scene import Material, SpectrumSpec
 from .animated import settings_source
 from .aovs import merge_compiled, read_aovs
@@ -90,8 +91,10 @@ def _summary(material, compiled) -> Material:
 class MaterialExporter:
     """Exports the materials of one render; ``slots`` says which mesh data their programs read."""
 
-    def __init__(self, warnings: list[str] | None = None, fold: bool = True, texture_budget=None):
+    def __init__(self, warnings: list[str] | None = None, fold: bool = True, texture_budget=None, ao_distance=None):
         self.warnings = warnings
+        # World ▸ Ambient Occlusion ▸ Distance: where an Ambient Occlusion node's own distance is 0 (Cycles).
+        self.ao_distance = AO_DISTANCE_DEFAULT if ao_distance is None else float(ao_distance)
         self.slots = AttributeSlots()
         # Image textures are counted against the memory left beside the frame (``texture_memory``).
         self.image_cache: dict = TextureCache(texture_budget) if texture_budget is not None else {}
@@ -130,7 +133,8 @@ class MaterialExporter:
             overrides["reflectance"] = reflectance
         if settings is not None and settings.emission_source != "COLOR":
             overrides["emission"] = material_emission_source(material, (1.0, 1.0, 1.0)).spec()
-        compiled = compile_material(material, self.slots, self.image_cache, self._evaluator(), overrides=overrides)
+        compiled = compile_material(material, self.slots, self.image_cache, self._evaluator(), overrides=overrides,
+                                    ao_distance=self.ao_distance)
         if self.warnings is not None:
             self.warnings.extend(compiled.warnings)
         self.needs[material.name] = compiled.needs

@@ -28,7 +28,7 @@ from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
 from .point_clouds import LocalPoints, place_points, point_random, read_points
-from .data_passes import data_pass_switches
+from .data_passes import data_pass_switches, world_ao_distance
 from .surface_attributes import SurfaceCollector
 from .texture_memory import TextureBudget
 from .unrendered import particle_hair_warnings, unrendered_type_warning
@@ -78,9 +78,9 @@ class _Instances:
 class _Materials:
     """Blender materials → indices into one list of tracer materials, each exported once."""
 
-    def __init__(self, warnings, texture_budget=None):
+    def __init__(self, warnings, texture_budget=None, ao_distance=None):
         self.warnings = warnings
-        self.exporter = MaterialExporter(warnings, texture_budget=texture_budget)
+        self.exporter = MaterialExporter(warnings, texture_budget=texture_budget, ao_distance=ao_distance)
         self.index: dict[str | None, int] = {}
         self.materials: list[Material] = []
         self.uv_pass_slot: int | None = None  # the render UV map's slot when the UV pass is on
@@ -179,7 +179,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     returns a piece's geometry (the viewport passes one that keeps what did not change).
     Material warnings and geometry Prism skips are appended to ``warnings``.
     """
-    materials = _Materials(warnings, TextureBudget.for_scene(depsgraph.scene))
+    materials = _Materials(warnings, TextureBudget.for_scene(depsgraph.scene), world_ao_distance(depsgraph.scene))
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
     assets: list[str] = []  # parallel to names

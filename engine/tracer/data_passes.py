@@ -17,6 +17,9 @@ FIRST_HIT_DATA = 5
 #: Blender's mist falloffs (World ▸ Mist Pass ▸ Falloff) as Cycles' exponents.
 MIST_FALLOFFS = {"QUADRATIC": 2.0, "LINEAR": 1.0, "INVERSE_QUADRATIC": 0.5}
 AO_FAR_M = 1e30  # an AO ray's length where the distance is unbounded (float32-representable)
+#: Blender's World ▸ Ambient Occlusion ▸ Distance (m) of a new world: the AO pass's, and an Ambient Occlusion
+#: node's where its own Distance is 0.
+AO_DISTANCE_DEFAULT = 10.0
 
 
 @dataclass
@@ -38,7 +41,7 @@ class DataPassInputs:
     mist_start_m: float = 5.0
     mist_depth_m: float = 25.0
     mist_falloff: str = "QUADRATIC"
-    ao_distance_m: float = 10.0
+    ao_distance_m: float = AO_DISTANCE_DEFAULT
     triangle_motion: np.ndarray | None = None
     world_to_raster: np.ndarray | None = None
     asset_names: tuple = ()  # Cryptomatte: per scene object, its topmost parent's name (empty: its own)

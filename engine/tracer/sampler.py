@@ -45,6 +45,10 @@ MEDIUM_LIGHT_OFFSET = 1 << 16  # medium_light_slot: past every bounce's medium_s
 # 1-D: the path's ray time in the shutter (motion blur). Numbered far beyond every bounce's slots, so
 # turning motion blur on leaves every other dimension, and so still images, as they were.
 SLOT_TIME = 1 << 20
+#: 2-D per bounce: the rays a material traces itself (Ambient Occlusion, Bevel: ``materials.shader_rays``),
+#: ``SHADER_RAY_KINDS`` slots per bounce, in a range of their own so scenes without those nodes sample as before.
+SLOT_SHADER_RAYS = 1 << 22
+SHADER_RAY_KINDS = 2
 
 _MASK = 0xFFFFFFFF
 _INV_2_32 = 1.0 / 4294967296.0
@@ -161,6 +165,14 @@ def sample_1d(kind, pixel_seed_value, sample_index, slot):
 def bounce_slot(depth, which):
     """The slot of per-bounce dimension ``which`` (``BOUNCE_*``) at bounce ``depth``."""
     return SLOT_BOUNCE + depth * SLOTS_PER_BOUNCE + which
+
+
+@kernel
+def shader_ray_slot(depth, kind):
+    """The 2-D slot of a material's own rays of ``kind`` (0 ambient occlusion, 1 bevel) at bounce ``depth``:
+    a node with N samples draws sample index ``sample × N + j`` of it, so a pixel's samples together form
+    one stratified sequence (Cycles' ``path_branched_rng_2D`` does the same)."""
+    return SLOT_SHADER_RAYS + depth * SHADER_RAY_KINDS + kind
 
 
 @kernel

@@ -15,6 +15,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 from .compiler import MAX_NODE_DEPTH, MaterialCompiler
+from ...tracer.data_passes import AO_DISTANCE_DEFAULT
 from .finish import finish
 from .measured_base import check_measured_used
 from .slots import AttributeSlots
@@ -33,13 +34,14 @@ class CompiledMaterial:
 
 
 def compile_material(material, slots=None, image_cache=None, evaluate=None, load_pixels=True,
-                     overrides=None) -> CompiledMaterial:
+                     overrides=None, ao_distance=AO_DISTANCE_DEFAULT) -> CompiledMaterial:
     """Compile ``material``'s node tree (its Material Output for Cycles). ``overrides``: Material ▸ Prism's
     spectra for the Principled BSDF, ``reflectance`` (a ``scene.ReflectanceSpec`` for its base colour) and
-    ``emission`` (a ``scene.SpectrumSpec`` for its emission)."""
+    ``emission`` (a ``scene.SpectrumSpec`` for its emission). ``ao_distance``: the scene's World ▸ Ambient
+    Occlusion ▸ Distance (m), which Ambient Occlusion nodes whose own distance is 0 use."""
     compiler = MaterialCompiler(material, getattr(material, "prism", None), slots, evaluate, load_pixels,
                                 image_cache=image_cache if image_cache is not None else {},
-                                overrides=dict(overrides or {}))
+                                overrides=dict(overrides or {}), ao_distance=float(ao_distance))
     with _room_to_recurse():
         if not compiler.compile_surface():
             compiler.warn(None, "has no Material Output for Cycles; Prism renders it black.")

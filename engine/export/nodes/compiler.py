@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 from ...properties.node_links import invalid_links
 from ...tracer.bsdf.closure import TRANSPARENT
+from ...tracer.data_passes import AO_DISTANCE_DEFAULT
 from ...tracer.errors import PrismInputError
 from ...tracer.materials import opcodes as op
 from ...tracer.materials.program_builder import ProgramBuilder, Value
@@ -52,6 +53,7 @@ class MaterialCompiler:
     measured_nodes: list = field(default_factory=list)  # names of the nodes whose colour ``reflectance`` replaced
     medium: object = None  # tracer.media.spec.MediumSpec of the Volume socket, or None
     aov_outputs: dict = field(default_factory=dict)  # linked AOV Output sockets (``aov_outputs``)
+    ao_distance: float = AO_DISTANCE_DEFAULT  # World ▸ Ambient Occlusion ▸ Distance (m)
     _outputs: dict = field(default_factory=dict)
     _warned: set = field(default_factory=set)
     _depth: int = 0  # nodes between the Material Output and the node being compiled

@@ -17,7 +17,7 @@ def _attribute_slot(c, name):
     return c.slots.attribute(name) if c.slots else 0
 
 
-def _objects(c):
+def needs_objects(c):
     c.needs.add(("objects", ""))
     if c.slots:
         c.slots.need_objects()
@@ -28,7 +28,7 @@ def uv(c, name, variant):
 
 
 def generated(c, variant):
-    _objects(c)
+    needs_objects(c)
     return c.hit(op.GENERATED, variant)
 
 
@@ -43,7 +43,7 @@ def texture_coordinate(c, node, context, variant, identifier):
         if node.object is not None:
             c.warn(node, f"uses object '{node.object.name}' for Object coordinates; Prism uses each object's own "
                          "space.")
-        _objects(c)
+        needs_objects(c)
         return {"Object": (c.hit(op.OBJECT_COORDINATES, variant), VECTOR)}
     if identifier == "Normal":
         c.warn(node, "Normal output is given in world space (Blender: object space).")
@@ -105,7 +105,7 @@ def geometry(c, node, context, variant, identifier):
 def object_info(c, node, context, variant, identifier):
     if identifier == "Material Index":
         return {identifier: (c.const(float(c.material.pass_index)), FLOAT)}
-    _objects(c)
+    needs_objects(c)
     field = {"Location": 0, "Color": 1, "Alpha": 2, "Object Index": 3, "Random": 5}[identifier]
     width = 3 if field < 2 else 1
     kind = VECTOR if field == 0 else (COLOR if field == 1 else FLOAT)

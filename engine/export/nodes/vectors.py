@@ -9,7 +9,7 @@ from ...tracer.materials import opcodes as op
 from .terms import COLOR, FLOAT, VECTOR
 
 
-def _normal_input(c, node, context, variant, name="Normal"):
+def normal_input(c, node, context, variant, name="Normal"):
     """The register of a linked normal input, or None (the shading normal)."""
     if c.linked(node, name, context) is None:
         return None
@@ -32,7 +32,7 @@ def normal_map(c, node, context, variant, identifier):
 
 
 def bump(c, node, context, variant, identifier, height_name="Height"):
-    normal = _normal_input(c, node, context, variant)
+    normal = normal_input(c, node, context, variant)
     if variant != 0:
         c.warn(node, "feeds the height of another Bump; Prism uses its input normal there.")
         return {"Normal": (normal if normal is not None else c.normal(variant), VECTOR)}
@@ -58,7 +58,7 @@ def displacement(c, node, context, variant, identifier):
     height = c.value(node, "Height", context, FLOAT, variant)
     midlevel = c.value(node, "Midlevel", context, FLOAT, variant)
     scale = c.value(node, "Scale", context, FLOAT, variant)
-    normal = _normal_input(c, node, context, variant)
+    normal = normal_input(c, node, context, variant)
     amount = c.math("MULTIPLY", c.math("SUBTRACT", height, midlevel), scale)
     if node.space != "OBJECT":
         c.warn(node, "is in world space; Prism treats it as object space.")
@@ -68,13 +68,13 @@ def displacement(c, node, context, variant, identifier):
 
 def fresnel(c, node, context, variant, identifier):
     ior = c.value(node, "IOR", context, FLOAT, variant)
-    normal = _normal_input(c, node, context, variant)
+    normal = normal_input(c, node, context, variant)
     return {"Fac": (c.emit(op.FRESNEL, [ior, normal]), FLOAT)}
 
 
 def layer_weight(c, node, context, variant, identifier):
     blend = c.value(node, "Blend", context, FLOAT, variant)
-    normal = _normal_input(c, node, context, variant)
+    normal = normal_input(c, node, context, variant)
     out = c.emit(op.LAYER_WEIGHT, [blend, normal], width=2)
     return {"Fresnel": (out.component(0), FLOAT), "Facing": (out.component(1), FLOAT)}
 

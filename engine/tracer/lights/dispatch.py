@@ -41,7 +41,7 @@ def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wave
         if materials.flags[material] & MAT_EMISSION_VARIES:
             sampled_distance(regs, dist)  # the Light Path node's Ray Length, if the emitter reads it
             emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, FRAME_TIME,
-                        (-wi[0], -wi[1], -wi[2]), wavelength_nm, rows, regs, li)
+                        (-wi[0], -wi[1], -wi[2]), wavelength_nm, rows, regs, li, None)
         else:
             strength = materials.emission_strength[material]
             sid = materials.emission_spectrum[material]

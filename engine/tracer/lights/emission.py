@@ -52,7 +52,7 @@ def sample_emission(lights, materials, spectra, geometry, targets, u_select, u_p
         if materials.flags[material] & MAT_EMISSION_VARIES:
             scale = cos_l / (select * pdf_area * pdf_direction) if pdf_direction > 0.0 else 0.0
             emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, FRAME_TIME, direction,
-                        wavelength_nm, rows, regs, beta)
+                        wavelength_nm, rows, regs, beta, None)
             for k in range(beta.shape[0]):
                 beta[k] = scale * beta[k] if scale > 0.0 else 0.0
             return origin, direction, index

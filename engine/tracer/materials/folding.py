@@ -29,9 +29,10 @@ def fold_evaluator():
     up = (0.0, 0.0, 1.0)
 
     def evaluate(instructions, registers):
-        # The argument types of the render kernels' call, so both share one compiled specialisation.
+        # The argument types of the render kernels' calls without rays (emission, transparency), so both share
+        # one compiled specialisation.
         run_program(np.ascontiguousarray(instructions, dtype=np.int32), np.int32(0), np.int32(len(instructions)),
                     registers, rows, tables, textures, geometry, np.int32(0), 0.25, 0.25, (0.25, 0.25, 0.0), up, up,
-                    up, False)
+                    up, False, None)
 
     return evaluate

@@ -29,6 +29,9 @@ TANGENT = 11  # a = UV slot → unit tangent (xyz) and bitangent sign (+3), worl
 PARAMETRIC = 12  # barycentric (1 - u - v, u, 0)
 POINT_INFO = 13  # mode: POINT_INFO_FIELDS → the point's centre (world, m), radius (m) or random; 0 off points
 LIGHT_PATH = 15  # mode: ``light_path.OUTPUTS`` index → what the ray that reached the point was (written by the caller)
+AMBIENT_OCCLUSION = 16  # mode: samples × AO_SAMPLES + AO_* flags; dst (ao, colour c × ao) within distance a
+#                         about normal b (-1: the shading normal); traces rays (``shader_rays``)
+BEVEL = 17  # mode = samples; dst = the normal averaged over radius a, then moved as normal b is (-1: none)
 
 # Arithmetic.
 COPY = 20  # dst[0:mode] = a[0:mode]
@@ -116,6 +119,8 @@ WAVE_RINGS_DIRECTIONS = ["X", "Y", "Z", "SPHERICAL"]
 WAVE_PROFILES = ["SIN", "SAW", "TRI"]
 OBJECT_INFO_FIELDS = ["LOCATION", "COLOR", "ALPHA", "OBJECT_INDEX", "MATERIAL_INDEX", "RANDOM"]
 POINT_INFO_FIELDS = ["POSITION", "RADIUS", "RANDOM"]
+#: AMBIENT_OCCLUSION's mode: the node's Only Local and Inside bits, plus its samples × AO_SAMPLES.
+AO_ONLY_LOCAL, AO_INSIDE, AO_SAMPLES = 1, 2, 4
 #: LAYER_ALBEDO: the directional albedo factor s of a GGX reflection lobe whose Fresnel F(cos) is
 #: remapped from [F0, 1] to [f0, f90]: albedo ≈ mix(f0, f90, s) (``materials.layering``).
 LAYER_ALBEDO_KINDS = ["DIELECTRIC", "SCHLICK", "SHEEN"]

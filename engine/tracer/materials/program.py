@@ -28,6 +28,7 @@ from . import hit_inputs as hit
 from . import opcodes as op
 from .layering import dielectric_darkening, dielectric_s
 from .light_path import light_path_output
+from .shader_rays import traced_node
 
 #: Per material: instruction range ``start`` / ``count``, register-file range ``const_start`` /
 #: ``const_count`` in ``constants``; ``normal``, ``emission`` (colour) and ``emission_scale`` registers (-1:
@@ -75,10 +76,11 @@ def _point_info(regs, dst, mode, geometry, triangle, offset):
 
 @kernel
 def run_program(instructions, first, count, regs, rows, tables, textures, geometry, triangle, u, v, p, ng, n, wo,
-                backfacing):
+                backfacing, rays):
     """Run instructions ``first .. first + count`` for the hit at barycentrics (u, v) of ``triangle``:
     ``p`` camera-relative point, ``ng`` / ``n`` geometric and shading normals facing ``wo`` (unit, towards
-    where the ray came from), ``backfacing`` whether the ray arrived on the back of the surface."""
+    where the ray came from), ``backfacing`` whether the ray arrived on the back of the surface. ``rays``: a
+    ``shader_rays.ShaderRays`` where the material may trace (a ray's hit), else None (compiled without)."""
     attrs = geometry.attributes
     step_x, step_y = hit.bump_step(geometry, triangle, p, ng)
     for index in range(first, first + count):
@@ -91,6 +93,9 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
             continue
         if code == op.LIGHT_PATH:
             regs[dst] = light_path_output(regs, mode)
+            continue
+        if code == op.AMBIENT_OCCLUSION or code == op.BEVEL:
+            traced_node(code, mode, dst, a, b, c, regs, rays, geometry, triangle, p, ng, n, backfacing)
             continue
         if code <= op.POINT_INFO:
             hu, hv, hp = u, v, p

@@ -7,7 +7,9 @@ their constant rows (``resolve.resolve_material``). Closures under a constant la
 then scaled by what the layer lets through from the view direction (``layering.under_layer``), and closures
 whose distribution is Multiscatter GGX by the energy their single scattering misses (``MAT_MULTISCATTER``,
 ``energy.compensate_energy``); sheen closures are fitted to the view (``MAT_SHEEN``, ``sheen_setup``). Nothing here allocates: the register file
-and closure rows are the caller's scratch memory.
+and closure rows are the caller's scratch memory. Where a ray found the surface its program may trace rays of
+its own (Ambient Occlusion, Bevel: ``shader_rays``); transparency for shadow rays, and emission for light
+sampling and light paths, are evaluated without them, as Cycles evaluates them.
 """
 
 from __future__ import annotations
@@ -24,13 +26,13 @@ from .table import MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED, MAT_PROGRAM, MA
 
 
 @inlined
-def _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs):
+def _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, rays):
     programs = materials.programs
     first = programs.const_start[material]
     for r in range(programs.const_count[material]):
         regs[r] = programs.constants[first + r]
     run_program(programs.instructions, programs.start[material], programs.count[material], regs, rows,
-                programs.tables, materials.textures, geometry, triangle, u, v, p, ng, n, wo, backfacing)
+                programs.tables, materials.textures, geometry, triangle, u, v, p, ng, n, wo, backfacing, rays)
 
 
 @inlined
@@ -44,9 +46,10 @@ def _apply_layers(tables, rows, spectral, count, cos_o):
 
 @inlined
 def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, wavelength_nm,
-                  hero, rows, spectral, eta, regs, glass_clamps):
+                  hero, rows, spectral, eta, regs, glass_clamps, rays):
     """Resolve ``material`` at a hit into ``rows`` / ``spectral`` / ``eta``: (closure count, shading normal).
-    ``ng`` and ``n`` face ``wo``; the returned normal is the program's (Normal Map, Bump) or ``n``."""
+    ``ng`` and ``n`` face ``wo``; the returned normal is the program's (Normal Map, Bump) or ``n``. ``rays``:
+    what the program's own rays need (``shader_rays.ShaderRays``), or None where it cannot trace."""
     flags = materials.flags[material]
     sources = regs
     if not flags & MAT_PROGRAM:
@@ -56,7 +59,7 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
         sources = materials.programs.constants
     else:
         count = copy_rows(materials, material, rows)
-        _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs)
+        _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, rays)
         resolve_spectral(materials, spectra, count, wavelength_nm, hero, rows, spectral, eta, glass_clamps, regs)
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
@@ -81,11 +84,11 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
 
 @inlined
 def surface_emission(materials, spectra, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, wavelength_nm,
-                     rows, regs, out):
+                     rows, regs, out, rays):
     """``out[k]`` = radiance emitted towards ``wo`` at wavelength ``k`` by a material whose emission varies
     (``MAT_EMISSION_VARIES``): the program's emission colour as an RGB illuminant spectrum, or the constant
     emission spectrum, times the program's factor."""
-    _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs)
+    _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, rays)
     programs = materials.programs
     r = programs.emission[material]
     s = programs.emission_scale[material]
@@ -107,7 +110,7 @@ def surface_transparency(materials, spectra, geometry, material, triangle, u, v,
     """``out[k]`` = fraction of light passing straight through (the Transparent closures' tints)."""
     count = copy_rows(materials, material, rows)
     if materials.flags[material] & MAT_PROGRAM:
-        _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs)
+        _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, None)
     for k in range(out.shape[0]):
         out[k] = 0.0
     for c in range(count):

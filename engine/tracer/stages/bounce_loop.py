@@ -85,7 +85,7 @@ def bounce_loop_kernel(loop, arrays, caster, camera, passes, layout, count, queu
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, loop.hits.triangle, loop.hits.t, loop.hits.u, loop.hits.v,
                                    arrays.geometry, arrays.materials, arrays.lights, arrays.spectra, settings, depth,
-                                   loop.surface, passes, layout, loop.scratch)
+                                   loop.surface, passes, layout, loop.scratch, caster)
         if depth == 1 and routed == ROUTE_SECOND_EMISSION:
             route_kernel(state, passes, layout, count, routed)
             routed += 1
@@ -94,7 +94,7 @@ def bounce_loop_kernel(loop, arrays, caster, camera, passes, layout, count, queu
         following = loop.rays[(depth + 1) % 2]
         queued, shadowed = shade_kernel(state, loop.surface, surfaces, arrays.geometry, arrays.materials,
                                         arrays.lights, arrays.spectra, settings, depth, following, loop.shadows,
-                                        loop.scratch, glass_clamps, loop.rejected, passes, layout)
+                                        loop.scratch, glass_clamps, loop.rejected, passes, layout, caster)
         if shadowed:
             rays_cast += _trace_shadows(loop, arrays, caster, passes, layout, shadowed, see_through)
         if depth == 0 and layout.ao >= 0 and passes.ao_count[0] > 0:  # the AO pass's rays

@@ -27,6 +27,7 @@ from ..lights.dispatch import (distant_hit, emitter_group, emitter_pdf, environm
                                light_hit, light_spectrum, seen_by_camera)
 from ..materials.emitters import emission_at
 from ..materials.light_path import path_ray
+from ..materials.shader_rays import ShaderRays
 from ..media.segment import cross_medium
 from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE
 from ..spectra.table import spectrum_value
@@ -116,7 +117,7 @@ def _add_background(state, i, d, lights, spectra, settings, depth, passes, layou
 
 @kernel
 def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, lights, spectra,
-                    settings, depth, surface, passes, layout, scratch):
+                    settings, depth, surface, passes, layout, scratch, caster):
     """Add emission for the first ``count`` rays of ``rays``; list the paths that hit a surface in
     ``surface.path`` and return how many. ``passes`` / ``layout``: see ``stages.pass_writes``; ``scratch``
     (``state.ShadingScratch``) serves materials whose emission varies over the surface."""
@@ -168,8 +169,11 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
                 radiance = scratch.li
                 if settings.light_path:
                     path_ray(scratch.registers, state, i, t)
+                traced = ShaderRays(caster, settings.sampler, state.seed[i], state.sample[i], depth, state.time[i],
+                                    state.min_pdf[i])  # the same rays as the shading of this hit traces
                 emission_at(materials, spectra, geometry, material, triangle, float(hit_u[j]), float(hit_v[j]), state.time[i],
-                            (-d[0], -d[1], -d[2]), state.wavelength[i], scratch.rows, scratch.registers, radiance)
+                            (-d[0], -d[1], -d[2]), state.wavelength[i], scratch.rows, scratch.registers, radiance,
+                            traced)
                 if settings.clamping:
                     for k in range(state.radiance.shape[1]):
                         scratch.weight[k] = state.throughput[i, k] * weight * radiance[k]

@@ -101,7 +101,8 @@ def _resolve(hit, p, ng, ns, wo, backfacing, mflags, lam, hero, rows, spectral, 
     facing_ng = (-ng[0], -ng[1], -ng[2]) if backfacing else ng
     facing_ns = (-ns[0], -ns[1], -ns[2]) if backfacing else ns
     closures, n = shade_surface(materials, spectra, geometry, material, triangle, u, v, p, facing_ng, facing_ns, wo,
-                                backfacing, lam, hero, rows, spectral, eta, registers, glass_clamps)
+                                backfacing, lam, hero, rows, spectral, eta, registers, glass_clamps,
+                                None)  # light tracing is off where materials trace (``analysis``)
     if backfacing and mflags & MAT_ONE_SIDED:
         n = (-n[0], -n[1], -n[2])
     return closures, n

@@ -20,6 +20,7 @@ from ..bsdf.dispatch import bsdf_sample
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..materials.light_path import after_scattering, after_transparent, emission_sample, path_ray
+from ..materials.shader_rays import ShaderRays
 from ..materials.surface import shade_surface
 from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_MEDIUM, MAT_NULL, MAT_ONE_SIDED
 from ..media.scatter import scatter_in_medium
@@ -84,10 +85,11 @@ def sample_scattering(state, i, depth, settings, rows, spectral, eta, closures, 
 
 @kernel
 def shade_kernel(state, surface, count, geometry, materials, lights, spectra, settings, depth, next_rays, shadows,
-                 scratch, glass_clamps, rejected, passes, layout):
+                 scratch, glass_clamps, rejected, passes, layout, caster):
     """Shade the ``count`` paths listed in ``surface``; returns (rays queued in ``next_rays``, shadow
     rays queued in ``shadows``). ``scratch`` is a ``state.ShadingScratch``; ``glass_clamps`` and
-    ``rejected`` (int64 counters) are incremented; ``passes`` / ``layout``: see ``stages.pass_writes``."""
+    ``rejected`` (int64 counters) are incremented; ``passes`` / ``layout``: see ``stages.pass_writes``;
+    ``caster`` (``embree.queries.RayCaster``) traces the rays of materials' Ambient Occlusion and Bevel nodes."""
     k = state.wavelength.shape[1]
     rows, spectral, eta, weight, li, f, mix, registers, _ = scratch
     has_lights = lights.select_prob.shape[0] > 0
@@ -118,9 +120,11 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         hero = state.hero[i]
         if settings.light_path:
             path_ray(registers, state, i, state.hit_t[i])
+        rays = ShaderRays(caster, settings.sampler, state.seed[i], state.sample[i], depth, state.time[i],
+                          state.min_pdf[i])
         closures, n = shade_surface(materials, spectra, geometry, material, triangle, state.hit_u[i], state.hit_v[i],
                                     p, facing_ng, facing_ns, wo, backfacing, lam, hero, rows, spectral, eta,
-                                    registers, glass_clamps)
+                                    registers, glass_clamps, rays)
         if settings.caustics_filtered and depth > 0 and state.flags[i] & LAST_DIFFUSE:
             filter_caustic_closures(settings, rows, spectral, closures)
         blurred = False

@@ -112,7 +112,7 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
             hit = clip_far_hits(hit, current, queued, renderer.camera.data)
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, *hit, geometry, materials, lights, spectra, settings,
-                                   depth, buffers.surface, passes, layout, buffers.scratch)
+                                   depth, buffers.surface, passes, layout, buffers.scratch, tables.accel.caster())
         if depth == 1 and routed == _ROUTE_SECOND_EMISSION:
             route_kernel(state, passes, layout, count, routed)
             routed += 1
@@ -121,7 +121,7 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
         following = buffers.rays[1] if current is buffers.rays[0] else buffers.rays[0]
         queued, shadowed = shade_kernel(state, buffers.surface, surfaces, geometry, materials, lights, spectra,
                                         settings, depth, following, buffers.shadows, buffers.scratch, glass_clamps,
-                                        rejected, passes, layout)
+                                        rejected, passes, layout, tables.accel.caster())
         if shadowed:
             rays_cast += _trace_shadows(renderer, state, buffers.shadows, shadowed, passes, layout, buffers.scratch)
         if depth == 0 and layout.ao >= 0 and passes.ao_count[0] > 0:  # the AO pass's rays see every object
