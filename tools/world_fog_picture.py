@@ -42,12 +42,11 @@ def main() -> None:
     arguments = parser.parse_args()
     sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
     import bpy
-    import numpy as np
-    from PIL import Image, ImageDraw
 
     from helpers.bpy_scenes import add_camera, add_plane, add_point_light
     from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
     from render import load_addon_package
+    from side_by_side import save_side_by_side
 
     load_addon_package().register()
     _scene(bpy, (add_camera, add_plane, add_point_light))
@@ -58,21 +57,7 @@ def main() -> None:
     p, c = float(luminance(prism).mean()), float(luminance(cycles).mean())
     print(f"mean luminance: Prism {p:.4f}, Cycles {c:.4f}, Prism / Cycles {p / c:.4f}")
 
-    def display(rgb):  # sRGB of the scene-linear image, clipped: the same transform for both
-        rgb = np.clip(rgb, 0.0, 1.0)
-        srgb = np.where(rgb <= 0.0031308, 12.92 * rgb, 1.055 * rgb ** (1 / 2.4) - 0.055)
-        return (srgb * 255 + 0.5).astype(np.uint8)
-
-    height, width = prism.shape[:2]
-    canvas = Image.new("RGB", (2 * width + 6, height + 18), (255, 255, 255))
-    canvas.paste(Image.fromarray(display(prism)), (0, 18))
-    canvas.paste(Image.fromarray(display(cycles)), (width + 6, 18))
-    draw = ImageDraw.Draw(canvas)
-    draw.text((4, 3), f"Prism (mean {p:.3f})", fill=(0, 0, 0))
-    draw.text((width + 10, 3), f"Cycles 4.5 (mean {c:.3f})", fill=(0, 0, 0))
-    OUTPUT.parent.mkdir(parents=True, exist_ok=True)
-    canvas.save(OUTPUT)
-    print(f"wrote {OUTPUT}")
+    save_side_by_side(prism, cycles, p, c, OUTPUT)
 
 
 if __name__ == "__main__":

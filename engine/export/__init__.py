@@ -131,6 +131,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
         object_names=geometry.object_names,
         object_light_groups=geometry.object_light_groups,
         corner_normals=geometry.corner_normals,
+        triangle_flat=geometry.triangle_flat,
         surface=geometry.surface,
         points=geometry.points,
         object_flags=geometry.object_flags,

@@ -29,6 +29,7 @@ class LocalMesh:
     attributes: dict = field(default_factory=dict)  # attribute slot → float32 [T, 3, 4]
     tangents: dict = field(default_factory=dict)  # tangent slot → float32 [T, 3, 4] (object space + sign)
     texture_space: tuple = ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))  # (location, size) for generated coordinates
+    flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat (what displacement recomputes)
 
 
 @dataclass
@@ -61,12 +62,15 @@ def read_mesh(obj, request: AttributeRequest | None = None, warn=None) -> LocalM
         mesh.loop_triangles.foreach_get("loops", loops)
         normals = np.empty(len(mesh.loops) * 3, np.float32)
         mesh.corner_normals.foreach_get("vector", normals)
+        smooth = np.empty(triangle_count, bool)
+        mesh.loop_triangles.foreach_get("use_smooth", smooth)
         local = LocalMesh(
             vertices=vertices.reshape(-1, 3).astype(np.float64),
             triangles=triangles.reshape(-1, 3),
             slot_index=slot_index,
             corner_normals=normals.reshape(-1, 3)[loops].reshape(-1, 3, 3),
             slot_materials=[slot.material for slot in obj.material_slots],
+            flat=~smooth,
         )
         if request is not None:
             _read_attributes(obj, mesh, local, loops, request, warn)

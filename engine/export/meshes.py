@@ -23,6 +23,7 @@ from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
 from .hair import LocalHair, hair_ribbons, read_hair
 from .instancing import WorldTriangles, instance_triangles
+from .adaptive_subdivision import adaptive_subdivision_warning
 from .cryptomatte_names import asset_name, material_name
 from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
@@ -58,6 +59,7 @@ class ExportedGeometry:
     pass_uv: np.ndarray | None = None
     material_pass_index: tuple = ()
     points: SpherePoints | None = None  # the points of point clouds (objects numbered after the triangles')
+    triangle_flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat
     object_asset_names: list[str] = field(default_factory=list)  # per object_names entry (Cryptomatte Asset)
     material_names: list[str] = field(default_factory=list)  # per material, Cycles' name (Cryptomatte Material)
 
@@ -159,6 +161,9 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
+            adaptive = adaptive_subdivision_warning(obj, depsgraph.scene)
+            if adaptive is not None and warnings is not None:
+                warnings.append(adaptive)
             pieces[key] = (_Instances(obj.name, geometry, light_group=obj.lightgroup, flags=flags,
                                       asset=asset_name(obj))
                            if geometry is not None else None)
@@ -193,6 +198,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     surface = SurfaceCollector(materials.exporter.slots)
     pass_index: list[np.ndarray] = []
     has_uv: list[np.ndarray] = []  # per triangle: its mesh has the render UV map (the UV pass's A)
+    flat: list[np.ndarray] = []  # per triangle: shaded flat (``ExportedGeometry.triangle_flat``)
     clouds = []
     for piece in pieces:
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
@@ -211,6 +217,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                 flags.append(piece.flags)
                 pass_index.append(np.full(len(placed.triangles), piece.infos[0][1] if piece.infos else 0, np.float32))
                 has_uv.append(np.zeros(len(placed.triangles), bool))
+                flat.append(np.zeros(len(placed.triangles), bool))
             continue
         local = piece.geometry
         placed = instance_triangles(local.vertices, local.triangles, local.corner_normals, matrices)
@@ -221,6 +228,8 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
         groups.append(piece.light_group)
         surface.add_mesh(local, matrices, piece.infos, np.linalg.det(matrices[:, :3, :3]) < 0)
         flags.append(piece.flags)
+        flat.append(np.tile(local.flat if local.flat is not None else np.zeros(len(local.triangles), bool),
+                            len(matrices)))
         if passes.uv:
             has_uv.append(np.full(len(local.triangles) * len(matrices), materials.uv_pass_slot in local.uvs))
         if passes.object_index:  # instance by instance, as ``instance_triangles`` places them
@@ -234,6 +243,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     geometry.object_light_groups = groups
     geometry.surface = surface.surface()
     geometry.object_flags = np.asarray(flags, np.uint8)
+    geometry.triangle_flat = np.concatenate(flat) if flat else np.zeros(0, bool)
     if passes.object_index:
         geometry.triangle_pass_index = np.concatenate(pass_index) if pass_index else np.zeros(0, np.float32)
     if passes.uv and geometry.surface is not None:

@@ -285,6 +285,7 @@ class Scene:
     motion: object = None  # motion.Motion
     light_links: object = None  # light_linking.LightLinks: light and shadow linking (None: none)
     points: SpherePoints | None = None
+    triangle_flat: np.ndarray | None = None  # bool [T]: shaded flat (displacement recomputes the others' normals)
 
     @property
     def triangle_count(self) -> int:

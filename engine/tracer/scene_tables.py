@@ -31,6 +31,7 @@ from .media.enclosure import enclosing_media
 from .media.equiangular import has_positional_lights
 from .errors import PrismInputError
 from .geometry import prepare_geometry
+from .materials.displacement import displace, displaces
 from .lights.emitters import emitter_spectra
 from .lights.table import build_lights
 from .materials.table import build_materials
@@ -124,6 +125,12 @@ class SceneTables:
         """Triangles relative to ``origin`` (m) and their Embree scene."""
         self.geometry = self.accel = self.ray_classes = None  # the old tables go first: one BVH in memory at a time
         self.geometry, self._original_triangle, self.dropped_triangles = prepare_geometry(scene, origin)
+        if displaces(scene):  # Displacement Only / Both: the vertices move before Embree sees them
+            used = sorted(set(np.unique(self.geometry.material).tolist()))
+            table = build_materials(scene.materials, set(used), SpectrumTable(), scene.world.medium)
+            flat = scene.triangle_flat[self._original_triangle] if scene.triangle_flat is not None and len(
+                scene.triangle_flat) == len(scene.triangles) else None
+            self.geometry = displace(self.geometry, table, flat)
         self._used = sorted(set(np.unique(self.geometry.material).tolist()))
         self.accel = Accel(self.geometry)
         self.ray_classes = RayClassAccel(self.geometry, self.accel) if needs_ray_classes(self.geometry) else None

@@ -165,6 +165,7 @@ class SceneSync:
                 triangle_material=exported.triangle_material, materials=exported.materials,
                 camera=PLACEHOLDER_CAMERA, triangle_object=exported.triangle_object,
                 object_names=exported.object_names, corner_normals=exported.corner_normals,
+                triangle_flat=exported.triangle_flat,
                 lights=previous.lights if previous else [], world=previous.world if previous else World(),
                 surface=exported.surface, points=exported.points,
             )

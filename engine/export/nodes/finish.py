@@ -6,7 +6,7 @@ from __future__ import annotations
 from ...tracer.bsdf.closure import C_ALPHA, C_ETA, C_TINT_SCALE, CONDUCTOR, DIELECTRIC, FRESNEL_DIELECTRIC
 from ...tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
 from .aov_outputs import aov_results
-from .vectors import displacement_bump
+from .vectors import displacement_bump, displacement_method, true_displacement
 
 _LUMINANCE = (0.2126729, 0.7151522, 0.0721750)
 
@@ -127,6 +127,8 @@ def _read_registers(program) -> set[int]:
         live.update(range(program.emission.register, program.emission.register + 3))
     if program.emission_scale >= 0:
         live.add(program.emission_scale)
+    if program.displacement >= 0:
+        live.update(range(program.displacement, program.displacement + 3))
     for registers in program.aov_registers.values():  # read at the first hit (the AOV passes)
         for name, register in registers.items():
             live.update(range(register, register + (3 if name == "Color" else 1)))
@@ -135,7 +137,13 @@ def _read_registers(program) -> set[int]:
 
 def finish(c) -> ShaderProgram:
     """The ``ShaderProgram`` of compiler ``c`` after its walk."""
-    default_normal = displacement_bump(c, c.displacement) if getattr(c, "displacement", None) is not None else None
+    method = displacement_method(c.material)
+    socket = getattr(c, "displacement", None)
+    if socket is not None and method == "BOTH":
+        c.warn(None, "has Settings ▸ Displacement \"Displacement and Bump\"; Prism renders it as Displacement Only: the "
+                     "vertices move, and the finer bump Cycles adds between them is left out.")
+    default_normal = displacement_bump(c, socket) if socket is not None and method == "BUMP" else None
+    moved = true_displacement(c, socket) if socket is not None and method != "BUMP" else None
     normals = [p.normal for p in c.closures if p.normal is not None]
     normal = normals[0] if normals else default_normal
     if len({n.register for n in normals}) > 1:
@@ -144,12 +152,14 @@ def finish(c) -> ShaderProgram:
     program = ShaderProgram(closures)
     _emission(c, program)
     program.normal = normal.register if normal is not None else -1
+    program.displacement = moved.register if moved is not None else -1
     program.aov_registers, program.aov_constants = aov_results(c, c.aov_outputs)
     program.instructions = c.builder.instructions(live=_read_registers(program))
     program.constants = c.builder.initial_registers()
     program.register_count = c.builder.register_count
     program.images = list(c.images)
-    if not program.has_program and not any(spec.bindings for spec in closures) and program.normal < 0:
+    if (not program.has_program and not any(spec.bindings for spec in closures) and program.normal < 0
+            and program.displacement < 0):
         program.constants = program.constants[:0]
         program.register_count = 0
     return program

@@ -1,11 +1,13 @@
 """Nodes that read or bend the shading normal: Normal Map (tangent space from the UV map's tangents,
 object and world space), Bump (the height compiled three times: at the point and a small step along
-two surface directions), Displacement (as bump, Blender's default Bump Only method), Fresnel, Layer
+two surface directions), Displacement (a bump for the Bump Only and Both methods; the vector that moves the vertices for
+Displacement Only and Both, ``tracer.materials.displacement``), Fresnel, Layer
 Weight, Normal. Each handler returns {output identifier: (Value, kind)} (see ``compiler``)."""
 
 from __future__ import annotations
 
 from ...tracer.materials import opcodes as op
+from .inputs import needs_objects
 from .terms import COLOR, FLOAT, VECTOR
 
 
@@ -23,9 +25,7 @@ def normal_map(c, node, context, variant, identifier):
         c.needs.add(("tangent", node.uv_map or ""))
         slot = c.slots.tangent(node.uv_map) if c.slots else 0
     if space in (1, 3):
-        c.needs.add(("objects", ""))
-        if c.slots:
-            c.slots.need_objects()
+        needs_objects(c)
     strength = c.value(node, "Strength", context, FLOAT, variant)
     colour = c.value(node, "Color", context, COLOR, variant)
     return {"Normal": (c.emit(op.NORMAL_MAP, [strength, colour, slot], mode=space, width=3), VECTOR)}
@@ -52,6 +52,22 @@ def displacement_bump(c, socket):
         vector = c.value_of_socket(socket, (), VECTOR, variant)
         heights.append(c.vector_math("DOT_PRODUCT", vector, c.normal(variant)))
     return c.emit(op.BUMP, [heights[0], heights[1], heights[2], c.const(1.0), c.const(1.0), None], width=3)
+
+
+def displacement_method(material) -> str:
+    """Material ▸ Settings ▸ Surface ▸ Displacement: "BUMP" (Blender's default), "DISPLACEMENT" or "BOTH"
+    (Blender 4.1 moved it from Cycles' material settings to the material)."""
+    method = getattr(material, "displacement_method", None)
+    if method is None:
+        method = getattr(getattr(material, "cycles", None), "displacement_method", "BUMP")
+    return method if method in ("BUMP", "DISPLACEMENT", "BOTH") else "BUMP"
+
+
+def true_displacement(c, socket):
+    """The Material Output's Displacement vector, read at each vertex to move it (Displacement Only, Both);
+    it is an object-space vector, so the object rows are exported (``tracer.materials.displacement``)."""
+    needs_objects(c)
+    return c.value_of_socket(socket, (), VECTOR, 0)
 
 
 def displacement(c, node, context, variant, identifier):

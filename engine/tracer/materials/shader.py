@@ -99,6 +99,9 @@ class ShaderProgram:
     emission_strength: float = 0.0  # its strength; an estimate for light selection when the emission varies
     emission_scale: int = -1  # register of a factor that varies (the emission is then colour × that factor)
     normal: int = -1  # register of the shading normal (normal maps, bump), or -1
+    # register of the Material Output's Displacement vector where Material ▸ Settings ▸ Displacement is
+    # "Displacement Only" or "Both" (the vertices move: ``materials.displacement``), or -1
+    displacement: int = -1
     # AOV Output sockets fed by links: AOV name → {"Color" / "Value": register} where the value varies per hit,
     # {"Color" / "Value": constant} where it folded to one.
     aov_registers: dict = field(default_factory=dict)

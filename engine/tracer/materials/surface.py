@@ -26,7 +26,8 @@ from .table import MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED, MAT_PROGRAM, MA
 
 
 @inlined
-def _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, rays):
+def run_material(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, rays):
+    """Run ``material``'s program at a hit from its constant register file (``regs``, ``rows``: scratch)."""
     programs = materials.programs
     first = programs.const_start[material]
     for r in range(programs.const_count[material]):
@@ -59,7 +60,7 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
         sources = materials.programs.constants
     else:
         count = copy_rows(materials, material, rows)
-        _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, rays)
+        run_material(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, rays)
         resolve_spectral(materials, spectra, count, wavelength_nm, hero, rows, spectral, eta, glass_clamps, regs)
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
@@ -88,7 +89,7 @@ def surface_emission(materials, spectra, geometry, material, triangle, u, v, p, 
     """``out[k]`` = radiance emitted towards ``wo`` at wavelength ``k`` by a material whose emission varies
     (``MAT_EMISSION_VARIES``): the program's emission colour as an RGB illuminant spectrum, or the constant
     emission spectrum, times the program's factor."""
-    _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, rays)
+    run_material(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, rays)
     programs = materials.programs
     r = programs.emission[material]
     s = programs.emission_scale[material]
@@ -110,7 +111,7 @@ def surface_transparency(materials, spectra, geometry, material, triangle, u, v,
     """``out[k]`` = fraction of light passing straight through (the Transparent closures' tints)."""
     count = copy_rows(materials, material, rows)
     if materials.flags[material] & MAT_PROGRAM:
-        _run(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, None)
+        run_material(materials, geometry, material, triangle, u, v, p, ng, n, wo, backfacing, rows, regs, None)
     for k in range(out.shape[0]):
         out[k] = 0.0
     for c in range(count):

@@ -81,6 +81,9 @@ class MaterialTable:
     features: list = field(default_factory=list)  # e.g. "smooth dielectric", for the render stats
     register_count: int = 1  # registers a program needs at most (the scratch size)
     outside_medium: int = -1  # the ``media`` row of the World's Volume (fog outside every mesh medium), or -1
+    # int32 [materials]: each program's register of its displacement vector (``shader.ShaderProgram.
+    # displacement``), -1 for a material whose vertices stay (``materials.displacement`` reads it)
+    displacement: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int32))
 
 
 def _source(colour, spectra, name, bounded=True):
@@ -179,6 +182,7 @@ def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTa
     c_start, c_count = np.zeros(count, np.int32), np.zeros(count, np.int32)
     normal, emission_register = np.full(count, -1, np.int32), np.full(count, -1, np.int32)
     emission_scale = np.full(count, -1, np.int32)
+    displacement = np.full(count, -1, np.int32)
     rows, glasses, glass_index, features = [], [], {}, set()
     instructions, constants, images, image_index = [], [], [], {}
     image_rows = 0
@@ -220,7 +224,7 @@ def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTa
             flags[m] |= MAT_DELTA
         binds = [[op.BIND, int(multiply), -1, c, column, register] + [-1] * (op.INSTRUCTION - 6)
                  for c, spec in enumerate(closures) for column, register, multiply in spec.bindings]
-        if shader.has_program or binds:
+        if shader.has_program or binds or shader.displacement >= 0:
             flags[m] |= MAT_PROGRAM
             features.add("node program")
             program = np.concatenate([np.array(shader.instructions, dtype=np.int32).reshape(-1, op.INSTRUCTION),
@@ -244,6 +248,7 @@ def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTa
             constants.extend(np.asarray(shader.constants, dtype=np.float64).tolist())
             register_count = max(register_count, len(shader.constants), shader.register_count)
             normal[m] = shader.normal
+            displacement[m] = shader.displacement
         emission = shader.emission
         if emission is not None and shader.emission_strength > 0:
             varies = emission.register is not None or shader.emission_scale >= 0
@@ -281,4 +286,4 @@ def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTa
     arrays = MaterialArrays(flags, start, closure_count, emission_spectrum, emission_strength,
                             closure_rows if len(closure_rows) else np.zeros((1, CLOSURE_ROW)), glass_rows, programs,
                             build_textures(images), load_lut() if needs_lut else empty_lut(), white, medium, media)
-    return MaterialTable(arrays, glasses, sorted(features), register_count, outside)
+    return MaterialTable(arrays, glasses, sorted(features), register_count, outside, displacement)
