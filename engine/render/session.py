@@ -141,6 +141,11 @@ class RenderSession:
                 plan = self._plan(renderer, scene, view_layer, width, height, whole=spectral_path is not None)
                 if req.sample_offset:
                     renderer.start_at_sample(req.sample_offset)
+                if req.keep_film and renderer.tables.kernel_settings.shadow_catcher:
+                    renderer.stats["warnings"].append(
+                        "Shadow catcher: a sample chunk (--chunk-seed) keeps Combined as rendered, the shadow catcher "
+                        "as an ordinary object, so merged chunks show it so; render the frame whole for its matte and "
+                        "shadow.")
                 try:
                     self._passes(renderer, plan, border or (0, 0, width, height), warnings, view.name)
                 finally:
@@ -347,7 +352,8 @@ class RenderSession:
         """The region's Combined (denoised on the final pass when asked) and passes into ``result``."""
         passes = result.layers[0].passes
         scene = self.depsgraph.scene
-        image = renderer.film.mean().astype(np.float32)
+        image, alpha = renderer.film.combined()  # with a shadow catcher, Cycles' matte (``Film.combined``)
+        image = image.astype(np.float32)
         images = renderer.pass_images()
         if denoising(scene):
             images["Noisy Image"] = image
@@ -355,7 +361,7 @@ class RenderSession:
                 prism = scene.prism
                 image = denoise_image(image, images["Denoising Albedo"], images["Denoising Normal"],
                                       prefilter=prism.denoising_prefilter, quality=prism.denoising_quality)
-        alpha = renderer.film.alpha().astype(np.float32)[..., None]  # transparent film, holdouts (else 1)
+        alpha = alpha.astype(np.float32)[..., None]  # transparent film, holdouts (else 1)
         passes["Combined"].rect = bottom_up(np.concatenate([image, alpha], axis=2))
         if "Noise" in wanted:
             images["Noise"] = renderer.film.variance_of_mean().astype(np.float32)
