@@ -31,6 +31,7 @@ from .request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
 from .stats import stats_line, timecode  # noqa: E402
 from .stereo import render_views  # noqa: E402
 from ..tracer.errors import PrismInputError  # noqa: E402
+from ..tracer.shadow_catcher_film import catcher_names  # noqa: E402
 
 
 #: During a whole-frame render the Render Result is refreshed after the first pass, then at most this
@@ -142,10 +143,11 @@ class RenderSession:
                 if req.sample_offset:
                     renderer.start_at_sample(req.sample_offset)
                 if req.keep_film and renderer.tables.kernel_settings.shadow_catcher:
+                    names = ", ".join(f"'{n}'" for n in catcher_names(tracer_scene))
                     renderer.stats["warnings"].append(
-                        "Shadow catcher: a sample chunk (--chunk-seed) keeps Combined as rendered, the shadow catcher "
-                        "as an ordinary object, so merged chunks show it so; render the frame whole for its matte and "
-                        "shadow.")
+                        f"Shadow catcher {names}: a sample chunk (--chunk-seed) keeps Combined as rendered, with the "
+                        "catcher as an ordinary object, so merged chunks show it so; render the frame whole for its "
+                        "matte and shadow.")
                 try:
                     self._passes(renderer, plan, border or (0, 0, width, height), warnings, view.name)
                 finally:

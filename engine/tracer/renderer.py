@@ -46,7 +46,7 @@ from .cryptomatte import scene_names
 from .film import Film
 from .sampler import SAMPLERS
 from .scene_tables import SceneTables
-from .shadow_catcher_film import catcher_warnings
+from .shadow_catcher_film import catcher_names, catcher_warnings
 from .spectral_film import SpectralFilm
 from .state import ChunkBuffers
 
@@ -97,7 +97,8 @@ class Renderer:
         warnings = [f"{dropped} zero-area triangle(s) dropped"] if dropped else []
         if self.camera.lens is not None:
             warnings += self.camera.lens.warnings
-        warnings += catcher_warnings(self.settings, self.tables.kernel_settings.shadow_catcher)
+        if self.tables.kernel_settings.shadow_catcher:
+            warnings += catcher_warnings(self.settings, catcher_names(self.scene))
         self.stats = {
             "rays_cast": 0,
             "seconds": 0.0,

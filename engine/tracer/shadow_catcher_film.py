@@ -61,15 +61,27 @@ def combined_with_catcher(columns: np.ndarray, catcher_pass: np.ndarray, approxi
     return matte + background * (1.0 - alpha_matte)[..., None], np.ones_like(alpha_matte)
 
 
-def catcher_warnings(settings, has_catcher: bool) -> list[str]:
-    """What a render with a shadow catcher does not do as Cycles does, for the render's warnings."""
-    if not has_catcher:
+def catcher_names(scene) -> list[str]:
+    """The names of ``scene``'s objects marked Shadow Catcher (for messages)."""
+    from .visibility import SHADOW_CATCHER
+
+    flags = scene.object_flags
+    if flags is None:
         return []
+    names = scene.object_names
+    return [names[o] if o < len(names) else f"object {o}" for o in np.flatnonzero(np.asarray(flags) & SHADOW_CATCHER)]
+
+
+def catcher_warnings(settings, names: list[str]) -> list[str]:
+    """What a render with the shadow catchers ``names`` does not do as Cycles does, for its warnings."""
+    if not names:
+        return []
+    who = "Shadow catcher " + ", ".join(f"'{n}'" for n in names[:3]) + (" …" if len(names) > 3 else "")
     out = []
     if settings.passes.light_groups:
-        out.append("Shadow catcher: the light group passes include the light the shadow catcher receives (Cycles "
-                   "leaves it out of them); Combined and the Shadow Catcher pass are as Cycles writes them.")
+        out.append(f"{who}: the light group passes include the light it receives (Cycles leaves it out of them); "
+                   "Combined and the Shadow Catcher pass are as Cycles writes them.")
     if settings.spectral_band_nm:
-        out.append("Shadow catcher: the spectral EXR holds the scene as rendered, the shadow catcher as an ordinary "
-                   "object (its matte and shadow are in the RGB Combined only).")
+        out.append(f"{who}: the spectral EXR holds it as an ordinary object (its matte and shadow are in the RGB "
+                   "Combined only).")
     return out

@@ -141,6 +141,22 @@ def test_the_pass_without_a_catcher_is_one():
     assert np.array_equal(rgb, r.film.mean().astype(np.float32)) and np.all(alpha == 1.0)
 
 
+def test_what_is_not_as_cycles_is_warned_naming_the_catcher():
+    from engine.tracer.shadow_catcher_film import catcher_names, catcher_warnings
+
+    scene = _scene()
+    scene.object_names = ["Floor", "Card"]
+    assert catcher_names(scene) == ["Floor"]
+    plain = settings()
+    assert catcher_warnings(plain, ["Floor"]) == []
+    grouped = settings(passes=PassRequest(light_groups=("key",)), spectral_band_nm=10.0)
+    messages = catcher_warnings(grouped, catcher_names(scene))
+    assert len(messages) == 2 and all(m.startswith("Shadow catcher 'Floor':") for m in messages)
+    assert "light group passes" in messages[0] and "spectral EXR" in messages[1]
+    scene.object_flags = np.array([ALL_RAYS, ALL_RAYS], np.uint8)
+    assert catcher_names(scene) == [] and catcher_warnings(grouped, []) == []
+
+
 def test_copy_path_copies_every_field():
     from engine.tracer.stages.shadow_catcher import copy_path
 
