@@ -107,6 +107,7 @@ def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
         light = _export_light(obj.name, settings_source(obj.data), instance.matrix_world)
         light.visible_camera = bool(getattr(obj, "visible_camera", False))
         light.light_group = obj.lightgroup
+        light.shadow_catcher = bool(getattr(obj, "is_shadow_catcher", True))  # lights a catcher's pass (default on)
         if light.power_w > 0 or light.irradiance_w_m2 > 0:
             lights.append(light)
     return lights

@@ -1,15 +1,16 @@
-"""An object's ray visibility and holdout (Object ▸ Visibility) → ``tracer.visibility`` flag bits."""
+"""An object's ray visibility, holdout and shadow catcher (Object ▸ Visibility) → ``tracer.visibility`` flag bits."""
 
 from __future__ import annotations
 
-from ..tracer.visibility import HOLDOUT, RAY_CAMERA, RAY_DIFFUSE, RAY_GLOSSY, RAY_SHADOW, RAY_TRANSMISSION
+from ..tracer.visibility import (HOLDOUT, RAY_CAMERA, RAY_DIFFUSE, RAY_GLOSSY, RAY_SHADOW, RAY_TRANSMISSION,
+                                 SHADOW_CATCHER)
 
 _RAYS = (("visible_camera", RAY_CAMERA), ("visible_shadow", RAY_SHADOW), ("visible_diffuse", RAY_DIFFUSE),
          ("visible_glossy", RAY_GLOSSY), ("visible_transmission", RAY_TRANSMISSION))
 
 
 def object_flags(obj, view_layer, warnings) -> int:
-    """The flags of an (evaluated) object; a warning for what Prism does not render (shadow catchers)."""
+    """The flags of an (evaluated) object (``warnings``: kept for what Prism may not render as asked)."""
     flags = 0
     for name, bit in _RAYS:
         if getattr(obj, name, True):
@@ -22,6 +23,6 @@ def object_flags(obj, view_layer, warnings) -> int:
             pass
     if holdout:
         flags |= HOLDOUT
-    if getattr(obj, "is_shadow_catcher", False) and warnings is not None:
-        warnings.append(f"Object '{obj.name}': Shadow Catcher is ignored; Prism renders it as an ordinary object.")
+    if getattr(obj, "is_shadow_catcher", False):
+        flags |= SHADOW_CATCHER  # Object ▸ Visibility ▸ Mask ▸ Shadow Catcher (``tracer.stages.shadow_catcher``)
     return flags

@@ -12,7 +12,8 @@ from __future__ import annotations
 from ..tracer.cryptomatte import DEFAULT_LEVELS
 from ..tracer.errors import PrismInputError
 from ..tracer.frame_plan import DEFAULT_TILE_SIZE, film_bytes_per_pixel, plan_frame
-from ..tracer.pass_table import DENOISING_PASSES, PASSES, VIEW_LAYER_SWITCH, FilmLayout, PassRequest, blender_passes
+from ..tracer.pass_table import (CYCLES_VIEW_LAYER_SWITCH, DENOISING_PASSES, PASSES, VIEW_LAYER_SWITCH, FilmLayout,
+                                 PassRequest, blender_passes)
 
 #: View Layer ▸ Passes ▸ Cryptomatte: the switch of each kind (``tracer.cryptomatte.KINDS``).
 CRYPTOMATTE_SWITCH = {"Object": "use_pass_cryptomatte_object", "Material": "use_pass_cryptomatte_material",
@@ -46,6 +47,8 @@ def pass_request(scene, view_layer=None, for_render: bool = False) -> PassReques
     names = []
     if layer is not None:
         names = [name for name, switch in VIEW_LAYER_SWITCH.items() if getattr(layer, switch, False)]
+        cycles = getattr(layer, "cycles", None)  # Cycles' own switches (Shadow Catcher), read where Cycles keeps them
+        names += [name for name, switch in CYCLES_VIEW_LAYER_SWITCH.items() if getattr(cycles, switch, False)]
     if prism is not None and prism.use_pass_denoising_data:
         names += DENOISING_PASSES
     if for_render and denoising(scene):

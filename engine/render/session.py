@@ -31,6 +31,7 @@ from .request import FilmSnapshot, RenderReport, RenderRequest  # noqa: E402
 from .stats import stats_line, timecode  # noqa: E402
 from .stereo import render_views  # noqa: E402
 from ..tracer.errors import PrismInputError  # noqa: E402
+from ..tracer.shadow_catcher_film import catcher_names  # noqa: E402
 
 
 #: During a whole-frame render the Render Result is refreshed after the first pass, then at most this
@@ -141,6 +142,12 @@ class RenderSession:
                 plan = self._plan(renderer, scene, view_layer, width, height, whole=spectral_path is not None)
                 if req.sample_offset:
                     renderer.start_at_sample(req.sample_offset)
+                if req.keep_film and renderer.tables.kernel_settings.shadow_catcher:
+                    names = ", ".join(f"'{n}'" for n in catcher_names(tracer_scene))
+                    renderer.stats["warnings"].append(
+                        f"Shadow catcher {names}: a sample chunk (--chunk-seed) keeps Combined as rendered, with the "
+                        "catcher as an ordinary object, so merged chunks show it so; render the frame whole for its "
+                        "matte and shadow.")
                 try:
                     self._passes(renderer, plan, border or (0, 0, width, height), warnings, view.name)
                 finally:
@@ -347,7 +354,8 @@ class RenderSession:
         """The region's Combined (denoised on the final pass when asked) and passes into ``result``."""
         passes = result.layers[0].passes
         scene = self.depsgraph.scene
-        image = renderer.film.mean().astype(np.float32)
+        image, alpha = renderer.film.combined()  # with a shadow catcher, Cycles' matte (``Film.combined``)
+        image = image.astype(np.float32)
         images = renderer.pass_images()
         if denoising(scene):
             images["Noisy Image"] = image
@@ -355,7 +363,7 @@ class RenderSession:
                 prism = scene.prism
                 image = denoise_image(image, images["Denoising Albedo"], images["Denoising Normal"],
                                       prefilter=prism.denoising_prefilter, quality=prism.denoising_quality)
-        alpha = renderer.film.alpha().astype(np.float32)[..., None]  # transparent film, holdouts (else 1)
+        alpha = alpha.astype(np.float32)[..., None]  # transparent film, holdouts (else 1)
         passes["Combined"].rect = bottom_up(np.concatenate([image, alpha], axis=2))
         if "Noise" in wanted:
             images["Noise"] = renderer.film.variance_of_mean().astype(np.float32)

@@ -22,7 +22,7 @@ from .materials.light_path import reads_light_path
 from .materials.shader_rays import traces_rays
 from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, MAT_TRANSPARENT
 from .stages.camera import ORTHOGRAPHIC, PERSPECTIVE
-from .visibility import HOLDOUT
+from .visibility import HOLDOUT, SHADOW_CATCHER
 
 
 @dataclass
@@ -182,6 +182,8 @@ def _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes) -> 
         return "light passes"
     if settings.light_path_tricks.biased:
         return "clamps or caustics toggles"
+    if (geometry.flags & SHADOW_CATCHER).any():
+        return "shadow catcher"  # light paths would have to split at it too (``stages.shadow_catcher``)
     if ray_classes is not None or (geometry.flags & HOLDOUT).any():
         return "ray visibility or holdouts"
     return ""

@@ -56,7 +56,9 @@ class ChunkTracer:
         ``spp`` samples per pixel."""
         count = stop - start
         tables = renderer.tables
-        buffers = self._buffers(count, tables)
+        # with a shadow catcher each camera path may split once: its copy takes a row after the chunk's paths
+        rows = 2 * count if tables.kernel_settings.shadow_catcher and not light else count
+        buffers = self._buffers(rows, tables)
         clamps = np.zeros(len(tables.material_table.arrays.glasses), np.int64)
         if light:
             from .stages.light_trace import light_buffers, trace_light_chunk

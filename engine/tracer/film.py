@@ -13,6 +13,9 @@ Light tracing (``stages.light_paths``) adds a pass's splats separately (``add_li
 a pixel is the sum of its splats over the number of light paths traced, whichever pixel they hit (those
 outside the region are dropped), and is added to the camera samples' mean.
 
+With a shadow catcher, Combined as Blender receives it (``combined``) and the Shadow Catcher pass are made
+from Combined's sums and the catcher's columns (``shadow_catcher_film``).
+
 Cryptomatte (``cryptomatte_film``) is summed beside, from the columns that follow the layout's film
 columns in each sample's values (object, material, weight).
 """
@@ -24,6 +27,8 @@ import numpy as np
 from .cryptomatte_film import COLUMNS as CRYPTOMATTE_COLUMNS
 from .cryptomatte_film import CryptomatteFilm
 from .frame_plan import film_bytes_per_pixel
+from .shadow_catcher_film import WIDTH as CATCHER_WIDTH
+from .shadow_catcher_film import combined_with_catcher, shadow_catcher_pass
 from .stages.film import splat, splat_alpha
 from .stages.light_splat import add_pass_splats
 
@@ -50,6 +55,7 @@ class Film:
         self._alpha = None  # sums of the samples' alpha, once a render has any transparency
         self.nan_samples = 0
         self.exposure = 1.0  # Film ▸ Exposure: scales what mean() and variance_of_mean() report, not the sums
+        self.film_transparent = False  # Film ▸ Transparent (what Combined shows with a shadow catcher)
         self.light_paths = 0  # light paths traced so far (the light splats' denominator)
         self._light_sum = self._light_sum_sq = self._light_splats = None
 
@@ -124,6 +130,35 @@ class Film:
         if self.light_paths:
             mean = mean + self._light_sum / self.light_paths
         return (mean * self.exposure).reshape(self.height, self.width, 3)
+
+    @property
+    def has_catcher(self) -> bool:
+        """The scene has a shadow catcher: Combined is made from its accumulations (``combined``)."""
+        return bool(getattr(self.layout, "catcher_objects", False))
+
+    def _catcher_columns(self) -> np.ndarray:
+        first = self.layout.kernel.catcher
+        n = np.maximum(self._count, 1)[:, None]
+        return (self._aux[:, first:first + CATCHER_WIDTH] / n).reshape(self.height, self.width, CATCHER_WIDTH)
+
+    def shadow_catcher(self) -> np.ndarray:
+        """Cycles' Shadow Catcher pass, float64 [H, W, 3] (1 where no catcher was seen; not exposed: a ratio)."""
+        if self.layout is None or self.layout.kernel.catcher < 0:
+            return np.ones((self.height, self.width, 3))
+        n = np.maximum(self._count, 1)[:, None]
+        combined = (self._sum / n).reshape(self.height, self.width, 3)
+        return shadow_catcher_pass(combined, self.alpha(), self._catcher_columns())
+
+    def combined(self) -> tuple[np.ndarray, np.ndarray]:
+        """Combined as Blender receives it: (rgb float64 [H, W, 3] exposed, alpha float64 [H, W]) — ``mean`` and
+        ``alpha``, or with a shadow catcher the matte Cycles writes (``shadow_catcher_film``: the shadow in
+        alpha, or over the background, unless the Shadow Catcher pass is on)."""
+        if not self.has_catcher:
+            return self.mean(), self.alpha()
+        approximate = "Shadow Catcher" not in self.layout.request.passes
+        rgb, alpha = combined_with_catcher(self._catcher_columns(), self.shadow_catcher(), approximate,
+                                           self.film_transparent)
+        return rgb * self.exposure, alpha
 
     def aux_mean(self) -> np.ndarray:
         """The pass columns per pixel, float64 [H, W, layout width]: the mean of each over the samples."""

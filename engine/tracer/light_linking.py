@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .catcher_lights import excluded_from_catcher
 from .jit import inlined
 from .state import PREV_DELTA
 
@@ -122,7 +123,10 @@ def hit_counts(state, i, settings, lights, emitter):
     """Whether emission from ``emitter`` (as ``emitter_sets`` numbers them) found by path ``i``'s
     BSDF-sampled ray counts: always without linking and on camera rays (receiver -1); else the emitter must
     light the last vertex's object, and a shadow-linked emitter counts only after a delta lobe (light
-    sampling carries it otherwise)."""
+    sampling carries it otherwise). A shadow catcher's pass copy sees only the catcher's emitters
+    (``catcher_lights``)."""
+    if excluded_from_catcher(state, i, settings, lights, emitter):
+        return False
     if not (settings.light_linking or settings.shadow_linking):
         return True
     receiver = state.receiver[i]

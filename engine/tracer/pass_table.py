@@ -28,6 +28,7 @@ from .cryptomatte import DEFAULT_LEVELS
 from .cryptomatte import KINDS as CRYPTOMATTE_KINDS
 from .cryptomatte import pass_names as cryptomatte_pass_names
 from .cryptomatte_film import COLUMNS as CRYPTOMATTE_COLUMNS
+from .shadow_catcher_film import WIDTH as CATCHER_WIDTH
 
 BACKGROUND_DEPTH_M = 1e10  # Depth of pixels that see no surface (Blender's value)
 
@@ -58,6 +59,7 @@ BUFFERS = {b.key: b for b in (
     Buffer("uv"),  # u, v, 1 of the first surface's render UV map
     Buffer("ao", 1),  # 1 where the first surface's ambient-occlusion ray is free
     Buffer("vector", 5),  # the first surface's motion in pixels to the previous / from the next frame, and 1
+    Buffer("shadow_catcher", CATCHER_WIDTH),  # the shadow catcher's accumulations (``shadow_catcher_film``)
 
     *(Buffer(key, spectral=True) for key in LIGHT_SLOTS),
 )}
@@ -67,8 +69,10 @@ BUFFERS = {b.key: b for b in (
 #: count (the buffer's last channel), 1e10 where no sample counted; FIRST: the same, 0 where none (values
 #: of sample 0 only); SURFACE: the same, 0 where none (the mean over the samples that hit a surface, as
 #: Cycles divides its Vector pass by its motion weight); COMPLEMENT: 1 - the mean; GREY: a 1-wide mean as
-#: R = G = B.
-MEAN, DEPTH, FIRST, SURFACE, COMPLEMENT, GREY = "mean", "depth", "first", "surface", "complement", "grey"
+#: R = G = B; CATCHER: Cycles' shadow catcher ratio, made with Combined by ``shadow_catcher_film`` (the film
+#: writes it, not ``FilmLayout.images``).
+MEAN, DEPTH, FIRST, SURFACE, COMPLEMENT, GREY, CATCHER = ("mean", "depth", "first", "surface", "complement", "grey",
+                                                          "catcher")
 
 
 @dataclass(frozen=True)
@@ -126,6 +130,9 @@ PASSES = {p.name: p for p in (
     Pass("TransDir", "RGB", "COLOR", "transmission_direct", "transmission_color"),
     Pass("TransInd", "RGB", "COLOR", "transmission_indirect", "transmission_color"),
     Pass("TransCol", "RGB", "COLOR", "transmission_color", meaning="transmittance of the refracting lobes"),
+    Pass("Shadow Catcher", "RGB", "COLOR", "shadow_catcher", meaning="on shadow catchers, their light with the "
+         "other objects divided by their light without them (below 1 in shadows); 1 elsewhere",
+         reduce=CATCHER),
 )}
 
 #: Blender's view-layer switch of each pass (``ViewLayer.use_pass_*``), for the Blender side.
@@ -140,6 +147,8 @@ VIEW_LAYER_SWITCH = {
     "TransDir": "use_pass_transmission_direct", "TransInd": "use_pass_transmission_indirect",
     "TransCol": "use_pass_transmission_color",
 }
+#: Passes whose switch is in Cycles' view-layer settings (``ViewLayer.cycles``), for the Blender side.
+CYCLES_VIEW_LAYER_SWITCH = {"Shadow Catcher": "use_pass_shadow_catcher"}
 DENOISING_PASSES = ("Denoising Normal", "Denoising Albedo", "Denoising Depth")
 LIGHT_GROUP_PREFIX = "Combined_"
 
@@ -180,21 +189,25 @@ class PassRequest:
 #: spectrum id of a white emitter (reflectances are converted through it); ``cryptomatte`` the first of the
 #: columns after the film's (object and material index + 1 and weight of the surface a camera sample is
 #: attributed to: ``stages.cryptomatte_write``; not summed by the film: ``cryptomatte_film``), -1 when no
-#: Cryptomatte pass is on.
+#: Cryptomatte pass is on; ``catcher`` the first of the shadow catcher's columns (``shadow_catcher_film``), -1
+#: when the scene has no catcher and its pass is off.
 PassLayout = namedtuple(
     "PassLayout",
     "depth position normal denoising_normal denoising_depth denoising_albedo light group groups aov aovs "
-    "columns slots rgb_column white mist object_index material_index uv ao vector cryptomatte",
+    "columns slots rgb_column white mist object_index material_index uv ao vector cryptomatte catcher",
 )
 
 
 class FilmLayout:
-    """Where every enabled buffer lives in the film's ``aux`` columns, and the kernels' ``PassLayout``."""
+    """Where every enabled buffer lives in the film's ``aux`` columns, and the kernels' ``PassLayout``.
+    ``catcher_objects``: the scene has a shadow catcher (its accumulations are kept, and Combined is made
+    from them, as Cycles does, even when its pass is off)."""
 
-    def __init__(self, request: PassRequest, white_spectrum: int = -1):
+    def __init__(self, request: PassRequest, white_spectrum: int = -1, catcher_objects: bool = False):
         request.validate()
         self.request = request
-        wanted = set()
+        self.catcher_objects = bool(catcher_objects)
+        wanted = {"shadow_catcher"} if catcher_objects else set()
         for name in request.passes:
             p = PASSES[name]
             wanted.add(p.buffer)
@@ -232,7 +245,7 @@ class FilmLayout:
             slot["group:" + request.light_groups[0]] if groups else -1, groups,
             aov_column if self.aov_names else -1, len(self.aov_names), column, len(self.slot_keys), rgb_column,
             int(white_spectrum), col["mist"], col["object_index"], col["material_index"], col["uv"], col["ao"],
-            col["vector"], self.cryptomatte_column)
+            col["vector"], self.cryptomatte_column, col["shadow_catcher"])
 
     def images(self, aux_mean: np.ndarray, exposure: float = 1.0) -> dict[str, np.ndarray]:
         """Every requested pass from the film's per-pixel ``aux_mean`` [..., width] (sums divided by the
@@ -241,6 +254,8 @@ class FilmLayout:
         out = {}
         for name in self.request.passes:
             p = PASSES[name]
+            if p.reduce == CATCHER:
+                continue  # made with Combined (``Film.shadow_catcher``)
             image = self._buffer(aux_mean, p.buffer)
             if p.reduce in (DEPTH, FIRST, SURFACE):  # sums over the samples that counted, and their count
                 hits = image[..., -1:]

@@ -46,6 +46,7 @@ from .cryptomatte import scene_names
 from .film import Film
 from .sampler import SAMPLERS
 from .scene_tables import SceneTables
+from .shadow_catcher_film import catcher_names, catcher_warnings
 from .spectral_film import SpectralFilm
 from .state import ChunkBuffers
 
@@ -96,6 +97,8 @@ class Renderer:
         warnings = [f"{dropped} zero-area triangle(s) dropped"] if dropped else []
         if self.camera.lens is not None:
             warnings += self.camera.lens.warnings
+        if self.tables.kernel_settings.shadow_catcher:
+            warnings += catcher_warnings(self.settings, catcher_names(self.scene))
         self.stats = {
             "rays_cast": 0,
             "seconds": 0.0,
@@ -214,6 +217,7 @@ class Renderer:
         if self._film is None:
             self._film = Film(self.width, self.height, self.tables.pass_layout, self.region)
             self._film.exposure = float(self.settings.film_exposure)
+            self._film.film_transparent = bool(self.settings.film_transparent)
         return self._film
 
     def _region_pixel_list(self) -> np.ndarray:
@@ -381,13 +385,14 @@ class Renderer:
         return self.film.in_frame(self.film.counts)
 
     def image_rgb(self) -> np.ndarray:
-        """Mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top (0 outside the region)."""
-        return self.film.in_frame(self.film.mean().astype(np.float32))
+        """Combined: mean radiance, scene-linear Rec.709, float32 [H, W, 3], row 0 = top (0 outside the
+        region); with a shadow catcher, as Cycles makes it (``Film.combined``)."""
+        return self.film.in_frame(self.film.combined()[0].astype(np.float32))
 
     def image_alpha(self) -> np.ndarray:
-        """Mean alpha, float32 [H, W], row 0 = top (``image_rgb`` is premultiplied by it; 1 outside the
+        """Combined's alpha, float32 [H, W], row 0 = top (``image_rgb`` is premultiplied by it; 1 outside the
         region)."""
-        return self.film.in_frame(self.film.alpha().astype(np.float32), fill=1.0)
+        return self.film.in_frame(self.film.combined()[1].astype(np.float32), fill=1.0)
 
     def variance_rgb(self) -> np.ndarray:
         """Per-pixel variance of the mean estimate, float32 [H, W, 3] (0 outside the region)."""
@@ -397,6 +402,8 @@ class Renderer:
         """The requested passes of the region (``settings.passes``): Blender pass name → float32 [h, w, C]."""
         layout = self.tables.pass_layout
         images = layout.images(self.film.aux_mean(), exposure=self.settings.film_exposure) if layout.width else {}
+        if "Shadow Catcher" in layout.request.passes:
+            images["Shadow Catcher"] = self.film.shadow_catcher().astype(np.float32)
         if layout.cryptomatte_column >= 0:
             images.update(self.film.cryptomatte_images(scene_names(self.scene)))
         return images

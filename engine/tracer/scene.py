@@ -105,6 +105,7 @@ class Light:
     spread_rad: float = np.pi
     visible_camera: bool = False
     light_group: str = ""  # Blender's Object ▸ Shading ▸ Light Group ("" = none)
+    shadow_catcher: bool = True  # Object ▸ Visibility ▸ Shadow Catcher: it lights the shadow catcher pass
 
 
 @dataclass

@@ -45,7 +45,7 @@ from .spheres import rendered_rows
 from .stages.bounce_loop import SceneArrays
 from .stages.camera import ORTHOGRAPHIC
 from .stages.settings import KernelSettings
-from .visibility import HOLDOUT
+from .visibility import HOLDOUT, SHADOW_CATCHER
 from .visibility_accel import RayClassAccel, needs_ray_classes
 
 
@@ -146,13 +146,16 @@ class SceneTables:
         materials = self.material_table.arrays
         groups = tuple(settings.passes.light_groups)
         triangles = len(self.geometry.triangles)  # spheres follow them in ``material``; none is light-sampled
+        catcher = (self.geometry.flags & SHADOW_CATCHER) != 0  # every primitive (triangles, then spheres)
+        has_catcher = bool(catcher.any())
         self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
                                         self.geometry.material[:triangles], materials.emission_strength, camera.origin,
                                         light_groups=groups,
                                         triangle_group=_triangle_groups(scene, self._original_triangle, groups),
-                                        triangle_objects=_row_objects(scene, self._original_triangle))
+                                        triangle_objects=_row_objects(scene, self._original_triangle),
+                                        triangle_catcher=catcher if has_catcher else None)
         white = spectra.emission(SpectrumSpec(kind="rgb", rgb=(1.0, 1.0, 1.0))) if not settings.passes.empty else -1
-        self.pass_layout = FilmLayout(settings.passes, white)
+        self.pass_layout = FilmLayout(settings.passes, white, catcher_objects=has_catcher)
         self.aov_table = aov_table(scene.materials, settings.passes.aovs)
         self.aov_registers = aov_registers(scene.materials, settings.passes.aovs)
         self.first_hit = first_hit_tables(scene.data_passes, self._original_triangle, len(scene.materials),
@@ -176,8 +179,10 @@ class SceneTables:
             has_media=has_media, outside_medium=int(self.material_table.outside_medium),
             camera_medium=self._camera_medium(scene, camera) if has_media else -1,
             equiangular=has_media and has_positional_lights(self.light_table.arrays),
-            **_linking_settings(self.light_table.arrays), light_path=reads_light_path(materials))
-        self.needs_alpha = bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
+            **_linking_settings(self.light_table.arrays), light_path=reads_light_path(materials),
+            shadow_catcher=has_catcher)
+        self.needs_alpha = (bool(settings.film_transparent) or bool((self.geometry.flags & HOLDOUT).any())
+                            or has_catcher)
         self.describe(scene, settings, camera)
 
     def _camera_medium(self, scene, camera) -> int:

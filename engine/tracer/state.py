@@ -17,7 +17,9 @@ deterministic). Embree reads the queues' float32 rays directly.
   scattering yet but transparent glass — so the background and holdouts make it transparent;
   ``LAST_DIFFUSE``, ``LAST_TRANSMISSION``: what the last scattering was (neither: glossy), for ray
   visibility); ``MEDIUM_VERTEX``: this bounce's vertex is a collision in the path's medium at ``hit_t``
-  along its ray, not a surface (``media.segment``);
+  along its ray, not a surface (``media.segment``); ``CATCHER_HIT``: the camera path met a shadow catcher
+  and was split there (it goes on to Combined only); ``CATCHER_PASS``: the copy made at that split, which
+  sees only shadow catchers and whose light goes to the catcher's accumulation (``stages.shadow_catcher``);
 - ``medium`` int32: the medium the path's ray travels in (``MaterialArrays.media`` row, -1: none);
 - ``throughput`` and ``radiance`` float64 [n, K]; ``eta_scale`` float64 (Π eta'² of refractions, for
   Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample); ``min_pdf`` float64
@@ -55,6 +57,8 @@ CAMERA_PATH = 128
 LAST_DIFFUSE = 256
 LAST_TRANSMISSION = 512
 MEDIUM_VERTEX = 1024
+CATCHER_HIT = 2048
+CATCHER_PASS = 4096
 
 _PATH_FIELDS = (
     ("pixel", np.int64, ()), ("sample", np.int64, ()), ("seed", np.int64, ()),

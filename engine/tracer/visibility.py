@@ -1,8 +1,9 @@
 """Which rays see an object (Cycles' Object ▸ Visibility ▸ Ray Visibility) and holdouts, per triangle.
 
 Bits of ``Geometry.flags``: ``RAY_CAMERA``, ``RAY_SHADOW``, ``RAY_DIFFUSE``, ``RAY_GLOSSY``,
-``RAY_TRANSMISSION`` (the object is seen by such rays) and ``HOLDOUT`` (Object ▸ Visibility ▸ Holdout,
-or a Holdout material: camera paths find a transparent hole there).
+``RAY_TRANSMISSION`` (the object is seen by such rays), ``HOLDOUT`` (Object ▸ Visibility ▸ Holdout,
+or a Holdout material: camera paths find a transparent hole there) and ``SHADOW_CATCHER`` (Object ▸
+Visibility ▸ Mask ▸ Shadow Catcher: ``stages.shadow_catcher``).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ RAY_DIFFUSE = 4
 RAY_GLOSSY = 8
 RAY_TRANSMISSION = 16
 HOLDOUT = 32
+SHADOW_CATCHER = 64
 ALL_RAYS = RAY_CAMERA | RAY_SHADOW | RAY_DIFFUSE | RAY_GLOSSY | RAY_TRANSMISSION
 
 

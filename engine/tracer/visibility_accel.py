@@ -5,6 +5,10 @@ scene per distinct set of visible triangles (most scenes: one or two), with the 
 of each of its triangles. A queue's rays are grouped by kind — camera rays at the first bounce, then
 by what the path's last scattering was (``state.LAST_DIFFUSE``, ``LAST_TRANSMISSION``, else glossy) —
 and each group is traced against its scene. Shadow rays see the shadow-visible triangles.
+
+With a shadow catcher, the copies of camera paths that shade it for its pass (``state.CATCHER_PASS``,
+``stages.shadow_catcher``) see only shadow catchers, each kind of ray the catchers visible to it, as Cycles
+shifts their visibility (``SHADOW_CATCHER_PATH_VISIBILITY``); their shadow rays likewise.
 """
 
 from __future__ import annotations
@@ -13,15 +17,17 @@ import numpy as np
 
 from .accel import Accel
 from .geometry import Geometry
-from .state import LAST_DIFFUSE, LAST_TRANSMISSION
-from .visibility import ALL_RAYS, RAY_CAMERA, RAY_DIFFUSE, RAY_GLOSSY, RAY_SHADOW, RAY_TRANSMISSION
+from .state import CATCHER_PASS, LAST_DIFFUSE, LAST_TRANSMISSION
+from .visibility import ALL_RAYS, RAY_CAMERA, RAY_DIFFUSE, RAY_GLOSSY, RAY_SHADOW, RAY_TRANSMISSION, SHADOW_CATCHER
 
 _CLASSES = (RAY_CAMERA, RAY_DIFFUSE, RAY_GLOSSY, RAY_TRANSMISSION, RAY_SHADOW)
 
 
 def needs_ray_classes(geometry) -> bool:
-    """True when some triangle hides from some kind of ray."""
-    return bool(len(geometry.flags)) and bool(((geometry.flags & ALL_RAYS) != ALL_RAYS).any())
+    """True when some triangle hides from some kind of ray, or some object is a shadow catcher (whose
+    pass's paths see only catchers)."""
+    flags = geometry.flags
+    return bool(len(flags)) and bool(((flags & ALL_RAYS) != ALL_RAYS).any() or (flags & SHADOW_CATCHER).any())
 
 
 class _Subset:
@@ -54,18 +60,23 @@ class RayClassAccel:
         self._full = full
         self._scenes = {}
         self._of_class = {}
+        catcher = (geometry.flags & SHADOW_CATCHER) != 0
+        self.catchers = bool(catcher.any())
         for ray in _CLASSES:
-            chosen = (geometry.flags & ray) != 0
-            if chosen.all():
-                self._of_class[ray] = None
-                continue
-            key = chosen.tobytes()
-            if key not in self._scenes:
-                self._scenes[key] = _Subset(geometry, chosen)
-            self._of_class[ray] = self._scenes[key]
+            for pass_path in ((False, True) if self.catchers else (False,)):
+                chosen = (geometry.flags & ray) != 0
+                if pass_path:
+                    chosen &= catcher
+                if chosen.all():
+                    self._of_class[ray, pass_path] = None
+                    continue
+                key = chosen.tobytes()
+                if key not in self._scenes:
+                    self._scenes[key] = _Subset(geometry, chosen)
+                self._of_class[ray, pass_path] = self._scenes[key]
 
-    def _query(self, ray, rays, count, kind):
-        subset = self._of_class[ray]
+    def _query(self, ray, rays, count, kind, pass_path=False):
+        subset = self._of_class[ray, pass_path]
         accel = self._full if subset is None else subset.accel
         if kind == "occluded":
             return accel.occluded(rays, count)
@@ -74,27 +85,54 @@ class RayClassAccel:
 
     def intersect(self, rays, count, state, depth):
         """Closest hits of the first ``count`` rays, each against what its kind of ray sees."""
-        if depth == 0:
+        if depth == 0:  # camera rays: no path has met a shadow catcher yet
             return self._query(RAY_CAMERA, rays, count, "closest")
         flags = state.flags[rays.path[:count]]
         kinds = np.where(flags & LAST_TRANSMISSION, RAY_TRANSMISSION, np.where(flags & LAST_DIFFUSE, RAY_DIFFUSE,
                                                                                  RAY_GLOSSY))
+        pass_paths = (flags & CATCHER_PASS) != 0
         triangle = np.empty(count, np.int32)
         t, u, v = (np.empty(count, np.float32) for _ in range(3))
         for ray in (RAY_DIFFUSE, RAY_GLOSSY, RAY_TRANSMISSION):
-            chosen = np.flatnonzero(kinds == ray)
-            if chosen.size == 0:
-                continue
-            group = _Group(rays, chosen)
-            hit = self._query(ray, group, len(chosen), "closest")
-            triangle[chosen], t[chosen], u[chosen], v[chosen] = hit
+            for pass_path in ((False, True) if self.catchers else (False,)):
+                chosen = np.flatnonzero((kinds == ray) & (pass_paths == pass_path))
+                if chosen.size == 0:
+                    continue
+                group = _Group(rays, chosen)
+                hit = self._query(ray, group, len(chosen), "closest", pass_path)
+                triangle[chosen], t[chosen], u[chosen], v[chosen] = hit
         return triangle, t, u, v
 
-    def occluded(self, rays, count):
-        return self._query(RAY_SHADOW, rays, count, "occluded")
+    def occluded(self, rays, count, state=None):
+        """Whether each of the first ``count`` shadow rays is blocked (``state``: the paths, whose catcher
+        pass copies see only catchers; None: no such path)."""
+        return self._shadow_query(rays, count, state, "occluded")
 
-    def intersect_before(self, rays, count):
-        return self._query(RAY_SHADOW, rays, count, "before")
+    def intersect_before(self, rays, count, state=None):
+        return self._shadow_query(rays, count, state, "before")
+
+    def _shadow_query(self, rays, count, state, kind):
+        if not self.catchers or state is None:
+            return self._query(RAY_SHADOW, rays, count, kind)
+        pass_paths = (state.flags[rays.path[:count]] & CATCHER_PASS) != 0
+        if not pass_paths.any():
+            return self._query(RAY_SHADOW, rays, count, kind)
+        out = None
+        for pass_path in (False, True):
+            chosen = np.flatnonzero(pass_paths == pass_path)
+            if chosen.size == 0:
+                continue
+            got = self._query(RAY_SHADOW, _Group(rays, chosen), len(chosen), kind, pass_path)
+            if kind == "occluded":
+                if out is None:
+                    out = np.empty(count, np.asarray(got).dtype)
+                out[chosen] = got
+            else:
+                if out is None:
+                    out = (np.empty(count, np.int32),) + tuple(np.empty(count, np.float32) for _ in range(3))
+                for whole, part in zip(out, got):
+                    whole[chosen] = part
+        return out
 
 
 class _Group:

@@ -29,10 +29,14 @@ from .sun import sun_power, sun_row
 #: not light-sampled); ``camera_environment`` the background camera rays see (``World.camera_background``, a
 #: backplate; else ``environment`` itself) and ``backplate`` whether it differs; ``group`` int32 [rows] and
 #: ``world_group``: light group index of each light and of the world (-1: none); ``links`` the
-#: ``light_linking.LinkTables`` (empty without light or shadow linking).
+#: ``light_linking.LinkTables`` (empty without light or shadow linking); ``catcher_excluded`` uint8 [rows +
+#: triangles] (emitters numbered as ``light_linking.emitter_sets`` numbers them): 1 for a light whose object is
+#: not a shadow catcher (Object ▸ Visibility ▸ Shadow Catcher of a light, on by default) and an emissive
+#: triangle of an object that is not one: Cycles' SHADER_EXCLUDE_SHADOW_CATCHER, they do not light the shadow
+#: catcher's pass (``stages.shadow_catcher``); [1] of 0 in scenes without a catcher.
 LightArrays = namedtuple(
     "LightArrays", "rows select_prob select_cdf hittable mesh mesh_index environment environment_index group "
-    "world_group links camera_environment backplate"
+    "world_group links camera_environment backplate catcher_excluded"
 )
 
 
@@ -87,17 +91,20 @@ def _power(row, scene_radius_m, mesh_total, environment_total):
 
 
 def build_lights(scene, spectra, vertices, triangles, triangle_material, emission_strength, offset,
-                 use_mesh_lights=True, light_groups=(), triangle_group=None, triangle_objects=None) -> LightTable:
+                 use_mesh_lights=True, light_groups=(), triangle_group=None, triangle_objects=None,
+                 triangle_catcher=None) -> LightTable:
     """Rows for the scene's lights; ``vertices``/``triangles``/``triangle_material`` are the render's
     camera-relative geometry, ``emission_strength`` [M] the materials' (0 = not emissive), ``offset``
     the camera position subtracted from every position. ``light_groups``: the names of the light groups
     with a pass (lights of another group count in none); ``triangle_group`` [T] the group index of each
     triangle's object (None: none). ``triangle_objects`` [T]: the object of each triangle, for
-    ``scene.light_links`` (None: no linking)."""
+    ``scene.light_links`` (None: no linking). ``triangle_catcher`` bool [T]: whether each triangle's object
+    is a shadow catcher (None: the scene has none)."""
     group_index = {name: g for g, name in enumerate(light_groups)}
-    rows, names, kinds, groups, blender_lights = [], [], [], [], []
+    rows, names, kinds, groups, blender_lights, excluded = [], [], [], [], [], []
     for light in scene.lights:
         if _emits(light):
+            excluded.append(not getattr(light, "shadow_catcher", True))
             rows.append(_light_row(light, spectra, offset))
             names.append(light.name)
             blender_lights.append(light.name)
@@ -155,9 +162,21 @@ def build_lights(scene, spectra, vertices, triangles, triangle_material, emissio
                          environment, environment_index, np.array(groups if n else [-1], np.int32), world_group,
                          link_tables(getattr(scene, "light_links", None), triangle_objects,
                                      blender_lights + [None] * (n - len(blender_lights))),
-                         camera_environment, backplate is not None)
+                         camera_environment, backplate is not None,
+                         _catcher_excluded(excluded, max(n, 1), triangle_catcher))
     return LightTable(arrays, names, kinds, power, radius, _world_description(world, environment_index),
                       _world_emission(world, environment_total, guide_spectrum, radius))
+
+
+def _catcher_excluded(lights_excluded, rows, triangle_catcher):
+    """``LightArrays.catcher_excluded``: Blender lights as their objects say, the emissive meshes' row, the
+    world and its suns included (Cycles makes the world a catcher), triangles of non-catcher objects out."""
+    if triangle_catcher is None:
+        return np.zeros(1, np.uint8)
+    out = np.zeros(rows + len(triangle_catcher), np.uint8)
+    out[:len(lights_excluded)] = np.asarray(lights_excluded, bool)
+    out[rows:] = ~np.asarray(triangle_catcher, bool)
+    return out
 
 
 def _world_emission(world, environment_total, guide_spectrum, radius):

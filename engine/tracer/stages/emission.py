@@ -36,6 +36,7 @@ from ..visibility import HOLDOUT
 from .clamp import clamp_factor
 from .mis import emitter_weight
 from .pass_writes import camera_slot, deposit, features_done
+from .shadow_catcher import background_seen, share_emission, split_at_catcher, splits_here
 
 
 @inlined
@@ -103,6 +104,7 @@ def _add_background(state, i, d, lights, spectra, settings, depth, passes, layou
             for k in range(state.radiance.shape[1]):
                 value = state.throughput[i, k] * weight * environment.value(env, spectra, fp, state.wavelength[i, k])
                 state.radiance[i, k] += value
+                background_seen(state, i, settings, passes, k, value)
                 if layout.columns > 0:
                     deposit(passes, layout, i, k, value, lights.world_group, slot, True)
     for index in range(lights.rows.shape[0] if lights.select_prob.shape[0] > 0 else 0):
@@ -158,6 +160,9 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
             if layout.columns > 0:
                 features_done(passes, layout, i)
             continue
+        copy = -1  # a shadow catcher's copy of the path (``stages.shadow_catcher``)
+        if settings.shadow_catcher and shade_next and splits_here(state, i, geometry, triangle):
+            copy = split_at_catcher(state, i, triangle, hit_u[j], hit_v[j], t, lights, spectra, passes, layout, d)
         material = geometry.material[triangle]
         if materials.flags[material] & MAT_EMISSIVE and hit_counts(state, i, settings, lights,
                                                                    lights.rows.shape[0] + triangle):
@@ -193,4 +198,8 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
             state.hit_t[i] = t
             surface.path[listed] = i
             listed += 1
+            if copy >= 0:
+                share_emission(state, i, copy, passes)
+                surface.path[listed] = copy
+                listed += 1
     return listed

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from ..bsdf.dispatch import bsdf_evaluate
+from ..catcher_lights import excluded_from_catcher
 from ..geometry import offset_origin
 from ..jit import inlined, kernel
 from ..light_linking import ALL_SETS, emitter_sets, in_sets
@@ -45,7 +46,7 @@ def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, cou
     lam = state.wavelength[i]
     wi, dist, pdf_light, delta, group, emitter = sample_light(lights, materials, spectra, geometry, p, u_select, u1,
                                                               u2, lam, li, shading.emitter_rows, shading.registers)
-    if not pdf_light > 0.0:
+    if not pdf_light > 0.0 or excluded_from_catcher(state, i, settings, lights, emitter):
         return 0
     shadow_sets = ALL_SETS
     if settings.light_linking or settings.shadow_linking:

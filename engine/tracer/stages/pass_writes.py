@@ -8,6 +8,9 @@ Per path (``PassData``): ``values`` [n, columns] (data passes and AOVs, written 
 render's space, m), ``render_origin`` [3] (world position of the render space's origin, m) and
 ``aov_table`` [materials, AOVs, 4] (what each material's AOV Outputs write) and ``aov_registers``
 [materials, AOVs, 2] (where an AOV that varies per hit is in the material's registers, ``pass_table.aov_registers``).
+With a shadow catcher (``stages.shadow_catcher``): ``catcher_matte`` / ``catcher_background`` [n, K] (a path's
+radiance at its split, the world seen along its camera ray), ``catcher_copy`` int32 [n] (the row of its copy,
+-1: none) and ``catcher_next`` int64 [1] (the next free row).
 
 The light split (Cycles' meaning): light that reaches the camera straight from an emitter or the world
 is Emission or Environment; any other light is attributed to the lobes of the first surface it met,
@@ -34,14 +37,15 @@ from ..jit import inlined, kernel
 from ..sampler import sample_2d
 from ..spectra.table import spectrum_value
 from ..spectra.wavelength_sampling import radiance_to_rgb
-from ..state import new_ray_queue
+from ..state import CATCHER_HIT, new_ray_queue
 from ..vec3 import tangents, to_world
 from ..warps import cosine_hemisphere
 
 PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table "
                                    "aov_registers "
                                    "first_hit_data object_index material_index triangle_uv triangle_motion "
-                                   "world_to_raster ao_rays ao_free ao_weight ao_count row_object")
+                                   "world_to_raster ao_rays ao_free ao_weight ao_count row_object "
+                                   "catcher_matte catcher_background catcher_copy catcher_next")
 
 #: The sampler slot of the AO pass's direction (2-D): far past any bounce's slots.
 SLOT_AO = 1 << 20
@@ -62,13 +66,15 @@ def new_pass_data(n: int, k: int, film_layout) -> PassData:
     light = n if layout.light >= 0 else 0
     features = n if layout.denoising_albedo >= 0 or layout.denoising_normal >= 0 else 0
     ao = n if layout.ao >= 0 else 0
+    catcher = n if layout.catcher >= 0 else 0
     return PassData(np.empty((n, layout.columns)), np.zeros((n, layout.slots, k)), np.zeros((light, k)),
                     np.zeros((light, 2, 3, k)), np.zeros(features, np.int8),
                     np.eye(3), np.zeros(3), np.zeros(3), np.zeros((1, len(film_layout.aov_names), 4)),
                     np.full((1, len(film_layout.aov_names), 2), -1, np.int32),
                     np.zeros(FIRST_HIT_DATA), np.zeros(0, np.float32), np.zeros(1), np.zeros((0, 3, 3), np.float32),
                     np.zeros((0, 2, 3, 3), np.float32), np.zeros((3, 4, 4)), new_ray_queue(ao), np.zeros(ao, np.int32),
-                    np.zeros(ao), np.zeros(1, np.int64), np.zeros(0))
+                    np.zeros(ao), np.zeros(1, np.int64), np.zeros(0), np.zeros((catcher, k)), np.zeros((catcher, k)),
+                    np.full(catcher, -1, np.int32), np.zeros(1, np.int64))
 
 
 @kernel
@@ -324,6 +330,8 @@ def route_kernel(state, passes, layout, count, step):
     k_count = state.radiance.shape[1]
     base = layout.light
     for i in range(count):
+        if state.flags[i] & CATCHER_HIT:
+            continue  # a path split at a shadow catcher writes Combined only, as in Cycles (``stages.shadow_catcher``)
         for k in range(k_count):
             now = state.radiance[i, k]
             if step == 0:

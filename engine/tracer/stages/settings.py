@@ -24,12 +24,13 @@ from collections import namedtuple
 #: reads Blender's Light Path node (``materials.light_path``): paths keep their ray kind and bounce counts;
 #: ``shaded_normals``: the first surface's Normal and AO passes take its shading normal (Bump, Normal Map)
 #: instead of the interpolated one, as Cycles bakes them (a bake sets it: ``Renderer.set_bake_rays``;
-#: renders keep False).
+#: renders keep False); ``shadow_catcher``: some object is a shadow catcher: camera paths split where they
+#: meet one (``stages.shadow_catcher``); scenes without one skip that code.
 KernelSettings = namedtuple(
     "KernelSettings",
     "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha "
     "clamping clamp_direct clamp_indirect caustics_filtered caustics_reflective caustics_refractive wavelengths "
     "has_media outside_medium camera_medium equiangular filter_glossy light_linking shadow_linking light_path "
-    "shaded_normals",
-    defaults=(False,),
+    "shaded_normals shadow_catcher",
+    defaults=(False, False),
 )

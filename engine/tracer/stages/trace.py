@@ -20,6 +20,7 @@ from . import pass_writes as _passes
 from . import real_lens as _real_lens
 from . import shade as _shade
 from . import shadow as _shadow
+from . import shadow_catcher as _shadow_catcher
 from .shadow import MAX_FILM_LAYERS
 
 # Called per bounce of every chunk: launched without the dispatcher's per-call typing (``jit.Launch``).
@@ -35,6 +36,8 @@ reset_kernel = Launch(_passes.reset_kernel)
 convert_kernel = Launch(_passes.convert_kernel)
 ao_kernel = Launch(_passes.ao_kernel)
 film_kernel = Launch(_film.film_kernel)
+catcher_start_kernel = Launch(_shadow_catcher.catcher_start_kernel)
+catcher_film_kernel = Launch(_shadow_catcher.catcher_film_kernel)
 bounce_loop_kernel = Launch(_bounce_loop.bounce_loop_kernel)
 
 _ROUTE_FIRST_SHADOWS, _ROUTE_SECOND_EMISSION, _ROUTE_END = (_bounce_loop.ROUTE_FIRST_SHADOWS,
@@ -46,18 +49,20 @@ def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
     tables = renderer.tables
     accel = tables.accel if tables.ray_classes is None else tables.ray_classes
     rays = 0
+    # a shadow catcher's copies see only catchers (``visibility_accel``): their paths' flags say which
+    paths = (state,) if tables.ray_classes is not None else ()
     if (tables.analysis.see_through_films or tables.analysis.see_through_cutouts
             or tables.kernel_settings.has_media or tables.kernel_settings.shadow_linking):
         for layer in range(MAX_FILM_LAYERS):
             if count == 0:
                 return rays
-            hit = accel.intersect_before(shadows.rays, count)
+            hit = accel.intersect_before(shadows.rays, count, *paths)
             rays += count
             count = film_layer_kernel(state, shadows, count, *hit, tables.geometry, tables.material_table.arrays,
                                       passes, layout, tables.spectra, scratch, tables.light_table.arrays, layer,
                                       tables.kernel_settings)
     if count:
-        occluded = accel.occluded(shadows.rays, count)
+        occluded = accel.occluded(shadows.rays, count, *paths)
         rays += count
         shadow_kernel(state, shadows, count, occluded, passes, layout)
     return rays
@@ -92,6 +97,8 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     layout = tables.pass_layout.kernel
     if layout.columns:
         reset_kernel(passes, layout, count)
+    if settings.shadow_catcher:  # its scenes trace here, with ray classes (``visibility_accel``)
+        catcher_start_kernel(passes, count)
     see_through = bool(tables.analysis.see_through_films or tables.analysis.see_through_cutouts
                         or tables.kernel_settings.has_media or tables.kernel_settings.shadow_linking)
     if tables.ray_classes is None and tables.accel.compiled_loops:
@@ -139,4 +146,6 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
     film_kernel(state, count, wavelengths, buffers.rgb)
     if layout.slots:
         convert_kernel(state, passes, layout, wavelengths, count)
+    if settings.shadow_catcher:
+        catcher_film_kernel(state, passes, layout, wavelengths, buffers.rgb, count)
     return rays_cast, int(rejected[0])
