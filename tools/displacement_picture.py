@@ -10,9 +10,7 @@ low sun and a dim sky. Prints each image's mean luminance and their ratio (absol
 
 from __future__ import annotations
 
-import argparse
 import math
-import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -34,7 +32,9 @@ def _displaced(bpy, name, method, texture, scale, colour):
     return material
 
 
-def _scene(bpy, add_camera):
+def _scene(bpy):
+    from helpers.bpy_scenes import add_camera
+
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     world = bpy.data.worlds.new("Sky")
     world.color = (0.05, 0.07, 0.1)
@@ -54,28 +54,7 @@ def _scene(bpy, add_camera):
     return add_camera((0.0, -2.3, 1.5), (math.radians(58.0), 0.0, 0.0), lens_mm=40.0, resolution=(240, 160))
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--samples", type=int, default=64)
-    arguments = parser.parse_args()
-    sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
-    import bpy
-
-    from helpers.bpy_scenes import add_camera
-    from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
-    from render import load_addon_package
-    from side_by_side import save_side_by_side
-
-    load_addon_package().register()
-    _scene(bpy, add_camera)
-    scene = bpy.context.scene
-    scene.prism.max_bounces = 4
-    prism = render_prism_rgba(scene, arguments.samples)[..., :3]
-    cycles = render_cycles_rgba(scene, arguments.samples, max_bounces=4)[..., :3]
-    p, c = float(luminance(prism).mean()), float(luminance(cycles).mean())
-    print(f"mean luminance: Prism {p:.4f}, Cycles {c:.4f}, Prism / Cycles {p / c:.4f}")
-    save_side_by_side(prism, cycles, p, c, OUTPUT)
-
-
 if __name__ == "__main__":
-    main()
+    from side_by_side import picture_main
+
+    picture_main(__doc__.splitlines()[0], _scene, OUTPUT, samples=64, bounces=4)

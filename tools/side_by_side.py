@@ -28,3 +28,31 @@ def save_side_by_side(prism, cycles, prism_mean: float, cycles_mean: float, outp
     output.parent.mkdir(parents=True, exist_ok=True)
     canvas.save(output)
     print(f"wrote {output}")
+
+
+def picture_main(description: str, build, output: Path, samples: int, bounces: int) -> None:
+    """A picture tool's whole run: ``--samples`` (default ``samples``), the add-on registered in the bpy module,
+    ``build(bpy)`` making the scene, Prism and Cycles rendering it with ``bounces``, both means printed and the
+    picture written to ``output``."""
+    import argparse
+    import sys
+
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--samples", type=int, default=samples)
+    arguments = parser.parse_args()
+    root = Path(__file__).resolve().parents[1]
+    sys.path[:0] = [str(root), str(root / "tests")]
+    import bpy
+
+    from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
+    from render import load_addon_package
+
+    load_addon_package().register()
+    build(bpy)
+    scene = bpy.context.scene
+    scene.prism.max_bounces = bounces
+    prism = render_prism_rgba(scene, arguments.samples)[..., :3]
+    cycles = render_cycles_rgba(scene, arguments.samples, max_bounces=bounces)[..., :3]
+    p, c = float(luminance(prism).mean()), float(luminance(cycles).mean())
+    print(f"mean luminance: Prism {p:.4f}, Cycles {c:.4f}, Prism / Cycles {p / c:.4f}")
+    save_side_by_side(prism, cycles, p, c, output)

@@ -9,16 +9,15 @@ their ratio (absolute light, no normalisation); the picture shows both with the 
 
 from __future__ import annotations
 
-import argparse
-import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 OUTPUT = ROOT / "docs" / "images" / "world_fog.png"
 
 
-def _scene(bpy, helpers):
-    add_camera, add_plane, add_point_light = helpers
+def _scene(bpy):
+    from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     world = bpy.data.worlds.new("Fog")
     world.use_nodes = True
@@ -36,29 +35,7 @@ def _scene(bpy, helpers):
     return add_camera((0.0, -5.0, 1.6), (1.45, 0.0, 0.0), lens_mm=28.0, resolution=(240, 150))
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--samples", type=int, default=128)
-    arguments = parser.parse_args()
-    sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
-    import bpy
-
-    from helpers.bpy_scenes import add_camera, add_plane, add_point_light
-    from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
-    from render import load_addon_package
-    from side_by_side import save_side_by_side
-
-    load_addon_package().register()
-    _scene(bpy, (add_camera, add_plane, add_point_light))
-    scene = bpy.context.scene
-    scene.prism.max_bounces = 8
-    prism = render_prism_rgba(scene, arguments.samples)[..., :3]
-    cycles = render_cycles_rgba(scene, arguments.samples, max_bounces=8)[..., :3]
-    p, c = float(luminance(prism).mean()), float(luminance(cycles).mean())
-    print(f"mean luminance: Prism {p:.4f}, Cycles {c:.4f}, Prism / Cycles {p / c:.4f}")
-
-    save_side_by_side(prism, cycles, p, c, OUTPUT)
-
-
 if __name__ == "__main__":
-    main()
+    from side_by_side import picture_main
+
+    picture_main(__doc__.splitlines()[0], _scene, OUTPUT, samples=128, bounces=8)
