@@ -36,3 +36,30 @@ def still_sampling(mean: np.ndarray, variance_of_mean: np.ndarray, threshold: fl
     grown[:, 1:] |= active[:, :-1]
     grown[:, :-1] |= active[:, 1:]
     return grown
+
+
+def samples_that_fit(spp: int, left_s: float, last_pass, pixels: int) -> int:
+    """Samples per pixel of the next pass that fit in ``left_s`` seconds (0: none left), from the last pass's
+    (seconds, samples per pixel) over ``pixels`` pixels, or None before the first pass."""
+    if left_s <= 0.0:
+        return 0
+    if last_pass is not None and last_pass[1] > 0:
+        per_sample = last_pass[0] / last_pass[1] * pixels
+        if per_sample > 0:
+            spp = min(spp, max(1, int(left_s / per_sample)))
+    return spp
+
+
+def time_to_check(threshold: float, done: int, settings, checked_at: int) -> bool:
+    """Whether the pixels' convergence is due after ``done`` samples: adaptive sampling on, the minimum
+    samples (Min Samples, or ``automatic_min_samples``) reached, and a few samples since the last check."""
+    if not threshold > 0.0:
+        return False
+    minimum = settings.adaptive_min_samples or automatic_min_samples(settings.samples, threshold)
+    return done >= minimum and done - checked_at >= min(4, minimum)
+
+
+def still_active(film, threshold: float, done: int) -> np.ndarray:
+    """bool [pixels] of ``film``'s region: still noisy, and not stopped earlier (its count is ``done``)."""
+    active = still_sampling(film.mean(), film.variance_of_mean(), threshold).ravel()
+    return active & (film.counts.ravel() == done)

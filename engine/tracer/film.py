@@ -92,6 +92,12 @@ class Film:
         n = np.maximum(self._count, 1)
         return np.where(self._count > 0, self._alpha / n, 1.0).reshape(self.height, self.width)
 
+    def add_light_chunks(self, chunks) -> int:
+        """Add a pass's light chunks, each (``pixel_index``, ``rgb``, paths), in chunk order; returns the paths."""
+        paths = sum(count for _, _, count in chunks)
+        self.add_light(np.concatenate([p for p, _, _ in chunks]), np.concatenate([c for _, c, _ in chunks]), paths)
+        return paths
+
     def add_light(self, pixel_index: np.ndarray, rgb: np.ndarray, paths: int) -> None:
         """Add one pass's splats of ``paths`` light paths, in path order: ``pixel_index`` [N] (frame
         indices), ``rgb`` [N, 3] (N <= paths)."""

@@ -45,6 +45,7 @@ from .errors import PrismInputError
 from .cryptomatte import scene_names
 from .film import Film
 from .sampler import SAMPLERS
+from .spectra.glass import clamp_warnings
 from .scene_tables import SceneTables
 from .shadow_catcher_film import catcher_names, catcher_warnings
 from .spectral_film import SpectralFilm
@@ -311,8 +312,9 @@ class Renderer:
                     self.progress((i + 1) / len(chunks))
         finally:
             self._pool.drop()
-            if light_splats:
-                self._add_light_splats(light_splats)
+            if light_splats:  # all at once: see ``stages.light_splat``
+                self.stats["light_paths"] += self.film.add_light_chunks(light_splats)
+                self.stats["light_splats"] += sum(len(pixels) for pixels, _, _ in light_splats)
             elapsed = time.perf_counter() - started
             self.stats["seconds"] += elapsed
             self._sampling_seconds += elapsed
@@ -322,59 +324,31 @@ class Renderer:
         self.samples_done += spp
         self._passes += 1
         self._last_pass = (elapsed, spp * len(self._pixels))
-        self._glass_warnings()
+        clamp_warnings(self.tables.material_table.glasses, self._glass_clamps, self.stats["warnings"])
         self.stats["paths"] += total
         self.stats["nan_samples"] = self.film.nan_samples
         self.stats["samples"] = self.samples_done
         self._adapt()
-
-    def _add_light_splats(self, chunks):
-        """Add a pass's light-traced splats to the film (all at once: see ``stages.light_splat``)."""
-        paths = sum(count for _, _, count in chunks)
-        self.film.add_light(np.concatenate([p for p, _, _ in chunks]), np.concatenate([c for _, c, _ in chunks]),
-                            paths)
-        self.stats["light_paths"] += paths
-        self.stats["light_splats"] += sum(len(p) for p, _, _ in chunks)
 
     def _fit_time_limit(self, spp: int, now: float) -> int:
         """Samples of the next pass that fit in the time left (0: the time is up)."""
         if self._time_limit is None:
             return spp
         left = self._time_limit - (now - self._sampling_started)
-        if left <= 0.0:
-            self.time_up = True
-            return 0
-        last = getattr(self, "_last_pass", None)
-        if last is not None and last[1] > 0 and self._passes > 0:
-            per_sample = last[0] / last[1] * len(self._pixels)
-            spp = min(spp, max(1, int(left / per_sample))) if per_sample > 0 else spp
-        return spp
+        self.time_up = self.time_up or left <= 0.0
+        last = getattr(self, "_last_pass", None) if self._passes > 0 else None
+        return adaptive.samples_that_fit(spp, left, last, len(self._pixels))
 
     def _adapt(self) -> None:
         """Adaptive sampling: after the minimum samples, sample only the pixels that are still noisy."""
         threshold = self.settings.adaptive_threshold
-        if not threshold > 0.0:
-            return
         done = self.samples_done - self._first_sample
-        minimum = self.settings.adaptive_min_samples or adaptive.automatic_min_samples(self.settings.samples, threshold)
-        if done < minimum or done - self._converged_checked_at < min(4, minimum):
+        if not adaptive.time_to_check(threshold, done, self.settings, self._converged_checked_at):
             return
         self._converged_checked_at = done
-        film = self.film
-        active = adaptive.still_sampling(film.mean(), film.variance_of_mean(), threshold).ravel()
-        active &= film.counts.ravel() == done  # pixels stopped earlier stay stopped
-        self._pixels = self._region_pixels[active]
+        self._pixels = self._region_pixels[adaptive.still_active(self.film, threshold, done)]
         if not len(self._pixels):
             self.converged = True
-
-    def _glass_warnings(self):
-        for glass, count in zip(self.tables.material_table.glasses, self._glass_clamps):
-            if count:
-                lo, hi = glass.valid_range_nm
-                prefix = f"Glass '{glass.name}' is specified for {lo:g}-{hi:g} nm only: "
-                text = prefix + f"the index was clamped at the range edge for {count} wavelength sample(s)"
-                messages = self.stats["warnings"]
-                messages[:] = [m for m in messages if not m.startswith(prefix)] + [text]
 
     def frame_mean(self) -> np.ndarray:
         """The film's float64 mean as a whole frame [H, W, 3] (0 outside the region)."""

@@ -230,5 +230,5 @@ def traced_node(code, mode, dst, a, b, c, regs, rays, geometry, triangle, p, ng,
 
 def traces_rays(material_arrays) -> bool:
     """Whether some material program of ``material_arrays`` (``table.MaterialArrays``) traces rays of its own."""
-    codes = material_arrays.programs.instructions[:, op.OP] if len(material_arrays.programs.instructions) else ()
-    return bool(len(codes)) and bool(((codes == op.AMBIENT_OCCLUSION) | (codes == op.BEVEL)).any())
+    codes = material_arrays.programs.instructions[:, op.OP]
+    return bool(((codes == op.AMBIENT_OCCLUSION) | (codes == op.BEVEL)).any())

@@ -277,3 +277,14 @@ def nearest_catalogue_glass(n_d, v_d=None):
         if distance < best_distance:
             best, best_distance = glass, distance
     return glass_by_name(best.name)
+
+
+def clamp_warnings(glasses, clamps, messages: list) -> None:
+    """Replace in ``messages`` each glass's warning by its running count of wavelength samples whose index was
+    clamped at the edge of the range its formula is specified for (``clamps[i]`` for ``glasses[i]``)."""
+    for glass, count in zip(glasses, clamps):
+        if count:
+            lo, hi = glass.valid_range_nm
+            prefix = f"Glass '{glass.name}' is specified for {lo:g}-{hi:g} nm only: "
+            text = prefix + f"the index was clamped at the range edge for {count} wavelength sample(s)"
+            messages[:] = [m for m in messages if not m.startswith(prefix)] + [text]
