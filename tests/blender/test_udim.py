@@ -119,6 +119,40 @@ def test_packed_udim_tiles_render_their_packed_bytes_as_in_cycles(prism_addon, f
     assert not any(tmp_path.iterdir())
 
 
+#: Tiles of more than 8 bits a channel (stored values), which Blender loads into float buffers made
+#: scene-linear from the image's colour space, as Cycles decodes them.
+DEEP = {1001: (0.6, 0.3, 0.1), 1002: (0.2, 0.5, 0.8), 1011: (0.9, 0.9, 0.1)}
+
+
+def _write_deep_tiles(prism_addon, folder, extension, pixel_format):
+    """Files ``deep.<tile>.<extension>`` of the flat colours ``DEEP`` in OpenImageIO's ``pixel_format``;
+    returns {tile: stored values}."""
+    openimageio = __import__(f"{prism_addon.__name__}.engine.output.openimageio", fromlist=["import_openimageio"])
+    oiio = openimageio.import_openimageio()
+    stored = {}
+    for number, colour in DEEP.items():
+        path = str(folder / f"deep.{number}.{extension}")
+        output = oiio.ImageOutput.create(path)
+        assert output.open(path, oiio.ImageSpec(8, 4, 3, pixel_format)), oiio.geterror()
+        output.write_image(np.tile(np.array(colour, np.float32), (4, 8, 1)))
+        output.close()
+        stored[number] = [float(np.float16(c)) if pixel_format == "half" else round(c * 65535) / 65535
+                          for c in colour]
+    return stored
+
+
+@pytest.mark.parametrize("extension, pixel_format", [("exr", "half"), ("png", "uint16")])
+def test_deep_udim_tiles_are_decoded_from_the_image_colour_space_as_in_cycles(prism_addon, fresh_scene, tmp_path,
+                                                                             extension, pixel_format):
+    stored = _write_deep_tiles(prism_addon, tmp_path, extension, pixel_format)
+    image = bpy.data.images.load(str(tmp_path / f"deep.1001.{extension}"))
+    image.source = "TILED"
+    image.colorspace_settings.name = "sRGB"  # not Blender's choice for an EXR: its values are decoded anyway
+    _udim_square(image)
+    assert _export_warnings(prism_addon) == []
+    _render_and_compare(fresh_scene, {n: [_srgb_to_linear(v) for v in values] for n, values in stored.items()})
+
+
 #: Generated tiles (colour, float buffer) of an 8-bit image and of a float image: Blender stores an 8-bit
 #: tile's colour as levels ⌊255 c + ½⌋ (0.3 → 77, where round-half-even would give 76) in the image's
 #: colour space, a float tile's colour taken from sRGB to linear.

@@ -2,9 +2,11 @@
 bytes Blender packed into the .blend for it, written to a temporary file first (OpenImageIO's Python
 binding reads files, not memory buffers).
 
-Pixels are handed on as Blender's ``Image.pixels`` gives them (row 0 at the bottom; 8-bit files as
-levels / 255 with straight alpha; float files as stored), so a tile is decoded exactly as an ordinary
-image in the UDIM image's colour space, whichever way its bytes reach Prism.
+Pixels are handed on as Blender's ``Image.pixels`` gives them (row 0 at the bottom), so a tile is decoded
+exactly as an ordinary image in the UDIM image's colour space, whichever way its bytes reach Prism: 8-bit
+files as levels / 255 with straight alpha, decoded later; deeper files (half and float EXR, HDR, 16-bit
+PNG and TIFF) as Blender loads them into float buffers, decoded here from the image's colour space to
+scene-linear (Cycles decodes them too: a float tile in 'sRGB' is not taken as linear).
 """
 
 from __future__ import annotations
@@ -14,9 +16,11 @@ import os
 import numpy as np
 
 from ...output.openimageio import import_openimageio
+from .colour_spaces import RAW_SPACES, to_linear
 from .pixel_source import PixelSource
 
-_FLOAT_FORMATS = ("half", "float", "double")
+#: Formats Blender loads into 8-bit buffers; it loads every deeper one into a float buffer.
+_BYTE_FORMATS = ("uint8", "int8")
 
 
 def _open(oiio, path):
@@ -38,7 +42,7 @@ def file_source(path, name, colour_space, alpha_mode):
     spec = reader.spec()
     reader.close()
     width, height, channels = spec.width, spec.height, spec.nchannels
-    is_float = str(spec.format) in _FLOAT_FORMATS
+    is_float = str(spec.format) not in _BYTE_FORMATS
 
     def fill(out):
         reader = _open(oiio, path)
@@ -58,6 +62,10 @@ def file_source(path, name, colour_space, alpha_mode):
         else:
             rgba[..., :3] = pixels[..., :3]
             rgba[..., 3] = pixels[..., 3] if pixels.shape[2] == 4 else 1.0
+        if is_float and colour_space not in RAW_SPACES:  # Blender makes a float buffer scene-linear on load
+            linear = to_linear(colour_space, rgba[..., :3].reshape(-1, 3))
+            if linear is not None:  # a colour space Prism cannot decode: the values as stored
+                rgba[..., :3] = linear.reshape(height, width, 3)
 
     return PixelSource(name, width, height, is_float, colour_space, alpha_mode, fill)
 
