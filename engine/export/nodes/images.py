@@ -10,85 +10,15 @@ bytes a texel, as Cycles stores them); one that mixes channels (AgX, ACES) is de
 
 from __future__ import annotations
 
-import os
-import sys
-
 import numpy as np
 
 from ...tracer.materials.shader import TextureImage
 from ..texture_memory import DECODED, FLOAT, LEVELS, budget_of
+from .colour_spaces import level_table, srgb_to_linear, to_linear
 from .pixel_source import PixelSource
 from .udim import read_udim
 
-#: Colour spaces whose levels are the values themselves.
-_RAW = {"Non-Color", "Raw", "Linear Rec.709", "Linear", "Linear CIE-XYZ E"}
 MISSING_COLOUR = (1.0, 0.0, 1.0, 1.0)  # Blender's colour for an image it cannot read
-
-_OCIO: dict = {}
-
-
-def _ocio_config():
-    """Blender's OpenColorIO configuration (PyOpenColorIO ships with Blender), or None."""
-    if "config" in _OCIO:
-        return _OCIO["config"]
-    config = None
-    try:
-        import bpy
-
-        local = bpy.utils.resource_path("LOCAL")
-        try:
-            import PyOpenColorIO as ocio
-        except ImportError:
-            version = f"python{sys.version_info.major}.{sys.version_info.minor}"
-            for site in (os.path.join(local, "python", "lib", version, "site-packages"),
-                         os.path.join(local, "python", "lib", "site-packages")):
-                if os.path.isdir(site) and site not in sys.path:
-                    sys.path.append(site)
-            import PyOpenColorIO as ocio
-        path = os.environ.get("OCIO") or os.path.join(local, "datafiles", "colormanagement", "config.ocio")
-        config = (ocio, ocio.Config.CreateFromFile(path))
-    except Exception:  # noqa: BLE001 - decoding falls back to the sRGB formula
-        config = None
-    _OCIO["config"] = config
-    return config
-
-
-def _srgb_to_linear(v):
-    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
-
-
-def _to_linear(colour_space, rgb):
-    """Scene-linear values of ``rgb`` (float32 [N, 3]) in ``colour_space``; None if it cannot be decoded."""
-    if colour_space in _RAW:
-        return rgb
-    config = _ocio_config()
-    if config is None:
-        return _srgb_to_linear(rgb) if colour_space == "sRGB" else None
-    ocio, cfg = config
-    try:
-        processor = cfg.getProcessor(colour_space, "scene_linear").getDefaultCPUProcessor()
-    except Exception:  # noqa: BLE001 - an unknown colour space name
-        return None
-    out = np.ascontiguousarray(rgb, dtype=np.float32).copy()
-    processor.applyRGB(out)
-    return out
-
-
-def _level_table(colour_space):
-    """float32 [256, 3] decoding each channel's levels, or None when the space mixes channels."""
-    levels = np.arange(256, dtype=np.float32) / 255.0
-    grey = _to_linear(colour_space, np.repeat(levels[:, None], 3, axis=1))
-    if grey is None:
-        return None
-    for channel in range(3):
-        alone = np.zeros((256, 3), np.float32)
-        alone[:, channel] = levels
-        decoded = _to_linear(colour_space, alone)
-        others = np.delete(decoded, channel, axis=1)
-        if not (np.allclose(others, others[:1], atol=1e-6) and np.allclose(decoded[:, channel], grey[:, channel],
-                                                                           atol=1e-5)):
-            return None
-    return grey.astype(np.float32)
 
 
 def _levels(pixels):
@@ -129,7 +59,7 @@ def texture_from(source: PixelSource, node, warn, cache) -> TextureImage:
     """The ``TextureImage`` of ``source`` for Image Texture ``node``, once the render's texture memory
     (``budget_of(cache)``) admits it."""
     width, height, colour_space = source.width, source.height, source.colour_space
-    table = None if source.is_float else _level_table(colour_space)
+    table = None if source.is_float else level_table(colour_space)
     cost = FLOAT if source.is_float else LEVELS if colour_space == "sRGB" or table is not None else DECODED
     budget_of(cache).admit(source.name, node.name, width, height, cost, source.alpha_mode == "PREMUL")
     pixels = np.empty(width * height * 4, np.float32)
@@ -149,11 +79,11 @@ def texture_from(source: PixelSource, node, warn, cache) -> TextureImage:
         return TextureImage(source.name, _levels(pixels), None, interpolation, node.extension, srgb_levels=True)
     if table is not None:
         return TextureImage(source.name, _levels(pixels), table, interpolation, node.extension)
-    decoded = _to_linear(colour_space, pixels[..., :3].reshape(-1, 3))
+    decoded = to_linear(colour_space, pixels[..., :3].reshape(-1, 3))
     if decoded is None:
         warn(node, f"image '{source.name}' is in colour space '{colour_space}', which Prism cannot decode; "
                    "it is read as sRGB.")
-        decoded = _srgb_to_linear(pixels[..., :3].reshape(-1, 3))
+        decoded = srgb_to_linear(pixels[..., :3].reshape(-1, 3))
     rgba = np.concatenate([decoded.reshape(height, width, 3), pixels[..., 3:4]], axis=2)
     return TextureImage(source.name, np.ascontiguousarray(rgba, dtype=np.float32), None, interpolation,
                         node.extension)

@@ -1,25 +1,30 @@
-"""UDIM images: one texture per tile, each read from the tile's own file with OpenImageIO (the library
-Blender bundles), since ``Image.pixels`` gives the first tile only and loading each tile as a Blender image
-would change ``bpy.data`` during a render.
+"""UDIM images: one texture per tile, each tile's pixels taken from where Blender takes them when Cycles
+asks it for the tile (``BKE_image_acquire_ibuf`` per tile), without loading anything into ``bpy.data``
+during a render (``Image.pixels`` gives the first tile only):
 
-A tile's file is the image's path with ``<UDIM>`` replaced by the tile's number (1001 + u + 10 v) or
-``<UVTILE>`` by ``u<u + 1>_v<v + 1>``, as Blender names them. Its pixels are handed on as Blender's
-``Image.pixels`` gives them (row 0 at the bottom; 8-bit files as levels / 255 with straight alpha; float
-files as stored), so each tile is decoded exactly as an ordinary image in the UDIM image's colour space.
+1. a tile Blender generated (``UDIMTile.is_generated_tile``): from its generation settings;
+2. a packed image (Pack Resources, ``Image.pack``): from the bytes packed for the tile, decoded with
+   OpenImageIO. Blender uses packed tiles only while the image has one packed file per tile: otherwise
+   (a tile added after packing) it drops them the next time it loads a tile and reads the files, and so
+   does Prism;
+3. otherwise the tile's own file: the image's path with ``<UDIM>`` replaced by the tile's number
+   (1001 + u + 10 v) or ``<UVTILE>`` by ``u<u + 1>_v<v + 1>``, as Blender names them.
+
+Every tile is decoded as an ordinary image in the UDIM image's colour space; a tile none of these give
+renders magenta, as Cycles renders a missing tile.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
+import tempfile
 
-import numpy as np
-
-from ...output.openimageio import import_openimageio
 from ...tracer.materials.shader import UdimImage
 from ...tracer.textures.image import FIRST_TILE, TILES_PER_ROW
-from .pixel_source import PixelSource
-
-_FLOAT_FORMATS = ("half", "float", "double")
+from .generated_tile import generated_source
+from .tile_file import file_source, packed_source
+from .udim_warnings import UdimWarnings
 
 
 def tile_path(path: str, number: int) -> str:
@@ -28,57 +33,62 @@ def tile_path(path: str, number: int) -> str:
     return path.replace("<UDIM>", str(number)).replace("<UVTILE>", f"u{u + 1}_v{v + 1}")
 
 
-def _tile_source(path, name, colour_space, alpha_mode):
-    """A ``PixelSource`` for the tile file at ``path``, or None when OpenImageIO cannot open it."""
-    oiio = import_openimageio()
-    config = oiio.ImageSpec()
-    config.attribute("oiio:UnassociatedAlpha", 1)  # straight alpha, as Blender keeps 8-bit images
-    reader = oiio.ImageInput.open(path, config)
-    if reader is None:
+def packed_tiles(image) -> dict | None:
+    """{tile number: ``ImagePackedFile``} Blender reads ``image``'s tiles from, or None when it reads none:
+    nothing packed, or not one packed file per tile and view (Blender then drops the packed files)."""
+    packed = list(image.packed_files)
+    if not packed:
         return None
-    spec = reader.spec()
-    width, height, channels = spec.width, spec.height, spec.nchannels
-    is_float = str(spec.format) in _FLOAT_FORMATS
+    views = len({p.view for p in packed})
+    if len(packed) != views * len(image.tiles):
+        return None
+    return {p.tile_number: p for p in packed if p.view == 0}
 
-    def fill(out):
-        try:
-            pixels = reader.read_image(0, 0, 0, min(channels, 4), "float")
-        finally:
-            reader.close()
-        if pixels is None:
-            raise OSError(f"OpenImageIO could not read '{path}'")
-        pixels = np.asarray(pixels, np.float32).reshape(height, width, -1)[::-1]  # files store the top row first
-        rgba = out.reshape(height, width, 4)
-        if pixels.shape[2] < 3:  # grey, or grey and alpha
-            rgba[..., :3] = pixels[..., :1]
-            rgba[..., 3] = pixels[..., 1] if pixels.shape[2] == 2 else 1.0
-        else:
-            rgba[..., :3] = pixels[..., :3]
-            rgba[..., 3] = pixels[..., 3] if pixels.shape[2] == 4 else 1.0
 
-    return PixelSource(name, width, height, is_float, colour_space, alpha_mode, fill)
+def _tile_source(tile, image, pattern, packed, folder, notes):
+    """The ``PixelSource`` of ``tile``, or None (with the reason noted in ``notes``)."""
+    number, colour_space, alpha_mode = tile.number, image.colorspace_settings.name, image.alpha_mode
+    name = f"{image.name} tile {number}"
+    if tile.is_generated_tile:
+        source = generated_source(tile, name, colour_space, alpha_mode)
+        if source is None:
+            notes.pattern(number, tile.generated_type)
+        return source
+    if packed is not None:
+        if number not in packed or packed[number].packed_file is None:
+            notes.unread(number, "nothing packed for it")
+            return None
+        source = packed_source(packed[number], folder, name, colour_space, alpha_mode)
+        if source is None:
+            notes.unread(number, "its packed bytes are no image OpenImageIO reads")
+        return source
+    path = tile_path(pattern, number)
+    if not os.path.isfile(path):
+        notes.unread(number, "no file on disk, nothing packed or generated for it")
+        return None
+    source = file_source(path, name, colour_space, alpha_mode)
+    if source is None:
+        notes.unread(number, "its file is no image OpenImageIO reads")
+    return source
 
 
 def read_udim(image, node, warn, read):
     """The ``UdimImage`` of UDIM ``image`` (``read(PixelSource)`` makes each tile's texture), or None when no
-    tile can be read. Tiles that cannot be read (packed or generated in Blender, missing files) render
-    magenta, as Cycles renders a missing tile; the warning names them."""
+    tile can be read. What Prism cannot render as Cycles does is named in warnings (``UdimWarnings``)."""
     import bpy
 
     pattern = bpy.path.abspath(image.filepath, library=image.library)
-    tiles, unread = [], []
-    for number in sorted(tile.number for tile in image.tiles):
-        path = tile_path(pattern, number)
-        source = _tile_source(path, f"{image.name} tile {number}", image.colorspace_settings.name,
-                              image.alpha_mode) if os.path.isfile(path) else None
-        if source is None:
-            unread.append(number)
-        else:
-            tiles.append((number, read(source)))
-    if unread:
-        listed = ", ".join(str(n) for n in unread)
-        why = "packed in the .blend" if len(image.packed_files) else "no file on disk"
-        warn(node, f"cannot read tile{'s' if len(unread) > 1 else ''} {listed} of the UDIM image '{image.name}' "
-                   f"({why}: Prism reads each tile's own file); Prism renders {'them' if len(unread) > 1 else 'it'} "
-                   "magenta, as Cycles renders a missing tile.")
+    packed = packed_tiles(image)
+    notes = UdimWarnings(image)
+    notes.check_image(image, packed)
+    tiles = []
+    # Packed tiles are copied to files for OpenImageIO; the copies go once their texels are read.
+    folder_or_none = tempfile.TemporaryDirectory(prefix="prism_udim_") if packed else contextlib.nullcontext()
+    with folder_or_none as folder:
+        for tile in sorted(image.tiles, key=lambda t: t.number):
+            source = _tile_source(tile, image, pattern, packed, folder, notes)
+            if source is not None:
+                notes.check_tile(tile.number, source)
+                tiles.append((tile.number, read(source)))
+    notes.emit(lambda message: warn(node, message))
     return UdimImage(image.name, tiles) if tiles else None
