@@ -3,9 +3,11 @@ spectra, varying ones registers or bindings; the emission; the shading normal; t
 
 from __future__ import annotations
 
-from ...tracer.bsdf.closure import C_ALPHA, C_ETA, C_TINT_SCALE, CONDUCTOR, DIELECTRIC, FRESNEL_DIELECTRIC
+from ...tracer.bsdf.closure import (C_ALPHA, C_ETA, C_TINT_SCALE, CONDUCTOR, DIELECTRIC, FRESNEL_DIELECTRIC,
+                                    TRANSPARENT)
 from ...tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
 from .aov_outputs import aov_results
+from .shaders import bump_map_correction
 from .vectors import displacement_bump, displacement_method, true_displacement
 
 _LUMINANCE = (0.2126729, 0.7151522, 0.0721750)
@@ -30,7 +32,7 @@ def _selection(kind, fresnel, rgb):
     return max(weight, 0.0)
 
 
-def _closure(c, pending, normal_register):
+def _closure(c, pending):
     spec = ClosureSpec(pending.kind, fresnel=pending.fresnel, glass=pending.glass, coat_nm=pending.coat_nm,
                        coat_ior=pending.coat_ior, layer=pending.weight.layer)
     scale, colour = c.known(pending.weight.scale), c.known(pending.weight.colour)
@@ -83,6 +85,30 @@ def _closure(c, pending, normal_register):
     return spec
 
 
+def _closure_normals(c, default_normal):
+    """The material's shading normal (a Value, or None for the surface's) and, per pending closure, the
+    register of a normal of its own or -1. Like Cycles, every closure shades with its own normal (a Coat
+    Normal, shaders with different Normal inputs); the material's frame takes the normal most closures
+    share (the first on a tie), and only the others carry theirs."""
+    normals = [p.normal if p.normal is not None else default_normal for p in c.closures]
+    keys = [n.register if n is not None else -1 for n in normals]
+    voters = [key for key, p in zip(keys, c.closures) if p.kind != TRANSPARENT]  # straight through: no normal
+    if not voters:
+        return default_normal, [-1] * len(keys)
+    shared = max(voters, key=lambda key: (voters.count(key), -voters.index(key)))
+    surface = None
+    own = []
+    for n, key, pending in zip(normals, keys, c.closures):
+        if key == shared or pending.kind == TRANSPARENT:
+            own.append(-1)
+            continue
+        if n is None:  # the surface's own normal, while the material's frame takes another one
+            surface = surface if surface is not None else c.normal()
+            n = surface
+        own.append(n.register)
+    return normals[keys.index(shared)], own
+
+
 def _emission(c, program):
     terms = c.emission
     if not terms:
@@ -121,6 +147,8 @@ def _read_registers(program) -> set[int]:
             if colour is not None and colour.register is not None:
                 live.update(range(colour.register, colour.register + 3))
         live.update(register for _, register, _ in spec.bindings)
+        if spec.normal >= 0:
+            live.update(range(spec.normal, spec.normal + 3))
     if program.normal >= 0:
         live.update(range(program.normal, program.normal + 3))
     if program.emission is not None and program.emission.register is not None:
@@ -144,15 +172,18 @@ def finish(c) -> ShaderProgram:
                      "vertices move, and the finer bump Cycles adds between them is left out.")
     default_normal = displacement_bump(c, socket) if socket is not None and method == "BUMP" else None
     moved = true_displacement(c, socket) if socket is not None and method != "BUMP" else None
-    normals = [p.normal for p in c.closures if p.normal is not None]
-    normal = normals[0] if normals else default_normal
-    if len({n.register for n in normals}) > 1:
-        c.warn(None, "has shaders with different normal inputs; Prism shades them all with the first one.")
-    closures = [spec for spec in (_closure(c, p, normal) for p in c.closures) if spec is not None]
+    normal, own_normals = _closure_normals(c, default_normal)
+    closures = []
+    for pending, own in zip(c.closures, own_normals):
+        spec = _closure(c, pending)
+        if spec is not None:
+            spec.normal = own
+            closures.append(spec)
     program = ShaderProgram(closures)
     _emission(c, program)
     program.normal = normal.register if normal is not None else -1
     program.displacement = moved.register if moved is not None else -1
+    program.bump_map_correction = bump_map_correction(c)
     program.aov_registers, program.aov_constants = aov_results(c, c.aov_outputs)
     program.instructions = c.builder.instructions(live=_read_registers(program))
     program.constants = c.builder.initial_registers()

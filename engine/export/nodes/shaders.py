@@ -50,6 +50,18 @@ def _cos_view(c, normal):
     return c.vector_math("DOT_PRODUCT", incoming, normal if normal is not None else c.normal())
 
 
+def bump_map_correction(c) -> bool:
+    """Material ▸ Settings ▸ Bump Map Correction (Cycles' option, on by default)."""
+    return bool(getattr(getattr(c.material, "cycles", None), "use_bump_map_correction", True))
+
+
+def _towards(c, normal, other, amount):
+    """normalize(mix(normal, other, amount)); ``normal`` None is the surface's."""
+    start = normal if normal is not None else c.normal()
+    mixed = c.emit(op.MIX_VECTOR, [amount, start, other, None, 0], width=3)
+    return c.vector_math("NORMALIZE", mixed)
+
+
 def _f0(c, eta):
     r = c.math("DIVIDE", c.math("SUBTRACT", eta, c.const(1.0)), c.math("ADD", eta, c.const(1.0)))
     return c.math("MULTIPLY", r, r)
@@ -90,27 +102,35 @@ def principled(c, node, context, weight: Weight):
         c.add_closure(PendingClosure(TRANSPARENT, c.weighted(weight, scale=c.one_minus(opacity)), node))
         weight = c.weighted(weight, scale=opacity)
 
-    weight = principled_sheen(c, node, context, weight, cos, normal)
-
     coat = c.math("MAXIMUM", _val(c, node, "Coat Weight", context), c.const(0.0))
-    if c.known(coat) != 0.0:
+    has_coat = c.known(coat) != 0.0
+    coat_normal = _normal(c, node, context, "Coat Normal") if has_coat else None
+    # Cycles' sheen leans towards the Coat Normal by the coat's weight (svm/closure.h, principled_bsdf_emission)
+    sheen_normal = normal if coat_normal is None else _towards(c, normal, coat_normal, c.clamp01(coat))
+    sheen_cos = cos if sheen_normal is normal else _cos_view(c, sheen_normal)
+    weight = principled_sheen(c, node, context, weight, sheen_cos, sheen_normal)
+
+    if has_coat:
         coat_roughness = c.clamp01(_val(c, node, "Coat Roughness", context))
         coat_ior = c.math("MAXIMUM", _val(c, node, "Coat IOR", context), c.const(1.0))
-        coat_normal = _normal(c, node, context, "Coat Normal")
-        if coat_normal is not None and coat_normal != normal:
-            c.warn(node, "has its own Coat Normal; Prism shades the coat with the base normal.")
+        if coat_normal is None:
+            coat_normal, coat_cos = normal, cos
+        else:  # the coat shades, weighs the layers under it and tints along its own normal, as in Cycles,
+            if bump_map_correction(c):  # raised as Cycles raises it before it sets the coat up
+                coat_normal = c.emit(op.VALID_REFLECTION, [coat_normal], width=3)
+            coat_cos = _cos_view(c, coat_normal)
         # Cycles compensates the coat's energy whatever the distribution (bsdf_microfacet_setup_fresnel_dielectric)
         c.add_closure(PendingClosure(CONDUCTOR, c.weighted(weight, scale=coat), node, alpha=_alpha(c, coat_roughness),
-                                     eta=coat_ior, fresnel=FRESNEL_DIELECTRIC, normal=normal, multiscatter=True))
+                                     eta=coat_ior, fresnel=FRESNEL_DIELECTRIC, normal=coat_normal, multiscatter=True))
         f0 = _f0(c, coat_ior)
-        s = _layer_albedo(c, coat_roughness, cos, coat_ior)
+        s = _layer_albedo(c, coat_roughness, coat_cos, coat_ior)
         albedo = c.math("ADD", f0, c.math("MULTIPLY", c.one_minus(f0), s))
-        albedo = c.math("MULTIPLY", albedo, _darkening(c, coat_roughness, cos, coat_ior, f0))
+        albedo = c.math("MULTIPLY", albedo, _darkening(c, coat_roughness, coat_cos, coat_ior, f0))
         weight = c.weighted(weight, scale=c.clamp01(c.one_minus(c.math("MULTIPLY", coat, albedo))))
         tint = c.vector_math("MAXIMUM", _val(c, node, "Coat Tint", context, COLOR), c.const(0.0, 0.0, 0.0))
         if c.known(tint) != (1.0, 1.0, 1.0):
             inv = c.math("DIVIDE", c.const(1.0), coat_ior)
-            sin2 = c.math("MULTIPLY", c.math("MULTIPLY", inv, inv), c.one_minus(c.math("MULTIPLY", cos, cos)))
+            sin2 = c.math("MULTIPLY", c.math("MULTIPLY", inv, inv), c.one_minus(c.math("MULTIPLY", coat_cos, coat_cos)))
             depth = c.math("DIVIDE", c.const(1.0), c.math("SQRT", c.one_minus(sin2)))
             absorbed = c.vector_math("POWER", tint, c.broadcast(depth))
             mixed = c.emit(op.MIX_VECTOR, [coat, c.const(1.0, 1.0, 1.0), absorbed, None, 0], width=3)

@@ -37,6 +37,13 @@ material's program (``register_source``).
   Fresnel model does not set it (Glossy's colour, a glass's colour or transmission tint); -1 for 1.
 - ``C_SHEEN_A``, ``C_SHEEN_B``: the fitted LTC coefficients of a ``SHEEN`` closure at this hit's view
   direction, set per hit with its tint scaled by the fitted albedo (``materials.sheen_setup``).
+- ``C_NORMAL``: the program register of the closure's own shading normal (a Principled Coat Normal, or a
+  shader whose Normal input differs from the material's), -1 where it shades with the material's normal.
+- Set per hit by ``materials.closure_normals`` (0 in the constant rows): ``C_FRAMED`` = 1 where the closure
+  scatters about a normal other than the material's, ``C_FRAME_X/Y/Z`` (in the material's shading frame; its
+  own normal, or one Cycles' Bump Map Correction raised), with ``C_VIEW_COS`` the view's cosine there;
+  ``C_BUMPED`` = 1 where that normal is not the smooth one, ``C_SMOOTH_X/Y/Z`` (the smooth normal in the
+  same frame) for Cycles' bump shadowing test (``closure_frame``).
 """
 
 from __future__ import annotations
@@ -74,7 +81,17 @@ C_MS_COLOUR = 19
 C_LAYER_MULTISCATTER = 20
 C_SHEEN_A = 21
 C_SHEEN_B = 22
-CLOSURE_ROW = 23
+C_NORMAL = 23
+C_FRAMED = 24
+C_FRAME_X = 25
+C_FRAME_Y = 26
+C_FRAME_Z = 27
+C_VIEW_COS = 28
+C_BUMPED = 29
+C_SMOOTH_X = 30
+C_SMOOTH_Y = 31
+C_SMOOTH_Z = 32
+CLOSURE_ROW = 33
 
 
 # Conductor (microfacet reflection) reflectance models.

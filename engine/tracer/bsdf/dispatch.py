@@ -13,6 +13,7 @@ import math
 
 from ..jit import kernel
 from . import conductor, dielectric, diffuse, sheen, thin_film, translucent, transparent
+from .closure_frame import bump_shadowing, has_own_frame, into_closure_frame, out_of_closure_frame
 from .closure import (C_ALPHA, C_KIND, C_MIRROR, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA,
                       SAMPLED_DIFFUSE, SHEEN, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT, TRANSPARENT)
 
@@ -29,6 +30,9 @@ def closure_is_delta(row):
 
 @kernel
 def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
+    framed = has_own_frame(row)
+    if framed:
+        wo = into_closure_frame(row, wo)
     mirror = row[C_MIRROR] > 0.0
     if mirror:
         wo = (wo[0], wo[1], -wo[2])
@@ -56,11 +60,17 @@ def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u
                                                      collapsed, u0, u1, u2, weight)
     if mirror:
         wi = (wi[0], wi[1], -wi[2])
+    if framed:
+        wi = out_of_closure_frame(row, wi)
+    shadowing = bump_shadowing(row, wi, False)
+    if shadowing != 1.0:
+        for k in range(weight.shape[0]):
+            weight[k] *= shadowing
     return wi, pdf, flags, eta_scale
 
 
 @kernel
-def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
+def _evaluate_lobe(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
     if row[C_MIRROR] > 0.0:
         wo = (wo[0], wo[1], -wo[2])
         wi = (wi[0], wi[1], -wi[2])
@@ -78,6 +88,27 @@ def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed,
     if kind == TRANSPARENT:
         return transparent.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     return thin_film.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
+
+
+@kernel
+def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
+    """``f[k]`` of one closure (without its tint) for directions in the material's frame; returns its pdf.
+    A closure with a frame of its own gets its cosine there, as Cycles evaluates each closure about its own
+    normal: f is scaled by |cos_closure| / |cos_material| so that the callers' |cos_material| gives it; and
+    Cycles' bump shadowing term (``closure_frame.bump_shadowing``) where a bump turned its normal."""
+    if has_own_frame(row):
+        wo_c = into_closure_frame(row, wo)
+        wi_c = into_closure_frame(row, wi)
+        pdf = _evaluate_lobe(row, spectral, eta, wo_c, wi_c, wavelength_nm, hero, collapsed, f)
+        scale = abs(wi_c[2]) / abs(wi[2]) if wi[2] != 0.0 else 0.0
+    else:
+        pdf = _evaluate_lobe(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
+        scale = 1.0
+    scale *= bump_shadowing(row, wi, True)
+    if scale != 1.0:
+        for k in range(f.shape[0]):
+            f[k] *= scale
+    return pdf
 
 
 @kernel

@@ -1,5 +1,6 @@
 """Lambertian transmission (Blender's Translucent BSDF): f = albedo(λ) / π on the far side of the
-surface (``spectral[0]``), cosine-weighted sampling there."""
+surface (``spectral[0]``), cosine-weighted sampling there. As Cycles' (``bsdf_diffuse.h``), it does not ask on
+which side of the normal the view is."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ from .closure import SAMPLED_TRANSMISSION
 def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight):
     """(wi, pdf, sampled flags, eta scale); ``weight[k]`` = f |cos wi| / pdf."""
     wi = cosine_hemisphere(u1, u2)
-    if wo[2] <= 0.0 or wi[2] <= 0.0:
+    if wi[2] <= 0.0:
         weight[:] = 0.0
         return (wi[0], wi[1], -wi[2]), 0.0, SAMPLED_TRANSMISSION, 1.0
     for k in range(weight.shape[0]):
@@ -25,7 +26,7 @@ def sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u1, u2, w
 @kernel
 def evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f):
     """``f[k]`` (without the cosine); returns the pdf of ``sample`` for ``wi``."""
-    if wo[2] <= 0.0 or wi[2] >= 0.0:
+    if wi[2] >= 0.0:
         f[:] = 0.0
         return 0.0
     for k in range(f.shape[0]):

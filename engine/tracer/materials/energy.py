@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 
 from ..bsdf.closure import C_ALPHA, C_KIND, C_MS_COLOUR, C_MULTISCATTER, DIELECTRIC, SMOOTH_ALPHA
+from ..bsdf.closure_frame import view_cosine
 from ..bsdf.multiscatter import energy_scale, glass_albedo, model_fss, reflection_albedo
 from ..jit import inlined
 from ..spectra.rgb_lut import bounded_coefficients
@@ -41,12 +42,12 @@ def compensate_energy(materials, spectra, tables, rows, spectral, eta, count, co
     """Scale ``spectral[c, 2]`` (the tint) of the compensated closures among ``count`` resolved ones, seen at
     view cosine ``cos_o`` (``backfacing``: from inside, where a glass's index is 1/η). ``tables`` is a
     ``bsdf.multiscatter.EnergyTables``; ``regs`` the registers the closures' sources were resolved from."""
-    mu = min(abs(cos_o), 1.0)
     for c in range(count):
         row = rows[c]
         alpha = row[C_ALPHA]
         if not row[C_MULTISCATTER] > 0.0 or not alpha >= SMOOTH_ALPHA:
             continue
+        mu = min(abs(view_cosine(row, cos_o)), 1.0)
         rough = math.sqrt(min(alpha, 1.0))
         if int(row[C_KIND]) == DIELECTRIC:
             index = 1.0 / eta[c] if backfacing else eta[c]

@@ -85,6 +85,8 @@ BIND_RGB = 82  # rows[a, b] = colour at register c (a spectral parameter: resolv
 LAYER_DARKENING = 83  # dst = factor on the albedo of a Multiscatter GGX dielectric layer: roughness a, cos b,
 #                       ior c, normal-incidence reflectance d (``layering.dielectric_darkening``)
 SHEEN_ALBEDO = 84  # dst = fitted directional albedo of the microfiber sheen: roughness a, cos b (``bsdf.sheen``)
+VALID_REFLECTION = 85  # dst = normal a raised so that the view's reflection leaves above the surface (Cycles' Bump
+#                        Map Correction, ``closure_normals.valid_specular_normal``): a Principled coat's normal
 
 MATH_OPERATIONS = [
     "ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER", "LOGARITHM", "SQRT", "INVERSE_SQRT",

@@ -26,6 +26,7 @@ from ..textures.patterns import brick, checker, gradient, magic, wave, white_noi
 from ..textures.voronoi import voronoi_texture
 from . import hit_inputs as hit
 from . import opcodes as op
+from .closure_normals import valid_specular_normal
 from .layering import dielectric_darkening, dielectric_s
 from .light_path import light_path_output
 from .shader_rays import traced_node
@@ -257,6 +258,14 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
         elif code == op.NORMAL_MAP:
             _put3(regs, dst, _normal_map(mode, regs[a], _v3(regs, b), c, attrs, geometry, triangle, u, v, n,
                                          backfacing))
+        elif code == op.VALID_REFLECTION:
+            m = _v3(regs, a)
+            length = math.sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2])
+            if length > 0.0:
+                m = (m[0] / length, m[1] / length, m[2] / length)
+                if m[0] * ng[0] + m[1] * ng[1] + m[2] * ng[2] < 1.0 - 1e-7:
+                    m = valid_specular_normal(ng, wo, m)
+            _put3(regs, dst, m)
         elif code == op.BUMP:
             distance = -regs[e] if mode == 1 else regs[e]
             _put3(regs, dst, vec.bump_normal(_optional3(regs, f, n), step_x, step_y, regs[a], regs[b], regs[c],

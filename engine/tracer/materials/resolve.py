@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from ..bsdf.closure import (C_GLASS, C_KIND, C_S1, C_SPECTRUM, C_TINT, C_TINT_SCALE, C_WEIGHT, CONDUCTOR, DIELECTRIC,
                             DIFFUSE, TRANSLUCENT)
+from ..bsdf.closure_frame import view_cosine
 from ..bsdf.conductor import mean_tinted_reflectance
 from ..jit import inlined, kernel
 from ..spectra.dispersion import refractive_index
@@ -83,7 +84,7 @@ def selection_weights(rows, spectral, count, wavelength_nm, cos_o):
     for c in range(count):
         kind = int(rows[c, C_KIND])
         if kind == CONDUCTOR:
-            share = mean_tinted_reflectance(rows[c], spectral[c], cos_o, wavelength_nm)
+            share = mean_tinted_reflectance(rows[c], spectral[c], view_cosine(rows[c], cos_o), wavelength_nm)
         else:
             total = 0.0
             for k in range(k_count):

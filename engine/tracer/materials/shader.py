@@ -60,6 +60,7 @@ class ClosureSpec:
     #                             above (C_LAYER_*)
     multiscatter: bool = False  # energy-compensated GGX (Blender's Multiscatter GGX, ``C_MULTISCATTER``)
     multiscatter_colour: Colour | None = None  # its Fss where the Fresnel model does not set it (``C_MS_COLOUR``)
+    normal: int = -1  # register of the closure's own shading normal (``C_NORMAL``); -1: the material's
 
 
 @dataclass
@@ -107,6 +108,9 @@ class ShaderProgram:
     aov_registers: dict = field(default_factory=dict)
     aov_constants: dict = field(default_factory=dict)
     images: list[TextureImage | UdimImage] = field(default_factory=list)
+    # Material ▸ Settings ▸ Bump Map Correction (Cycles' default on): microfacet normals raised where their
+    # reflection would leave below the surface, diffuse light softened near a bumped horizon (``closure_normals``)
+    bump_map_correction: bool = True
 
     @property
     def has_program(self) -> bool:

@@ -10,6 +10,7 @@ closure that reflects nothing and is never selected.
 from __future__ import annotations
 
 from ..bsdf.closure import C_ALPHA, C_KIND, C_SHEEN_A, C_SHEEN_B, SHEEN
+from ..bsdf.closure_frame import view_cosine
 from ..bsdf.sheen import ltc_fit
 from ..jit import inlined
 
@@ -18,10 +19,10 @@ from ..jit import inlined
 def set_up_sheen(table, rows, spectral, count, cos_o):
     """Fit every sheen closure among ``count`` resolved ones to the view cosine ``cos_o``; ``table`` is a
     ``bsdf.sheen.SheenTable``."""
-    mu = min(abs(cos_o), 1.0)
     for c in range(count):
         if int(rows[c, C_KIND]) != SHEEN:
             continue
+        mu = min(abs(view_cosine(rows[c], cos_o)), 1.0)
         a, b, albedo = ltc_fit(table, rows[c, C_ALPHA], mu)
         rows[c, C_SHEEN_A] = a
         rows[c, C_SHEEN_B] = b

@@ -15,6 +15,7 @@ sampling and light paths, are evaluated without them, as Cycles evaluates them.
 from __future__ import annotations
 
 from ..bsdf.closure import C_KIND, C_MIRROR, C_TINT, C_TINT_SCALE, DIELECTRIC, TRANSPARENT
+from ..bsdf.closure_frame import view_cosine
 from ..jit import inlined
 from ..spectra.table import spectrum_value
 from .program import run_program
@@ -22,7 +23,12 @@ from .energy import compensate_energy
 from .resolve import _fill, copy_rows, resolve_material, resolve_spectral, selection_weights
 from .layering import under_layer
 from .sheen_setup import set_up_sheen
-from .table import MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED, MAT_PROGRAM, MAT_SHEEN
+from .closure_normals import set_up_normals
+from .table import (MAT_BUMP_CORRECTION, MAT_CLOSURE_NORMALS, MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED,
+                    MAT_OWN_NORMALS, MAT_PROGRAM, MAT_SHEEN)
+
+
+_FLAT = 1.0 - 1e-7  # a shading normal this close to the geometric one bends nothing (flat, unbumped)
 
 
 @inlined
@@ -39,7 +45,7 @@ def run_material(materials, geometry, material, triangle, u, v, p, ng, n, wo, ba
 @inlined
 def _apply_layers(tables, rows, spectral, count, cos_o):
     for c in range(count):
-        through = under_layer(tables, rows[c], cos_o)
+        through = under_layer(tables, rows[c], view_cosine(rows[c], cos_o))
         if through != 1.0:
             for k in range(spectral.shape[2]):
                 spectral[c, 2, k] *= through
@@ -64,6 +70,9 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
         resolve_spectral(materials, spectra, count, wavelength_nm, hero, rows, spectral, eta, glass_clamps, regs)
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
+    if flags & MAT_CLOSURE_NORMALS and (flags & MAT_OWN_NORMALS or
+                                        shading[0] * ng[0] + shading[1] * ng[1] + shading[2] * ng[2] < _FLAT):
+        set_up_normals(rows, count, regs, wo, ng, n, shading, flags & MAT_BUMP_CORRECTION != 0)
     if flags & (MAT_PROGRAM | MAT_LAYERED | MAT_MULTISCATTER | MAT_SHEEN):
         cos_o = wo[0] * shading[0] + wo[1] * shading[1] + wo[2] * shading[2]
         if flags & MAT_MULTISCATTER:

@@ -27,6 +27,10 @@ the kernels decide without looking at kinds:
   ``media.table.MediaArrays``): paths crossing the surface inward enter it, outward leave it.
 - ``MAT_SHEEN``: a closure is Blender's microfiber sheen, fitted per hit to the view direction
   (``sheen_setup.set_up_sheen``): its tint and the closures' selection weights are computed per hit.
+- ``MAT_CLOSURE_NORMALS``: the closures' normals are set up per hit (``closure_normals``): a closure has a
+  normal of its own (``MAT_OWN_NORMALS``: ``C_NORMAL``, a Coat Normal, shaders with different Normal inputs), the
+  program bends the normal, or Bump Map Correction (``MAT_BUMP_CORRECTION``) may raise a microfacet or
+  translucent closure's normal where it is not the geometric one.
 """
 
 from __future__ import annotations
@@ -38,7 +42,8 @@ import numpy as np
 
 from ..bsdf.closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C_FILM_NM, C_FRESNEL, C_GLASS,
                             C_KIND, C_LAYER_ETA, C_LAYER_F0, C_LAYER_MULTISCATTER, C_LAYER_ROUGHNESS, C_MIRROR,
-                            C_MS_COLOUR, C_MULTISCATTER, C_S1, C_SPECTRUM, C_TINT,
+                            C_MS_COLOUR, C_MULTISCATTER, C_NORMAL, C_S1, C_FRAMED, C_BUMPED,
+                            C_SPECTRUM, C_TINT,
                             C_TINT_SCALE, C_WEIGHT, CLOSURE_ROW,
                             CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SHEEN, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT,
                             TRANSPARENT, register_source)
@@ -61,6 +66,9 @@ MAT_LAYERED = 256
 MAT_MULTISCATTER = 512
 MAT_SHEEN = 1024
 MAT_MEDIUM = 2048
+MAT_CLOSURE_NORMALS = 4096
+MAT_OWN_NORMALS = 8192
+MAT_BUMP_CORRECTION = 16384
 
 MaterialArrays = namedtuple(
     "MaterialArrays",
@@ -125,6 +133,8 @@ def _row(spec, spectra, glasses, glass_index, name):
     row[C_FRESNEL] = float(spec.fresnel)
     row[C_ETA] = float(spec.eta)
     row[C_MIRROR] = 0.0
+    row[C_NORMAL] = float(spec.normal)
+    row[C_FRAMED] = row[C_BUMPED] = 0.0  # set per hit (``closure_normals``)
     layer = spec.layer if spec.layer is not None else (0.0, 0.0, 0.0)
     row[C_LAYER_ETA], row[C_LAYER_ROUGHNESS], row[C_LAYER_F0] = (float(x) for x in layer[:3])
     row[C_LAYER_MULTISCATTER] = float(layer[3]) if len(layer) > 3 else 0.0
@@ -218,8 +228,16 @@ def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTa
                 flags[m] |= MAT_MULTISCATTER
             if spec.kind == SHEEN:
                 flags[m] |= MAT_SHEEN
+            if spec.normal >= 0:
+                flags[m] |= MAT_CLOSURE_NORMALS | MAT_OWN_NORMALS
+            if shader.bump_map_correction and spec.kind in (CONDUCTOR, DIELECTRIC, TRANSLUCENT):
+                flags[m] |= MAT_CLOSURE_NORMALS
             needs_lut = needs_lut or any(c is not None and c.varies
                                          for c in (spec.tint, spec.s0, spec.s1, spec.multiscatter_colour))
+        if shader.normal >= 0:
+            flags[m] |= MAT_CLOSURE_NORMALS
+        if shader.bump_map_correction:
+            flags[m] |= MAT_BUMP_CORRECTION
         if closures and all(_is_delta(spec) for spec in closures):
             flags[m] |= MAT_DELTA
         binds = [[op.BIND, int(multiply), -1, c, column, register] + [-1] * (op.INSTRUCTION - 6)

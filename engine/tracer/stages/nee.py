@@ -34,11 +34,15 @@ def consistent(cos_og, cos_ig, wo_z, wi_z):
 
 
 @inlined
-def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, count, lights, materials, spectra,
-                  settings, depth, collapsed, shadows, slot, li, f, scratch, passes, layout, geometry, shading):
-    """Queue the light-sampled contribution of vertex ``p`` of path ``i`` at ``slot`` of ``shadows``;
-    returns 1 if queued, else 0. ``shading`` (``state.ShadingScratch``) lends an emissive program its
-    registers and rows."""
+def sample_direct(state, i, vertex, bsdf, lights, materials, spectra, geometry, settings, depth, shadows, slot, li, f,
+                  scratch, passes, layout, shading):
+    """Queue the light-sampled contribution of path ``i``'s ``vertex`` (``surface_vertex.SurfaceVertex``) with
+    its material ``bsdf`` (``surface_vertex.ResolvedBsdf``) at ``slot`` of ``shadows``; returns 1 if queued, else
+    0. ``shading`` (``state.ShadingScratch``) lends an emissive program its registers and rows. As in Cycles,
+    the light's side of the geometric surface is left to the shadow ray (``surface_vertex``); the closures
+    apply Cycles' bump shadowing test themselves (``bsdf.closure_frame``)."""
+    p, ng, frame, wo_l = vertex.p, vertex.ng, vertex.frame, vertex.wo_l
+    rows, spectral, eta, count, collapsed = bsdf
     ps = state.seed[i]
     sample = state.sample[i]
     u_select = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT))
@@ -56,9 +60,6 @@ def sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, cou
         # a shadow-linked emitter is counted by light sampling alone (``light_linking``)
         delta = delta or shadow_sets != ALL_SETS
     wi_l = to_local(wi, frame[0], frame[1], frame[2])
-    cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
-    if not consistent(cos_og, cos_ig, wo_l[2], wi_l[2]):
-        return 0
     pdf_bsdf = bsdf_evaluate(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, f, scratch)
     weight = 1.0 if (delta or not settings.use_mis) else power_heuristic(pdf_light, pdf_bsdf)
     scale = weight * abs(wi_l[2]) / pdf_light

@@ -21,8 +21,9 @@ from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..materials.light_path import after_scattering, after_transparent, emission_sample, path_ray
 from ..materials.shader_rays import ShaderRays
+from ..materials.closure_normals import orient_closures
 from ..materials.surface import shade_surface
-from ..materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_MEDIUM, MAT_NULL, MAT_ONE_SIDED
+from ..materials.table import MAT_CLOSURE_NORMALS, MAT_DELTA, MAT_DISPERSIVE, MAT_MEDIUM, MAT_NULL, MAT_ONE_SIDED
 from ..media.scatter import scatter_in_medium
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
 from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA
@@ -30,7 +31,8 @@ from ..vec3 import tangents, to_local, to_world
 from .caustic_split import classify_vertex
 from .caustics_toggles import filter_caustic_closures
 from .filter_glossy import blur_alpha, blur_glossy_closures
-from .nee import consistent, sample_direct
+from .nee import sample_direct
+from .surface_vertex import ResolvedBsdf, SurfaceVertex, on_its_geometric_side
 from .cryptomatte_write import cryptomatte_vertex
 from .pass_writes import first_bounce, first_hit, surface_features
 from .queue import push_ray
@@ -131,8 +133,11 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         if settings.filter_glossy > 0.0:
             blurred = blur_glossy_closures(rows, closures, blur_alpha(settings, state.min_pdf[i]))
         seen_n = n if settings.shaded_normals else facing_ns  # the first-hit passes' normal, facing the ray
-        if backfacing and mflags & MAT_ONE_SIDED:
+        flipped = backfacing and mflags & MAT_ONE_SIDED != 0
+        if flipped:
             n = (-n[0], -n[1], -n[2])
+        if mflags & MAT_CLOSURE_NORMALS:
+            orient_closures(rows, closures, n, flipped)
         tangent, bitangent = tangents(n)
         frame = (tangent, bitangent, n)
         wo_l = to_local(wo, tangent, bitangent, n)
@@ -141,9 +146,10 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         if has_lights and (not mflags & MAT_DELTA or blurred):
             if settings.light_path:
                 emission_sample(registers, state, i)
-            lit = sample_direct(state, i, p, ng, frame, wo_l, cos_og, rows, spectral, eta, closures, lights,
-                                materials, spectra, settings, depth, collapsed, shadows, shadowed, li, f,
-                                mix, passes, layout, geometry, scratch)
+            vertex = SurfaceVertex(p, ng, frame, wo_l)
+            lit = sample_direct(state, i, vertex, ResolvedBsdf(rows, spectral, eta, closures, collapsed), lights,
+                                materials, spectra, geometry, settings, depth, shadows, shadowed, li, f, mix, passes,
+                                layout, scratch)
             if lit and has_media and mflags & MAT_MEDIUM:
                 shadows.medium[shadowed] = side_medium(materials, material, shadows.direction[shadowed], ng,
                                                        settings.outside_medium)
@@ -151,7 +157,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
                                                                        closures, wo_l, frame, collapsed, weight, mix)
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
-        valid = largest > 0.0 and pdf > 0.0 and consistent(cos_og, cos_ig, wo_l[2], wi_l[2])
+        transmitted = sampled & SAMPLED_TRANSMISSION != 0
+        valid = largest > 0.0 and pdf > 0.0 and on_its_geometric_side(cos_og, cos_ig, transmitted)
         if layout.columns > 0:
             if layout.cryptomatte >= 0 and state.flags[i] & CAMERA_PATH:
                 cryptomatte_vertex(state, passes, layout, settings, i, depth, triangle, material, rows, spectral,
