@@ -88,6 +88,7 @@ def test_leaf_alpha_casts_a_leaf_shaped_shadow(prism_addon, fresh_scene):
     assert shadow.max() < 0.05 * lit.mean()  # the sun is blocked behind every opaque texel...
     assert lit.min() > 0.9 * lit.mean()  # ...and passes every transparent one (the notch included)
     cycles = render_cycles(fresh_scene, 16, max_bounces=2)
+    assert float((prism @ LUMINANCE).mean() / (cycles @ LUMINANCE).mean()) == pytest.approx(1.0, abs=0.02)
     assert relative_mse(normalised(prism), normalised(cycles)) < 0.02
 
 
@@ -174,8 +175,11 @@ def test_blackbody_emission_is_a_planck_spectrum(prism_addon, fresh_scene):
     lamp = next(m for m in export.export_scene(bpy.context.evaluated_depsgraph_get()).materials if m.name == "lamp")
     spectrum = lamp.shader.emission.spectrum
     assert (spectrum.kind, spectrum.temperature_k, lamp.shader.emission_strength) == ("blackbody", 3200.0, 4.0)
-    prism = normalised(render_prism(fresh_scene, 64))
-    cycles = normalised(render_cycles(fresh_scene, 64))
+    prism_absolute, cycles_absolute = render_prism(fresh_scene, 64), render_cycles(fresh_scene, 64)
+    ratio = float((prism_absolute @ LUMINANCE).mean() / (cycles_absolute @ LUMINANCE).mean())
+    print("blackbody-lit floor, Prism / Cycles mean luminance:", round(ratio, 4))
+    assert ratio == pytest.approx(1.0, abs=0.02)
+    prism, cycles = normalised(prism_absolute), normalised(cycles_absolute)
     colour_p = prism.reshape(-1, 3).mean(axis=0)
     colour_c = cycles.reshape(-1, 3).mean(axis=0)
     assert colour_p == pytest.approx(colour_c, rel=0.03)
