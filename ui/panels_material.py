@@ -264,8 +264,23 @@ class PRISM_PT_material_emission_spectrum(MaterialSubpanel, bpy.types.Panel):
         draw_spectrum(layout, "material_emission", preview, "Relative spectral power, 360-830 nm", metrics=True)
 
 
+class PRISM_PT_material_settings(MaterialSubpanel, bpy.types.Panel):
+    """The material settings Prism reads as Cycles does (Cycles shows them in Material ▸ Settings)."""
+
+    bl_label = "Settings"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        material = context.material
+        layout.prop(material, "displacement_method", text="Displacement")
+        cycles = getattr(material, "cycles", None)  # Cycles' own material settings
+        if cycles is not None and hasattr(cycles, "use_bump_map_correction"):
+            layout.prop(cycles, "use_bump_map_correction")
+
+
 CLASSES = (PRISM_PT_material, PRISM_PT_material_base_spectrum, PRISM_PT_material_emission_spectrum,
-           PRISM_PT_material_glass, PRISM_PT_material_metal, PRISM_PT_material_films)
+           PRISM_PT_material_glass, PRISM_PT_material_metal, PRISM_PT_material_films, PRISM_PT_material_settings)
 
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -111,6 +111,7 @@ def test_material_panels_show_what_prism_reads(prism_addon, fresh_scene, monkeyp
 
     log = draw_all()  # no node tree: the viewport values
     assert "diffuse_color" in _props(log)
+    assert {"displacement_method", "use_bump_map_correction"} <= set(_props(log))  # Settings, read as Cycles does
 
     node = _principled(material)
     log = draw_all()
