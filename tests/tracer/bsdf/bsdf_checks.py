@@ -67,6 +67,27 @@ class MaterialBSDF:
         return self.sample(np.tile([0.0, 0.0, 1.0], (n, 1)), lam, np.full((n, 3), 0.5), hero, np.ones(n, bool)).eta
 
 
+def mixture(materials, weights, set_rows=None):
+    """One material whose closures are those of ``materials`` with ``weights``; ``set_rows(closures)`` may
+    change the rows first."""
+    from engine.tracer.bsdf.closure import C_TINT, C_WEIGHT
+    from engine.tracer.materials.table import MaterialTable
+
+    spectra = SpectrumTable()
+    table = build_materials(materials, set(range(len(materials))), spectra)
+    a = table.arrays
+    closures = a.closures.copy()
+    closures[:, C_WEIGHT] = weights
+    closures[:, C_TINT] = [spectra.constant(w) for w in weights]
+    if set_rows is not None:
+        set_rows(closures)
+    arrays = a._replace(flags=a.flags[:1] * 0, closure_start=np.zeros(1, np.int32),
+                        closure_count=np.array([len(materials)], np.int32), closures=closures)
+    bsdf = MaterialBSDF(None, MaterialTable(arrays, table.glasses, table.features))
+    bsdf.spectra = spectra.arrays()
+    return bsdf
+
+
 def direction(theta_deg, phi_deg=30.0, below=False):
     t, p = np.radians(theta_deg), np.radians(phi_deg)
     v = np.array([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)])

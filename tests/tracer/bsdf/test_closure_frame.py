@@ -7,12 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from engine.tracer.bsdf.closure import C_FRAME_X, C_FRAME_Y, C_FRAME_Z, C_FRAMED, C_TINT, C_WEIGHT
-from engine.tracer.materials.table import MaterialTable, build_materials
+from engine.tracer.bsdf.closure import C_FRAME_X, C_FRAME_Y, C_FRAME_Z, C_FRAMED
 from engine.tracer.scene import Material
-from engine.tracer.spectra.table import SpectrumTable
 
-from .bsdf_checks import MaterialBSDF, albedo, chi2_sampling_test, direction, weight_matches_eval
+from .bsdf_checks import albedo, chi2_sampling_test, direction, mixture, weight_matches_eval
 
 DIFFUSE = Material("white", base_color=(0.8, 0.8, 0.8))
 ROUGH_METAL = Material("metal", kind="conductor", base_color=(1.0, 1.0, 1.0), roughness=0.4)
@@ -22,20 +20,13 @@ TILT = np.array([math.sin(math.radians(40.0)), 0.0, math.cos(math.radians(40.0))
 def _material(materials, weights, framed):
     """One material of ``materials`` with ``weights``; closure ``framed`` (an index or None) shades with
     ``TILT`` as its own normal."""
-    spectra = SpectrumTable()
-    table = build_materials(materials, set(range(len(materials))), spectra)
-    a = table.arrays
-    closures = a.closures.copy()
-    closures[:, C_WEIGHT] = weights
-    closures[:, C_TINT] = [spectra.constant(w) for w in weights]
-    if framed is not None:
-        closures[framed, C_FRAMED] = 1.0
-        closures[framed, [C_FRAME_X, C_FRAME_Y, C_FRAME_Z]] = TILT
-    arrays = a._replace(flags=a.flags[:1] * 0, closure_start=np.zeros(1, np.int32),
-                        closure_count=np.array([len(materials)], np.int32), closures=closures)
-    bsdf = MaterialBSDF(None, MaterialTable(arrays, table.glasses, table.features))
-    bsdf.spectra = spectra.arrays()
-    return bsdf
+
+    def tilt(closures):
+        if framed is not None:
+            closures[framed, C_FRAMED] = 1.0
+            closures[framed, [C_FRAME_X, C_FRAME_Y, C_FRAME_Z]] = TILT
+
+    return mixture(materials, weights, tilt)
 
 
 def test_tilted_diffuse_is_lambert_about_its_own_normal():

@@ -4,28 +4,9 @@ weights match f |cos| / pdf, and delta closures keep their share."""
 import numpy as np
 import pytest
 
-from engine.tracer.bsdf.closure import C_TINT, C_WEIGHT
-from engine.tracer.materials.table import MaterialTable, build_materials
 from engine.tracer.scene import Material
-from engine.tracer.spectra.table import SpectrumTable
 
-from .bsdf_checks import MaterialBSDF, albedo, chi2_sampling_test, direction, weight_matches_eval
-
-
-def _mixture(materials, weights):
-    """One material whose closures are those of ``materials`` with ``weights``."""
-    spectra = SpectrumTable()
-    table = build_materials(materials, set(range(len(materials))), spectra)
-    a = table.arrays
-    closures = a.closures.copy()
-    closures[:, C_WEIGHT] = weights
-    closures[:, C_TINT] = [spectra.constant(w) for w in weights]
-    arrays = a._replace(flags=a.flags[:1] * 0, closure_start=np.zeros(1, np.int32),
-                        closure_count=np.array([len(materials)], np.int32), closures=closures)
-    bsdf = MaterialBSDF(None, MaterialTable(arrays, table.glasses, table.features))
-    bsdf.spectra = spectra.arrays()
-    return bsdf
-
+from .bsdf_checks import albedo, chi2_sampling_test, direction, mixture, weight_matches_eval
 
 DIFFUSE = Material("white", base_color=(0.8, 0.8, 0.8))
 ROUGH_METAL = Material("metal", kind="conductor", base_color=(1.0, 1.0, 1.0), roughness=0.4)
@@ -33,21 +14,21 @@ MIRROR = Material("mirror", kind="conductor", base_color=(1.0, 1.0, 1.0))
 
 
 @pytest.mark.parametrize("theta", [20.0, 70.0])
-def test_diffuse_plus_rough_metal_samples_the_mixture(theta):
-    b = _mixture([DIFFUSE, ROUGH_METAL], [0.3, 0.7])
+def test_diffuse_plus_rough_metal_samples_themixture(theta):
+    b = mixture([DIFFUSE, ROUGH_METAL], [0.3, 0.7])
     assert chi2_sampling_test(b, direction(theta), n=200_000, bins=16) > 1e-3
     assert weight_matches_eval(b, direction(theta)) < 1e-6
 
 
 def test_mixture_albedo_is_the_weighted_sum():
     wo = direction(35.0)
-    both = albedo(_mixture([DIFFUSE, ROUGH_METAL], [0.3, 0.7]), wo, n=200_000)[0]
-    alone = [albedo(_mixture([m], [1.0]), wo, n=200_000)[0] for m in (DIFFUSE, ROUGH_METAL)]
+    both = albedo(mixture([DIFFUSE, ROUGH_METAL], [0.3, 0.7]), wo, n=200_000)[0]
+    alone = [albedo(mixture([m], [1.0]), wo, n=200_000)[0] for m in (DIFFUSE, ROUGH_METAL)]
     assert both == pytest.approx(0.3 * alone[0] + 0.7 * alone[1], rel=0.01)
 
 
 def test_delta_closure_keeps_its_share():
-    b = _mixture([DIFFUSE, MIRROR], [0.5, 0.5])
+    b = mixture([DIFFUSE, MIRROR], [0.5, 0.5])
     n = 100_000
     wo = direction(30.0)
     s = b.sample(np.repeat(wo[None], n, 0), np.full((n, 1), 550.0), np.random.default_rng(3).random((n, 3)),
