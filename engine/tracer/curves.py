@@ -13,10 +13,10 @@ A hit keeps the curve parameter u of the segment (0..1, Embree's) and, in v, the
 tangent at u of the direction from the curve's centre to the hit (``hit_code``). Embree's u is the
 parameter whose normal plane holds the hit, at the interpolated radius from the centre (checked on bent,
 tapered strands: |hit - C(u)| = r(u) within 4e-7 m, (hit - C(u)) . C'(u) = 0), so ``curve_surface``
-rebuilds the hit as C(u) + r(u) times that direction, and the direction is the normal, as Cycles'
-``curve_shader_setup`` takes a thick curve's N (normalize(P - C(u))). The geometric normal is the tube's
-own, which leans along the tangent where the radius changes (by -r'/|C'|, as Embree's Ng): rays leave
-along it. Curves do not move with motion blur,
+rebuilds the hit as C(u) + r(u) times that direction. The normal (geometric and shading alike, as Cycles
+takes a thick curve's N and Ng alike) is the tube's own, Embree's Ng: that direction leaning along the
+tangent where the radius changes (by -r'/|C'|). Cycles' N = normalize(P - C(u)) does not lean; for hair
+(a radius of 0.1 mm falling to 0 over centimetres) the two differ by about 0.1 degree. Curves do not move with motion blur,
 carry no UV map and are not sampled as lights.
 """
 
@@ -123,14 +123,35 @@ def curve_at(controls, segments, c, u):
     return (x, y, z), r, (dx, dy, dz), dr
 
 
-@kernel
-def _frame(tangent):
-    """(unit tangent, s, t): a right-handed frame around the curve's tangent (any fixed axis if it is 0)."""
+@inlined
+def _frame(controls, segments, c, tangent):
+    """(unit tangent, s, t, |tangent|): a right-handed frame around the curve's tangent at a point of segment
+    ``c``. s is a vector fixed for the whole segment (across its chord, the control points 2 to 3), made
+    perpendicular to the tangent: the frame then turns smoothly along the segment and does not hang on the
+    rounding of the tangent (whose components cancel to noise along a straight strand, and round
+    differently where the kernels compute it), so a hit's code and its surface agree."""
+    k = segments[c]
+    cx = float(controls[k + 2, 0]) - float(controls[k + 1, 0])
+    cy = float(controls[k + 2, 1]) - float(controls[k + 1, 1])
+    cz = float(controls[k + 2, 2]) - float(controls[k + 1, 2])
+    chord = math.sqrt(cx * cx + cy * cy + cz * cz)
     length = math.sqrt(tangent[0] * tangent[0] + tangent[1] * tangent[1] + tangent[2] * tangent[2])
-    if not length > 0.0:
-        return (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), 0.0
-    n = (tangent[0] / length, tangent[1] / length, tangent[2] / length)
-    s, t = tangents(n)
+    if length > 0.0:
+        n = (tangent[0] / length, tangent[1] / length, tangent[2] / length)
+    elif chord > 0.0:
+        n = (cx / chord, cy / chord, cz / chord)
+    else:
+        n = (0.0, 0.0, 1.0)
+    reference = (cx / chord, cy / chord, cz / chord) if chord > 0.0 else n
+    w, w2 = tangents(reference)
+    along = w[0] * n[0] + w[1] * n[1] + w[2] * n[2]
+    if abs(along) > 0.9:  # a segment bent by more than a right angle: its other fixed vector
+        w = w2
+        along = w[0] * n[0] + w[1] * n[1] + w[2] * n[2]
+    sx, sy, sz = w[0] - along * n[0], w[1] - along * n[1], w[2] - along * n[2]
+    size = math.sqrt(sx * sx + sy * sy + sz * sz)
+    s = (sx / size, sy / size, sz / size)
+    t = (n[1] * s[2] - n[2] * s[1], n[2] * s[0] - n[0] * s[2], n[0] * s[1] - n[1] * s[0])
     return n, s, t, length
 
 
@@ -138,25 +159,27 @@ def _frame(tangent):
 def hit_code(controls, segments, c, u, nx, ny, nz):
     """The angle (radians) of the normal (nx, ny, nz) (any length) around the tangent of segment ``c`` at ``u``."""
     _, _, du, _ = curve_at(controls, segments, c, u)
-    _, s, t, _ = _frame(du)
+    _, s, t, _ = _frame(controls, segments, c, du)
     return math.atan2(nx * t[0] + ny * t[1] + nz * t[2], nx * s[0] + ny * s[1] + nz * s[2])
 
 
 @inlined
 def curve_surface(controls, segments, c, u, angle):
-    """(point, unit geometric normal, unit shading normal) of segment ``c`` where the hit code (u, ``angle``)
-    points: the point is the curve's centre at ``u`` plus its radius across the tangent at ``angle`` around it,
-    the shading normal that direction (Cycles' thick-curve N), the geometric normal the tube's own, which
-    leans along the tangent where the radius changes (by -r'/|C'|, as Embree's Ng): secondary rays leave the
-    surface along it, so a tapering strand does not catch the rays it sheds."""
+    """(point, unit outward normal, the same as shading normal) of segment ``c`` where the hit code (u, ``angle``)
+    points: the point is the curve's centre at ``u`` plus its radius across the tangent at ``angle`` around it;
+    the normal is the tube's own, which leans along the tangent where the radius changes (by -r'/|C'|, as
+    Embree's Ng): rays leave the surface along it, so a tapering strand does not catch the rays it sheds,
+    and the shading normal is the same (as Cycles' N and Ng of a thick curve are), so no bounce lies on
+    different sides of the two."""
     centre, r, du, dr = curve_at(controls, segments, c, u)
-    axis, s, t, length = _frame(du)
+    axis, s, t, length = _frame(controls, segments, c, du)
     ca, sa = math.cos(angle), math.sin(angle)
-    n = (ca * s[0] + sa * t[0], ca * s[1] + sa * t[1], ca * s[2] + sa * t[2])
     lean = min(max(-dr / length, -0.99), 0.99) if length > 0.0 else 0.0
     across = math.sqrt(1.0 - lean * lean)
-    ng = (across * n[0] + lean * axis[0], across * n[1] + lean * axis[1], across * n[2] + lean * axis[2])
-    return (centre[0] + r * n[0], centre[1] + r * n[1], centre[2] + r * n[2]), ng, n
+    n = (across * (ca * s[0] + sa * t[0]) + lean * axis[0], across * (ca * s[1] + sa * t[1]) + lean * axis[1],
+         across * (ca * s[2] + sa * t[2]) + lean * axis[2])
+    return (centre[0] + r * (ca * s[0] + sa * t[0]), centre[1] + r * (ca * s[1] + sa * t[1]),
+            centre[2] + r * (ca * s[2] + sa * t[2])), n, n
 
 
 @inlined
