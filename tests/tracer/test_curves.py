@@ -19,6 +19,10 @@ def _strands(points, radii, offsets, material=0):
                          np.zeros(count, np.int32))
 
 
+def _camera(size, eye):
+    return Camera("cam", look_at(eye, (0, 0, 0)), (size, size), film_width_mm=36.0, film_height_mm=36.0)
+
+
 def _tube_mesh(a, b, radius, segments=256):
     """The side of the cylinder from ``a`` to ``b`` (along x), as triangles, outward."""
     angle = np.linspace(0.0, 2 * np.pi, segments, endpoint=False)
