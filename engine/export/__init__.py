@@ -10,6 +10,7 @@ import numpy as np
 
 from ..tracer.errors import PrismInputError
 from ..tracer.scene import Camera, Scene
+from ..tracer.curves import curve_count
 from ..tracer.spheres import rendered_rows
 from .border import render_border
 from .camera import export_camera, render_resolution
@@ -46,7 +47,8 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
     the world (a link Prism ignored may be why it is black), told with the refusal since the warnings of a
     refused render are not printed; ``included``: the view layer's Filter, whose Surfaces or Curves off
     may leave the world alone to render (as Cycles renders it)."""
-    points = tracer_scene.points is not None and len(rendered_rows(tracer_scene.points)) > 0
+    points = (tracer_scene.points is not None and len(rendered_rows(tracer_scene.points)) > 0) or bool(
+        curve_count(tracer_scene.curves))  # spheres or curves to see
     if tracer_scene.world.medium is not None and tracer_scene.triangle_count == 0 and not points:
         return  # fog in the world is something to see (lit by the lights in it), as Cycles renders it
     if tracer_scene.triangle_count == 0 and not points and missing:
@@ -61,7 +63,7 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
             "geometry is rendered, and the world is black"
             + (" (Filter ▸ Environment is off too)" if world_filtered_by else "")
             + ": turn the filter on, or the image would be black.")
-    if tracer_scene.triangle_count == 0 and not points and tracer_scene.points is not None:
+    if tracer_scene.triangle_count == 0 and not points and tracer_scene.points is not None and len(tracer_scene.points):
         names = sorted({tracer_scene.object_names[int(i)] for i in np.unique(tracer_scene.points.object)})
         raise PrismInputError(
             f"Scene '{scene_name}' has no visible geometry: every point of point cloud "
@@ -81,8 +83,9 @@ def _check_something_to_see(scene_name: str, tracer_scene: Scene, missing=(), wo
         )
     world_lit = not tracer_scene.world.is_black()
     used = {int(i) for i in np.unique(tracer_scene.triangle_material)}
-    if points:
-        used |= {int(i) for i in np.unique(tracer_scene.points.material)}
+    for extra in (tracer_scene.points, tracer_scene.curves):
+        if extra is not None and len(extra):
+            used |= {int(i) for i in np.unique(extra.material)}
     emissive = any(_emits(tracer_scene.materials[i]) for i in used)
     if not (tracer_scene.lights or world_lit or emissive) and world_filtered_by:
         raise PrismInputError(
@@ -134,6 +137,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
         triangle_flat=geometry.triangle_flat,
         surface=geometry.surface,
         points=geometry.points,
+        curves=geometry.curves,
         object_flags=geometry.object_flags,
         materials=geometry.materials,
         camera=camera,

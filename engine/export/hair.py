@@ -1,10 +1,16 @@
-"""Hair Curves objects → camera-facing ribbons of triangles (Cycles' "Rounded Ribbons" shape, flat).
+"""Hair Curves objects → round curves (Cycles' "3D Curves" shape) or camera-facing ribbons of triangles.
 
-Each strand becomes a strip two triangles per segment wide as the strand's
-diameter, turned to face the camera; shading normals face the camera too. The
-radius is the ``radius`` attribute, or 5 mm where the curves have none (as
-Cycles), scaled by the instance's mean scale. Strands are read with
-``foreach_get``; ribbons are built for all strands at once.
+Render ▸ Curves ▸ Shape (``scene.cycles_curves.shape``) chooses, as in Cycles: "3D Curves" (``THICK``)
+renders each strand as a tube, a Catmull-Rom curve through its points swept by a circle
+of the interpolated radius (``placed_strands`` → ``tracer.curves.CurveSegments``, Embree's round curves,
+as Cycles renders them); "Rounded Ribbons" (``RIBBONS``) keeps Prism's flat ribbons (``hair_ribbons``):
+each strand a strip two triangles per segment wide as the strand's diameter, turned to face the camera,
+with shading normals facing the camera too (Cycles rounds a ribbon's normals across it; Prism does not).
+"Rounded Ribbons" is the shape of a new scene (the property's default in Blender 4.5).
+The radius is the ``radius`` attribute, or 5 mm where the curves have none (as Cycles); an instance's
+transform scales it by the cube root of its determinant's magnitude for curves (Cycles'
+``Hair::apply_transform``), by its mean axis scale for ribbons. Strands are read with ``foreach_get``
+and placed for all strands at once. Curves are rendered where they stand at the frame (no motion blur).
 """
 
 from __future__ import annotations
@@ -29,6 +35,18 @@ class LocalHair:
     offsets: np.ndarray
     curve_slot: np.ndarray
     slot_materials: list
+
+    @property
+    def texture_space(self):
+        """(location, size) of the strands' bounds, Blender's automatic texture space."""
+        lo, hi = self.points.min(axis=0), self.points.max(axis=0)
+        return 0.5 * (lo + hi), 0.5 * (hi - lo)
+
+
+def curve_shape(scene) -> str:
+    """Render ▸ Curves ▸ Shape: ``THICK`` ("3D Curves") or ``RIBBONS`` ("Rounded Ribbons", a new scene's)."""
+    settings = getattr(scene, "cycles_curves", None)
+    return getattr(settings, "shape", "RIBBONS") if settings is not None else "RIBBONS"
 
 
 def read_hair(obj) -> LocalHair | None:
@@ -55,6 +73,34 @@ def read_hair(obj) -> LocalHair | None:
         curve_slot=curve_slot,
         slot_materials=[slot.material for slot in obj.material_slots],
     )
+
+
+def placed_strands(hair: LocalHair, matrices: np.ndarray):
+    """(points float64 [K*P, 3], radii float64 [K*P], offsets int64 [K*C' + 1], curve slot int32 [K*C']) of
+    one hair's strands at each of ``matrices`` [K, 4, 4], the strands with at least 2 points and every
+    point finite (C' of them); radii scaled by the cube root of each transform's determinant's magnitude."""
+    counts = np.diff(hair.offsets)
+    finite = np.isfinite(hair.points).all(axis=1) & np.isfinite(hair.radii)
+    strand_of_point = np.repeat(np.arange(len(counts)), counts)
+    bad = np.zeros(len(counts), bool)
+    bad[strand_of_point[~finite]] = True
+    keep = (counts >= 2) & ~bad
+    point_kept = keep[strand_of_point]
+    local, radii = hair.points[point_kept], np.maximum(hair.radii[point_kept], 0.0)
+    kept_counts = counts[keep]
+    linear, offset = matrices[:, :3, :3], matrices[:, :3, 3]
+    points = np.einsum("kij,pj->kpi", linear, local) + offset[:, None, :]
+    with np.errstate(invalid="ignore"):
+        scale = np.cbrt(np.abs(np.linalg.det(linear)))
+    offsets = np.concatenate([[0], np.cumsum(np.tile(kept_counts, len(matrices)))]).astype(np.int64)
+    return (points.reshape(-1, 3), (scale[:, None] * radii[None, :]).reshape(-1), offsets,
+            np.tile(hair.curve_slot[keep], len(matrices)).astype(np.int32))
+
+
+def moving_hair_warning(name: str) -> str:
+    """The warning for hair curves that move during the shutter (rendered where they stand at the frame)."""
+    return (f"Hair curves '{name}' move during the shutter, but Prism renders 3D curves without motion blur: "
+            "the strands are sharp where they stand at the frame.")
 
 
 def segment_starts(offsets: np.ndarray) -> np.ndarray:

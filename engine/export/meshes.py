@@ -3,7 +3,7 @@
 Blender evaluates Text, Curve, Surface and Metaball objects to meshes and lists
 each such mesh as an instance of its own in ``depsgraph.object_instances``; the
 objects themselves are skipped here (as Cycles does), so their surfaces are not
-exported twice. Hair Curves become ribbons (``hair``); point clouds become spheres
+exported twice. Hair Curves become round curves or ribbons (``hair``); point clouds become spheres
 (``point_clouds``, ``tracer.spheres``); volumes and particle hair are reported (``unrendered``).
 
 The instances of one mesh are gathered while iterating (the only Python work per
@@ -19,9 +19,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..tracer.curves import CurveSegments, padded_strands
 from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
-from .hair import LocalHair, hair_ribbons, read_hair
+from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
 from .cryptomatte_names import asset_name, material_name
@@ -59,6 +60,7 @@ class ExportedGeometry:
     pass_uv: np.ndarray | None = None
     material_pass_index: tuple = ()
     points: SpherePoints | None = None  # the points of point clouds (objects numbered after the triangles')
+    curves: CurveSegments | None = None  # the strands of hair curves (objects numbered after the points')
     triangle_flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat
     object_asset_names: list[str] = field(default_factory=list)  # per object_names entry (Cryptomatte Asset)
     material_names: list[str] = field(default_factory=list)  # per material, Cycles' name (Cryptomatte Material)
@@ -180,7 +182,8 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                   read=read_geometry) -> ExportedGeometry:
     """Every visible mesh and hair instance, in world space (metres, float64 vertices).
 
-    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera. ``read(key, obj)``
+    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera (Render ▸ Curves ▸ Shape
+    "Rounded Ribbons"; "3D Curves" become ``tracer.curves.CurveSegments``). ``read(key, obj)``
     returns a piece's geometry (the viewport passes one that keeps what did not change).
     Material warnings and geometry Prism skips are appended to ``warnings``.
     """
@@ -199,12 +202,16 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     pass_index: list[np.ndarray] = []
     has_uv: list[np.ndarray] = []  # per triangle: its mesh has the render UV map (the UV pass's A)
     flat: list[np.ndarray] = []  # per triangle: shaded flat (``ExportedGeometry.triangle_flat``)
-    clouds = []
+    clouds, strands = [], []
+    ribbons = curve_shape(depsgraph.scene) == "RIBBONS"
     for piece in pieces:
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
         lookup = materials.slot_lookup(piece.geometry.slot_materials)
         if isinstance(piece.geometry, LocalPoints):
             clouds.append((piece, matrices, lookup))
+            continue
+        if isinstance(piece.geometry, LocalHair) and not ribbons:
+            strands.append((piece, matrices, lookup))
             continue
         if isinstance(piece.geometry, LocalHair):
             for matrix in matrices:  # ribbons face the camera from where each instance stands
@@ -237,6 +244,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                                         len(local.triangles)))
     geometry = _assemble(parts, names, materials.materials)
     geometry.points = _points(clouds, names, groups, flags, surface, assets)
+    geometry.curves = _curves(strands, names, groups, flags, surface, assets)
     geometry.object_names = list(names)
     geometry.object_asset_names = list(assets)
     geometry.material_names = list(materials.cryptomatte_names)
@@ -280,6 +288,39 @@ def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | Non
     return SpherePoints(np.concatenate(centres), np.concatenate(radii), np.concatenate(material).astype(np.int32),
                         np.concatenate(objects), np.concatenate(instance).astype(np.int32), np.concatenate(pass_index),
                         np.concatenate(random))
+
+
+def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | None:
+    """The strands of every hair instance as round curve segments (objects appended to ``names``, ``groups``,
+    ``flags`` and ``assets``), or None without any."""
+    points, radii, offsets, material, objects, instance, pass_index = [], [], [], [], [], [], []
+    first = 0
+    for piece, matrices, lookup in strands:
+        placed, scaled, strand_offsets, slots = placed_strands(piece.geometry, matrices)
+        if not len(slots):
+            continue
+        segments = np.diff(strand_offsets) - 1  # per strand
+        points.append(placed)
+        radii.append(scaled)
+        offsets.append(strand_offsets[1:] + first)
+        first += len(placed)
+        material.append(np.repeat(lookup[np.clip(slots, 0, len(lookup) - 1)], segments))
+        objects.append(np.full(int(segments.sum()), len(names), np.int32))
+        names.append(piece.name)
+        assets.append(piece.asset)
+        groups.append(piece.light_group)
+        flags.append(piece.flags)
+        per_instance = int(segments.sum()) // len(matrices)
+        rows = surface.add_points(matrices, piece.infos, piece.geometry.texture_space)
+        instance.append(np.repeat(rows, per_instance) if rows is not None else np.full(int(segments.sum()), -1, np.int32))
+        pass_index.append(np.repeat(np.asarray([info[1] for info in piece.infos], np.float32), per_instance))
+    if not points:
+        return None
+    padded, padded_radii, segments = padded_strands(np.concatenate(points), np.concatenate(radii),
+                                                    np.concatenate([[0], *offsets]))
+    return CurveSegments(padded, padded_radii, segments, np.concatenate(material).astype(np.int32),
+                         np.concatenate(objects), np.concatenate(instance).astype(np.int32),
+                         np.concatenate(pass_index))
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

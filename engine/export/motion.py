@@ -16,6 +16,7 @@ import numpy as np
 
 from ..tracer.motion import Motion, motion_step_count, shutter_times
 from .camera import rigid_matrix
+from .hair import moving_hair_warning
 from .point_clouds import moving_point_cloud_warning
 from .view_layer_filter import layer_filter
 
@@ -84,7 +85,7 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     count = max([camera_steps] + [motion_step_count(s[1]) for s in settings.values() if s[0]])
     frames = step_frames(scene, count)
     frame, subframe = scene.frame_current, scene.frame_subframe
-    vertices, normals, cameras, changed, clouds = [], [], [], False, []
+    vertices, normals, cameras, changed, clouds, strands = [], [], [], False, [], []
     try:
         for time in frames:
             whole = int(np.floor(time))
@@ -97,6 +98,7 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
                 vertices.append(geometry.vertices)
                 normals.append(geometry.corner_normals)
             clouds.append(getattr(geometry, "points", None))
+            strands.append(getattr(geometry, "curves", None))
             cameras.append(rigid_matrix(camera_object.evaluated_get(depsgraph).matrix_world))
     finally:
         frame_set(frame, subframe)
@@ -105,6 +107,7 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     if not np.allclose(cameras, cameras[:1], rtol=0.0, atol=1e-12):
         camera.motion_to_world = cameras
     warnings.extend(moving_point_cloud_warning(name) for name in _moving_clouds(tracer_scene, clouds, settings))
+    warnings.extend(moving_hair_warning(name) for name in _moving_hair(tracer_scene, strands, settings))
     if changed:
         warnings.append(f"Scene '{scene.name}': Motion Blur: a mesh changes its vertices or faces during the shutter "
                         "(a modifier that adds or removes geometry over time), so Prism cannot follow its vertices: "
@@ -132,6 +135,25 @@ def _moving_clouds(tracer_scene, steps, settings) -> list[str]:
             break
         moving |= (step.centres != points.centres).any(axis=1) | (step.radii != points.radii)
     names = sorted({tracer_scene.object_names[int(i)] for i in np.unique(points.object[moving])})
+    return [name for name in names if settings.get(name, (True,))[0]]
+
+
+def _moving_hair(tracer_scene, steps, settings) -> list[str]:
+    """Names of the hair curves (with Object ▸ Motion Blur on) whose control points at the shutter's time
+    steps ``steps`` (``CurveSegments`` or None each) differ from the frame's."""
+    curves = tracer_scene.curves
+    if curves is None or not len(curves):
+        return []
+    moving = np.zeros(len(curves.radii), bool)
+    for step in steps:
+        if step is None or len(step.radii) != len(curves.radii):
+            moving[:] = True
+            break
+        moving |= (step.points != curves.points).any(axis=1) | (step.radii != curves.radii)
+    touched = np.zeros(len(curves), bool)
+    for k in range(4):  # a segment moves where any of its 4 control points does
+        touched |= moving[curves.segments + k]
+    names = sorted({tracer_scene.object_names[int(i)] for i in np.unique(curves.object[touched])})
     return [name for name in names if settings.get(name, (True,))[0]]
 
 

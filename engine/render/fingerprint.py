@@ -31,6 +31,8 @@ def render_fingerprint(scene, settings, frame: float) -> dict[str, str]:
     geometry = (scene.vertices, scene.triangles, scene.triangle_material, scene.corner_normals)
     if getattr(scene, "points", None) is not None:  # point clouds (absent: the hashes of scenes before them)
         geometry += (scene.points,)
+    if getattr(scene, "curves", None) is not None:  # hair as curves (absent: the hashes of scenes before them)
+        geometry += (scene.curves,)
     settings_fields = {
         f.name: getattr(settings, f.name) for f in dataclasses.fields(settings) if f.name not in _PER_CHUNK_SETTINGS
     }

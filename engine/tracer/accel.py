@@ -16,9 +16,11 @@ import numpy as np
 
 class Accel:
     """Queries against a ``geometry.Geometry`` (camera-relative float32 vertices; its spheres, rows after
-    the triangles, as one more Embree geometry of sphere points)."""
+    the triangles, as one more Embree geometry of sphere points; its curve segments, rows after the spheres,
+    as one of round Catmull-Rom curves)."""
 
     def __init__(self, geometry):
+        from .embree.curves import CurveGeometry
         from .embree.scene import Scene, TriangleGeometry
         from .embree.spheres import SphereGeometry
 
@@ -37,6 +39,11 @@ class Accel:
         if len(geometry.spheres):
             geometries.append(SphereGeometry(geometry.spheres))
             self._rows.update(sphere_geometry=len(geometries) - 1, first_sphere=len(geometry.triangles))
+        if len(geometry.curve_segments):
+            geometries.append(CurveGeometry(geometry.curves, geometry.curve_segments))
+            self._rows.update(curve_geometry=len(geometries) - 1,
+                              first_curve=len(geometry.triangles) + len(geometry.spheres),
+                              curves=geometry.curves, curve_segments=geometry.curve_segments)
         self._scene = Scene(geometries)
         self._local = threading.local()
         #: Chunks trace in compiled loops that query Embree themselves; False makes them call this

@@ -57,8 +57,8 @@ def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, 
                      sphere_pass_index=None, row_objects=None):
     """The kernels' arrays for ``inputs`` with triangles kept as ``original_triangle`` (their scene
     indices), ``materials`` scene materials and the passes of ``layout`` (``PassLayout``); the rendered
-    spheres, rows after the triangles, with Object ▸ Pass Index ``sphere_pass_index`` float32 [S] and no UV
-    map (0, 0, 0, as a mesh without one). ``row_objects`` [rows]: the scene object of each row (None:
+    spheres and curve segments, rows after the triangles, with Object ▸ Pass Index ``sphere_pass_index``
+    float32 [S + C] and no UV map (0, 0, 0, as a mesh without one). ``row_objects`` [rows]: the scene object of each row (None:
     object 0), read by Cryptomatte only."""
     spheres = np.zeros(0, np.float32) if sphere_pass_index is None else np.asarray(sphere_pass_index, np.float32)
     data = np.zeros(FIRST_HIT_DATA)

@@ -14,8 +14,11 @@ times of the shutter, camera-relative; [0, 0, 3] without) and ``motion_normals``
 corner normals at those times; [0, 0, 3, 3] without, or for flat shading). A ray at time τ (0..1) sees
 vertices interpolated linearly between the two steps around τ·(S-1), as Embree interpolates them.
 ``spheres`` float32 [S, 4] (``spheres``: the points of point clouds, camera-relative centre and radius; [0, 4]
-without) and ``sphere_random`` float32 [S] (each point's Point Info ▸ Random): rows T .. T + S - 1 of the render's primitives, so ``material``, ``flags`` (and
-``attributes.instance`` when it is not empty) hold T + S entries; the per-corner tables hold T.
+without) and ``sphere_random`` float32 [S] (each point's Point Info ▸ Random): rows T .. T + S - 1 of the render's primitives.
+``curves`` float32 [P, 4] and ``curve_segments`` int32 [C] (``curves``: the control points of hair strands,
+camera-relative point and radius, and the first control point of each segment; [0, 4] and [0] without):
+rows T + S .. T + S + C - 1. So ``material``, ``flags`` (and ``attributes.instance`` when it is not empty)
+hold T + S + C entries; the per-corner tables hold T.
 """
 
 from __future__ import annotations
@@ -25,11 +28,13 @@ from collections import namedtuple
 
 import numpy as np
 
+from . import curves as hair
 from .jit import inlined, kernel
 from .spheres import camera_relative, no_spheres, point_random, rendered_rows, sphere_surface
 
 Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags motion motion_normals spheres "
-                      "sphere_random", defaults=(no_spheres(), np.zeros(0, np.float32)))
+                      "sphere_random curves curve_segments",
+                      defaults=(no_spheres(), np.zeros(0, np.float32), *hair.no_curves()))
 
 #: A ``surface_at`` time that reads the positions at the frame (``Geometry.vertices``), where the light
 #: table's emitters stand, instead of those at a ray time of the shutter.
@@ -55,7 +60,7 @@ OFFSET_ABSOLUTE = 1e-7
 def prepare_geometry(scene, offset):
     """(``Geometry``, original triangle index [T] int64, dropped count) for ``scene`` with ``offset``
     (the camera position, m) subtracted; the spheres of ``scene.points`` that render follow the triangles
-    (``spheres.rendered_rows``)."""
+    (``spheres.rendered_rows``), the segments of ``scene.curves`` the spheres."""
     vertices = np.asarray(scene.vertices, dtype=np.float64) - np.asarray(offset, dtype=np.float64)
     triangles = np.asarray(scene.triangles, dtype=np.int64).reshape(-1, 3)
     relative32 = vertices.astype(np.float32)
@@ -66,7 +71,7 @@ def prepare_geometry(scene, offset):
     normals = np.zeros((0, 3, 3), np.float32)
     if scene.corner_normals is not None and len(scene.corner_normals) == len(triangles):
         normals = np.ascontiguousarray(np.asarray(scene.corner_normals, dtype=np.float32)[original])
-    from .visibility import sphere_flags, triangle_flags
+    from .visibility import curve_flags, sphere_flags, triangle_flags
 
     points = getattr(scene, "points", None)
     rows = rendered_rows(points)
@@ -79,10 +84,18 @@ def prepare_geometry(scene, offset):
             of_sphere = (np.asarray(points.instance, np.int32)[rows] if points.instance is not None
                          else np.full(len(rows), -1, np.int32))
             attributes = attributes._replace(instance=np.concatenate([attributes.instance, of_sphere]))
+    strands = getattr(scene, "curves", None)
+    if hair.curve_count(strands):
+        material = np.concatenate([material, np.asarray(strands.material, np.int32)])
+        flags = np.concatenate([flags, curve_flags(scene)])
+        if scene.surface is not None and scene.surface.triangle_instance is not None:
+            of_segment = (np.asarray(strands.instance, np.int32) if strands.instance is not None
+                          else np.full(len(strands), -1, np.int32))
+            attributes = attributes._replace(instance=np.concatenate([attributes.instance, of_segment]))
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
                         np.ascontiguousarray(material), normals, attributes, np.ascontiguousarray(flags),
                         *_motion_arrays(scene, original, offset, len(normals)), camera_relative(points, rows, offset),
-                        point_random(points, rows))
+                        point_random(points, rows), *hair.camera_relative(strands, offset))
     return geometry, original, int(len(triangles) - len(original))
 
 
@@ -180,9 +193,13 @@ def surface_at(geometry, triangle, u, v, time):
     """(point, unit geometric normal, unit shading normal on the geometric normal's side) at
     barycentrics (u, v) of ``triangle`` (corner weights 1 - u - v, u, v) at ray time ``time`` (0..1 over
     the shutter; ``FRAME_TIME`` or no motion: the frame's vertices). Rows past the triangles are spheres,
-    (u, v) then the octahedral code of the normal (``spheres``)."""
+    (u, v) then the octahedral code of the normal (``spheres``), then curve segments, (u, v) then the curve
+    parameter and the normal's angle around the tangent (``curves``)."""
     if triangle >= geometry.triangles.shape[0]:
-        return sphere_surface(geometry.spheres, triangle - geometry.triangles.shape[0], u, v)
+        s = triangle - geometry.triangles.shape[0]
+        if s < geometry.spheres.shape[0]:
+            return sphere_surface(geometry.spheres, s, u, v)
+        return hair.curve_surface(geometry.curves, geometry.curve_segments, s - geometry.spheres.shape[0], u, v)
     a = geometry.triangles[triangle, 0]
     b = geometry.triangles[triangle, 1]
     c = geometry.triangles[triangle, 2]

@@ -14,6 +14,7 @@ import numpy as np
 
 from .data_passes import DataPassInputs
 from .errors import PrismInputError
+from .curves import CurveSegments
 from .spheres import SpherePoints
 from .spectrum_specs import ReflectanceSpec, SampledSpectrum, SpectrumSpec  # noqa: F401 - part of the scene's API
 
@@ -266,7 +267,8 @@ class Scene:
     ``motion`` (``motion.Motion``): the vertices at the shutter's time steps when motion blur is on and
     something moves or deforms, else None. ``light_links`` (``light_linking.LightLinks``): Blender's light
     and shadow linking, per object and per light, or None. ``points`` (``spheres.SpherePoints``): the points
-    of point clouds, one sphere each, or None.
+    of point clouds, one sphere each, or None. ``curves`` (``curves.CurveSegments``): the strands of hair
+    curves, round Catmull-Rom segments, or None.
     """
 
     vertices: np.ndarray
@@ -286,6 +288,7 @@ class Scene:
     motion: object = None  # motion.Motion
     light_links: object = None  # light_linking.LightLinks: light and shadow linking (None: none)
     points: SpherePoints | None = None
+    curves: CurveSegments | None = None
     triangle_flat: np.ndarray | None = None  # bool [T]: shaded flat (displacement recomputes the others' normals)
 
     @property
@@ -309,6 +312,8 @@ class Scene:
             self._validate_triangles()
         if triangles and self.points is not None and len(self.points):
             self._validate_points()
+        if triangles and self.curves is not None and len(self.curves):
+            self._validate_curves()
         for light in self.lights:
             _check_position(f"Light '{light.name}'", light.position)
 
@@ -373,6 +378,24 @@ class Scene:
                 first = int(np.flatnonzero(bad)[0])
                 name = self.object_names[int(points.object[first])] if self.object_names else f"point {first}"
                 raise PrismInputError(f"Point cloud '{name}' {problem} before rendering.")
+
+    def _validate_curves(self) -> None:
+        curves = self.curves
+        materials = np.asarray(curves.material)
+        if materials.min() < 0 or materials.max() >= len(self.materials):
+            raise PrismInputError(
+                f"Scene curves refer to material {int(materials.max())} but there are only {len(self.materials)} "
+                "materials: the exported materials are inconsistent.")
+        segments = np.asarray(curves.segments)
+        if segments.min() < 0 or segments.max() + 3 >= len(curves.radii):
+            raise PrismInputError("Scene curve segments refer to control points that do not exist: re-export the scene.")
+        with np.errstate(invalid="ignore"):
+            reach = np.abs(np.asarray(curves.points, np.float64)).max(axis=1)
+        if (reach > MAX_DISTANCE_M).any():
+            first = int(np.searchsorted(segments, int(np.flatnonzero(reach > MAX_DISTANCE_M)[0]), "right")) - 1
+            name = self.object_names[int(curves.object[max(first, 0)])] if self.object_names else "hair"
+            raise PrismInputError(f"Hair curves '{name}' have points more than {MAX_DISTANCE_M:.0e} m from the world "
+                                  "origin, beyond what Prism renders: check the object's scale and location.")
 
 
 #: Positions beyond this (m, about 6700 astronomical units) leave too little float32 range for the

@@ -41,6 +41,7 @@ from .scene import SpectrumSpec
 from .spectra import wavelength_sampling
 from .spectra.table import SpectrumTable
 from .spectra.wavelength_guide import build_guide
+from .curves import curve_count
 from .spheres import rendered_rows
 from .stages.bounce_loop import SceneArrays
 from .stages.camera import ORTHOGRAPHIC
@@ -59,12 +60,17 @@ def _triangle_groups(scene, original_triangle, light_groups):
 
 
 def _sphere_pass_index(scene):
-    """Object ▸ Pass Index of each rendered sphere (float32 [S]; empty without point clouds)."""
+    """Object ▸ Pass Index of each rendered sphere, then of each curve segment (float32 [S + C]; empty
+    without point clouds and hair)."""
     points = getattr(scene, "points", None)
     rows = rendered_rows(points)
-    if not len(rows) or points.pass_index is None:
-        return np.zeros(len(rows), np.float32)
-    return np.asarray(points.pass_index, np.float32)[rows]
+    spheres = (np.zeros(len(rows), np.float32) if not len(rows) or points.pass_index is None
+               else np.asarray(points.pass_index, np.float32)[rows])
+    curves = getattr(scene, "curves", None)
+    count = curve_count(curves)
+    segments = (np.zeros(count, np.float32) if not count or curves.pass_index is None
+                else np.asarray(curves.pass_index, np.float32))
+    return np.concatenate([spheres, segments])
 
 
 def _kept(triangle_object, original):
@@ -75,13 +81,19 @@ def _kept(triangle_object, original):
 
 
 def _row_objects(scene, original):
-    """The object of each render row: the kept triangles', then the rendered spheres' (so light and shadow
-    linking read a sphere hit's object as a triangle's), or None."""
+    """The object of each render row: the kept triangles', then the rendered spheres', then the curve
+    segments' (so light and shadow linking read a sphere or curve hit's object as a triangle's), or None."""
     kept = _kept(scene.triangle_object, original)
     rows = rendered_rows(getattr(scene, "points", None))
-    if kept is None or not len(rows):
+    curves = getattr(scene, "curves", None)
+    if kept is None or not (len(rows) or curve_count(curves)):
         return kept
-    return np.concatenate([kept, np.asarray(scene.points.object)[rows]]).astype(kept.dtype)
+    parts = [kept]
+    if len(rows):
+        parts.append(np.asarray(scene.points.object)[rows])
+    if curve_count(curves):
+        parts.append(np.asarray(curves.object))
+    return np.concatenate(parts).astype(kept.dtype)
 
 
 def _trick_settings(tricks) -> dict:
@@ -145,8 +157,8 @@ class SceneTables:
         self.material_table = build_materials(scene.materials, set(used), spectra, scene.world.medium)
         materials = self.material_table.arrays
         groups = tuple(settings.passes.light_groups)
-        triangles = len(self.geometry.triangles)  # spheres follow them in ``material``; none is light-sampled
-        catcher = (self.geometry.flags & SHADOW_CATCHER) != 0  # every primitive (triangles, then spheres)
+        triangles = len(self.geometry.triangles)  # spheres and curves follow them in ``material``; none is light-sampled
+        catcher = (self.geometry.flags & SHADOW_CATCHER) != 0  # every primitive (triangles, spheres, curves)
         has_catcher = bool(catcher.any())
         self.light_table = build_lights(scene, spectra, self.geometry.vertices, self.geometry.triangles,
                                         self.geometry.material[:triangles], materials.emission_strength, camera.origin,

@@ -36,11 +36,20 @@ def triangle_flags(scene, original) -> np.ndarray:
 def sphere_flags(scene, rows) -> np.ndarray:
     """uint8 [S] of the spheres ``rows`` of ``scene.points`` (as ``triangle_flags``: their object's rays and
     holdout)."""
-    points = scene.points
-    flags = np.full(len(rows), ALL_RAYS, np.uint8)
-    if scene.object_flags is not None and len(rows):
-        flags = np.asarray(scene.object_flags, np.uint8)[np.asarray(points.object)[rows]].copy()
+    return _primitive_flags(scene, np.asarray(scene.points.object)[rows], np.asarray(scene.points.material)[rows])
+
+
+def curve_flags(scene) -> np.ndarray:
+    """uint8 [C] of the curve segments of ``scene.curves`` (as ``triangle_flags``)."""
+    return _primitive_flags(scene, np.asarray(scene.curves.object), np.asarray(scene.curves.material))
+
+
+def _primitive_flags(scene, objects, materials) -> np.ndarray:
+    """uint8 flags of primitives of ``objects`` with ``materials`` (rows of the scene's tables)."""
+    flags = np.full(len(objects), ALL_RAYS, np.uint8)
+    if scene.object_flags is not None and len(objects):
+        flags = np.asarray(scene.object_flags, np.uint8)[objects].copy()
     holdout_materials = np.array([bool(getattr(m, "holdout", False)) for m in scene.materials], bool)
-    if holdout_materials.any() and len(rows):
-        flags[holdout_materials[np.asarray(points.material)[rows]]] |= HOLDOUT
+    if holdout_materials.any() and len(objects):
+        flags[holdout_materials[materials]] |= HOLDOUT
     return np.ascontiguousarray(flags)

@@ -31,17 +31,22 @@ def needs_ray_classes(geometry) -> bool:
 
 
 class _Subset:
-    """The rows ``chosen`` (triangles, then spheres) as a geometry of their own; ``ids`` its rows' render rows."""
+    """The rows ``chosen`` (triangles, then spheres, then curve segments) as a geometry of their own; ``ids`` its
+    rows' render rows."""
 
     def __init__(self, geometry, chosen):
         self.ids = np.flatnonzero(chosen).astype(np.int32)
         count = len(geometry.triangles)
-        triangles, spheres = self.ids[self.ids < count], self.ids[self.ids >= count] - count
+        spheres_end = count + len(geometry.spheres)
+        triangles = self.ids[self.ids < count]
+        spheres = self.ids[(self.ids >= count) & (self.ids < spheres_end)] - count
+        segments = self.ids[self.ids >= spheres_end] - spheres_end
         sub = Geometry(geometry.vertices, np.ascontiguousarray(geometry.triangles[triangles]),
                        geometry.material[self.ids], geometry.normals[:0], geometry.attributes,
                        geometry.flags[self.ids], geometry.motion,
                        geometry.motion_normals[:, triangles] if len(geometry.motion_normals) else geometry.motion_normals,
-                       np.ascontiguousarray(geometry.spheres[spheres]), geometry.sphere_random[spheres])
+                       np.ascontiguousarray(geometry.spheres[spheres]), geometry.sphere_random[spheres],
+                       geometry.curves, np.ascontiguousarray(geometry.curve_segments[segments]))
         self.accel = Accel(sub)
 
     def _map(self, hit):

@@ -167,11 +167,11 @@ class SceneSync:
                 object_names=exported.object_names, corner_normals=exported.corner_normals,
                 triangle_flat=exported.triangle_flat,
                 lights=previous.lights if previous else [], world=previous.world if previous else World(),
-                surface=exported.surface, points=exported.points,
+                surface=exported.surface, points=exported.points, curves=exported.curves,
             )
             geometry_changed = previous is None or not all(
                 same(getattr(candidate, name), getattr(previous, name))
-                for name in ("vertices", "triangles", "triangle_material", "corner_normals", "surface", "points"))
+                for name in ("vertices", "triangles", "triangle_material", "corner_normals", "surface", "points", "curves"))
             if geometry_changed or not same(candidate.materials, previous.materials):
                 scene = candidate if geometry_changed else replace(previous, materials=candidate.materials)
         if updates.lights:

@@ -1,6 +1,6 @@
-"""Evaluated geometry → tracer triangles: every surface once, hair as ribbons, instances placed
-exactly (mirrored ones still facing out), float64 world positions, and a warning for geometry
-Prism does not render."""
+"""Evaluated geometry → tracer triangles: every surface once, hair as round curves (or ribbons with
+Render ▸ Curves ▸ Shape "Rounded Ribbons"), instances placed exactly (mirrored ones still facing out),
+float64 world positions, and a warning for geometry Prism does not render."""
 
 from __future__ import annotations
 
@@ -98,6 +98,7 @@ def test_instances_are_placed_like_blender_places_them(prism_addon, lit, mirrore
 
 
 def test_hair_curves_render_as_camera_facing_ribbons(prism_addon, lit, capsys):
+    bpy.context.scene.cycles_curves.shape = "RIBBONS"  # Render ▸ Curves ▸ Shape "Rounded Ribbons"
     curves = bpy.data.hair_curves.new("Fur")
     curves.add_curves([4, 3])
     positions = [(0, 0, 0), (0, 0, 0.5), (0.1, 0, 1.0), (0.2, 0, 1.5), (1, 0, 0), (1, 0, 0.5), (1, 0.2, 1.0)]

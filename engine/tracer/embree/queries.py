@@ -14,6 +14,7 @@ from collections import namedtuple
 import numpy as np
 from numba.core import types
 
+from ..curves import hit_code
 from ..jit import inlined, kernel
 from ..octahedral import encode
 from . import library
@@ -26,9 +27,14 @@ from .layout import ALL_MASK, DIR_X, FLAGS, GEOM_ID, INST_ID, INVALID_ID, MASK, 
 #: the moving triangles (-1: one geometry whose primitive ids are the rows), ``triangle_of`` int32 (the
 #: static geometry's rows, then the moving one's) and ``first_moving`` (where the moving rows start in it);
 #: ``sphere_geometry`` the geometry id of the sphere points (-1: none) and ``first_sphere`` the row of its
-#: sphere 0 (spheres follow the triangles: row = ``first_sphere`` + primitive id).
+#: sphere 0 (spheres follow the triangles: row = ``first_sphere`` + primitive id); ``curve_geometry`` the
+#: geometry id of the curve segments (-1: none), ``first_curve`` the row of its segment 0 (after the spheres)
+#: and ``curves`` / ``curve_segments`` their control points and segments (``Geometry.curves``), which a
+#: curve hit's code is computed from.
 RayCaster = namedtuple("RayCaster", "scene words ids moving_geometry triangle_of first_moving sphere_geometry "
-                       "first_sphere", defaults=(-1, np.zeros(1, np.int32), 0, -1, 0))
+                       "first_sphere curve_geometry first_curve curves curve_segments",
+                       defaults=(-1, np.zeros(1, np.int32), 0, -1, 0, -1, 0, np.zeros((0, 4), np.float32),
+                                 np.zeros(0, np.int32)))
 
 library.load()  # before any kernel below is compiled or loaded: they link to its symbols by name
 
@@ -59,7 +65,9 @@ def _set_ray(words, ids, ox, oy, oz, dx, dy, dz, tmax, time):
 def closest_hit(caster, ox, oy, oz, dx, dy, dz, tmax, time):
     """Closest triangle or sphere along the ray before ``tmax`` in ``caster.scene`` at ray time ``time``
     (0..1): (row, or -1 for a miss; t; u; v). On a miss t is ``tmax``. Rows past the triangles are
-    spheres; their (u, v) is the octahedral code of the outward normal (``octahedral.encode``)."""
+    spheres; their (u, v) is the octahedral code of the outward normal (``octahedral.encode``). Rows past
+    the spheres are curve segments; their u is the curve parameter, v the normal's angle around the
+    tangent (``curves.hit_code``)."""
     words = caster.words
     ids = caster.ids
     _set_ray(words, ids, ox, oy, oz, dx, dy, dz, tmax, time)
@@ -73,6 +81,11 @@ def closest_hit(caster, ox, oy, oz, dx, dy, dz, tmax, time):
         nu, nv = encode(float(words[NG_X]), float(words[NG_X + 1]), float(words[NG_X + 2]))
         return (np.int32(caster.first_sphere + np.int64(ids[PRIM_ID])), words[TFAR], np.float32(nu),
                 np.float32(nv))
+    if np.int64(ids[GEOM_ID]) == caster.curve_geometry:
+        c = np.int64(ids[PRIM_ID])
+        angle = hit_code(caster.curves, caster.curve_segments, c, float(words[U]), float(words[NG_X]),
+                         float(words[NG_X + 1]), float(words[NG_X + 2]))
+        return np.int32(caster.first_curve + c), words[TFAR], words[U], np.float32(angle)
     if caster.moving_geometry < 0:
         return np.int32(ids[PRIM_ID]), words[TFAR], words[U], words[V]
     row = np.int64(ids[PRIM_ID])

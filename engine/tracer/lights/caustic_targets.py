@@ -48,7 +48,7 @@ def build_caustic_targets(geometry, material_flags, delta_flag, triangle_object=
     object (``triangle_object`` [T], rows of ``geometry``), else per material; one sphere for them all if
     that still leaves more than ``MAX_TARGETS``. Empty when no material is purely specular."""
     vertices = np.asarray(geometry.vertices, np.float64)
-    points = np.asarray(geometry.spheres, np.float64)
+    points = np.concatenate([np.asarray(geometry.spheres, np.float64), np.asarray(geometry.curves, np.float64)])
     extent = np.concatenate([vertices, points[:, :3] - points[:, 3:], points[:, :3] + points[:, 3:]])
     if len(extent):
         lo, hi = extent.min(axis=0), extent.max(axis=0)
@@ -80,7 +80,7 @@ def _with_specular_points(geometry, material_flags, delta_flag, spheres):
     points = np.asarray(geometry.spheres, np.float64)
     if not len(points):
         return spheres
-    materials = np.asarray(geometry.material)[len(geometry.triangles):]
+    materials = np.asarray(geometry.material)[len(geometry.triangles):len(geometry.triangles) + len(points)]
     specular = points[(np.asarray(material_flags)[materials] & delta_flag) != 0]
     if not len(specular):
         return spheres

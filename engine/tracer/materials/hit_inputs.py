@@ -4,14 +4,15 @@ and UV tangents (``geometry.SurfaceArrays``), object and texture-space coordinat
 Corner data is interpolated with the hit's barycentrics (corner weights 1 - u - v, u, v). Bump mapping
 evaluates heights at the point moved a small step along the surface (``bump_step``): the inputs then read
 the moved point (``moved``), so textures see consistent coordinates. Rows past the triangles are spheres
-(``spheres``): no corner data (UVs, colours and tangents read as on a mesh without them), (u, v) the
-normal's octahedral code.
+(``spheres``), then curve segments (``curves``): no corner data (UVs, colours and tangents read as on a mesh
+without them), (u, v) the normal's code.
 """
 
 from __future__ import annotations
 
 import math
 
+from ..geometry import FRAME_TIME, surface_at
 from ..jit import inlined, kernel
 from ..octahedral import decode
 from ..vec3 import tangents
@@ -156,7 +157,9 @@ def generated(objects, row, p_object):
 @inlined
 def raw_normal(geometry, triangle, u, v):
     """The interpolated corner normal, unnormalised and not flipped (the geometric normal when flat; a
-    sphere's outward normal)."""
+    sphere's outward normal; a curve's shading normal)."""
+    if triangle >= geometry.triangles.shape[0] + geometry.spheres.shape[0]:
+        return surface_at(geometry, triangle, u, v, FRAME_TIME)[2]
     if triangle >= geometry.triangles.shape[0]:
         return decode(u, v)
     if geometry.normals.shape[0] == 0:

@@ -59,8 +59,10 @@ def _optional3(regs, r, fallback):
 @inlined
 def _point_info(regs, dst, mode, geometry, triangle, offset):
     """Cycles' Point Info node on sphere row ``triangle``: its centre (world, m), radius (m) or random
-    number (``mode``: ``opcodes.POINT_INFO_FIELDS``); 0 on triangles, as on a mesh in Blender."""
+    number (``mode``: ``opcodes.POINT_INFO_FIELDS``); 0 on triangles and curves, as on a mesh in Blender."""
     s = triangle - geometry.triangles.shape[0]
+    if s >= geometry.spheres.shape[0]:
+        s = -1
     if mode == 0:
         if s < 0:
             _put3(regs, dst, (0.0, 0.0, 0.0))

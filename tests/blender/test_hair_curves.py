@@ -1,0 +1,134 @@
+"""Hair Curves as round curves (Render ▸ Curves ▸ Shape "3D Curves"): strands exported as
+Catmull-Rom segments in world space with the radius attribute scaled as Cycles scales it and the material
+slot of each curve; "Rounded Ribbons" keeps Prism's camera-facing ribbons; a groom of a few hundred
+curved, tapering strands with a Diffuse BSDF under a sun and a grey world against Cycles 4.5, in absolute
+mean luminance and in coverage (alpha over a transparent film); a moving groom warned under motion blur."""
+
+from __future__ import annotations
+
+import importlib
+
+import bpy
+import numpy as np
+import pytest
+
+from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
+from helpers.node_scenes import black_world, camera, material, node
+
+
+def _export(prism_addon, warnings=None):
+    export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
+    return export.export_scene(bpy.context.evaluated_depsgraph_get(), warnings)
+
+
+def _hair_object(name, sizes, positions, radii=None, curve_slots=None):
+    """A Curves object of curves with ``sizes`` points at ``positions`` [P, 3], a ``radius`` attribute where
+    given and the CURVE-domain ``material_index`` ``curve_slots``."""
+    curves = bpy.data.hair_curves.new(name)
+    curves.add_curves(list(sizes))
+    curves.points.foreach_set("position", np.asarray(positions, np.float32).ravel())
+    if radii is not None:
+        curves.attributes.new("radius", "FLOAT", "POINT")
+        curves.points.foreach_set("radius", np.asarray(radii, np.float32))
+    if curve_slots is not None:
+        index = curves.attributes.new("material_index", "INT", "CURVE")
+        index.data.foreach_set("value", np.asarray(curve_slots, np.int32))
+    obj = bpy.data.objects.new(name, curves)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def _diffuse(name, colour):
+    mat, nodes, link = material(name)
+    bsdf = node(nodes, "ShaderNodeBsdfDiffuse", Color=colour)
+    link(bsdf.outputs[0], nodes["Output"].inputs["Surface"])
+    return mat
+
+
+def test_strands_export_as_world_curve_segments(prism_addon, fresh_scene):
+    _lit(fresh_scene)
+    positions = [(0, 0, 0), (0, 0, 0.5), (0.1, 0, 1.0), (0.2, 0, 1.5), (1, 0, 0), (1, 0, 0.5), (1, 0.2, 1.0)]
+    obj = _hair_object("Fur", [4, 3], positions, radii=np.full(7, 0.02), curve_slots=[1, 0])
+    for colour in ((0.8, 0.2, 0.2), (0.2, 0.8, 0.2)):
+        obj.data.materials.append(_diffuse(f"Fur {colour}", colour))
+    obj.location = (0.0, 2.0, 0.0)
+    obj.scale = (2.0, 2.0, 2.0)
+    camera((0.0, -6.0, 1.0), (0.0, 0.0, 0.5), resolution=(16, 16))
+    scene = _export(prism_addon)
+    curves = scene.curves
+    assert scene.triangle_count == 0 and len(curves) == 3 + 2
+    world = np.array(positions) * 2.0 + (0.0, 2.0, 0.0)
+    # each strand's ends repeated once: the 4 control points of Embree's and Cycles' Catmull-Rom segments
+    np.testing.assert_allclose(curves.points, world[[0, 0, 1, 2, 3, 3, 4, 4, 5, 6, 6]], atol=1e-6)
+    np.testing.assert_array_equal(curves.segments, [0, 1, 2, 6, 7])
+    np.testing.assert_allclose(curves.radii, 0.04, rtol=1e-6)  # scaled by the object's scale, as Cycles
+    names = [scene.materials[m].name for m in curves.material]
+    assert names[:3] == ["Fur (0.2, 0.8, 0.2)"] * 3 and names[3:] == ["Fur (0.8, 0.2, 0.2)"] * 2
+    assert {scene.object_names[o] for o in curves.object} == {"Fur"}
+
+    fresh_scene.cycles_curves.shape = "RIBBONS"  # Rounded Ribbons: Prism's camera-facing ribbons
+    scene = _export(prism_addon)
+    assert scene.curves is None and scene.triangle_count == 2 * (3 + 2)
+
+
+def _groom(count=300, points=6, seed=3):
+    """``count`` strands of ``points`` points rising from a 1 m disc, bending sideways, tapering from 8 to 3 mm."""
+    rng = np.random.default_rng(seed)
+    angle, distance = rng.uniform(0, 2 * np.pi, count), 0.5 * np.sqrt(rng.uniform(0, 1, count))
+    roots = np.column_stack([distance * np.cos(angle), distance * np.sin(angle), np.zeros(count)])
+    s = np.linspace(0.0, 1.0, points)[None, :, None]
+    lean = rng.normal(size=(count, 1, 3)) * (0.25, 0.25, 0.0)
+    height = rng.uniform(0.6, 1.0, (count, 1, 1))
+    positions = roots[:, None, :] + s * height * np.array([0.0, 0.0, 1.0]) + s * s * lean
+    radii = np.tile(np.linspace(0.008, 0.003, points), count)
+    return [points] * count, positions.reshape(-1, 3), radii
+
+
+def _lit(scene):
+    """A sun and a grey world; Render ▸ Curves ▸ Shape "3D Curves" (a new scene's is "Rounded Ribbons")."""
+    scene.cycles_curves.shape = "THICK"
+    world = black_world()
+    background = world.node_tree.nodes["Background"]
+    background.inputs["Color"].default_value = (0.5, 0.55, 0.6, 1.0)
+    background.inputs["Strength"].default_value = 0.6
+    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    sun.data.energy = 3.0
+    sun.rotation_euler = (0.7, 0.2, 0.8)
+    scene.collection.objects.link(sun)
+
+
+def test_a_groom_matches_cycles_in_luminance_and_coverage(prism_addon, fresh_scene):
+    """300 curved, tapering strands (Diffuse BSDF) over a transparent film: mean luminance and mean alpha of
+    Prism and Cycles within 2 %."""
+    _lit(fresh_scene)
+    fresh_scene.render.film_transparent = True
+    sizes, positions, radii = _groom()
+    _hair_object("Groom", sizes, positions, radii=radii).data.materials.append(_diffuse("Hair", (0.7, 0.5, 0.3)))
+    camera((0.0, -2.6, 1.2), (0.0, 0.0, 0.45), resolution=(48, 48))
+    cycles = render_cycles_rgba(fresh_scene, 64)
+    prism = render_prism_rgba(fresh_scene, 64)
+    light = luminance(prism).mean() / luminance(cycles).mean()
+    coverage = prism[..., 3].mean() / cycles[..., 3].mean()
+    print(f"MEASURED groom: luminance Prism {luminance(prism).mean():.5f}, Cycles {luminance(cycles).mean():.5f}, "
+          f"ratio {light:.4f}; coverage Prism {prism[..., 3].mean():.4f}, Cycles {cycles[..., 3].mean():.4f}, "
+          f"ratio {coverage:.4f}")
+    assert 0.1 < cycles[..., 3].mean() < 0.6  # the strands cover part of the picture
+    assert light == pytest.approx(1.0, abs=0.02)
+    assert coverage == pytest.approx(1.0, abs=0.02)
+
+
+def test_a_moving_groom_is_warned_under_motion_blur(prism_addon, fresh_scene):
+    _lit(fresh_scene)
+    sizes, positions, radii = _groom(count=20)
+    obj = _hair_object("Groom", sizes, positions, radii=radii)
+    for frame, x in ((0, -0.2), (2, 0.2)):
+        obj.location.x = x
+        obj.keyframe_insert("location", index=0, frame=frame)
+    fresh_scene.frame_set(1)
+    fresh_scene.render.use_motion_blur = True
+    camera((0.0, -2.6, 1.2), (0.0, 0.0, 0.45), resolution=(16, 16))
+    warnings = []
+    scene = _export(prism_addon, warnings)
+    assert len(scene.curves) == 20 * 5
+    assert ("Hair curves 'Groom' move during the shutter, but Prism renders 3D curves without motion blur: the "
+            "strands are sharp where they stand at the frame.") in warnings
