@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
-from helpers.node_scenes import black_world, camera, material, node
+from helpers.node_scenes import camera, material, node, sun_and_sky
 
 
 def _export(prism_addon, warnings=None):
@@ -87,14 +87,7 @@ def _groom(count=300, points=6, seed=3):
 def _lit(scene):
     """A sun and a grey world; Render ▸ Curves ▸ Shape "3D Curves" (a new scene's is "Rounded Ribbons")."""
     scene.cycles_curves.shape = "THICK"
-    world = black_world()
-    background = world.node_tree.nodes["Background"]
-    background.inputs["Color"].default_value = (0.5, 0.55, 0.6, 1.0)
-    background.inputs["Strength"].default_value = 0.6
-    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
-    sun.data.energy = 3.0
-    sun.rotation_euler = (0.7, 0.2, 0.8)
-    scene.collection.objects.link(sun)
+    sun_and_sky(scene, (0.7, 0.2, 0.8))
 
 
 def test_a_groom_matches_cycles_in_luminance_and_coverage(prism_addon, fresh_scene):

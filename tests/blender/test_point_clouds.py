@@ -13,7 +13,7 @@ import pytest
 
 from helpers.batch import run_batch, run_batch_stderr
 from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
-from helpers.node_scenes import black_world, camera, material, node
+from helpers.node_scenes import black_world, camera, material, node, sun_and_sky
 
 GRID = [(x, y, 0.0) for x in (-1.2, -0.4, 0.4, 1.2) for y in (-1.2, -0.4, 0.4, 1.2)]
 
@@ -77,14 +77,7 @@ def _diffuse(name, colour):
 
 
 def _lit(scene):
-    world = black_world()
-    background = world.node_tree.nodes["Background"]
-    background.inputs["Color"].default_value = (0.5, 0.55, 0.6, 1.0)
-    background.inputs["Strength"].default_value = 0.6
-    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
-    sun.data.energy = 3.0
-    sun.rotation_euler = (0.5, 0.3, 0.8)
-    scene.collection.objects.link(sun)
+    sun_and_sky(scene, (0.5, 0.3, 0.8))
 
 
 def test_mesh_to_points_exports_world_spheres_with_their_radii(prism_addon, fresh_scene):

@@ -111,6 +111,18 @@ def black_world():
     return world
 
 
+def sun_and_sky(scene, sun_rotation):
+    """A grey-blue world of strength 0.6 and a sun of 3 W/m² turned by ``sun_rotation`` (Euler, radians)."""
+    world = black_world()
+    background = world.node_tree.nodes["Background"]
+    background.inputs["Color"].default_value = (0.5, 0.55, 0.6, 1.0)
+    background.inputs["Strength"].default_value = 0.6
+    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    sun.data.energy = 3.0
+    sun.rotation_euler = sun_rotation
+    scene.collection.objects.link(sun)
+
+
 def checker_image(name, size, colours, colorspace="sRGB", alpha=None, float_buffer=False):
     """A ``size`` × ``size`` image of 2 × 2 cells (bottom-left ``colours[0]``), 8-bit unless ``float_buffer``;
     ``alpha`` [size, size] replaces its alpha."""
