@@ -7,7 +7,7 @@ from ...tracer.bsdf.closure import (C_ALPHA, C_ETA, C_TINT_SCALE, CONDUCTOR, DIE
                                     TRANSPARENT)
 from ...tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
 from .aov_outputs import aov_results
-from .shaders import bump_map_correction
+from .normals import bump_map_correction
 from .vectors import displacement_bump, displacement_method, true_displacement
 
 _LUMINANCE = (0.2126729, 0.7151522, 0.0721750)

@@ -16,17 +16,12 @@ from ...tracer.materials import opcodes as op
 from .terms import COLOR, FLOAT, VECTOR, PendingClosure, Weight
 from .measured_base import keeps_own_colour, measured_base
 from .overrides import check_film, conductor_override, glass_override, prism_coating
+from .normals import bump_map_correction, shader_normal, towards
 from .sheen import principled_sheen, sheen_bsdf
 
 
 def _val(c, node, name, context, kind=FLOAT):
     return c.value(node, name, context, kind)
-
-
-def _normal(c, node, context, name="Normal"):
-    if c.linked(node, name, context) is None:
-        return None
-    return c.value(node, name, context, VECTOR)
 
 
 def _alpha(c, roughness):
@@ -48,18 +43,6 @@ def _multiscatter(c, node) -> bool:
 def _cos_view(c, normal):
     incoming = c.hit(op.INCOMING)
     return c.vector_math("DOT_PRODUCT", incoming, normal if normal is not None else c.normal())
-
-
-def bump_map_correction(c) -> bool:
-    """Material ▸ Settings ▸ Bump Map Correction (Cycles' option, on by default)."""
-    return bool(getattr(getattr(c.material, "cycles", None), "use_bump_map_correction", True))
-
-
-def _towards(c, normal, other, amount):
-    """normalize(mix(normal, other, amount)); ``normal`` None is the surface's."""
-    start = normal if normal is not None else c.normal()
-    mixed = c.emit(op.MIX_VECTOR, [amount, start, other, None, 0], width=3)
-    return c.vector_math("NORMALIZE", mixed)
 
 
 def _f0(c, eta):
@@ -89,7 +72,7 @@ def principled(c, node, context, weight: Weight):
     roughness = c.clamp01(_val(c, node, "Roughness", context))
     alpha = _alpha(c, roughness)
     ior = c.math("MAXIMUM", _val(c, node, "IOR", context), c.const(1e-5))
-    normal = _normal(c, node, context)
+    normal = shader_normal(c, node, context)
     specular_tint = c.vector_math("MAXIMUM", _val(c, node, "Specular Tint", context, COLOR), c.const(0.0, 0.0, 0.0))
     multiscatter = _multiscatter(c, node)
     for name in ("Anisotropic",):
@@ -104,9 +87,9 @@ def principled(c, node, context, weight: Weight):
 
     coat = c.math("MAXIMUM", _val(c, node, "Coat Weight", context), c.const(0.0))
     has_coat = c.known(coat) != 0.0
-    coat_normal = _normal(c, node, context, "Coat Normal") if has_coat else None
+    coat_normal = shader_normal(c, node, context, "Coat Normal") if has_coat else None
     # Cycles' sheen leans towards the Coat Normal by the coat's weight (svm/closure.h, principled_bsdf_emission)
-    sheen_normal = normal if coat_normal is None else _towards(c, normal, coat_normal, c.clamp01(coat))
+    sheen_normal = normal if coat_normal is None else towards(c, normal, coat_normal, c.clamp01(coat))
     sheen_cos = cos if sheen_normal is normal else _cos_view(c, sheen_normal)
     weight = principled_sheen(c, node, context, weight, sheen_cos, sheen_normal)
 
@@ -259,7 +242,7 @@ def diffuse(c, node, context, weight):
     if c.known(_val(c, node, "Roughness", context)) != 0.0:
         c.warn(node, "has Roughness (Oren-Nayar); Prism renders Lambertian diffuse reflection.")
     colour, measured = _albedo(c, node, context)
-    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=_normal(c, node, context),
+    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=shader_normal(c, node, context),
                                  measured=measured))
 
 
@@ -272,7 +255,7 @@ def glossy(c, node, context, weight):
     # Cycles' Fss of a Glossy BSDF is its colour
     c.add_closure(PendingClosure(CONDUCTOR, c.weighted(weight, colour=colour), node,
                                  alpha=_alpha(c, _val(c, node, "Roughness", context)), fresnel=FRESNEL_NONE,
-                                 normal=_normal(c, node, context), multiscatter=multiscatter,
+                                 normal=shader_normal(c, node, context), multiscatter=multiscatter,
                                  multiscatter_colour=colour if multiscatter else None))
 
 
@@ -299,7 +282,7 @@ def metallic(c, node, context, weight):
         keeps_own_colour(c, node, "its IOR and Extinction give its reflectance")
     measured = measured_base(c) if node.fresnel_type == "F82" else None
     metal = PendingClosure(CONDUCTOR, weight, node, alpha=alpha, fresnel=FRESNEL_F82, s0=s0, s1=s1,
-                           normal=_normal(c, node, context), measured=measured, multiscatter=multiscatter)
+                           normal=shader_normal(c, node, context), measured=measured, multiscatter=multiscatter)
     conductor_override(c, metal)
     prism_coating(c, metal)
     c.add_closure(metal)
@@ -313,7 +296,7 @@ def _dielectric(c, node, context, weight, mode):
     # Cycles' Fss of a glass is its transmission tint, here the colour
     closure = PendingClosure(DIELECTRIC, c.weighted(weight, colour=colour), node,
                              alpha=_alpha(c, _val(c, node, "Roughness", context)), eta=eta, fresnel=mode,
-                             normal=_normal(c, node, context), multiscatter=multiscatter,
+                             normal=shader_normal(c, node, context), multiscatter=multiscatter,
                              multiscatter_colour=colour if multiscatter else None)
     glass_override(c, closure)
     prism_coating(c, closure)
@@ -332,7 +315,7 @@ def translucent(c, node, context, weight):
     keeps_own_colour(c, node, "its Color is a transmittance")
     colour = c.vector_math("MAXIMUM", _val(c, node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
     c.add_closure(PendingClosure(TRANSLUCENT, c.weighted(weight, colour=colour), node,
-                                 normal=_normal(c, node, context)))
+                                 normal=shader_normal(c, node, context)))
 
 
 def transparent(c, node, context, weight):
@@ -357,7 +340,7 @@ def holdout(c, node, context, weight):
 def subsurface(c, node, context, weight):
     c.warn(node, "is rendered as diffuse reflection (Prism does not trace subsurface scattering).")
     colour, measured = _albedo(c, node, context)
-    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=_normal(c, node, context),
+    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=shader_normal(c, node, context),
                                  measured=measured))
 
 

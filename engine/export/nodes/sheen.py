@@ -12,13 +12,8 @@ from __future__ import annotations
 
 from ...tracer.bsdf.closure import SHEEN
 from ...tracer.materials import opcodes as op
-from .terms import COLOR, FLOAT, VECTOR, PendingClosure
-
-
-def _normal(c, node, context):
-    if c.linked(node, "Normal", context) is None:
-        return None
-    return c.value(node, "Normal", context, VECTOR)
+from .normals import shader_normal
+from .terms import COLOR, FLOAT, PendingClosure
 
 
 def principled_sheen(c, node, context, weight, cos, normal):
@@ -46,4 +41,4 @@ def sheen_bsdf(c, node, context, weight):
     colour = c.vector_math("MAXIMUM", c.value(node, "Color", context, COLOR), c.const(0.0, 0.0, 0.0))
     roughness = c.clamp01(c.value(node, "Roughness", context, FLOAT))
     c.add_closure(PendingClosure(SHEEN, c.weighted(weight, colour=colour), node, alpha=roughness,
-                                 normal=_normal(c, node, context)))
+                                 normal=shader_normal(c, node, context)))
