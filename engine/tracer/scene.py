@@ -14,6 +14,7 @@ import numpy as np
 
 from .data_passes import DataPassInputs
 from .errors import PrismInputError
+from .primitive_checks import MAX_DISTANCE_M, check_curves, check_points
 from .curves import CurveSegments
 from .spheres import SpherePoints
 from .spectrum_specs import ReflectanceSpec, SampledSpectrum, SpectrumSpec  # noqa: F401 - part of the scene's API
@@ -311,9 +312,9 @@ class Scene:
         if triangles and len(self.triangles):
             self._validate_triangles()
         if triangles and self.points is not None and len(self.points):
-            self._validate_points()
+            check_points(self.points, len(self.materials), self.object_names)
         if triangles and self.curves is not None and len(self.curves):
-            self._validate_curves()
+            check_curves(self.curves, len(self.materials), self.object_names)
         for light in self.lights:
             _check_position(f"Light '{light.name}'", light.position)
 
@@ -359,48 +360,6 @@ class Scene:
                 f"from the world origin; Prism renders scenes within {MAX_DISTANCE_M:.0e} m of it: check the "
                 "object's scale and location (Object ▸ Transform), or delete stray vertices."
             )
-
-
-    def _validate_points(self) -> None:
-        points = self.points
-        materials = np.asarray(points.material)
-        if materials.min() < 0 or materials.max() >= len(self.materials):
-            raise PrismInputError(
-                f"Scene points refer to material {int(materials.max())} but there are only {len(self.materials)} "
-                "materials: the exported materials are inconsistent.")
-        centres = np.asarray(points.centres, np.float64)
-        with np.errstate(invalid="ignore"):
-            reach = np.abs(centres).max(axis=1)
-        for bad, problem in ((~np.isfinite(reach), "has points whose position is NaN or infinite: fix or delete them"),
-                             (reach > MAX_DISTANCE_M, f"has points more than {MAX_DISTANCE_M:.0e} m from the world "
-                              "origin, beyond what Prism renders: check the object's scale and location")):
-            if bad.any():
-                first = int(np.flatnonzero(bad)[0])
-                name = self.object_names[int(points.object[first])] if self.object_names else f"point {first}"
-                raise PrismInputError(f"Point cloud '{name}' {problem} before rendering.")
-
-    def _validate_curves(self) -> None:
-        curves = self.curves
-        materials = np.asarray(curves.material)
-        if materials.min() < 0 or materials.max() >= len(self.materials):
-            raise PrismInputError(
-                f"Scene curves refer to material {int(materials.max())} but there are only {len(self.materials)} "
-                "materials: the exported materials are inconsistent.")
-        segments = np.asarray(curves.segments)
-        if segments.min() < 0 or segments.max() + 3 >= len(curves.radii):
-            raise PrismInputError("Scene curve segments refer to control points that do not exist: re-export the scene.")
-        with np.errstate(invalid="ignore"):
-            reach = np.abs(np.asarray(curves.points, np.float64)).max(axis=1)
-        if (reach > MAX_DISTANCE_M).any():
-            first = int(np.searchsorted(segments, int(np.flatnonzero(reach > MAX_DISTANCE_M)[0]), "right")) - 1
-            name = self.object_names[int(curves.object[max(first, 0)])] if self.object_names else "hair"
-            raise PrismInputError(f"Hair curves '{name}' have points more than {MAX_DISTANCE_M:.0e} m from the world "
-                                  "origin, beyond what Prism renders: check the object's scale and location.")
-
-
-#: Positions beyond this (m, about 6700 astronomical units) leave too little float32 range for the
-#: products of distances the tracer forms (areas, squared lengths): such a scene cannot render reliably.
-MAX_DISTANCE_M = 1.0e15
 
 
 def _check_position(what: str, position) -> None:

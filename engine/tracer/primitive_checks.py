@@ -1,0 +1,52 @@
+"""Checks of a scene's point clouds and hair curves before they render (``Scene.validate``): materials that
+exist, control points that exist, positions within the range the tracer's float32 arithmetic can hold."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import PrismInputError
+
+#: Positions beyond this (m, about 6700 astronomical units) leave too little float32 range for the
+#: products of distances the tracer forms (areas, squared lengths): such a scene cannot render reliably.
+MAX_DISTANCE_M = 1.0e15
+
+
+def _check_materials(what: str, materials, material_count: int) -> None:
+    materials = np.asarray(materials)
+    if materials.min() < 0 or materials.max() >= material_count:
+        raise PrismInputError(
+            f"Scene {what} refer to material {int(materials.max())} but there are only {material_count} "
+            "materials: the exported materials are inconsistent.")
+
+
+def _reach(positions) -> np.ndarray:
+    with np.errstate(invalid="ignore"):
+        return np.abs(np.asarray(positions, np.float64)).max(axis=1)
+
+
+def check_points(points, material_count: int, object_names) -> None:
+    """``points`` (a ``spheres.SpherePoints``): materials, finite and reachable centres."""
+    _check_materials("points", points.material, material_count)
+    reach = _reach(points.centres)
+    for bad, problem in ((~np.isfinite(reach), "has points whose position is NaN or infinite: fix or delete them"),
+                         (reach > MAX_DISTANCE_M, f"has points more than {MAX_DISTANCE_M:.0e} m from the world "
+                          "origin, beyond what Prism renders: check the object's scale and location")):
+        if bad.any():
+            first = int(np.flatnonzero(bad)[0])
+            name = object_names[int(points.object[first])] if object_names else f"point {first}"
+            raise PrismInputError(f"Point cloud '{name}' {problem} before rendering.")
+
+
+def check_curves(curves, material_count: int, object_names) -> None:
+    """``curves`` (a ``curves.CurveSegments``): materials, control points, reachable points."""
+    _check_materials("curves", curves.material, material_count)
+    segments = np.asarray(curves.segments)
+    if segments.min() < 0 or segments.max() + 3 >= len(curves.radii):
+        raise PrismInputError("Scene curve segments refer to control points that do not exist: re-export the scene.")
+    far = _reach(curves.points) > MAX_DISTANCE_M
+    if far.any():
+        first = int(np.searchsorted(segments, int(np.flatnonzero(far)[0]), "right")) - 1
+        name = object_names[int(curves.object[max(first, 0)])] if object_names else "hair"
+        raise PrismInputError(f"Hair curves '{name}' have points more than {MAX_DISTANCE_M:.0e} m from the world "
+                              "origin, beyond what Prism renders: check the object's scale and location.")
