@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
+from ..bsdf.optics import fresnel_dielectric  # Blender's Fresnel node: the exact unpolarised reflectance
 from ..bsdf.sheen import ltc_fit
 from ..jit import inlined, kernel
 from ..node_eval import colour as col
@@ -244,13 +245,13 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
             normal = _optional3(regs, b, n)
             cos = wo[0] * normal[0] + wo[1] * normal[1] + wo[2] * normal[2]
             eta = max(regs[a], 1e-5)
-            regs[dst] = _dielectric_fresnel(cos, 1.0 / eta if backfacing else eta)
+            regs[dst] = fresnel_dielectric(abs(cos), 1.0 / eta if backfacing else eta)
         elif code == op.LAYER_WEIGHT:
             normal = _optional3(regs, b, n)
             cos = wo[0] * normal[0] + wo[1] * normal[1] + wo[2] * normal[2]
             blend = regs[a]
             eta = max(1.0 - blend, 1e-5)
-            regs[dst] = _dielectric_fresnel(cos, eta if backfacing else 1.0 / eta)
+            regs[dst] = fresnel_dielectric(abs(cos), eta if backfacing else 1.0 / eta)
             facing = abs(cos)
             if blend != 0.5:
                 blend = min(max(blend, 0.0), 1.0 - 1e-5)
@@ -349,20 +350,6 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
                 rows[a, b] = regs[c]
         elif code == op.BIND_RGB:
             rows[a, b] = -2.0 - c
-
-
-@kernel
-def _dielectric_fresnel(cos, eta):
-    """Blender's Fresnel node: unpolarised reflectance of a dielectric of index ``eta`` (1 when total
-    internal reflection)."""
-    c = abs(cos)
-    g = eta * eta - 1.0 + c * c
-    if g <= 0.0:
-        return 1.0
-    g = math.sqrt(g)
-    a = (g - c) / (g + c)
-    b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0)
-    return 0.5 * a * a * (1.0 + b * b)
 
 
 @kernel
