@@ -19,7 +19,7 @@ from ..bsdf.closure_frame import BUMP_SOFTENED
 from ..jit import kernel
 from ..vec3 import tangents, to_local
 
-_SAME = 1.0 - 1e-7  # cosines above this are the same normal
+SAME_NORMAL = 1.0 - 1e-7  # cosines above this are the same normal
 
 
 @kernel
@@ -73,13 +73,13 @@ def set_up_normals(rows, count, regs, wo, ng, smooth, shading, correction):
             if valid:
                 n = own
         kind = int(rows[c, C_KIND])
-        if correction and (kind == CONDUCTOR or kind == DIELECTRIC or kind == TRANSLUCENT) and _dot(n, ng) < _SAME:
+        if correction and (kind == CONDUCTOR or kind == DIELECTRIC or kind == TRANSLUCENT) and _dot(n, ng) < SAME_NORMAL:
             n = valid_specular_normal(ng, wo, n)
-        framed = _dot(n, shading) < _SAME
+        framed = _dot(n, shading) < SAME_NORMAL
         rows[c, C_FRAMED] = 1.0 if framed else 0.0
         rows[c, C_FRAME_X], rows[c, C_FRAME_Y], rows[c, C_FRAME_Z] = n[0], n[1], n[2]
         rows[c, C_VIEW_COS] = _dot(wo, n)
-        bumped = _dot(n, smooth) < _SAME
+        bumped = _dot(n, smooth) < SAME_NORMAL
         rows[c, C_BUMPED] = (BUMP_SOFTENED if correction else 1.0) if bumped else 0.0
         rows[c, C_SMOOTH_X], rows[c, C_SMOOTH_Y], rows[c, C_SMOOTH_Z] = smooth[0], smooth[1], smooth[2]
 

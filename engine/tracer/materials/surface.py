@@ -23,12 +23,9 @@ from .energy import compensate_energy
 from .resolve import _fill, copy_rows, resolve_material, resolve_spectral, selection_weights
 from .layering import under_layer
 from .sheen_setup import set_up_sheen
-from .closure_normals import set_up_normals
+from .closure_normals import SAME_NORMAL, set_up_normals
 from .table import (MAT_BUMP_CORRECTION, MAT_CLOSURE_NORMALS, MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED,
                     MAT_OWN_NORMALS, MAT_PROGRAM, MAT_SHEEN)
-
-
-_FLAT = 1.0 - 1e-7  # a shading normal this close to the geometric one bends nothing (flat, unbumped)
 
 
 @inlined
@@ -71,7 +68,7 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
     if flags & MAT_CLOSURE_NORMALS and (flags & MAT_OWN_NORMALS or
-                                        shading[0] * ng[0] + shading[1] * ng[1] + shading[2] * ng[2] < _FLAT):
+                                        shading[0] * ng[0] + shading[1] * ng[1] + shading[2] * ng[2] < SAME_NORMAL):
         set_up_normals(rows, count, regs, wo, ng, n, shading, flags & MAT_BUMP_CORRECTION != 0)
     if flags & (MAT_PROGRAM | MAT_LAYERED | MAT_MULTISCATTER | MAT_SHEEN):
         cos_o = wo[0] * shading[0] + wo[1] * shading[1] + wo[2] * shading[2]
