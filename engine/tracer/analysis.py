@@ -20,7 +20,7 @@ from .lights.apparent_size import small_lights
 from .lights.caustic_targets import build_caustic_targets
 from .materials.light_path import reads_light_path
 from .materials.shader_rays import traces_rays
-from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, MAT_TRANSPARENT
+from .materials.table import MAT_DELTA, MAT_DISPERSIVE, MAT_EMISSIVE, MAT_NULL, MAT_SUBSURFACE, MAT_TRANSPARENT
 from .stages.camera import ORTHOGRAPHIC, PERSPECTIVE
 from .visibility import HOLDOUT, SHADOW_CATCHER
 
@@ -147,6 +147,8 @@ def analyse_scene(scene, settings, used, material_table, light_table, camera, ge
         only = "Light Path node"  # light paths carry no camera-path ray kinds; path tracing honours them
     if not only and traces_rays(material_table.arrays):
         only = "Ambient Occlusion or Bevel node"  # a light path's hits cannot trace a material's own rays
+    if not only and any(flags[m] & MAT_SUBSURFACE for m in used):
+        only = "subsurface scattering"  # light paths do not walk under surfaces
     a.light_tracing, a.light_tracing_note = choose_light_tracing(
         settings.light_tracing, specular, films, any(not flags[m] & MAT_DELTA for m in used), small,
         any(kind != "world" for kind in light_table.kinds), only)

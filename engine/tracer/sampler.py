@@ -49,6 +49,10 @@ SLOT_TIME = 1 << 20
 #: ``SHADER_RAY_KINDS`` slots per bounce, in a range of their own so scenes without those nodes sample as before.
 SLOT_SHADER_RAYS = 1 << 22
 SHADER_RAY_KINDS = 2
+#: 2-D, two per step of a subsurface random walk (``subsurface.walk``) at each bounce, in a range of their own so
+#: scenes without subsurface scattering sample as before.
+SLOT_SUBSURFACE = 1 << 26
+SUBSURFACE_SLOTS_PER_BOUNCE = 1 << 10
 
 _MASK = 0xFFFFFFFF
 _INV_2_32 = 1.0 / 4294967296.0
@@ -173,6 +177,13 @@ def shader_ray_slot(depth, kind):
     a node with N samples draws sample index ``sample × N + j`` of it, so a pixel's samples together form
     one stratified sequence (Cycles' ``path_branched_rng_2D`` does the same)."""
     return SLOT_SHADER_RAYS + depth * SHADER_RAY_KINDS + kind
+
+
+@kernel
+def subsurface_slot(depth, step, which):
+    """The 2-D slot of decision ``which`` (0: wavelength and distance, 1: direction) of step ``step`` of the
+    random walk that starts at bounce ``depth``."""
+    return SLOT_SUBSURFACE + depth * SUBSURFACE_SLOTS_PER_BOUNCE + 2 * step + which
 
 
 @kernel

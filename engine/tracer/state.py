@@ -20,6 +20,8 @@ deterministic). Embree reads the queues' float32 rays directly.
   along its ray, not a surface (``media.segment``); ``CATCHER_HIT``: the camera path met a shadow catcher
   and was split there (it goes on to Combined only); ``CATCHER_PASS``: the copy made at that split, which
   sees only shadow catchers and whose light goes to the catcher's accumulation (``stages.shadow_catcher``);
+  ``SUBSURFACE_EXIT``: this bounce's vertex is where a subsurface random walk left the surface, its hit
+  already in ``hit_*`` (``stages.subsurface``);
 - ``medium`` int32: the medium the path's ray travels in (``MaterialArrays.media`` row, -1: none);
 - ``throughput`` and ``radiance`` float64 [n, K]; ``eta_scale`` float64 (Π eta'² of refractions, for
   Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample); ``min_pdf`` float64
@@ -59,6 +61,7 @@ LAST_TRANSMISSION = 512
 MEDIUM_VERTEX = 1024
 CATCHER_HIT = 2048
 CATCHER_PASS = 4096
+SUBSURFACE_EXIT = 8192
 
 _PATH_FIELDS = (
     ("pixel", np.int64, ()), ("sample", np.int64, ()), ("seed", np.int64, ()),

@@ -6,7 +6,9 @@ spectrum-table id, -1 means 1 at every wavelength, and ``≤ -2`` is a colour co
 material's program (``register_source``).
 
 - ``C_KIND``: ``DIFFUSE``, ``CONDUCTOR`` (any microfacet reflection), ``DIELECTRIC``, ``THIN_FILM``,
-  ``TRANSLUCENT``, ``TRANSPARENT`` or ``SHEEN`` (Blender's microfiber sheen, ``bsdf.sheen``).
+  ``TRANSLUCENT``, ``TRANSPARENT``, ``SHEEN`` (Blender's microfiber sheen, ``bsdf.sheen``) or ``SUBSURFACE``
+  (a random walk under the surface: ``spectral[0]`` the albedo, ``spectral[1]`` the radius over its largest,
+  ``C_SSS_*``, ``C_ALPHA`` and ``C_ETA`` the entry bounce's roughness and index; ``subsurface``).
 - ``C_WEIGHT``: how often the closure is sampled relative to the others of its material (≥ 0; the
   estimated albedo times the mean tint); f = Σ tint · f_closure does not depend on it.
 - ``C_SPECTRUM`` (→ ``spectral[0]``): diffuse/translucent albedo; a conductor's F0 (Schlick, F82) or n;
@@ -55,8 +57,9 @@ THIN_FILM = 3
 TRANSLUCENT = 4
 TRANSPARENT = 5
 SHEEN = 6
+SUBSURFACE = 7
 KIND_NAMES = {DIFFUSE: "diffuse", CONDUCTOR: "conductor", DIELECTRIC: "dielectric", THIN_FILM: "thin_film",
-              TRANSLUCENT: "translucent", TRANSPARENT: "transparent", SHEEN: "sheen"}
+              TRANSLUCENT: "translucent", TRANSPARENT: "transparent", SHEEN: "sheen", SUBSURFACE: "subsurface"}
 
 C_KIND = 0
 C_WEIGHT = 1
@@ -93,6 +96,13 @@ C_SMOOTH_Y = 31
 C_SMOOTH_Z = 32
 CLOSURE_ROW = 33
 
+# A ``SUBSURFACE`` closure's own parameters, in columns only films and coatings use otherwise.
+C_SSS_RADIUS = C_FILM_NM  # the largest mean free path (m): Radius × Scale; spectral[1] is Radius / its largest
+C_SSS_ANISOTROPY = C_FILM_IOR  # Henyey-Greenstein g inside (clamped as Cycles' bssrdf_setup)
+C_SSS_METHOD = C_COAT_NM  # SSS_RANDOM_WALK or SSS_SKIN (the entry bounce and the radius, ``subsurface``)
+SSS_RANDOM_WALK = 0.0
+SSS_SKIN = 1.0
+
 
 # Conductor (microfacet reflection) reflectance models.
 FRESNEL_SCHLICK = 0  # F0 = spectral[0]
@@ -114,6 +124,7 @@ SAMPLED_DELTA = 1
 SAMPLED_TRANSMISSION = 2
 SAMPLED_NULL = 4  # straight through without scattering (Transparent BSDF): a null event for MIS
 SAMPLED_DIFFUSE = 8
+SAMPLED_SUBSURFACE = 16  # into the surface for a random walk (``bsdf.subsurface_entry``, ``stages.subsurface``)
 
 
 def register_source(register: int) -> float:

@@ -12,16 +12,16 @@ from __future__ import annotations
 import math
 
 from ..jit import kernel
-from . import conductor, dielectric, diffuse, sheen, thin_film, translucent, transparent
+from . import conductor, dielectric, diffuse, sheen, subsurface_entry, thin_film, translucent, transparent
 from .closure_frame import bump_shadowing, has_own_frame, into_closure_frame, out_of_closure_frame
 from .closure import (C_ALPHA, C_KIND, C_MIRROR, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA,
-                      SAMPLED_DIFFUSE, SHEEN, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT, TRANSPARENT)
+                      SAMPLED_DIFFUSE, SHEEN, SMOOTH_ALPHA, SUBSURFACE, THIN_FILM, TRANSLUCENT, TRANSPARENT)
 
 
 @kernel
 def closure_is_delta(row):
     kind = int(row[C_KIND])
-    if kind == THIN_FILM or kind == TRANSPARENT:
+    if kind == THIN_FILM or kind == TRANSPARENT or kind == SUBSURFACE:  # a subsurface entry has no pdf either
         return True
     if kind == CONDUCTOR or kind == DIELECTRIC:
         return row[C_ALPHA] < SMOOTH_ALPHA
@@ -55,6 +55,12 @@ def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u
     elif kind == TRANSPARENT:
         wi, pdf, flags, eta_scale = transparent.sample(row, spectral, eta, wo, wavelength_nm, hero,
                                                        collapsed, u0, u1, u2, weight)
+    elif kind == SUBSURFACE:  # into the surface: Cycles tests no bump shadowing there
+        wi, pdf, flags, eta_scale = subsurface_entry.sample(row, spectral, eta, wo, wavelength_nm, hero,
+                                                            collapsed, u0, u1, u2, weight)
+        if framed:
+            wi = out_of_closure_frame(row, wi)
+        return wi, pdf, flags, eta_scale
     else:
         wi, pdf, flags, eta_scale = thin_film.sample(row, spectral, eta, wo, wavelength_nm, hero,
                                                      collapsed, u0, u1, u2, weight)
@@ -87,6 +93,8 @@ def _evaluate_lobe(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f
         return sheen.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     if kind == TRANSPARENT:
         return transparent.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
+    if kind == SUBSURFACE:
+        return subsurface_entry.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     return thin_film.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
 
 
@@ -120,21 +128,21 @@ def _tinted(spectral, c, values):
 
 @kernel
 def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, u0, u1, u2, weight, scratch):
-    """Sample the material of ``count`` resolved closures: (wi, pdf, sampled flags, eta scale) and
-    ``weight[k]`` = f |cos wi| / pdf. ``scratch`` is float64 [2, K]."""
+    """Sample the material of ``count`` resolved closures: (wi, pdf, sampled flags, eta scale, the closure
+    sampled) and ``weight[k]`` = f |cos wi| / pdf. ``scratch`` is float64 [2, K]."""
     if count == 1:
         wi, pdf, flags, eta_scale = closure_sample(rows[0], spectral[0], eta[0], wo, wavelength_nm, hero, collapsed,
                                                    u0, u1, u2, weight)
         _tinted(spectral, 0, weight)
         if int(rows[0, C_KIND]) == DIFFUSE:
             flags |= SAMPLED_DIFFUSE
-        return wi, pdf, flags, eta_scale
+        return wi, pdf, flags, eta_scale, 0
     total = 0.0
     for c in range(count):
         total += rows[c, C_WEIGHT]
     if not total > 0.0:
         weight[:] = 0.0
-        return (0.0, 0.0, 1.0), 0.0, 0, 1.0
+        return (0.0, 0.0, 1.0), 0.0, 0, 1.0, 0
     target = u0 * total
     chosen = -1
     before = 0.0
@@ -149,7 +157,7 @@ def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, 
             before += w
     if chosen < 0:
         weight[:] = 0.0
-        return (0.0, 0.0, 1.0), 0.0, 0, 1.0
+        return (0.0, 0.0, 1.0), 0.0, 0, 1.0, 0
     before = start
     w_chosen = rows[chosen, C_WEIGHT]
     u_lobe = min(max((target - before) / w_chosen, 0.0), 0.9999999999999999)
@@ -161,7 +169,7 @@ def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, 
         _tinted(spectral, chosen, weight)
         for k in range(weight.shape[0]):
             weight[k] *= total / w_chosen
-        return wi, pdf, flags, eta_scale
+        return wi, pdf, flags, eta_scale, chosen
     cos = abs(wi[2])
     total_f = scratch[1]
     tint = spectral[chosen, 2]
@@ -178,7 +186,7 @@ def bsdf_sample(rows, spectral, eta, count, wo, wavelength_nm, hero, collapsed, 
             total_f[k] += tint[k] * scratch[0, k]
     for k in range(weight.shape[0]):
         weight[k] = total_f[k] * cos / mixture_pdf if mixture_pdf > 0.0 else 0.0
-    return wi, mixture_pdf, flags, eta_scale
+    return wi, mixture_pdf, flags, eta_scale, chosen
 
 
 @kernel

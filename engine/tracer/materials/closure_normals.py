@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 
 from ..bsdf.closure import (C_BUMPED, C_FRAME_X, C_FRAME_Y, C_FRAME_Z, C_FRAMED, C_KIND, C_NORMAL, C_SMOOTH_X,
-                            C_SMOOTH_Y, C_SMOOTH_Z, C_VIEW_COS, CONDUCTOR, DIELECTRIC, TRANSLUCENT)
+                            C_SMOOTH_Y, C_SMOOTH_Z, C_VIEW_COS, CONDUCTOR, DIELECTRIC, SUBSURFACE, TRANSLUCENT)
 from ..bsdf.closure_frame import BUMP_SOFTENED
 from ..jit import kernel
 from ..vec3 import tangents, to_local
@@ -60,6 +60,12 @@ def valid_specular_normal(ng, view, n):
 
 
 @kernel
+def _corrected(kind):
+    """Whether Bump Map Correction raises this kind's normal (Cycles: microfacets, translucent, subsurface)."""
+    return kind == CONDUCTOR or kind == DIELECTRIC or kind == TRANSLUCENT or kind == SUBSURFACE
+
+
+@kernel
 def set_up_normals(rows, count, regs, wo, ng, smooth, shading, correction):
     """Per closure: its normal (world) in ``C_FRAME_*`` and ``C_FRAMED`` where it is not the material's
     ``shading``; its view cosine ``C_VIEW_COS``; the smooth normal in ``C_SMOOTH_*`` and ``C_BUMPED`` where its
@@ -73,7 +79,7 @@ def set_up_normals(rows, count, regs, wo, ng, smooth, shading, correction):
             if valid:
                 n = own
         kind = int(rows[c, C_KIND])
-        if correction and (kind == CONDUCTOR or kind == DIELECTRIC or kind == TRANSLUCENT) and _dot(n, ng) < SAME_NORMAL:
+        if correction and _corrected(kind) and _dot(n, ng) < SAME_NORMAL:
             n = valid_specular_normal(ng, wo, n)
         framed = _dot(n, shading) < SAME_NORMAL
         rows[c, C_FRAMED] = 1.0 if framed else 0.0

@@ -61,6 +61,7 @@ class ClosureSpec:
     multiscatter: bool = False  # energy-compensated GGX (Blender's Multiscatter GGX, ``C_MULTISCATTER``)
     multiscatter_colour: Colour | None = None  # its Fss where the Fresnel model does not set it (``C_MS_COLOUR``)
     normal: int = -1  # register of the closure's own shading normal (``C_NORMAL``); -1: the material's
+    subsurface: tuple | None = None  # (largest radius m, anisotropy, SSS_* method) of a SUBSURFACE closure (C_SSS_*)
 
 
 @dataclass

@@ -46,7 +46,7 @@ BEVEL_MIN_PDF = 8.0
 
 
 @inlined
-def _step_past(origin, direction, t):
+def step_past(origin, direction, t):
     """The point just past distance ``t`` along a ray, and how far that is (Embree's rays start at 0)."""
     q = (origin[0] + t * direction[0], origin[1] + t * direction[1], origin[2] + t * direction[2])
     eps = OFFSET_RELATIVE * max(abs(q[0]), abs(q[1]), abs(q[2])) + OFFSET_ABSOLUTE
@@ -66,7 +66,7 @@ def _hits_own_object(rays, attrs, origin, direction, tmax, row):
             return False
         if object_row(attrs, hit) == row:
             return True
-        origin, step = _step_past(origin, direction, float(t))
+        origin, step = step_past(origin, direction, float(t))
         travelled += step
         if travelled >= tmax:
             return False
@@ -181,7 +181,7 @@ def bevel_normal(rays, geometry, triangle, p, ng, n, backfacing, radius, samples
                     sx += w * hns[0]
                     sy += w * hns[1]
                     sz += w * hns[2]
-            origin, step = _step_past(origin, direction, float(t))
+            origin, step = step_past(origin, direction, float(t))
             travelled += step
             if travelled >= 2.0 * height:
                 break

@@ -31,6 +31,7 @@ the kernels decide without looking at kinds:
   normal of its own (``MAT_OWN_NORMALS``: ``C_NORMAL``, a Coat Normal, shaders with different Normal inputs), the
   program bends the normal, or Bump Map Correction (``MAT_BUMP_CORRECTION``) may raise a microfacet or
   translucent closure's normal where it is not the geometric one.
+- ``MAT_SUBSURFACE``: a closure scatters under the surface (``subsurface``): paths walk inside the object.
 """
 
 from __future__ import annotations
@@ -43,10 +44,10 @@ import numpy as np
 from ..bsdf.closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C_FILM_NM, C_FRESNEL, C_GLASS,
                             C_KIND, C_LAYER_ETA, C_LAYER_F0, C_LAYER_MULTISCATTER, C_LAYER_ROUGHNESS, C_MIRROR,
                             C_MS_COLOUR, C_MULTISCATTER, C_NORMAL, C_S1, C_FRAMED, C_BUMPED,
-                            C_SPECTRUM, C_TINT,
+                            C_SPECTRUM, C_SSS_ANISOTROPY, C_SSS_METHOD, C_SSS_RADIUS, C_TINT,
                             C_TINT_SCALE, C_WEIGHT, CLOSURE_ROW,
-                            CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SHEEN, SMOOTH_ALPHA, THIN_FILM, TRANSLUCENT,
-                            TRANSPARENT, register_source)
+                            CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SHEEN, SMOOTH_ALPHA, SUBSURFACE, THIN_FILM,
+                            TRANSLUCENT, TRANSPARENT, register_source)
 from ..errors import PrismInputError
 from ..scene import SpectrumSpec
 from ..spectra.dispersion import GLASS_ROW, glass_row
@@ -69,6 +70,7 @@ MAT_MEDIUM = 2048
 MAT_CLOSURE_NORMALS = 4096
 MAT_OWN_NORMALS = 8192
 MAT_BUMP_CORRECTION = 16384
+MAT_SUBSURFACE = 32768
 
 MaterialArrays = namedtuple(
     "MaterialArrays",
@@ -144,6 +146,8 @@ def _row(spec, spectra, glasses, glass_index, name):
     row[C_TINT_SCALE] *= float(spec.scale)
     row[C_MULTISCATTER] = 1.0 if spec.multiscatter else 0.0
     row[C_MS_COLOUR], _ = _source(spec.multiscatter_colour, spectra, name)
+    if spec.kind == SUBSURFACE:
+        row[C_SSS_RADIUS], row[C_SSS_ANISOTROPY], row[C_SSS_METHOD] = (float(x) for x in spec.subsurface)
     if spec.kind == DIELECTRIC:
         glass = spec.glass
         if glass is None:
@@ -228,9 +232,11 @@ def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTa
                 flags[m] |= MAT_MULTISCATTER
             if spec.kind == SHEEN:
                 flags[m] |= MAT_SHEEN
+            if spec.kind == SUBSURFACE:
+                flags[m] |= MAT_SUBSURFACE
             if spec.normal >= 0:
                 flags[m] |= MAT_CLOSURE_NORMALS | MAT_OWN_NORMALS
-            if shader.bump_map_correction and spec.kind in (CONDUCTOR, DIELECTRIC, TRANSLUCENT):
+            if shader.bump_map_correction and spec.kind in (CONDUCTOR, DIELECTRIC, TRANSLUCENT, SUBSURFACE):
                 flags[m] |= MAT_CLOSURE_NORMALS
             needs_lut = needs_lut or any(c is not None and c.varies
                                          for c in (spec.tint, spec.s0, spec.s1, spec.multiscatter_colour))

@@ -31,7 +31,7 @@ from ..materials.shader_rays import ShaderRays
 from ..media.segment import cross_medium
 from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE
 from ..spectra.table import spectrum_value
-from ..state import CAMERA_PATH, MEDIUM_VERTEX, PREV_DELTA
+from ..state import CAMERA_PATH, MEDIUM_VERTEX, PREV_DELTA, SUBSURFACE_EXIT
 from ..visibility import HOLDOUT
 from .clamp import clamp_factor
 from .mis import emitter_weight
@@ -127,6 +127,13 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
     listed = 0
     for j in range(count):
         i = rays.path[j]
+        if state.flags[i] & SUBSURFACE_EXIT:  # the hit is a random walk's exit, stored already (``subsurface``)
+            if shade_next:
+                surface.path[listed] = i
+                listed += 1
+            else:
+                state.flags[i] &= ~SUBSURFACE_EXIT
+            continue
         o = (state.origin[i, 0], state.origin[i, 1], state.origin[i, 2])
         d = (state.direction[i, 0], state.direction[i, 1], state.direction[i, 2])
         triangle = hit_triangle[j]

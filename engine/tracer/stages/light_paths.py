@@ -203,9 +203,9 @@ def light_bounce_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, l
                                registers)
         tangent, bitangent = tangents(n)
         wo_l = to_local(toward_light, tangent, bitangent, n)
-        wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
-                                                                       closures, wo_l, (tangent, bitangent, n),
-                                                                       collapsed, weight, mix)
+        wi_l, wi, pdf, sampled, eta_scale, largest, _ = sample_scattering(state, i, depth, settings, rows, spectral,
+                                                                          eta, closures, wo_l, (tangent, bitangent, n),
+                                                                          collapsed, weight, mix)
         cos_out_g = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
         if not (largest > 0.0 and pdf > 0.0 and cos_in_g != 0.0 and wi_l[2] != 0.0
                 and consistent(cos_in_g, cos_out_g, wo_l[2], wi_l[2])):

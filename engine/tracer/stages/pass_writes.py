@@ -29,7 +29,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..bsdf.closure import C_KIND, CONDUCTOR, DIFFUSE, SAMPLED_DELTA, SAMPLED_TRANSMISSION
+from ..bsdf.closure import C_KIND, CONDUCTOR, DIFFUSE, SAMPLED_DELTA, SAMPLED_SUBSURFACE, SAMPLED_TRANSMISSION
 from ..bsdf.dispatch import closure_evaluate
 from ..data_passes import AO_DISTANCE, FIRST_HIT_DATA, MIST_FALLOFF, MIST_INV_DEPTH, MIST_START, ORTHOGRAPHIC
 from ..geometry import offset_origin
@@ -55,6 +55,7 @@ ENVIRONMENT = 1
 DIRECT = 2  # + 2 * category
 INDIRECT = 3
 COLOUR = 8  # + category
+DIFFUSE_SHARE = 0  # categories (the closure kind DIFFUSE is another constant)
 GLOSSY = 1
 TRANSMISSION = 2
 
@@ -310,7 +311,10 @@ def first_bounce(state, passes, layout, i, rows, spectral, eta, count, wo, wi, l
     """At the first surface: the lobe shares of the sampled direction (delta lobes by what they did)
     and the colour passes (sample weight × share, reflectance carried on a white spectrum)."""
     shares = passes.split[i, 1]
-    if sampled & SAMPLED_DELTA:
+    if sampled & SAMPLED_SUBSURFACE:  # Cycles' passes count subsurface scattering as diffuse
+        shares[:, :] = 0.0
+        shares[DIFFUSE_SHARE, :] = 1.0
+    elif sampled & SAMPLED_DELTA:
         shares[:, :] = 0.0
         shares[TRANSMISSION if sampled & SAMPLED_TRANSMISSION else GLOSSY, :] = 1.0
     else:

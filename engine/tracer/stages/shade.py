@@ -15,7 +15,8 @@ Transparent Glass on). A path crossing the surface of a material with a medium e
 
 from __future__ import annotations
 
-from ..bsdf.closure import C_ALPHA, SAMPLED_DELTA, SAMPLED_DIFFUSE, SAMPLED_NULL, SAMPLED_TRANSMISSION
+from ..bsdf.closure import (C_ALPHA, SAMPLED_DELTA, SAMPLED_DIFFUSE, SAMPLED_NULL, SAMPLED_SUBSURFACE,
+                            SAMPLED_TRANSMISSION)
 from ..bsdf.dispatch import bsdf_sample
 from ..geometry import offset_origin, surface_at
 from ..jit import inlined, kernel
@@ -26,7 +27,8 @@ from ..materials.surface import shade_surface
 from ..materials.table import MAT_CLOSURE_NORMALS, MAT_DELTA, MAT_DISPERSIVE, MAT_MEDIUM, MAT_NULL, MAT_ONE_SIDED
 from ..media.scatter import scatter_in_medium
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
-from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA
+from ..state import (CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA,
+                     SUBSURFACE_EXIT)
 from ..vec3 import tangents, to_local, to_world
 from .caustic_split import classify_vertex
 from .caustics_toggles import filter_caustic_closures
@@ -37,6 +39,7 @@ from .cryptomatte_write import cryptomatte_vertex
 from .pass_writes import first_bounce, first_hit, surface_features
 from .queue import push_ray
 from .roulette import survives
+from .subsurface import lambertian_exit, walk_under_surface
 
 
 @inlined
@@ -72,17 +75,17 @@ def _through_transparent_glass(settings, rows, closures, sampled):
 @inlined
 def sample_scattering(state, i, depth, settings, rows, spectral, eta, closures, wo_l, frame, collapsed, weight, mix):
     """BSDF sampling at path ``i``'s vertex of bounce ``depth`` (its uniforms from that bounce's slots):
-    (wi local, wi world, pdf, sampled flags, eta scale, largest ``weight[k]``)."""
+    (wi local, wi world, pdf, sampled flags, eta scale, largest ``weight[k]``, the closure sampled)."""
     ps = state.seed[i]
     sample = state.sample[i]
     u_lobe = sample_1d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LOBE))
     u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_DIRECTION))
-    wi_l, pdf, sampled, eta_scale = bsdf_sample(rows, spectral, eta, closures, wo_l, state.wavelength[i],
-                                                state.hero[i], collapsed, u_lobe, u1, u2, weight, mix)
+    wi_l, pdf, sampled, eta_scale, chosen = bsdf_sample(rows, spectral, eta, closures, wo_l, state.wavelength[i],
+                                                        state.hero[i], collapsed, u_lobe, u1, u2, weight, mix)
     largest = 0.0
     for c in range(weight.shape[0]):
         largest = max(largest, weight[c])
-    return wi_l, to_world(wi_l, frame[0], frame[1], frame[2]), pdf, sampled, eta_scale, largest
+    return wi_l, to_world(wi_l, frame[0], frame[1], frame[2]), pdf, sampled, eta_scale, largest, chosen
 
 
 @kernel
@@ -109,7 +112,9 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         triangle = state.hit_triangle[i]
         p, ng, ns = surface_at(geometry, triangle, state.hit_u[i], state.hit_v[i], state.time[i])
         material = geometry.material[triangle]
-        mflags = materials.flags[material]
+        exiting = state.flags[i] & SUBSURFACE_EXIT != 0  # where a random walk left: a Lambertian lobe instead
+        state.flags[i] &= ~SUBSURFACE_EXIT
+        mflags = 0 if exiting else materials.flags[material]
         if mflags & MAT_DISPERSIVE and not state.flags[i] & COLLAPSED:
             collapse_to_hero(state, i)
         collapsed = state.flags[i] & COLLAPSED != 0
@@ -124,9 +129,12 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             path_ray(registers, state, i, state.hit_t[i])
         rays = ShaderRays(caster, settings.sampler, state.seed[i], state.sample[i], depth, state.time[i],
                           state.min_pdf[i])
-        closures, n = shade_surface(materials, spectra, geometry, material, triangle, state.hit_u[i], state.hit_v[i],
-                                    p, facing_ng, facing_ns, wo, backfacing, lam, hero, rows, spectral, eta,
-                                    registers, glass_clamps, rays)
+        if exiting:
+            closures, n = lambertian_exit(rows, spectral), facing_ns
+        else:
+            closures, n = shade_surface(materials, spectra, geometry, material, triangle, state.hit_u[i],
+                                        state.hit_v[i], p, facing_ng, facing_ns, wo, backfacing, lam, hero, rows,
+                                        spectral, eta, registers, glass_clamps, rays)
         if settings.caustics_filtered and depth > 0 and state.flags[i] & LAST_DIFFUSE:
             filter_caustic_closures(settings, rows, spectral, closures)
         blurred = False
@@ -154,8 +162,9 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                 shadows.medium[shadowed] = side_medium(materials, material, shadows.direction[shadowed], ng,
                                                        settings.outside_medium)
             shadowed += lit
-        wi_l, wi, pdf, sampled, eta_scale, largest = sample_scattering(state, i, depth, settings, rows, spectral, eta,
-                                                                       closures, wo_l, frame, collapsed, weight, mix)
+        wi_l, wi, pdf, sampled, eta_scale, largest, chosen = sample_scattering(state, i, depth, settings, rows,
+                                                                               spectral, eta, closures, wo_l, frame,
+                                                                               collapsed, weight, mix)
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
         transmitted = sampled & SAMPLED_TRANSMISSION != 0
         valid = largest > 0.0 and pdf > 0.0 and on_its_geometric_side(cos_og, cos_ig, transmitted)
@@ -174,6 +183,13 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             continue
         for c in range(k):
             state.throughput[i, c] *= weight[c]
+        if sampled & SAMPLED_SUBSURFACE:  # under the surface: walk now, shade the exit at the next bounce
+            state.flags[i] &= ~(CAMERA_PATH | LAST_DIFFUSE | LAST_TRANSMISSION)
+            if survives(state, i, depth, settings, collapsed):
+                pushed = walk_under_surface(state, i, rays, geometry, triangle, rows[chosen], spectral[chosen], p,
+                                            facing_ng, wi, next_rays, queued, (li, f, mix[0]))
+                queued += pushed
+            continue
         state.eta_scale[i] *= eta_scale
         if not sampled & SAMPLED_NULL:
             if state.flags[i] & CAMERA_PATH and not _through_transparent_glass(settings, rows, closures, sampled):
@@ -181,7 +197,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             state.flags[i] = (state.flags[i] & ~(LAST_DIFFUSE | LAST_TRANSMISSION)) | (
                 LAST_TRANSMISSION if sampled & SAMPLED_TRANSMISSION
                 else (LAST_DIFFUSE if sampled & SAMPLED_DIFFUSE else 0))
-        if not survives(state, i, depth, settings, collapsed):
+        if not exiting and not survives(state, i, depth, settings, collapsed):  # the exit played at its entry
             continue
         # A film crossed straight through, or a cut-out (Transparent BSDF, alpha): a null event for MIS. Light
         # paths end at cut-outs (they are not specular), so for the caustic split only films are null.

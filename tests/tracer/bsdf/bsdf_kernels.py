@@ -29,8 +29,8 @@ def sample_many(materials, spectra, wo, lam, u, hero, collapsed, wi, weight, pdf
     for i in range(wo.shape[0]):
         count = _resolve(materials, spectra, wo[i], lam[i], hero[i], rows, spectral, eta, clamps)
         eta_out[i] = eta[0]
-        w, p, f, e = bsdf_sample(rows, spectral, eta, count, (wo[i, 0], wo[i, 1], wo[i, 2]), lam[i], hero[i],
-                                 collapsed[i], u[i, 0], u[i, 1], u[i, 2], weight[i], scratch)
+        w, p, f, e, _ = bsdf_sample(rows, spectral, eta, count, (wo[i, 0], wo[i, 1], wo[i, 2]), lam[i], hero[i],
+                                    collapsed[i], u[i, 0], u[i, 1], u[i, 2], weight[i], scratch)
         wi[i, 0], wi[i, 1], wi[i, 2] = w
         pdf[i] = p
         flags[i] = f

@@ -1,0 +1,135 @@
+"""The random walk of a path under a subsurface closure (Cycles' ``subsurface_random_walk``), per wavelength.
+
+From the entry point the path flies through the closure's medium (``coefficients``): at each step a carried
+wavelength c is chosen with probability ∝ |throughput × α| (one-sample MIS, balance heuristic, as Cycles does
+over its three channels), a distance drawn from σ_t(c) e^(−σ_t(c) s), and the first surface of the same
+object along the way (other objects are stepped past, as Cycles' local intersection ignores them) ends the
+walk there: the exit. Each wavelength k is weighted by its own f_k over Σ_j p_j f_j: σ_s,k T_k(s) for a
+collision, T_k(s) for the exit, T = e^(−σ_t s). A collision scatters by Henyey-Greenstein with the
+closure's anisotropy; past step 9, isotropically with σ_s reduced to σ_s (1 − g) (similarity, as Cycles).
+A walk ends unfinished after 256 steps or once its throughput falls below 1e-6 (Cycles' bounds).
+
+Not done as in Cycles: its Dwivedi-guided directions (a variance reduction, same expectation) and its first
+ray's look for the opposite side; directions here are always phase-sampled.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..bsdf.closure import C_ETA, C_SSS_ANISOTROPY, C_SSS_METHOD, C_SSS_RADIUS, SSS_SKIN
+from ..bsdf.subsurface_entry import MAX_IOR, MIN_IOR
+from ..embree.queries import closest_hit
+from ..geometry import offset_origin
+from ..jit import inlined
+from ..materials.hit_inputs import object_row
+from ..materials.shader_rays import step_past
+from ..media.phase import hg_sample
+from ..sampler import sample_2d, subsurface_slot
+from .coefficients import walk_coefficients
+
+MAX_STEPS = 256
+#: Steps after which the walk scatters isotropically with reduced coefficients (Cycles' similarity level).
+SIMILARITY_STEPS = 9
+#: A walk whose largest throughput falls below this ends (Cycles' ``VOLUME_THROUGHPUT_EPSILON``).
+THROUGHPUT_EPSILON = 1e-6
+#: Hits of other objects one flight steps past before it gives up.
+MAX_FOREIGN_HITS = 16
+
+
+@inlined
+def _own_hit(rays, attributes, own, origin, direction, tmax):
+    """(row, t, u, v) of the first surface of object ``own`` along the ray before ``tmax``; row -1: none."""
+    travelled = 0.0
+    o = origin
+    for _ in range(MAX_FOREIGN_HITS):
+        hit, t, u, v = closest_hit(rays.caster, o[0], o[1], o[2], direction[0], direction[1], direction[2],
+                                   tmax - travelled, rays.time)
+        if hit < 0:
+            return -1, tmax, 0.0, 0.0
+        if object_row(attributes, hit) == own:
+            return hit, travelled + float(t), float(u), float(v)
+        o, step = step_past(o, direction, float(t))
+        travelled += step
+        if travelled >= tmax:
+            break
+    return -1, tmax, 0.0, 0.0
+
+
+@inlined
+def _setup(row, spectral, throughput, sigma_t, alpha):
+    """σ_t and α per carried wavelength; the throughput loses the albedo the walk adds back by scattering."""
+    g = row[C_SSS_ANISOTROPY]
+    skin = row[C_SSS_METHOD] == SSS_SKIN
+    ior = min(max(row[C_ETA], MIN_IOR), MAX_IOR)
+    for k in range(throughput.shape[0]):
+        if throughput[k] == 0.0:
+            sigma_t[k], alpha[k] = 1.0, 0.0
+            continue
+        albedo = spectral[0, k]
+        sigma_t[k], alpha[k], factor = walk_coefficients(albedo, row[C_SSS_RADIUS] * spectral[1, k], g, skin, ior)
+        throughput[k] = throughput[k] / albedo * factor if albedo > 0.0 else 0.0
+
+
+@inlined
+def random_walk(rays, attributes, own, row, spectral, p, ng, direction, throughput, scratch):
+    """Walk from ``p`` (camera-relative, on object ``own``'s surface of geometric normal ``ng``) along
+    ``direction`` (into the surface) with the closure ``row`` / ``spectral`` resolved at the entry;
+    ``throughput`` [K] (the path's, after the entry's weight) is updated in place. ``rays`` is the path's
+    ``materials.shader_rays.ShaderRays``; ``scratch`` three float64 [K] arrays. Returns (exit row or -1, u, v, point,
+    direction of the last flight)."""
+    k_count = throughput.shape[0]
+    sigma_t, alpha, channel_pdf = scratch[0], scratch[1], scratch[2]
+    _setup(row, spectral, throughput, sigma_t, alpha)
+    g = row[C_SSS_ANISOTROPY]
+    position = offset_origin(p, ng, direction)
+    d = direction
+    for step in range(MAX_STEPS):
+        similar = step > SIMILARITY_STEPS
+        g_step = 0.0 if similar else g
+        total = 0.0
+        for k in range(k_count):
+            channel_pdf[k] = abs(throughput[k] * alpha[k])
+            total += channel_pdf[k]
+        if not total > 0.0:
+            return -1, 0.0, 0.0, position, d
+        u_channel, u_distance = sample_2d(rays.kind, rays.seed, rays.sample, subsurface_slot(rays.depth, step, 0))
+        target = u_channel * total
+        c = k_count - 1
+        running = 0.0
+        for k in range(k_count):
+            running += channel_pdf[k]
+            if target < running:
+                c = k
+                break
+        for k in range(k_count):
+            channel_pdf[k] /= total
+        if step > 0:
+            u1, u2 = sample_2d(rays.kind, rays.seed, rays.sample, subsurface_slot(rays.depth, step, 1))
+            d, _ = hg_sample(d, g_step, u1, u2)
+        sigma_c = sigma_t[c] * (1.0 - alpha[c] * g) if similar else sigma_t[c]
+        t = -math.log(1.0 - u_distance) / sigma_c
+        hit, t_hit, u, v = _own_hit(rays, attributes, own, position, d, t)
+        exits = hit >= 0
+        if exits:
+            t = t_hit
+        position = (position[0] + t * d[0], position[1] + t * d[1], position[2] + t * d[2])
+        mixture = 0.0
+        for k in range(k_count):
+            s_t = sigma_t[k] * (1.0 - alpha[k] * g) if similar else sigma_t[k]
+            transmittance = math.exp(-s_t * t)
+            pdf = transmittance if exits else s_t * transmittance
+            mixture += channel_pdf[k] * pdf
+        largest = 0.0
+        for k in range(k_count):
+            s_t = sigma_t[k] * (1.0 - alpha[k] * g) if similar else sigma_t[k]
+            transmittance = math.exp(-s_t * t)
+            s_s = s_t - sigma_t[k] * (1.0 - alpha[k])  # σ_s (1 − g) past the similarity level, else σ_s
+            f = transmittance if exits else s_s * transmittance
+            throughput[k] = throughput[k] * f / mixture if mixture > 0.0 else 0.0
+            largest = max(largest, throughput[k])
+        if exits:
+            return hit, u, v, position, d
+        if largest < THROUGHPUT_EPSILON:
+            break
+    return -1, 0.0, 0.0, position, d
