@@ -4,7 +4,7 @@ spectra, varying ones registers or bindings; the emission; the shading normal; t
 from __future__ import annotations
 
 from ...tracer.bsdf.closure import (C_ALPHA, C_ETA, C_TINT_SCALE, CONDUCTOR, DIELECTRIC, FRESNEL_DIELECTRIC,
-                                    TRANSPARENT)
+                                    SUBSURFACE, TRANSPARENT)
 from ...tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
 from .aov_outputs import aov_results
 from .normals import bump_map_correction
@@ -60,11 +60,13 @@ def _closure(c, pending):
         tinted = pending.weight.colour if scale == 1.0 else c.multiply(pending.weight.colour, pending.weight.scale)
         spec.tint = Colour(register=tinted.register)
     # A measured reflectance replaces the base colour once: in the tint of a diffuse closure (above), in the
-    # normal-incidence reflectance s0 of a metal (a diffuse closure's s0 is a second albedo factor).
-    takes_s0 = pending.measured is not None and pending.kind == CONDUCTOR
+    # normal-incidence reflectance s0 of a metal (a diffuse closure's s0 is a second albedo factor); a subsurface
+    # closure's tint and its walk's albedo are both the base colour, so it takes both.
+    takes_s0 = pending.measured is not None and pending.kind in (CONDUCTOR, SUBSURFACE)  # a walk's albedo, too
     spec.s0 = Colour(spectrum=pending.measured) if takes_s0 else _colour(c, pending.s0)
     spec.s1 = _colour(c, pending.s1)
     spec.multiscatter = pending.multiscatter
+    spec.subsurface = pending.subsurface
     spec.multiscatter_colour = _colour(c, pending.multiscatter_colour)
     if pending.alpha is not None:
         alpha = c.known(pending.alpha)

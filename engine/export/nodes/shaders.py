@@ -18,6 +18,7 @@ from .measured_base import keeps_own_colour, measured_base
 from .overrides import check_film, conductor_override, glass_override, prism_coating
 from .normals import bump_map_correction, shader_normal, towards
 from .sheen import principled_sheen, sheen_bsdf
+from .subsurface import principled_subsurface, subsurface_scattering
 
 
 def _val(c, node, name, context, kind=FLOAT):
@@ -194,8 +195,7 @@ def principled(c, node, context, weight: Weight):
                 largest = c.math("MULTIPLY", largest, _darkening(c, roughness, cos, eta, _max_channel(c, f0)))
             weight = c.weighted(weight, scale=c.clamp01(c.one_minus(largest)))
 
-    if c.known(_val(c, node, "Subsurface Weight", context)) != 0.0:
-        c.warn(node, "has Subsurface Weight; Prism renders subsurface scattering as diffuse reflection.")
+    weight = principled_subsurface(c, node, context, weight, base, alpha, eta)
     if c.known(_val(c, node, "Diffuse Roughness", context)) != 0.0:
         c.warn(node, "has Diffuse Roughness; Prism renders Lambertian (smooth) diffuse reflection.")
     measured = measured_base(c)
@@ -337,13 +337,6 @@ def holdout(c, node, context, weight):
                  "node, so here it renders black.")
 
 
-def subsurface(c, node, context, weight):
-    c.warn(node, "is rendered as diffuse reflection (Prism does not trace subsurface scattering).")
-    colour, measured = _albedo(c, node, context)
-    c.add_closure(PendingClosure(DIFFUSE, c.weighted(weight, colour=colour), node, normal=shader_normal(c, node, context),
-                                 measured=measured))
-
-
 def mix_shader(c, node, context, weight):
     fac = c.clamp01(c.value(node, "Fac", context, FLOAT))
     first, second = node.inputs[1], node.inputs[2]
@@ -373,7 +366,7 @@ SHADER_HANDLERS = {
     "ShaderNodeBsdfTransparent": transparent,
     "ShaderNodeEmission": emission,
     "ShaderNodeHoldout": holdout,
-    "ShaderNodeSubsurfaceScattering": subsurface,
+    "ShaderNodeSubsurfaceScattering": subsurface_scattering,
     "ShaderNodeMixShader": mix_shader,
     "ShaderNodeAddShader": add_shader,
     "ShaderNodeBsdfSheen": sheen_bsdf,

@@ -43,6 +43,7 @@ class PendingClosure:
     measured: object = None  # a scene.ReflectanceSpec replacing the colour part of the tint (diffuse) or s0
     multiscatter: bool = False  # Blender's Multiscatter GGX: energy-compensated (``bsdf.multiscatter``)
     multiscatter_colour: Value | None = None  # the lobe's Fss where its Fresnel model does not set it
+    subsurface: tuple | None = None  # (largest radius m, anisotropy, SSS_* method): a SUBSURFACE closure's walk
 
 
 @dataclass
