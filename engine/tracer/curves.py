@@ -46,6 +46,7 @@ class CurveSegments:
     object: np.ndarray
     instance: np.ndarray | None = None
     pass_index: np.ndarray | None = None
+    info: np.ndarray | None = None  # float32 [C, 4]: Hair Info per segment (``export.hair_info``); None: zeros
 
     def __len__(self) -> int:
         return int(len(self.segments))
@@ -59,6 +60,16 @@ def no_curves() -> tuple[np.ndarray, np.ndarray]:
 def curve_count(curves: CurveSegments | None) -> int:
     """How many segments render (all of them: the export keeps finite strands only)."""
     return 0 if curves is None else len(curves)
+
+
+def curve_info(curves: CurveSegments | None) -> np.ndarray:
+    """``Geometry.curve_info`` float32 [C, 4]: each segment's Hair Info (the intercepts at its two points, its
+    strand's length (m, object space) and random number); zeros where the export gave none."""
+    if curves is None or not len(curves):
+        return np.zeros((0, 4), np.float32)
+    if curves.info is None:
+        return np.zeros((len(curves), 4), np.float32)
+    return np.ascontiguousarray(curves.info, np.float32).reshape(len(curves), 4)
 
 
 def camera_relative(curves: CurveSegments | None, offset) -> tuple[np.ndarray, np.ndarray]:
@@ -186,3 +197,54 @@ def curve_surface(controls, segments, c, u, angle):
 def curve_tangent(controls, segments, c, u):
     """d centre / du of segment ``c`` at ``u`` (Cycles' dPdu of a curve; not unit)."""
     return curve_at(controls, segments, c, u)[2]
+
+
+EXIT_MARGIN = 1e-3  # a ray crossing a strand starts this fraction of the radius outside its far wall
+EXIT_STEPS = 3  # Newton steps that find the curve parameter of the far wall's point
+
+
+@inlined
+def _radial(controls, segments, c, u, x):
+    """(centre, radius, unit tangent, |C'|, the part of x - centre across the tangent) at ``u``."""
+    centre, r, du, _ = curve_at(controls, segments, c, u)
+    size = math.sqrt(du[0] * du[0] + du[1] * du[1] + du[2] * du[2])
+    a = (du[0] / size, du[1] / size, du[2] / size) if size > 0.0 else (0.0, 0.0, 1.0)
+    ex, ey, ez = x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]
+    along = ex * a[0] + ey * a[1] + ez * a[2]
+    return centre, r, a, size, (ex - along * a[0], ey - along * a[1], ez - along * a[2]), along
+
+
+@inlined
+def leave_tube(controls, segments, c, u, p, d):
+    """(origin, distance travelled) of a ray from ``p`` (on segment ``c``'s surface at ``u``) along unit ``d`` that
+    points into the tube: it starts just outside the tube's far wall; distance 0 where ``d`` points outward.
+    A fibre's closure scatters light through the fibre as if it left where it entered (a far-field model): the
+    path goes on from the far side, as Cycles' rays skip the primitive they leave (its self-intersection test),
+    instead of meeting the tube's inside. The far wall: the chord of the circle the ray's projection crosses
+    (exact for a straight tube of one radius), then the curve's point nearest it (Newton on (x - C(u)) . C'(u) =
+    0, the segment's u clamped to 0-1), and the origin put radially ``EXIT_MARGIN`` outside the radius there (a
+    bent or tapering strand's wall is not where the straight chord ends)."""
+    centre, r, a, size, e, _ = _radial(controls, segments, c, u, p)
+    e_size = math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
+    if not (size > 0.0 and r > 0.0 and e_size > 0.0):
+        return p, 0.0
+    inward = -(d[0] * e[0] + d[1] * e[1] + d[2] * e[2]) / e_size
+    if inward <= 0.0:
+        return p, 0.0
+    d_along = d[0] * a[0] + d[1] * a[1] + d[2] * a[2]
+    t = 2.0 * r * inward / max(1.0 - d_along * d_along, 1e-6)  # the chord of the circle of radius r
+    x = (p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2])
+    w = min(max(u + t * d_along / size, 0.0), 1.0)
+    for _ in range(EXIT_STEPS):
+        centre, r, a, size, e, along = _radial(controls, segments, c, w, x)
+        if not size > 0.0:
+            break
+        w = min(max(w + along / size, 0.0), 1.0)
+    centre, r, a, size, e, along = _radial(controls, segments, c, w, x)
+    e_size = math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
+    if not e_size > 0.0:
+        return x, t
+    reach = r * (1.0 + EXIT_MARGIN) / e_size
+    q = (centre[0] + along * a[0] + reach * e[0], centre[1] + along * a[1] + reach * e[1],
+         centre[2] + along * a[2] + reach * e[2])
+    return q, math.sqrt((q[0] - p[0]) ** 2 + (q[1] - p[1]) ** 2 + (q[2] - p[2]) ** 2)

@@ -16,7 +16,8 @@ vertices interpolated linearly between the two steps around τ·(S-1), as Embree
 ``spheres`` float32 [S, 4] (``spheres``: the points of point clouds, camera-relative centre and radius; [0, 4]
 without) and ``sphere_random`` float32 [S] (each point's Point Info ▸ Random): rows T .. T + S - 1 of the render's primitives.
 ``curves`` float32 [P, 4] and ``curve_segments`` int32 [C] (``curves``: the control points of hair strands,
-camera-relative point and radius, and the first control point of each segment; [0, 4] and [0] without):
+camera-relative point and radius, and the first control point of each segment; [0, 4] and [0] without) and
+``curve_info`` float32 [C, 4] (each segment's Hair Info, ``curves.curve_info``):
 rows T + S .. T + S + C - 1. So ``material``, ``flags`` (and ``attributes.instance`` when it is not empty)
 hold T + S + C entries; the per-corner tables hold T.
 """
@@ -30,11 +31,12 @@ import numpy as np
 
 from . import curves as hair
 from .jit import inlined, kernel
+from .vec3 import tangents
 from .spheres import camera_relative, no_spheres, point_random, rendered_rows, sphere_surface
 
 Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags motion motion_normals spheres "
-                      "sphere_random curves curve_segments",
-                      defaults=(no_spheres(), np.zeros(0, np.float32), *hair.no_curves()))
+                      "sphere_random curves curve_segments curve_info",
+                      defaults=(no_spheres(), np.zeros(0, np.float32), *hair.no_curves(), np.zeros((0, 4), np.float32)))
 
 #: A ``surface_at`` time that reads the positions at the frame (``Geometry.vertices``), where the light
 #: table's emitters stand, instead of those at a ray time of the shutter.
@@ -95,7 +97,7 @@ def prepare_geometry(scene, offset):
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
                         np.ascontiguousarray(material), normals, attributes, np.ascontiguousarray(flags),
                         *_motion_arrays(scene, original, offset, len(normals)), camera_relative(points, rows, offset),
-                        point_random(points, rows), *hair.camera_relative(strands, offset))
+                        point_random(points, rows), *hair.camera_relative(strands, offset), hair.curve_info(strands))
     return geometry, original, int(len(triangles) - len(original))
 
 
@@ -238,3 +240,44 @@ def offset_origin(p, ng, toward):
     if toward[0] * ng[0] + toward[1] * ng[1] + toward[2] * ng[2] < 0.0:
         eps = -eps
     return (p[0] + eps * ng[0], p[1] + eps * ng[1], p[2] + eps * ng[2])
+
+
+@inlined
+def hit_tangent(geometry, triangle, u, n, along_v):
+    """A unit tangent at a hit, the direction Cycles' hair closures take as the fibre's: a curve's tangent at
+    ``u``; on a triangle d position / d barycentric u (its first edge; Cycles' ``sd->dPdu``), or with ``along_v``
+    d position / d v (its second edge, ``sd->dPdv``, what the Hair BSDF takes); on a sphere a tangent of its
+    normal ``n``."""
+    if triangle >= geometry.triangles.shape[0]:
+        s = triangle - geometry.triangles.shape[0]
+        if s >= geometry.spheres.shape[0]:
+            t = hair.curve_tangent(geometry.curves, geometry.curve_segments, s - geometry.spheres.shape[0], u)
+        else:
+            t = tangents(n)[0]
+    else:
+        a = geometry.triangles[triangle, 0]
+        b = geometry.triangles[triangle, 2 if along_v else 1]
+        vs = geometry.vertices
+        t = (float(vs[b, 0]) - float(vs[a, 0]), float(vs[b, 1]) - float(vs[a, 1]), float(vs[b, 2]) - float(vs[a, 2]))
+    size = math.sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2])
+    if not size > 0.0:
+        return tangents(n)[0]
+    return (t[0] / size, t[1] / size, t[2] / size)
+
+
+@inlined
+def on_curve(geometry, triangle):
+    """Whether a hit's row is a hair strand's segment."""
+    return triangle >= geometry.triangles.shape[0] + geometry.spheres.shape[0]
+
+
+@inlined
+def leave_surface(geometry, triangle, u, p, ng, toward):
+    """(origin, distance skipped) of a ray leaving the hit at ``p`` along unit ``toward``: ``offset_origin``, or,
+    into a hair strand's tube, from just outside the tube's far wall (``curves.leave_tube``)."""
+    if on_curve(geometry, triangle) and toward[0] * ng[0] + toward[1] * ng[1] + toward[2] * ng[2] < 0.0:
+        first_curve = geometry.triangles.shape[0] + geometry.spheres.shape[0]
+        q, t = hair.leave_tube(geometry.curves, geometry.curve_segments, triangle - first_curve, u, p, toward)
+        if t > 0.0:
+            return offset_origin(q, toward, toward), t
+    return offset_origin(p, ng, toward), 0.0

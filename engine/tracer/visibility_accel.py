@@ -46,7 +46,8 @@ class _Subset:
                        geometry.flags[self.ids], geometry.motion,
                        geometry.motion_normals[:, triangles] if len(geometry.motion_normals) else geometry.motion_normals,
                        np.ascontiguousarray(geometry.spheres[spheres]), geometry.sphere_random[spheres],
-                       geometry.curves, np.ascontiguousarray(geometry.curve_segments[segments]))
+                       geometry.curves, np.ascontiguousarray(geometry.curve_segments[segments]),
+                       geometry.curve_info[segments] if len(geometry.curve_info) else geometry.curve_info)
         self.accel = Accel(sub)
 
     def _map(self, hit):

@@ -6,9 +6,10 @@ spectrum-table id, -1 means 1 at every wavelength, and ``≤ -2`` is a colour co
 material's program (``register_source``).
 
 - ``C_KIND``: ``DIFFUSE``, ``CONDUCTOR`` (any microfacet reflection), ``DIELECTRIC``, ``THIN_FILM``,
-  ``TRANSLUCENT``, ``TRANSPARENT``, ``SHEEN`` (Blender's microfiber sheen, ``bsdf.sheen``) or ``SUBSURFACE``
+  ``TRANSLUCENT``, ``TRANSPARENT``, ``SHEEN`` (Blender's microfiber sheen, ``bsdf.sheen``), ``SUBSURFACE``
   (a random walk under the surface: ``spectral[0]`` the albedo, ``spectral[1]`` the radius over its largest,
-  ``C_SSS_*``, ``C_ALPHA`` and ``C_ETA`` the entry bounce's roughness and index; ``subsurface``).
+  ``C_SSS_*``, ``C_ALPHA`` and ``C_ETA`` the entry bounce's roughness and index; ``subsurface``) or ``HAIR``
+  (a fibre: Principled Hair's Chiang model, ``bsdf.hair_chiang``; ``bsdf.hair``).
 - ``C_WEIGHT``: how often the closure is sampled relative to the others of its material (≥ 0; the
   estimated albedo times the mean tint); f = Σ tint · f_closure does not depend on it.
 - ``C_SPECTRUM`` (→ ``spectral[0]``): diffuse/translucent albedo; a conductor's F0 (Schlick, F82) or n;
@@ -46,6 +47,20 @@ material's program (``register_source``).
   own normal, or one Cycles' Bump Map Correction raised), with ``C_VIEW_COS`` the view's cosine there;
   ``C_BUMPED`` = 1 where that normal is not the smooth one, ``C_SMOOTH_X/Y/Z`` (the smooth normal in the
   same frame) for Cycles' bump shadowing test (``closure_frame``).
+- ``HAIR`` closures (``bsdf.hair``): ``C_HAIR_MODEL`` 0 for Principled Hair (Chiang), ``bsdf.hair_kajiya``'s
+  ``REFLECTION`` or ``TRANSMISSION`` for the Hair BSDF's components (RoughnessU, RoughnessV in
+  ``C_HAIR_ROUGHNESS``, ``C_HAIR_RADIAL``; Offset in ``C_HAIR_OFFSET``). They keep their node inputs in ``C_HAIR_*`` and are set up per hit by
+  ``materials.hair_setup``: ``C_HAIR_ROUGHNESS``, ``C_HAIR_RADIAL`` (Blender's Roughness and Radial Roughness),
+  ``C_HAIR_COAT``, ``C_HAIR_IOR``, ``C_HAIR_OFFSET`` (cuticle tilt, radians), ``C_HAIR_RANDOM_ROUGHNESS``,
+  ``C_HAIR_RANDOM`` (the Random input; on a strand, where ``C_HAIR_STRAND_RANDOM`` is 1 (Random unlinked),
+  the strand's own random number replaces it per hit), ``C_HAIR_MELANIN``,
+  ``C_HAIR_REDNESS``, ``C_HAIR_RANDOM_COLOUR`` and ``C_HAIR_SIGMA_MODE`` (``SIGMA_*``: how the absorption is given:
+  a colour in ``C_SPECTRUM``, an absorption coefficient in ``C_S1`` (an unbounded source, times
+  ``C_HAIR_SIGMA_SCALE``) or melanin with a tint in ``C_SPECTRUM``). Per hit: the absorption coefficient per
+  wavelength replaces ``spectral[0]``; ``C_HAIR_V``, ``C_HAIR_S``, ``C_HAIR_M0`` are Cycles' longitudinal variance,
+  azimuthal logistic scale and primary-reflection variance; ``C_HAIR_H`` the offset across the fibre (-1..1) seen
+  from the view; ``C_HAIR_TX/TY/TZ`` the unit curve tangent (world, then in the material's shading frame once
+  ``closure_normals.orient_closures`` ran).
 """
 
 from __future__ import annotations
@@ -58,8 +73,10 @@ TRANSLUCENT = 4
 TRANSPARENT = 5
 SHEEN = 6
 SUBSURFACE = 7
+HAIR = 8
 KIND_NAMES = {DIFFUSE: "diffuse", CONDUCTOR: "conductor", DIELECTRIC: "dielectric", THIN_FILM: "thin_film",
-              TRANSLUCENT: "translucent", TRANSPARENT: "transparent", SHEEN: "sheen", SUBSURFACE: "subsurface"}
+              TRANSLUCENT: "translucent", TRANSPARENT: "transparent", SHEEN: "sheen", SUBSURFACE: "subsurface",
+              HAIR: "hair"}
 
 C_KIND = 0
 C_WEIGHT = 1
@@ -94,7 +111,33 @@ C_BUMPED = 29
 C_SMOOTH_X = 30
 C_SMOOTH_Y = 31
 C_SMOOTH_Z = 32
-CLOSURE_ROW = 33
+C_HAIR_ROUGHNESS = 33
+C_HAIR_RADIAL = 34
+C_HAIR_COAT = 35
+C_HAIR_IOR = 36
+C_HAIR_OFFSET = 37
+C_HAIR_RANDOM_ROUGHNESS = 38
+C_HAIR_RANDOM = 39
+C_HAIR_MELANIN = 40
+C_HAIR_REDNESS = 41
+C_HAIR_RANDOM_COLOUR = 42
+C_HAIR_SIGMA_MODE = 43
+C_HAIR_SIGMA_SCALE = 44
+C_HAIR_V = 45
+C_HAIR_S = 46
+C_HAIR_M0 = 47
+C_HAIR_H = 48
+C_HAIR_TX = 49
+C_HAIR_TY = 50
+C_HAIR_TZ = 51
+C_HAIR_MODEL = 52
+C_HAIR_STRAND_RANDOM = 53
+CLOSURE_ROW = 54
+
+# How a ``HAIR`` closure's absorption is given (``C_HAIR_SIGMA_MODE``), Principled Hair's parametrizations.
+SIGMA_COLOUR = 0  # Direct Coloring: the colour in ``C_SPECTRUM``
+SIGMA_ABSORPTION = 1  # Absorption Coefficient: ``C_S1`` × ``C_HAIR_SIGMA_SCALE`` (1/fibre diameter)
+SIGMA_MELANIN = 2  # Melanin Concentration (``C_HAIR_MELANIN``, ``C_HAIR_REDNESS``) plus the tint in ``C_SPECTRUM``
 
 # A ``SUBSURFACE`` closure's own parameters, in columns only films and coatings use otherwise.
 C_SSS_RADIUS = C_FILM_NM  # the largest mean free path (m): Radius × Scale; spectral[1] is Radius / its largest

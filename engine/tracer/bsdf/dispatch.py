@@ -12,9 +12,9 @@ from __future__ import annotations
 import math
 
 from ..jit import kernel
-from . import conductor, dielectric, diffuse, sheen, subsurface_entry, thin_film, translucent, transparent
+from . import conductor, dielectric, diffuse, hair, sheen, subsurface_entry, thin_film, translucent, transparent
 from .closure_frame import bump_shadowing, has_own_frame, into_closure_frame, out_of_closure_frame
-from .closure import (C_ALPHA, C_KIND, C_MIRROR, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, SAMPLED_DELTA,
+from .closure import (C_ALPHA, C_KIND, C_MIRROR, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, HAIR, SAMPLED_DELTA,
                       SAMPLED_DIFFUSE, SHEEN, SMOOTH_ALPHA, SUBSURFACE, THIN_FILM, TRANSLUCENT, TRANSPARENT)
 
 
@@ -52,6 +52,9 @@ def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u
     elif kind == SHEEN:
         wi, pdf, flags, eta_scale = sheen.sample(row, spectral, eta, wo, wavelength_nm, hero,
                                                  collapsed, u0, u1, u2, weight)
+    elif kind == HAIR:
+        wi, pdf, flags, eta_scale = hair.sample(row, spectral, eta, wo, wavelength_nm, hero,
+                                                collapsed, u0, u1, u2, weight)
     elif kind == TRANSPARENT:
         wi, pdf, flags, eta_scale = transparent.sample(row, spectral, eta, wo, wavelength_nm, hero,
                                                        collapsed, u0, u1, u2, weight)
@@ -91,6 +94,8 @@ def _evaluate_lobe(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f
         return translucent.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     if kind == SHEEN:
         return sheen.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
+    if kind == HAIR:
+        return hair.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     if kind == TRANSPARENT:
         return transparent.evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
     if kind == SUBSURFACE:

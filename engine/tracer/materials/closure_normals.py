@@ -14,7 +14,8 @@ from __future__ import annotations
 import math
 
 from ..bsdf.closure import (C_BUMPED, C_FRAME_X, C_FRAME_Y, C_FRAME_Z, C_FRAMED, C_KIND, C_NORMAL, C_SMOOTH_X,
-                            C_SMOOTH_Y, C_SMOOTH_Z, C_VIEW_COS, CONDUCTOR, DIELECTRIC, SUBSURFACE, TRANSLUCENT)
+                            C_SMOOTH_Y, C_SMOOTH_Z, C_VIEW_COS, CONDUCTOR, DIELECTRIC, SUBSURFACE, TRANSLUCENT,
+                            C_HAIR_TX, C_HAIR_TY, C_HAIR_TZ, HAIR)
 from ..bsdf.closure_frame import BUMP_SOFTENED
 from ..jit import kernel
 from ..vec3 import tangents, to_local
@@ -103,3 +104,6 @@ def orient_closures(rows, count, n, flipped):
         if rows[c, C_BUMPED] > 0.0:
             m = (sign * rows[c, C_SMOOTH_X], sign * rows[c, C_SMOOTH_Y], sign * rows[c, C_SMOOTH_Z])
             rows[c, C_SMOOTH_X], rows[c, C_SMOOTH_Y], rows[c, C_SMOOTH_Z] = to_local(m, s, t, n)
+        if int(rows[c, C_KIND]) == HAIR:  # a fibre's tangent (``hair_setup``) does not turn with the normal's side
+            m = (rows[c, C_HAIR_TX], rows[c, C_HAIR_TY], rows[c, C_HAIR_TZ])
+            rows[c, C_HAIR_TX], rows[c, C_HAIR_TY], rows[c, C_HAIR_TZ] = to_local(m, s, t, n)

@@ -5,13 +5,15 @@ Corner data is interpolated with the hit's barycentrics (corner weights 1 - u - 
 evaluates heights at the point moved a small step along the surface (``bump_step``): the inputs then read
 the moved point (``moved``), so textures see consistent coordinates. Rows past the triangles are spheres
 (``spheres``), then curve segments (``curves``): no corner data (UVs, colours and tangents read as on a mesh
-without them), (u, v) the normal's code.
+without them), (u, v) the normal's code; a curve segment's Hair Info (``hair_info``) comes from its control
+points and ``Geometry.curve_info``.
 """
 
 from __future__ import annotations
 
 import math
 
+from ..curves import curve_tangent
 from ..geometry import FRAME_TIME, surface_at
 from ..jit import inlined, kernel
 from ..octahedral import decode
@@ -178,3 +180,35 @@ def raw_normal(geometry, triangle, u, v):
     cn = geometry.normals[triangle]
     return (w * cn[0, 0] + u * cn[1, 0] + v * cn[2, 0], w * cn[0, 1] + u * cn[1, 1] + v * cn[2, 1],
             w * cn[0, 2] + u * cn[1, 2] + v * cn[2, 2])
+
+
+@inlined
+def hair_info(geometry, triangle, u, wo, field):
+    """Cycles' Hair Info output ``field`` (``opcodes.HAIR_INFO_FIELDS``) at curve parameter ``u`` of the segment in
+    row ``triangle`` seen along ``wo``, as a 3-tuple (scalars in its first entry); zeros off curves, as Cycles
+    finds no curve attribute there (``svm_node_hair_info``, ``geom/curve.h``). Intercept is interpolated linearly
+    between the segment's points, Thickness is twice the radius interpolated so, Tangent Normal is the view
+    direction made perpendicular to the tangent."""
+    first = geometry.triangles.shape[0] + geometry.spheres.shape[0]
+    s = triangle - first
+    if s < 0 or s >= geometry.curve_segments.shape[0]:
+        return (0.0, 0.0, 0.0)
+    if field == 0:
+        return (1.0, 0.0, 0.0)
+    if field == 4:
+        t = curve_tangent(geometry.curves, geometry.curve_segments, s, u)
+        t2 = t[0] * t[0] + t[1] * t[1] + t[2] * t[2]
+        along = (t[0] * wo[0] + t[1] * wo[1] + t[2] * wo[2]) / t2 if t2 > 0.0 else 0.0
+        x, y, z = wo[0] - along * t[0], wo[1] - along * t[1], wo[2] - along * t[2]
+        size = math.sqrt(x * x + y * y + z * z)
+        return (x / size, y / size, z / size) if size > 0.0 else (0.0, 0.0, 0.0)
+    if field == 3:
+        k = geometry.curve_segments[s]
+        r0, r1 = float(geometry.curves[k + 1, 3]), float(geometry.curves[k + 2, 3])
+        return (2.0 * ((r1 - r0) * u + r0), 0.0, 0.0)
+    info = geometry.curve_info
+    if info.shape[0] <= s:
+        return (0.0, 0.0, 0.0)
+    if field == 1:
+        return ((1.0 - u) * float(info[s, 0]) + u * float(info[s, 1]), 0.0, 0.0)
+    return (float(info[s, 2 if field == 2 else 3]), 0.0, 0.0)

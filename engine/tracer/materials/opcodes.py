@@ -28,6 +28,7 @@ BACKFACING = 10  # 1 if the ray arrived on the back of the surface
 TANGENT = 11  # a = UV slot → unit tangent (xyz) and bitangent sign (+3), world space
 PARAMETRIC = 12  # barycentric (1 - u - v, u, 0)
 POINT_INFO = 13  # mode: POINT_INFO_FIELDS → the point's centre (world, m), radius (m) or random; 0 off points
+HAIR_INFO = 14  # mode: HAIR_INFO_FIELDS → Cycles' Hair Info outputs (``hit_inputs.hair_info``); 0 off curves
 LIGHT_PATH = 15  # mode: ``light_path.OUTPUTS`` index → what the ray that reached the point was (written by the caller)
 AMBIENT_OCCLUSION = 16  # mode: samples × AO_SAMPLES + AO_* flags; dst (ao, colour c × ao) within distance a
 #                         about normal b (-1: the shading normal); traces rays (``shader_rays``)
@@ -121,6 +122,7 @@ WAVE_RINGS_DIRECTIONS = ["X", "Y", "Z", "SPHERICAL"]
 WAVE_PROFILES = ["SIN", "SAW", "TRI"]
 OBJECT_INFO_FIELDS = ["LOCATION", "COLOR", "ALPHA", "OBJECT_INDEX", "MATERIAL_INDEX", "RANDOM"]
 POINT_INFO_FIELDS = ["POSITION", "RADIUS", "RANDOM"]
+HAIR_INFO_FIELDS = ["IS_STRAND", "INTERCEPT", "LENGTH", "THICKNESS", "TANGENT_NORMAL", "RANDOM"]
 #: AMBIENT_OCCLUSION's mode: the node's Only Local and Inside bits, plus its samples × AO_SAMPLES.
 AO_ONLY_LOCAL, AO_INSIDE, AO_SAMPLES = 1, 2, 4
 #: LAYER_ALBEDO: the directional albedo factor s of a GGX reflection lobe whose Fresnel F(cos) is

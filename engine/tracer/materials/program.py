@@ -101,7 +101,7 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
         if code == op.AMBIENT_OCCLUSION or code == op.BEVEL:
             traced_node(code, mode, dst, a, b, c, regs, rays, geometry, triangle, p, ng, n, backfacing)
             continue
-        if code <= op.POINT_INFO:
+        if code <= op.HAIR_INFO:
             hu, hv, hp = u, v, p
             if g == 1:
                 hu, hv, hp = hit.moved(geometry, triangle, u, v, p, step_x)
@@ -128,6 +128,12 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
                 _put3(regs, dst, (1.0 - hu - hv, hu, 0.0))
             elif code == op.POINT_INFO:
                 _point_info(regs, dst, mode, geometry, triangle, attrs.offset)
+            elif code == op.HAIR_INFO:
+                info = hit.hair_info(geometry, triangle, hu, wo, mode)
+                if mode == 4:  # Tangent Normal
+                    _put3(regs, dst, info)
+                else:
+                    regs[dst] = info[0]
             elif code == op.TANGENT:
                 t3, _ = hit.corner_tangent(attrs.tangents, a, triangle, hu, hv)
                 length = math.sqrt(t3[0] * t3[0] + t3[1] * t3[1] + t3[2] * t3[2])

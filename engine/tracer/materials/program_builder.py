@@ -24,7 +24,8 @@ from . import opcodes as op
 
 #: Instructions that read the hit, the ray, an image or write the closure rows: never folded.
 NEVER_FOLDED = {op.UV, op.COLOR_ATTRIBUTE, op.POSITION, op.NORMAL, op.TRUE_NORMAL, op.INCOMING, op.GENERATED,
-                op.OBJECT_COORDINATES, op.OBJECT_INFO, op.BACKFACING, op.TANGENT, op.PARAMETRIC, op.POINT_INFO, op.FRESNEL,
+                op.OBJECT_COORDINATES, op.OBJECT_INFO, op.BACKFACING, op.TANGENT, op.PARAMETRIC, op.POINT_INFO,
+                op.HAIR_INFO, op.FRESNEL,
                 op.LAYER_WEIGHT, op.NORMAL_MAP, op.BUMP, op.BIND, op.BIND_RGB, op.IMAGE, op.LIGHT_PATH,
                 op.AMBIENT_OCCLUSION, op.BEVEL, op.VALID_REFLECTION}
 

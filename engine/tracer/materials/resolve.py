@@ -10,7 +10,7 @@ times an estimate of the closure's albedo seen from ``wo``.
 from __future__ import annotations
 
 from ..bsdf.closure import (C_GLASS, C_KIND, C_S1, C_SPECTRUM, C_TINT, C_TINT_SCALE, C_WEIGHT, CONDUCTOR, DIELECTRIC,
-                            DIFFUSE, TRANSLUCENT)
+                            DIFFUSE, HAIR, TRANSLUCENT)
 from ..bsdf.closure_frame import view_cosine
 from ..bsdf.conductor import mean_tinted_reflectance
 from ..jit import inlined, kernel
@@ -52,7 +52,8 @@ def resolve_spectral(materials, spectra, count, wavelength_nm, hero, rows, spect
     for c in range(count):
         row = rows[c]
         _fill(materials, spectra, row[C_SPECTRUM], wavelength_nm, regs, True, spectral[c, 0])
-        _fill(materials, spectra, row[C_S1], wavelength_nm, regs, True, spectral[c, 1])
+        # a fibre's absorption coefficient (``HAIR``, ``C_S1``) is not bounded by 1
+        _fill(materials, spectra, row[C_S1], wavelength_nm, regs, int(row[C_KIND]) != HAIR, spectral[c, 1])
         _fill(materials, spectra, row[C_TINT], wavelength_nm, regs, False, spectral[c, 2])
         scale = row[C_TINT_SCALE]
         if scale != 1.0:

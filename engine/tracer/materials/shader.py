@@ -62,6 +62,28 @@ class ClosureSpec:
     multiscatter_colour: Colour | None = None  # its Fss where the Fresnel model does not set it (``C_MS_COLOUR``)
     normal: int = -1  # register of the closure's own shading normal (``C_NORMAL``); -1: the material's
     subsurface: tuple | None = None  # (largest radius m, anisotropy, SSS_* method) of a SUBSURFACE closure (C_SSS_*)
+    hair: HairInputs | None = None  # a ``HAIR`` closure's node inputs (``C_HAIR_*``)
+
+
+@dataclass
+class HairInputs:
+    """Principled Hair's scalar inputs as the node gives them (``bsdf.closure`` ``C_HAIR_*``); the closure's
+    ``s0`` is its colour (Direct Coloring) or tint (Melanin), ``s1`` its absorption coefficient. The Hair BSDF
+    (``model`` > 0) reads RoughnessU, RoughnessV and Offset from ``roughness``, ``radial_roughness``, ``offset``."""
+
+    sigma_mode: int = 2  # ``bsdf.closure.SIGMA_*``
+    model: int = 0  # ``C_HAIR_MODEL``: 0 Principled Hair (Chiang); ``bsdf.hair_kajiya`` REFLECTION, TRANSMISSION
+    roughness: float = 0.3
+    radial_roughness: float = 0.3
+    coat: float = 0.0
+    ior: float = 1.55
+    offset: float = 0.0349066  # radians (Blender's default 2 degrees)
+    random_roughness: float = 0.0
+    random: float = 0.0  # the Random input (its value on the node where unlinked)
+    strand_random: bool = True  # Random unlinked: strands take their own random number (Hair Info ▸ Random)
+    melanin: float = 0.8
+    melanin_redness: float = 1.0
+    random_colour: float = 0.0
 
 
 @dataclass

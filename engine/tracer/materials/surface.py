@@ -6,7 +6,8 @@ instructions (``program.run_program``) and then resolve their closures; the othe
 their constant rows (``resolve.resolve_material``). Closures under a constant layer (``MAT_LAYERED``) are
 then scaled by what the layer lets through from the view direction (``layering.under_layer``), and closures
 whose distribution is Multiscatter GGX by the energy their single scattering misses (``MAT_MULTISCATTER``,
-``energy.compensate_energy``); sheen closures are fitted to the view (``MAT_SHEEN``, ``sheen_setup``). Nothing here allocates: the register file
+``energy.compensate_energy``); sheen closures are fitted to the view (``MAT_SHEEN``, ``sheen_setup``), fibres
+(``MAT_HAIR``) to the curve's tangent and the view (``hair_setup``). Nothing here allocates: the register file
 and closure rows are the caller's scratch memory. Where a ray found the surface its program may trace rays of
 its own (Ambient Occlusion, Bevel: ``shader_rays``); transparency for shadow rays, and emission for light
 sampling and light paths, are evaluated without them, as Cycles evaluates them.
@@ -23,8 +24,9 @@ from .energy import compensate_energy
 from .resolve import _fill, copy_rows, resolve_material, resolve_spectral, selection_weights
 from .layering import under_layer
 from .sheen_setup import set_up_sheen
+from .hair_setup import set_up_hair
 from .closure_normals import SAME_NORMAL, set_up_normals
-from .table import (MAT_BUMP_CORRECTION, MAT_CLOSURE_NORMALS, MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED,
+from .table import (MAT_BUMP_CORRECTION, MAT_CLOSURE_NORMALS, MAT_HAIR, MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED,
                     MAT_OWN_NORMALS, MAT_PROGRAM, MAT_SHEEN)
 
 
@@ -67,6 +69,8 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
         resolve_spectral(materials, spectra, count, wavelength_nm, hero, rows, spectral, eta, glass_clamps, regs)
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
+    if flags & MAT_HAIR:
+        set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength_nm)
     if flags & MAT_CLOSURE_NORMALS and (flags & MAT_OWN_NORMALS or
                                         shading[0] * ng[0] + shading[1] * ng[1] + shading[2] * ng[2] < SAME_NORMAL):
         set_up_normals(rows, count, regs, wo, ng, n, shading, flags & MAT_BUMP_CORRECTION != 0)

@@ -27,6 +27,8 @@ the kernels decide without looking at kinds:
   ``media.table.MediaArrays``): paths crossing the surface inward enter it, outward leave it.
 - ``MAT_SHEEN``: a closure is Blender's microfiber sheen, fitted per hit to the view direction
   (``sheen_setup.set_up_sheen``): its tint and the closures' selection weights are computed per hit.
+- ``MAT_HAIR``: a closure is a fibre's (``HAIR``), set up per hit from the curve's tangent and the view
+  (``hair_setup``) and turned into the shading frame with the closures' normals (``closure_normals``).
 - ``MAT_CLOSURE_NORMALS``: the closures' normals are set up per hit (``closure_normals``): a closure has a
   normal of its own (``MAT_OWN_NORMALS``: ``C_NORMAL``, a Coat Normal, shaders with different Normal inputs), the
   program bends the normal, or Bump Map Correction (``MAT_BUMP_CORRECTION``) may raise a microfacet or
@@ -41,13 +43,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..bsdf.closure import (C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C_FILM_NM, C_FRESNEL, C_GLASS,
+from ..bsdf.closure import (C_HAIR_COAT, C_HAIR_H, C_HAIR_IOR, C_HAIR_M0, C_HAIR_MELANIN, C_HAIR_MODEL, C_HAIR_OFFSET,
+                            C_HAIR_RADIAL, C_HAIR_RANDOM, C_HAIR_RANDOM_COLOUR, C_HAIR_RANDOM_ROUGHNESS, C_HAIR_REDNESS,
+                            C_HAIR_STRAND_RANDOM,
+                            C_HAIR_ROUGHNESS, C_HAIR_S, C_HAIR_SIGMA_MODE, C_HAIR_SIGMA_SCALE, C_HAIR_TX, C_HAIR_TY,
+                            C_HAIR_TZ, C_HAIR_V, C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C_FILM_NM,
+                            C_FRESNEL, C_GLASS,
                             C_KIND, C_LAYER_ETA, C_LAYER_F0, C_LAYER_MULTISCATTER, C_LAYER_ROUGHNESS, C_MIRROR,
                             C_MS_COLOUR, C_MULTISCATTER, C_NORMAL, C_S1, C_FRAMED, C_BUMPED,
                             C_SPECTRUM, C_SSS_ANISOTROPY, C_SSS_METHOD, C_SSS_RADIUS, C_TINT,
                             C_TINT_SCALE, C_WEIGHT, CLOSURE_ROW,
-                            CONDUCTOR, DIELECTRIC, DIFFUSE, MAX_CLOSURES, SHEEN, SMOOTH_ALPHA, SUBSURFACE, THIN_FILM,
-                            TRANSLUCENT, TRANSPARENT, register_source)
+                            CONDUCTOR, DIELECTRIC, DIFFUSE, HAIR, MAX_CLOSURES, SHEEN, SMOOTH_ALPHA, SUBSURFACE,
+                            THIN_FILM, TRANSLUCENT, TRANSPARENT, register_source)
 from ..errors import PrismInputError
 from ..scene import SpectrumSpec
 from ..spectra.dispersion import GLASS_ROW, glass_row
@@ -71,6 +78,7 @@ MAT_CLOSURE_NORMALS = 4096
 MAT_OWN_NORMALS = 8192
 MAT_BUMP_CORRECTION = 16384
 MAT_SUBSURFACE = 32768
+MAT_HAIR = 65536
 
 MaterialArrays = namedtuple(
     "MaterialArrays",
@@ -79,7 +87,7 @@ MaterialArrays = namedtuple(
 )
 
 _FEATURES = {DIFFUSE: "diffuse", TRANSLUCENT: "translucent", TRANSPARENT: "transparent", THIN_FILM: "thin_film",
-             SHEEN: "sheen"}
+             SHEEN: "sheen", HAIR: "hair"}
 
 
 @dataclass
@@ -148,6 +156,8 @@ def _row(spec, spectra, glasses, glass_index, name):
     row[C_MS_COLOUR], _ = _source(spec.multiscatter_colour, spectra, name)
     if spec.kind == SUBSURFACE:
         row[C_SSS_RADIUS], row[C_SSS_ANISOTROPY], row[C_SSS_METHOD] = (float(x) for x in spec.subsurface)
+    if spec.kind == HAIR:
+        _hair_columns(row, spec, spectra, name)
     if spec.kind == DIELECTRIC:
         glass = spec.glass
         if glass is None:
@@ -160,6 +170,23 @@ def _row(spec, spectra, glasses, glass_index, name):
             glasses.append(glass)
         row[C_GLASS] = glass_index[key]
     return row
+
+
+def _hair_columns(row, spec, spectra, name):
+    """A fibre's node inputs into its ``C_HAIR_*`` columns; the per-hit ones start at 0."""
+    from ..materials.shader import HairInputs
+
+    hair = spec.hair if spec.hair is not None else HairInputs()
+    row[C_HAIR_SIGMA_MODE], row[C_HAIR_MODEL] = float(hair.sigma_mode), float(hair.model)
+    row[C_HAIR_ROUGHNESS], row[C_HAIR_RADIAL] = float(hair.roughness), float(hair.radial_roughness)
+    row[C_HAIR_COAT], row[C_HAIR_IOR], row[C_HAIR_OFFSET] = float(hair.coat), float(hair.ior), float(hair.offset)
+    row[C_HAIR_RANDOM_ROUGHNESS], row[C_HAIR_RANDOM] = float(hair.random_roughness), float(hair.random)
+    row[C_HAIR_MELANIN], row[C_HAIR_REDNESS] = float(hair.melanin), float(hair.melanin_redness)
+    row[C_HAIR_RANDOM_COLOUR] = float(hair.random_colour)
+    row[C_HAIR_STRAND_RANDOM] = 1.0 if hair.strand_random else 0.0
+    row[C_S1], row[C_HAIR_SIGMA_SCALE] = _source(spec.s1, spectra, name, bounded=False)
+    for column in (C_HAIR_V, C_HAIR_S, C_HAIR_M0, C_HAIR_H, C_HAIR_TX, C_HAIR_TY, C_HAIR_TZ):
+        row[column] = 0.0
 
 
 def _feature(spec):
@@ -234,6 +261,8 @@ def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTa
                 flags[m] |= MAT_SHEEN
             if spec.kind == SUBSURFACE:
                 flags[m] |= MAT_SUBSURFACE
+            if spec.kind == HAIR:
+                flags[m] |= MAT_HAIR
             if spec.normal >= 0:
                 flags[m] |= MAT_CLOSURE_NORMALS | MAT_OWN_NORMALS
             if shader.bump_map_correction and spec.kind in (CONDUCTOR, DIELECTRIC, TRANSLUCENT, SUBSURFACE):

@@ -35,7 +35,7 @@ from ..lights.point import spot_falloff
 from ..lights.row import L_KIND, POINT, SPHERE
 from ..materials.closure_normals import orient_closures
 from ..materials.surface import shade_surface
-from ..materials.table import MAT_CLOSURE_NORMALS, MAT_DELTA, MAT_DISPERSIVE, MAT_NULL, MAT_ONE_SIDED
+from ..materials.table import MAT_CLOSURE_NORMALS, MAT_DELTA, MAT_DISPERSIVE, MAT_HAIR, MAT_NULL, MAT_ONE_SIDED
 from ..sampler import pixel_seed, sample_1d, sample_2d
 from ..spectra.wavelength_sampling import radiance_to_rgb
 from ..state import COLLAPSED, LIGHT_CONNECTED, LIGHT_SPECULAR
@@ -107,7 +107,7 @@ def _resolve(hit, p, ng, ns, wo, backfacing, mflags, lam, hero, rows, spectral, 
     flipped = backfacing and mflags & MAT_ONE_SIDED != 0
     if flipped:
         n = (-n[0], -n[1], -n[2])
-    if mflags & MAT_CLOSURE_NORMALS:
+    if mflags & (MAT_CLOSURE_NORMALS | MAT_HAIR):
         orient_closures(rows, closures, n, flipped)
     return closures, n
 

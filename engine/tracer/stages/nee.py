@@ -12,7 +12,7 @@ import math
 
 from ..bsdf.dispatch import bsdf_evaluate
 from ..catcher_lights import excluded_from_catcher
-from ..geometry import offset_origin
+from ..geometry import leave_surface
 from ..jit import inlined, kernel
 from ..light_linking import ALL_SETS, emitter_sets, in_sets
 from ..lights.dispatch import sample_light
@@ -74,10 +74,10 @@ def sample_direct(state, i, vertex, bsdf, lights, materials, spectra, geometry, 
         factor = clamp_factor(settings, state, i, contribution, depth > 0)
         for k in range(li.shape[0]):
             contribution[k] *= factor
-    distance = dist * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
+    origin, skipped = leave_surface(geometry, state.hit_triangle[i], state.hit_u[i], p, ng, wi)
+    distance = (dist - skipped) * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
     # the medium: the path's; the shading stage corrects it where the surface bounds a medium
-    if not queue_shadow(shadows, slot, i, offset_origin(p, ng, wi), wi, distance, group, state.medium[i],
-                        shadow_sets):
+    if not queue_shadow(shadows, slot, i, origin, wi, distance, group, state.medium[i], shadow_sets):
         return 0
     if depth == 0 and layout.light >= 0:
         lobe_shares(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, scratch[0],

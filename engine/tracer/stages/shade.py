@@ -18,13 +18,14 @@ from __future__ import annotations
 from ..bsdf.closure import (C_ALPHA, SAMPLED_DELTA, SAMPLED_DIFFUSE, SAMPLED_NULL, SAMPLED_SUBSURFACE,
                             SAMPLED_TRANSMISSION)
 from ..bsdf.dispatch import bsdf_sample
-from ..geometry import offset_origin, surface_at
+from ..geometry import leave_surface, surface_at
 from ..jit import inlined, kernel
 from ..materials.light_path import after_scattering, after_transparent, emission_sample, path_ray
 from ..materials.shader_rays import ShaderRays
 from ..materials.closure_normals import orient_closures
 from ..materials.surface import shade_surface
-from ..materials.table import MAT_CLOSURE_NORMALS, MAT_DELTA, MAT_DISPERSIVE, MAT_MEDIUM, MAT_NULL, MAT_ONE_SIDED
+from ..materials.table import (MAT_CLOSURE_NORMALS, MAT_DELTA, MAT_DISPERSIVE, MAT_HAIR, MAT_MEDIUM, MAT_NULL,
+                               MAT_ONE_SIDED)
 from ..media.scatter import scatter_in_medium
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
 from ..state import (CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA,
@@ -144,7 +145,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         flipped = backfacing and mflags & MAT_ONE_SIDED != 0
         if flipped:
             n = (-n[0], -n[1], -n[2])
-        if mflags & MAT_CLOSURE_NORMALS:
+        if mflags & (MAT_CLOSURE_NORMALS | MAT_HAIR):
             orient_closures(rows, closures, n, flipped)
         tangent, bitangent = tangents(n)
         frame = (tangent, bitangent, n)
@@ -223,7 +224,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                 state.receiver[i] = lights.links.receiver_set[triangle]
         if has_media and mflags & MAT_MEDIUM:
             state.medium[i] = side_medium(materials, material, wi, ng, settings.outside_medium)
-        pushed = push_ray(state, next_rays, queued, i, offset_origin(p, ng, wi), wi)
+        origin, _ = leave_surface(geometry, triangle, state.hit_u[i], p, ng, wi)
+        pushed = push_ray(state, next_rays, queued, i, origin, wi)
         queued += pushed
         rejected[0] += 1 - pushed
     return queued, shadowed

@@ -1,14 +1,17 @@
 """Compiled loops that run a material's BSDF over many inputs, for the statistical tests (not a test module).
 
 The material is resolved as the render resolves it: constant rows, then, for Multiscatter GGX closures,
-the energy compensation seen from ``wo`` (``materials.energy``; below the surface is inside a glass)."""
+the energy compensation seen from ``wo`` (``materials.energy``; below the surface is inside a glass); fibres get
+their parameters and absorption (``materials.hair_setup``) with the tangent and h the test wrote in the rows."""
 
 from engine.tracer.bsdf.dispatch import bsdf_evaluate, bsdf_sample
 from engine.tracer.jit import inlined, kernel
 from engine.tracer.materials.energy import compensate_energy
 from engine.tracer.materials.resolve import resolve_material
 from engine.tracer.materials.sheen_setup import set_up_sheen
-from engine.tracer.materials.table import MAT_MULTISCATTER, MAT_SHEEN
+from engine.tracer.bsdf.closure import C_KIND, HAIR
+from engine.tracer.materials.hair_setup import hair_parameters
+from engine.tracer.materials.table import MAT_HAIR, MAT_MULTISCATTER, MAT_SHEEN
 
 
 @inlined
@@ -19,6 +22,10 @@ def _resolve(materials, spectra, wo, lam, hero, rows, spectral, eta, clamps):
                           wo[2] < 0.0, lam, materials.programs.constants)
     if materials.flags[0] & MAT_SHEEN:
         set_up_sheen(materials.programs.tables.sheen, rows, spectral, count, wo[2])
+    if materials.flags[0] & MAT_HAIR:  # the fibre's tangent and h stay as the test set them in the rows
+        for c in range(count):
+            if int(rows[c, C_KIND]) == HAIR:
+                hair_parameters(rows[c], spectral[c], lam)
     return count
 
 
