@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .hair_info import strand_info
 from .instancing import WorldTriangles
 
 DEFAULT_RADIUS_M = 0.005
@@ -76,9 +77,10 @@ def read_hair(obj) -> LocalHair | None:
 
 
 def placed_strands(hair: LocalHair, matrices: np.ndarray):
-    """(points float64 [K*P, 3], radii float64 [K*P], offsets int64 [K*C' + 1], curve slot int32 [K*C']) of
-    one hair's strands at each of ``matrices`` [K, 4, 4], the strands with at least 2 points and every
-    point finite (C' of them); radii scaled by the cube root of each transform's determinant's magnitude."""
+    """(points float64 [K*P, 3], radii float64 [K*P], offsets int64 [K*C' + 1], curve slot int32 [K*C'],
+    Hair Info float32 [K*S, 4] per segment: intercept at its two points, the strand's length and random,
+    ``hair_info``) of one hair's strands at each of ``matrices`` [K, 4, 4], the strands with at least 2 points and
+    every point finite (C' of them); radii scaled by the cube root of each transform's determinant's magnitude."""
     counts = np.diff(hair.offsets)
     finite = np.isfinite(hair.points).all(axis=1) & np.isfinite(hair.radii)
     strand_of_point = np.repeat(np.arange(len(counts)), counts)
@@ -93,8 +95,15 @@ def placed_strands(hair: LocalHair, matrices: np.ndarray):
     with np.errstate(invalid="ignore"):
         scale = np.cbrt(np.abs(np.linalg.det(linear)))
     offsets = np.concatenate([[0], np.cumsum(np.tile(kept_counts, len(matrices)))]).astype(np.int64)
+    intercept, length, random = strand_info(hair.points, hair.offsets)
+    kept_offsets = np.concatenate([[0], np.cumsum(kept_counts)]).astype(np.int64)
+    starts = segment_starts(kept_offsets)
+    strand = np.searchsorted(kept_offsets, starts, side="right") - 1
+    kept_intercept = intercept[point_kept]
+    info = np.column_stack([kept_intercept[starts], kept_intercept[starts + 1], length[keep][strand],
+                            random[keep][strand]]).astype(np.float32)
     return (points.reshape(-1, 3), (scale[:, None] * radii[None, :]).reshape(-1), offsets,
-            np.tile(hair.curve_slot[keep], len(matrices)).astype(np.int32))
+            np.tile(hair.curve_slot[keep], len(matrices)).astype(np.int32), np.tile(info, (len(matrices), 1)))
 
 
 def moving_hair_warning(name: str) -> str:

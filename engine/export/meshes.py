@@ -293,12 +293,13 @@ def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | Non
 def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | None:
     """The strands of every hair instance as round curve segments (objects appended to ``names``, ``groups``,
     ``flags`` and ``assets``), or None without any."""
-    points, radii, offsets, material, objects, instance, pass_index = [], [], [], [], [], [], []
+    points, radii, offsets, material, objects, instance, pass_index, info = [], [], [], [], [], [], [], []
     first = 0
     for piece, matrices, lookup in strands:
-        placed, scaled, strand_offsets, slots = placed_strands(piece.geometry, matrices)
+        placed, scaled, strand_offsets, slots, strand_info = placed_strands(piece.geometry, matrices)
         if not len(slots):
             continue
+        info.append(strand_info)
         segments = np.diff(strand_offsets) - 1  # per strand
         points.append(placed)
         radii.append(scaled)
@@ -320,7 +321,7 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
                                                     np.concatenate([[0], *offsets]))
     return CurveSegments(padded, padded_radii, segments, np.concatenate(material).astype(np.int32),
                          np.concatenate(objects), np.concatenate(instance).astype(np.int32),
-                         np.concatenate(pass_index))
+                         np.concatenate(pass_index), np.concatenate(info))
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

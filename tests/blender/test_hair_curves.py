@@ -6,36 +6,12 @@ mean luminance and in coverage (alpha over a transparent film); a moving groom w
 
 from __future__ import annotations
 
-import importlib
-
-import bpy
 import numpy as np
 import pytest
 
 from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
-from helpers.node_scenes import camera, material, node, sun_and_sky
-
-
-def _export(prism_addon, warnings=None):
-    export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
-    return export.export_scene(bpy.context.evaluated_depsgraph_get(), warnings)
-
-
-def _hair_object(name, sizes, positions, radii=None, curve_slots=None):
-    """A Curves object of curves with ``sizes`` points at ``positions`` [P, 3], a ``radius`` attribute where
-    given and the CURVE-domain ``material_index`` ``curve_slots``."""
-    curves = bpy.data.hair_curves.new(name)
-    curves.add_curves(list(sizes))
-    curves.points.foreach_set("position", np.asarray(positions, np.float32).ravel())
-    if radii is not None:
-        curves.attributes.new("radius", "FLOAT", "POINT")
-        curves.points.foreach_set("radius", np.asarray(radii, np.float32))
-    if curve_slots is not None:
-        index = curves.attributes.new("material_index", "INT", "CURVE")
-        index.data.foreach_set("value", np.asarray(curve_slots, np.int32))
-    obj = bpy.data.objects.new(name, curves)
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
+from helpers.hair_scenes import export_scene as _export, groom as _groom, hair_object as _hair_object, lit as _lit
+from helpers.node_scenes import camera, material, node
 
 
 def _diffuse(name, colour):
@@ -69,25 +45,6 @@ def test_strands_export_as_world_curve_segments(prism_addon, fresh_scene):
     fresh_scene.cycles_curves.shape = "RIBBONS"  # Rounded Ribbons: Prism's camera-facing ribbons
     scene = _export(prism_addon)
     assert scene.curves is None and scene.triangle_count == 2 * (3 + 2)
-
-
-def _groom(count=300, points=6, seed=3):
-    """``count`` strands of ``points`` points rising from a 1 m disc, bending sideways, tapering from 8 to 3 mm."""
-    rng = np.random.default_rng(seed)
-    angle, distance = rng.uniform(0, 2 * np.pi, count), 0.5 * np.sqrt(rng.uniform(0, 1, count))
-    roots = np.column_stack([distance * np.cos(angle), distance * np.sin(angle), np.zeros(count)])
-    s = np.linspace(0.0, 1.0, points)[None, :, None]
-    lean = rng.normal(size=(count, 1, 3)) * (0.25, 0.25, 0.0)
-    height = rng.uniform(0.6, 1.0, (count, 1, 1))
-    positions = roots[:, None, :] + s * height * np.array([0.0, 0.0, 1.0]) + s * s * lean
-    radii = np.tile(np.linspace(0.008, 0.003, points), count)
-    return [points] * count, positions.reshape(-1, 3), radii
-
-
-def _lit(scene):
-    """A sun and a grey world; Render ▸ Curves ▸ Shape "3D Curves" (a new scene's is "Rounded Ribbons")."""
-    scene.cycles_curves.shape = "THICK"
-    sun_and_sky(scene, (0.7, 0.2, 0.8))
 
 
 def test_a_groom_matches_cycles_in_luminance_and_coverage(prism_addon, fresh_scene):

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from ...tracer.bsdf.closure import (C_ALPHA, C_ETA, C_TINT_SCALE, CONDUCTOR, DIELECTRIC, FRESNEL_DIELECTRIC,
                                     SUBSURFACE, TRANSPARENT)
-from ...tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
+from ...tracer.materials.shader import ClosureSpec, Colour, HairInputs, ShaderProgram
 from .aov_outputs import aov_results
 from .normals import bump_map_correction
 from .vectors import displacement_bump, displacement_method, true_displacement
@@ -75,6 +75,8 @@ def _closure(c, pending):
             spec.bindings.append((C_ALPHA, pending.alpha.register, False))
         else:
             spec.alpha = float(alpha)
+    if pending.hair is not None:
+        spec.hair = _hair_inputs(c, spec, pending.hair)
     if pending.eta is not None:
         eta = c.known(pending.eta)
         if eta is not None:
@@ -85,6 +87,20 @@ def _closure(c, pending):
         else:
             spec.bindings.append((C_ETA, pending.eta.register, False))
     return spec
+
+
+def _hair_inputs(c, spec, hair):
+    """A fibre's ``HairInputs``: constant inputs as numbers, varying ones bound to their columns."""
+    mode, model, inputs, strand_random = hair
+    values = {"sigma_mode": mode, "model": model, "strand_random": strand_random}
+    for column, (name, value) in inputs.items():
+        known = c.known(value)
+        if known is None:
+            spec.bindings.append((column, value.register, False))
+        else:
+            values[name] = float(known)
+    spec.alpha = 1.0  # no microfacet roughness: a fibre is never a mirror (``SMOOTH_ALPHA``)
+    return HairInputs(**values)
 
 
 def _closure_normals(c, default_normal):

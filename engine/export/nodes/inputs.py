@@ -119,6 +119,13 @@ def point_info(c, node, context, variant, identifier):
                          VECTOR if field == 0 else FLOAT)}
 
 
+def hair_info(c, node, context, variant, identifier):
+    """Cycles' Hair Info on a strand of round curves (``tracer.materials.hit_inputs.hair_info``); 0 elsewhere."""
+    field = {"Is Strand": 0, "Intercept": 1, "Length": 2, "Thickness": 3, "Tangent Normal": 4, "Random": 5}[identifier]
+    return {identifier: (c.hit(op.HAIR_INFO, variant, mode=field, width=3 if field == 4 else 1),
+                         VECTOR if field == 4 else FLOAT)}
+
+
 def tangent(c, node, context, variant, identifier):
     if node.direction_type != "UV_MAP":
         c.warn(node, "radial tangents are not supported; Prism uses the default UV map's tangent.")
@@ -146,6 +153,7 @@ HANDLERS = {
     "ShaderNodeNewGeometry": geometry,
     "ShaderNodeObjectInfo": object_info,
     "ShaderNodePointInfo": point_info,
+    "ShaderNodeHairInfo": hair_info,
     "ShaderNodeTangent": tangent,
     "ShaderNodeValue": value,
     "ShaderNodeRGB": rgb,

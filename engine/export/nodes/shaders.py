@@ -18,6 +18,7 @@ from .measured_base import keeps_own_colour, measured_base
 from .overrides import check_film, conductor_override, glass_override, prism_coating
 from .normals import bump_map_correction, shader_normal, towards
 from .sheen import principled_sheen, sheen_bsdf
+from .hair import hair_bsdf, principled_hair
 from .subsurface import principled_subsurface, subsurface_scattering
 
 
@@ -371,8 +372,8 @@ SHADER_HANDLERS = {
     "ShaderNodeAddShader": add_shader,
     "ShaderNodeBsdfSheen": sheen_bsdf,
     "ShaderNodeBsdfToon": left_out,
-    "ShaderNodeBsdfHair": left_out,
-    "ShaderNodeBsdfHairPrincipled": left_out,
+    "ShaderNodeBsdfHair": hair_bsdf,
+    "ShaderNodeBsdfHairPrincipled": principled_hair,
     "ShaderNodeBsdfRayPortal": left_out,
     "ShaderNodeEeveeSpecular": left_out,
     "ShaderNodeVolumeAbsorption": left_out,

@@ -1,0 +1,52 @@
+"""Hair Curves scenes for the Blender tests: strands built with bpy, a groom, and the sun-and-sky lighting the
+hair tests share (``test_hair_curves``, ``test_hair_bsdf_cycles``)."""
+
+from __future__ import annotations
+
+import importlib
+
+import bpy
+import numpy as np
+
+from helpers.node_scenes import sun_and_sky
+
+
+def export_scene(prism_addon, warnings=None):
+    export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
+    return export.export_scene(bpy.context.evaluated_depsgraph_get(), warnings)
+
+
+def hair_object(name, sizes, positions, radii=None, curve_slots=None):
+    """A Curves object of curves with ``sizes`` points at ``positions`` [P, 3], a ``radius`` attribute where
+    given and the CURVE-domain ``material_index`` ``curve_slots``."""
+    curves = bpy.data.hair_curves.new(name)
+    curves.add_curves(list(sizes))
+    curves.points.foreach_set("position", np.asarray(positions, np.float32).ravel())
+    if radii is not None:
+        curves.attributes.new("radius", "FLOAT", "POINT")
+        curves.points.foreach_set("radius", np.asarray(radii, np.float32))
+    if curve_slots is not None:
+        index = curves.attributes.new("material_index", "INT", "CURVE")
+        index.data.foreach_set("value", np.asarray(curve_slots, np.int32))
+    obj = bpy.data.objects.new(name, curves)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def groom(count=300, points=6, seed=3):
+    """``count`` strands of ``points`` points rising from a 1 m disc, bending sideways, tapering from 8 to 3 mm."""
+    rng = np.random.default_rng(seed)
+    angle, distance = rng.uniform(0, 2 * np.pi, count), 0.5 * np.sqrt(rng.uniform(0, 1, count))
+    roots = np.column_stack([distance * np.cos(angle), distance * np.sin(angle), np.zeros(count)])
+    s = np.linspace(0.0, 1.0, points)[None, :, None]
+    lean = rng.normal(size=(count, 1, 3)) * (0.25, 0.25, 0.0)
+    height = rng.uniform(0.6, 1.0, (count, 1, 1))
+    positions = roots[:, None, :] + s * height * np.array([0.0, 0.0, 1.0]) + s * s * lean
+    radii = np.tile(np.linspace(0.008, 0.003, points), count)
+    return [points] * count, positions.reshape(-1, 3), radii
+
+
+def lit(scene):
+    """A sun and a grey world; Render ▸ Curves ▸ Shape "3D Curves" (a new scene's is "Rounded Ribbons")."""
+    scene.cycles_curves.shape = "THICK"
+    sun_and_sky(scene, (0.7, 0.2, 0.8))
