@@ -163,7 +163,9 @@ def test_padding_repeats_each_strands_ends():
     np.testing.assert_array_equal(padded[4:8], points[[2, 2, 3, 4]])
 
 
-def test_bent_tapered_strands_rebuild_the_hit_point_and_shed_their_own_rays():
+def _bent_hits():
+    """Random rays at the bent, tapering strands: (controls, segments, scene, rng, origins, directions, the
+    curve rows, hits, which rays hit)."""
     controls, segments = _bent_strands()
     segments32 = segments.astype(np.int32)
     scene = Scene([CurveGeometry(controls, segments)])
@@ -173,7 +175,11 @@ def test_bent_tapered_strands_rebuild_the_hit_point_and_shed_their_own_rays():
     direction = rng.uniform(-1.2, 1.2, (n, 3)) - origin
     rows = dict(curve_geometry=0, first_curve=0, curves=controls, curve_segments=segments32)
     hits, _ = _trace(scene, origin.astype(np.float32), direction.astype(np.float32), rows)
-    hit = hits.triangle >= 0
+    return controls, segments32, scene, rng, origin, direction, rows, hits, hits.triangle >= 0
+
+
+def test_bent_tapered_strands_rebuild_the_hit_point_and_shed_their_own_rays():
+    controls, segments32, scene, rng, origin, direction, rows, hits, hit = _bent_hits()
     assert hit.sum() > 2000
     p, nrm, shading = _surface(controls, segments32, hits, hit, 0)
     ray_point = origin[hit] + hits.t[hit, None].astype(np.float64) * direction[hit]
@@ -247,16 +253,7 @@ def test_rays_into_a_strand_leave_from_its_far_wall():
     chord alone left 41 % of them inside the wall); rays sent outward are left to ``offset_origin``."""
     from engine.tracer.curves import leave_tube
 
-    controls, segments = _bent_strands()
-    segments32 = segments.astype(np.int32)
-    scene = Scene([CurveGeometry(controls, segments)])
-    rng = np.random.default_rng(11)
-    n = 20000
-    origin = rng.normal(size=(n, 3)) * 0.5 + np.array([0.0, 0.0, 4.0])
-    direction = rng.uniform(-1.2, 1.2, (n, 3)) - origin
-    rows = dict(curve_geometry=0, first_curve=0, curves=controls, curve_segments=segments32)
-    hits, _ = _trace(scene, origin.astype(np.float32), direction.astype(np.float32), rows)
-    hit = hits.triangle >= 0
+    controls, segments32, scene, rng, origin, direction, rows, hits, hit = _bent_hits()
     p, nrm, _ = _surface(controls, segments32, hits, hit, 0)
     d = -nrm + rng.normal(size=nrm.shape) * 0.7
     d /= np.linalg.norm(d, axis=1, keepdims=True)
