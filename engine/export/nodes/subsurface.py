@@ -61,9 +61,10 @@ def _radius(c, node, context, radius_name, scale_name):
     return largest, tuple(max(x * scale / largest, MIN_RADIUS_M / largest) for x in radius)
 
 
-def _subsurface_closure(c, node, context, weight, albedo, alpha, eta, method, g, measured=None):
-    radius = _radius(c, node, context, "Subsurface Radius" if node.bl_idname.endswith("Principled") else "Radius",
-                     "Subsurface Scale" if node.bl_idname.endswith("Principled") else "Scale")
+def _subsurface_closure(c, node, context, weight, albedo, alpha, eta, method, g, measured=None, prefix=""):
+    """Add the closure (``prefix``: "Subsurface " for the Principled BSDF's sockets); False where every radius
+    channel is below the minimum."""
+    radius = _radius(c, node, context, prefix + "Radius", prefix + "Scale")
     if radius is None:
         return False
     low, high = G_BOUNDS[method]
@@ -95,7 +96,7 @@ def principled_subsurface(c, node, context, weight, base, alpha, eta):
         index = c.value(node, "Subsurface IOR", context, FLOAT)
     g = _constant(c, node, "Subsurface Anisotropy", context, FLOAT)
     added = _subsurface_closure(c, node, context, c.weighted(c.weighted(weight, scale=amount), colour=clamped), clamped,
-                                alpha, index, method, g, measured)
+                                alpha, index, method, g, measured, "Subsurface ")
     if not added:  # no radius: Cycles renders the closure as diffuse reflection of the same weight
         return weight
     return c.weighted(weight, scale=c.one_minus(amount))

@@ -115,18 +115,15 @@ def random_walk(rays, attributes, own, row, spectral, p, ng, direction, throughp
             t = t_hit
         position = (position[0] + t * d[0], position[1] + t * d[1], position[2] + t * d[2])
         mixture = 0.0
-        for k in range(k_count):
+        for k in range(k_count):  # the mixture's pdf; channel_pdf[k] then holds wavelength k's own f
             s_t = sigma_t[k] * (1.0 - alpha[k] * g) if similar else sigma_t[k]
             transmittance = math.exp(-s_t * t)
-            pdf = transmittance if exits else s_t * transmittance
-            mixture += channel_pdf[k] * pdf
+            mixture += channel_pdf[k] * (transmittance if exits else s_t * transmittance)
+            s_s = s_t - sigma_t[k] * (1.0 - alpha[k])  # σ_s (1 − g) past the similarity level, else σ_s
+            channel_pdf[k] = transmittance if exits else s_s * transmittance
         largest = 0.0
         for k in range(k_count):
-            s_t = sigma_t[k] * (1.0 - alpha[k] * g) if similar else sigma_t[k]
-            transmittance = math.exp(-s_t * t)
-            s_s = s_t - sigma_t[k] * (1.0 - alpha[k])  # σ_s (1 − g) past the similarity level, else σ_s
-            f = transmittance if exits else s_s * transmittance
-            throughput[k] = throughput[k] * f / mixture if mixture > 0.0 else 0.0
+            throughput[k] = throughput[k] * channel_pdf[k] / mixture if mixture > 0.0 else 0.0
             largest = max(largest, throughput[k])
         if exits:
             return hit, u, v, position, d
