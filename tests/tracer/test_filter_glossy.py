@@ -10,7 +10,9 @@ from collections import namedtuple
 import numpy as np
 import pytest
 
-from engine.tracer.bsdf.closure import C_ALPHA, C_KIND, CLOSURE_ROW, CONDUCTOR, DIELECTRIC, DIFFUSE, SHEEN
+from engine.tracer.bsdf.closure import (C_ALPHA, C_HAIR_M0, C_HAIR_MODEL, C_HAIR_S, C_HAIR_V, C_KIND, CLOSURE_ROW,
+                                        CONDUCTOR, DIELECTRIC, DIFFUSE, HAIR, SHEEN)
+from engine.tracer.bsdf.hair_kajiya import REFLECTION
 from engine.tracer.path_tricks import LightPathTricks
 from engine.tracer.pass_table import PassRequest
 from engine.tracer.scene import Camera, Light, Material, World
@@ -39,6 +41,18 @@ def test_only_microfacet_lobes_are_raised_to_the_floor():
     rows[0, C_ALPHA] = 0.0
     assert not blur_glossy_closures(rows, 4, 1e-4)  # a floor below a mirror's threshold changes nothing
     assert rows[0, C_ALPHA] == 0.0
+
+
+def test_a_chiang_fibre_takes_the_floor_on_its_variances_and_scale_and_the_hair_bsdf_none():
+    """Cycles' ``bsdf_hair_chiang_blur``: v, s and the primary reflection's variance rise to the floor (the same
+    number microfacets compare with their alpha); the Hair BSDF's lobes (``bsdf_hair.h``) have no blur."""
+    rows = np.zeros((2, CLOSURE_ROW))
+    rows[:, C_KIND] = HAIR
+    rows[:, C_HAIR_MODEL] = (0.0, REFLECTION)
+    rows[:, C_HAIR_V], rows[:, C_HAIR_S], rows[:, C_HAIR_M0] = (0.01, 0.01), (0.5, 0.02), (0.003, 0.003)
+    blur_glossy_closures(rows, 2, 0.2)
+    assert [rows[0, C_HAIR_V], rows[0, C_HAIR_S], rows[0, C_HAIR_M0]] == [0.2, 0.5, 0.2]
+    assert [rows[1, C_HAIR_V], rows[1, C_HAIR_S], rows[1, C_HAIR_M0]] == [0.01, 0.02, 0.003]
 
 
 def test_the_first_surface_is_never_blurred():

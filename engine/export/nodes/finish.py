@@ -91,8 +91,10 @@ def _closure(c, pending):
 
 def _hair_inputs(c, spec, hair):
     """A fibre's ``HairInputs``: constant inputs as numbers, varying ones bound to their columns."""
-    mode, model, inputs, strand_random = hair
+    mode, model, inputs, strand_random, tangent = hair
     values = {"sigma_mode": mode, "model": model, "strand_random": strand_random}
+    if tangent is not None and c.known(tangent) is None:  # a constant Tangent: Cycles folds the link away
+        values["tangent"] = tangent.register
     for column, (name, value) in inputs.items():
         known = c.known(value)
         if known is None:
@@ -167,6 +169,8 @@ def _read_registers(program) -> set[int]:
         live.update(register for _, register, _ in spec.bindings)
         if spec.normal >= 0:
             live.update(range(spec.normal, spec.normal + 3))
+        if spec.hair is not None and spec.hair.tangent >= 0:
+            live.update(range(spec.hair.tangent, spec.hair.tangent + 3))
     if program.normal >= 0:
         live.update(range(program.normal, program.normal + 3))
     if program.emission is not None and program.emission.register is not None:

@@ -52,19 +52,18 @@ def principled_hair(c, node, context, weight):
     else:
         s1 = c.vector_math("MAXIMUM", c.value(node, "Absorption Coefficient", context, VECTOR),
                            c.const(0.0, 0.0, 0.0))
-    c.add_closure(PendingClosure(HAIR, weight, node, s0=s0, s1=s1, hair=(mode, 0, hair, strand_random)))
+    c.add_closure(PendingClosure(HAIR, weight, node, s0=s0, s1=s1, hair=(mode, 0, hair, strand_random, None)))
 
 
 def hair_bsdf(c, node, context, weight):
     """Blender's Hair BSDF: its Reflection or Transmission lobe (``tracer.bsdf.hair_kajiya``) about the curve's
-    tangent, weighted by Color."""
-    if c.linked(node, "Tangent", context) is not None:
-        c.warn(node, "has a linked Tangent; Prism leaves it out and uses the curve's tangent (on meshes d position / "
-                     "d v, as Cycles does without one).")
+    tangent (or its linked Tangent where that varies, as Cycles), weighted by Color."""
+    # Cycles reads Tangent only where a link survives its constant folding: a constant one leaves the curve's
+    tangent = c.value(node, "Tangent", context, VECTOR) if c.linked(node, "Tangent", context) is not None else None
     model = REFLECTION if getattr(node, "component", "Reflection") == "Reflection" else TRANSMISSION
     colour = _non_negative(c, node, "Color", context)
     scalars = (("Offset", C_HAIR_OFFSET, "offset"), ("RoughnessU", C_HAIR_ROUGHNESS, "roughness"),
                ("RoughnessV", C_HAIR_RADIAL, "radial_roughness"))
     hair = {column: (field, c.value(node, name, context, FLOAT)) for name, column, field in scalars}
     c.add_closure(PendingClosure(HAIR, c.weighted(weight, colour=colour), node,
-                                 hair=(SIGMA_COLOUR, model, hair, False)))
+                                 hair=(SIGMA_COLOUR, model, hair, False, tangent)))

@@ -44,7 +44,8 @@ class PendingClosure:
     multiscatter: bool = False  # Blender's Multiscatter GGX: energy-compensated (``bsdf.multiscatter``)
     multiscatter_colour: Value | None = None  # the lobe's Fss where its Fresnel model does not set it
     subsurface: tuple | None = None  # (largest radius m, anisotropy, SSS_* method): a SUBSURFACE closure's walk
-    # a fibre's (sigma mode, model, {C_HAIR_* column: (HairInputs field, Value)}, Random from the strand) (``hair``)
+    # a fibre's (sigma mode, model, {C_HAIR_* column: (HairInputs field, Value)}, Random from the strand, the
+    # Hair BSDF's linked Tangent Value or None) (``hair``)
     hair: tuple | None = None
 
 

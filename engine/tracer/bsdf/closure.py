@@ -60,7 +60,8 @@ material's program (``register_source``).
   wavelength replaces ``spectral[0]``; ``C_HAIR_V``, ``C_HAIR_S``, ``C_HAIR_M0`` are Cycles' longitudinal variance,
   azimuthal logistic scale and primary-reflection variance; ``C_HAIR_H`` the offset across the fibre (-1..1) seen
   from the view; ``C_HAIR_TX/TY/TZ`` the unit curve tangent (world, then in the material's shading frame once
-  ``closure_normals.orient_closures`` ran).
+  ``closure_normals.orient_closures`` ran). ``C_HAIR_TANGENT``: the register of the Hair BSDF's linked Tangent
+  (world; it replaces the curve's tangent, as in Cycles), -1 where the curve's own is used.
 """
 
 from __future__ import annotations
@@ -132,7 +133,8 @@ C_HAIR_TY = 50
 C_HAIR_TZ = 51
 C_HAIR_MODEL = 52
 C_HAIR_STRAND_RANDOM = 53
-CLOSURE_ROW = 54
+C_HAIR_TANGENT = 54
+CLOSURE_ROW = 55
 
 # How a ``HAIR`` closure's absorption is given (``C_HAIR_SIGMA_MODE``), Principled Hair's parametrizations.
 SIGMA_COLOUR = 0  # Direct Coloring: the colour in ``C_SPECTRUM``

@@ -25,7 +25,7 @@ import math
 from ..bsdf.closure import (C_HAIR_COAT, C_HAIR_H, C_HAIR_M0, C_HAIR_MELANIN, C_HAIR_MODEL, C_HAIR_OFFSET,
                             C_HAIR_RADIAL, C_HAIR_RANDOM, C_HAIR_RANDOM_COLOUR, C_HAIR_RANDOM_ROUGHNESS, C_HAIR_REDNESS,
                             C_HAIR_ROUGHNESS, C_HAIR_S, C_HAIR_SIGMA_MODE, C_HAIR_SIGMA_SCALE, C_HAIR_STRAND_RANDOM,
-                            C_HAIR_TX, C_HAIR_TY, C_HAIR_TZ, C_HAIR_V, C_KIND, HAIR, SIGMA_ABSORPTION, SIGMA_MELANIN)
+                            C_HAIR_TANGENT, C_HAIR_TX, C_HAIR_TY, C_HAIR_TZ, C_HAIR_V, C_KIND, HAIR, SIGMA_ABSORPTION, SIGMA_MELANIN)
 from ..bsdf.hair_chiang import azimuthal_scale, clamp_roughness, longitudinal_variance, sigma_from_reflectance
 from ..geometry import hit_tangent, on_curve
 from ..jit import inlined, kernel
@@ -79,11 +79,23 @@ def fibre_offset(tangent, ng, wo):
 
 
 @inlined
-def set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength_nm):
+def _unit_or(regs, r, fallback):
+    """The vector in registers ``r .. r + 2`` made unit; ``fallback`` where it has no length (Cycles' normalize
+    would give NaN there)."""
+    x, y, z = regs[r], regs[r + 1], regs[r + 2]
+    length = math.sqrt(x * x + y * y + z * z)
+    if not length > 1e-12:
+        return fallback
+    return (x / length, y / length, z / length)
+
+
+@inlined
+def set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength_nm, regs):
     """Every ``HAIR`` closure among ``count`` at the hit (``triangle``, ``u``; ``ng`` facing the view ``wo``, world):
     parameters, absorption, h, and the unit tangent (world; turned into the shading frame by
-    ``closure_normals.orient_closures``). The Hair BSDF's lobes off curves take d position / d v and no Offset,
-    as Cycles' ``svm/closure.h``."""
+    ``closure_normals.orient_closures``). As Cycles' ``svm/closure.h``, the Hair BSDF's lobes take the linked
+    Tangent (``C_HAIR_TANGENT``, a register of ``regs``) where there is one, else off curves d position / d v and
+    no Offset."""
     curve = on_curve(geometry, triangle)
     tangent = hit_tangent(geometry, triangle, u, ng, False)
     segment = triangle - geometry.triangles.shape[0] - geometry.spheres.shape[0]
@@ -98,6 +110,8 @@ def set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength
                 rows[c, C_HAIR_RANDOM] = strand_random
             hair_parameters(rows[c], spectral[c], wavelength_nm)
             rows[c, C_HAIR_H] = fibre_offset(t, ng, wo)
+        elif rows[c, C_HAIR_TANGENT] >= 0.0:
+            t = _unit_or(regs, int(rows[c, C_HAIR_TANGENT]), tangent)
         elif not curve:
             t = hit_tangent(geometry, triangle, u, ng, True)
             rows[c, C_HAIR_OFFSET] = 0.0

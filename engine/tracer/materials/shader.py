@@ -84,6 +84,7 @@ class HairInputs:
     melanin: float = 0.8
     melanin_redness: float = 1.0
     random_colour: float = 0.0
+    tangent: int = -1  # the Hair BSDF's Tangent where it varies: its register (``C_HAIR_TANGENT``)
 
 
 @dataclass

@@ -70,7 +70,7 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
     if flags & MAT_HAIR:
-        set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength_nm)
+        set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength_nm, regs)
     if flags & MAT_CLOSURE_NORMALS and (flags & MAT_OWN_NORMALS or
                                         shading[0] * ng[0] + shading[1] * ng[1] + shading[2] * ng[2] < SAME_NORMAL):
         set_up_normals(rows, count, regs, wo, ng, n, shading, flags & MAT_BUMP_CORRECTION != 0)

@@ -45,7 +45,7 @@ import numpy as np
 
 from ..bsdf.closure import (C_HAIR_COAT, C_HAIR_H, C_HAIR_IOR, C_HAIR_M0, C_HAIR_MELANIN, C_HAIR_MODEL, C_HAIR_OFFSET,
                             C_HAIR_RADIAL, C_HAIR_RANDOM, C_HAIR_RANDOM_COLOUR, C_HAIR_RANDOM_ROUGHNESS, C_HAIR_REDNESS,
-                            C_HAIR_STRAND_RANDOM,
+                            C_HAIR_STRAND_RANDOM, C_HAIR_TANGENT,
                             C_HAIR_ROUGHNESS, C_HAIR_S, C_HAIR_SIGMA_MODE, C_HAIR_SIGMA_SCALE, C_HAIR_TX, C_HAIR_TY,
                             C_HAIR_TZ, C_HAIR_V, C_ALPHA, C_COAT_IOR, C_COAT_NM, C_ETA, C_FILM_IOR, C_FILM_NM,
                             C_FRESNEL, C_GLASS,
@@ -184,6 +184,7 @@ def _hair_columns(row, spec, spectra, name):
     row[C_HAIR_MELANIN], row[C_HAIR_REDNESS] = float(hair.melanin), float(hair.melanin_redness)
     row[C_HAIR_RANDOM_COLOUR] = float(hair.random_colour)
     row[C_HAIR_STRAND_RANDOM] = 1.0 if hair.strand_random else 0.0
+    row[C_HAIR_TANGENT] = float(hair.tangent)
     row[C_S1], row[C_HAIR_SIGMA_SCALE] = _source(spec.s1, spectra, name, bounded=False)
     for column in (C_HAIR_V, C_HAIR_S, C_HAIR_M0, C_HAIR_H, C_HAIR_TX, C_HAIR_TY, C_HAIR_TZ):
         row[column] = 0.0
