@@ -3,8 +3,8 @@
 Blender evaluates Text, Curve, Surface and Metaball objects to meshes and lists
 each such mesh as an instance of its own in ``depsgraph.object_instances``; the
 objects themselves are skipped here (as Cycles does), so their surfaces are not
-exported twice. Hair Curves become round curves or ribbons (``hair``); point clouds become spheres
-(``point_clouds``, ``tracer.spheres``); volumes and particle hair are reported (``unrendered``).
+exported twice. Hair Curves and particle hair (``particle_hair``) become round curves or ribbons (``hair``);
+point clouds become spheres (``point_clouds``, ``tracer.spheres``); volumes are reported (``unrendered``).
 
 The instances of one mesh are gathered while iterating (the only Python work per
 instance is reading its key and matrix) and placed in one numpy step per mesh
@@ -29,11 +29,12 @@ from .cryptomatte_names import asset_name, material_name
 from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
+from .particle_hair import read_particle_hair
 from .point_clouds import LocalPoints, place_points, point_random, read_points
 from .data_passes import data_pass_switches, world_ao_distance
 from .surface_attributes import SurfaceCollector
 from .texture_memory import TextureBudget
-from .unrendered import particle_hair_warnings, unrendered_type_warning
+from .unrendered import unrendered_type_warning
 from .view_layer_filter import layer_filter
 from .visibility import object_flags
 
@@ -125,8 +126,10 @@ class _Materials:
 
 def read_geometry(key: tuple, obj, request: AttributeRequest | None = None,
                   warn=None) -> LocalMesh | LocalHair | LocalPoints | None:
-    """The evaluated geometry of ``obj`` (``key``: (type, original name, data pointer), the piece it is)
-    with the per-corner data ``request`` names (meshes)."""
+    """The evaluated geometry of ``obj`` (``key``: (type, original name, data pointer), the piece it is;
+    ``PARTICLES`` keys add whether this is a render) with the per-corner data ``request`` names (meshes)."""
+    if key[0] == "PARTICLES":
+        return read_particle_hair(obj, key[3])
     if key[0] == "MESH":
         return read_mesh(obj, request, warn)
     return read_points(obj) if key[0] == "POINTCLOUD" else read_hair(obj)
@@ -137,6 +140,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     pieces: dict[tuple, _Instances | None] = {}
     warned: set[str] = set()
     included = layer_filter(getattr(depsgraph, "view_layer", None))  # View Layer ▸ Filter, as Cycles syncs it
+    render = getattr(depsgraph, "mode", "RENDER") == "RENDER"  # particle hair: render or viewport steps
 
     def warn_once(obj, messages):
         name = obj.original.name
@@ -148,8 +152,14 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     for instance in depsgraph.object_instances:
         obj = instance.object
         kind = obj.type
-        if kind == "MESH" and instance.show_particles and len(obj.particle_systems):
-            warn_once(obj, particle_hair_warnings(obj))
+        if kind == "MESH" and instance.show_particles and len(obj.particle_systems) and included.renders("CURVES"):
+            key = ("PARTICLES", obj.original.name, obj.data.as_pointer(), render)
+            if key not in pieces:
+                hair = read(key, obj, None, lambda message, obj=obj: warn_once(obj, [message]))
+                pieces[key] = (_Instances(obj.name, hair, light_group=obj.lightgroup,
+                                          flags=object_flags(obj, getattr(depsgraph, "view_layer", None), warnings),
+                                          asset=asset_name(obj)) if hair is not None else None)
+            _place(pieces[key], instance, obj)
         if not instance.show_self or kind in _EVALUATED_AS_MESH_INSTANCE or not included.renders(kind):
             continue
         if kind not in ("MESH", "CURVES", "POINTCLOUD"):
@@ -169,13 +179,18 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             pieces[key] = (_Instances(obj.name, geometry, light_group=obj.lightgroup, flags=flags,
                                       asset=asset_name(obj))
                            if geometry is not None else None)
-        piece = pieces[key]
-        if piece is not None:
-            matrix = instance.matrix_world
-            piece.matrices.append((*matrix[0], *matrix[1], *matrix[2], *matrix[3]))
-            random_id = instance.random_id if instance.is_instance else name_random_id(obj.name)
-            piece.infos.append((tuple(obj.color), obj.pass_index, random_id))
+        _place(pieces[key], instance, obj)
     return [piece for piece in pieces.values() if piece is not None]
+
+
+def _place(piece: _Instances | None, instance, obj) -> None:
+    """Add ``instance``'s transform and object info to ``piece`` (None: nothing to place)."""
+    if piece is None:
+        return
+    matrix = instance.matrix_world
+    piece.matrices.append((*matrix[0], *matrix[1], *matrix[2], *matrix[3]))
+    random_id = instance.random_id if instance.is_instance else name_random_id(obj.name)
+    piece.infos.append((tuple(obj.color), obj.pass_index, random_id))
 
 
 def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=None,

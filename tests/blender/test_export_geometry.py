@@ -139,20 +139,8 @@ def _volume():
     bpy.context.scene.collection.objects.link(bpy.data.objects.new("Smoke", bpy.data.volumes.new("Smoke")))
 
 
-def _particle_hair():
-    bpy.ops.mesh.primitive_plane_add(size=1.0, location=(0.0, 0.0, -1.0))
-    plane = bpy.context.object
-    plane.name = "Scalp"
-    plane.modifiers.new("Hair", "PARTICLE_SYSTEM")
-    plane.particle_systems[0].name = "Hair"
-    settings = plane.particle_systems[0].settings
-    settings.type, settings.count = "HAIR", 10
-
-
 WARNING_CASES = {
     "volume": (_volume, "Volume 'Smoke' is not rendered: Prism has no volume rendering yet"),
-    "particle hair": (_particle_hair, "Object 'Scalp': particle hair 'Hair' is not rendered: Prism renders hair as "
-                      "Curves objects. Convert it with Object ▸ Convert ▸ Curves."),
 }
 
 
