@@ -106,6 +106,19 @@ def placed_strands(hair: LocalHair, matrices: np.ndarray):
             np.tile(hair.curve_slot[keep], len(matrices)).astype(np.int32), np.tile(info, (len(matrices), 1)))
 
 
+def unread_inputs_warning(name: str, slot_materials: list, needs: dict) -> str | None:
+    """The warning for hair ``name`` whose materials read UV maps or attributes (``needs``: material name → the
+    program's (kind, name) reads), which Prism's strands do not carry; None when they read none."""
+    reads = sorted({f"{'UV map' if kind == 'uv' else 'attribute'} '{label or '(default)'}'"
+                    for material in slot_materials if material is not None
+                    for kind, label in needs.get(material.original.name, ()) if kind in ("uv", "attribute")})
+    if not reads:
+        return None
+    return (f"Hair '{name}': its material reads the {', the '.join(reads)}, but Prism's strands carry no UV maps or "
+            "attributes: it reads 0 there (UV (0, 0), attributes black), where Cycles reads the strands' own (for "
+            "particle hair, the emitter's at each root).")
+
+
 def moving_hair_warning(name: str) -> str:
     """The warning for hair curves that move during the shutter (rendered where they stand at the frame)."""
     return (f"Hair curves '{name}' move during the shutter, but Prism renders 3D curves without motion blur: "

@@ -22,7 +22,7 @@ import numpy as np
 from ..tracer.curves import CurveSegments, padded_strands
 from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
-from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair
+from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair, unread_inputs_warning
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
 from .cryptomatte_names import asset_name, material_name
@@ -156,6 +156,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             key = ("PARTICLES", obj.original.name, obj.data.as_pointer(), render)
             if key not in pieces:
                 hair = read(key, obj, None, lambda message, obj=obj: warn_once(obj, [message]))
+                _warn_unread_inputs(materials, obj.name, hair, warnings)
                 pieces[key] = (_Instances(obj.name, hair, light_group=obj.lightgroup,
                                           flags=object_flags(obj, getattr(depsgraph, "view_layer", None), warnings),
                                           asset=asset_name(obj)) if hair is not None else None)
@@ -172,6 +173,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             request = materials.request([slot.material for slot in obj.material_slots]) if kind != "CURVES" else None
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
+            _warn_unread_inputs(materials, obj.name, geometry, warnings)
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
             adaptive = adaptive_subdivision_warning(obj, depsgraph.scene)
             if adaptive is not None and warnings is not None:
@@ -181,6 +183,19 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
                            if geometry is not None else None)
         _place(pieces[key], instance, obj)
     return [piece for piece in pieces.values() if piece is not None]
+
+
+def _warn_unread_inputs(materials: _Materials, name: str, geometry, warnings) -> None:
+    """Warn where hair's materials (the slots its strands use) read UV maps or attributes strands lack."""
+    if not isinstance(geometry, LocalHair) or warnings is None:
+        return
+    used = [geometry.slot_materials[s] for s in np.unique(geometry.curve_slot) if 0 <= s < len(geometry.slot_materials)]
+    if not any(m is not None for m in used):
+        return
+    materials.slot_lookup(used)  # exports them, which records what they read
+    message = unread_inputs_warning(name, used, materials.exporter.needs)
+    if message is not None:
+        warnings.append(message)
 
 
 def _place(piece: _Instances | None, instance, obj) -> None:

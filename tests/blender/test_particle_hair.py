@@ -91,3 +91,29 @@ def test_a_particle_groom_matches_cycles_in_luminance_and_coverage(prism_addon, 
     assert 0.05 < cycles[..., 3].mean() < 0.6  # the strands cover part of the picture
     assert light == pytest.approx(1.0, abs=0.02)
     assert coverage == pytest.approx(1.0, abs=0.02)
+
+
+def test_hair_reading_a_uv_map_or_attribute_is_warned(prism_addon, fresh_scene):
+    """Strands carry no UV maps or attributes in Prism (Cycles gives particle hair the emitter's UV at the root):
+    a hair material reading them is named, with what it reads and what renders instead."""
+    lit(fresh_scene)
+    plane, settings = _scalp(5, 0.3)
+    mat, nodes, link = material("Textured fur")
+    shader = node(nodes, "ShaderNodeBsdfDiffuse")
+    mix = node(nodes, "ShaderNodeVectorMath")  # Add
+    uv = nodes.new("ShaderNodeUVMap")
+    uv.uv_map = "UVMap"
+    attribute = nodes.new("ShaderNodeAttribute")
+    attribute.attribute_name = "col"
+    link(uv.outputs["UV"], mix.inputs[0])
+    link(attribute.outputs["Vector"], mix.inputs[1])
+    link(mix.outputs[0], shader.inputs["Color"])
+    link(shader.outputs[0], nodes["Output"].inputs["Surface"])
+    plane.data.materials.append(mat)
+    camera((0.0, -3.0, 0.5), (0.0, 0.0, 0.2), resolution=(8, 8))
+    warnings = []
+    export_scene(prism_addon, warnings)
+    assert [w for w in warnings if w.startswith("Hair 'Scalp'")] == [
+        "Hair 'Scalp': its material reads the UV map 'UVMap', the attribute 'col', but Prism's strands carry no UV "
+        "maps or attributes: it reads 0 there (UV (0, 0), attributes black), where Cycles reads the strands' own (for "
+        "particle hair, the emitter's at each root)."]
