@@ -9,8 +9,7 @@ import bpy
 import numpy as np
 import pytest
 
-from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
-from helpers.hair_scenes import export_scene, lit
+from helpers.hair_scenes import export_scene, lit, luminance_and_coverage
 from helpers.node_scenes import camera, material, node
 
 
@@ -81,14 +80,8 @@ def test_a_particle_groom_matches_cycles_in_luminance_and_coverage(prism_addon, 
     plane.data.materials.append(_diffuse("Hair", (0.7, 0.5, 0.3)))
     plane.show_instancer_for_render = False  # the strands alone: Render ▸ Show Emitter off
     camera((0.0, -2.4, 1.0), (0.0, 0.0, 0.3), resolution=(48, 48))
-    cycles = render_cycles_rgba(fresh_scene, 64)
-    prism = render_prism_rgba(fresh_scene, 64)
-    light = luminance(prism).mean() / luminance(cycles).mean()
-    coverage = prism[..., 3].mean() / cycles[..., 3].mean()
-    print(f"MEASURED particle groom: luminance Prism {luminance(prism).mean():.5f}, Cycles "
-          f"{luminance(cycles).mean():.5f}, ratio {light:.4f}; coverage Prism {prism[..., 3].mean():.4f}, Cycles "
-          f"{cycles[..., 3].mean():.4f}, ratio {coverage:.4f}")
-    assert 0.05 < cycles[..., 3].mean() < 0.6  # the strands cover part of the picture
+    light, coverage, covered = luminance_and_coverage(fresh_scene, "particle groom")
+    assert 0.05 < covered < 0.6  # the strands cover part of the picture
     assert light == pytest.approx(1.0, abs=0.02)
     assert coverage == pytest.approx(1.0, abs=0.02)
 

@@ -46,6 +46,21 @@ def groom(count=300, points=6, seed=3):
     return [points] * count, positions.reshape(-1, 3), radii
 
 
+def luminance_and_coverage(scene, label, samples=64):
+    """Prism and Cycles render ``scene`` (a transparent film): (Prism / Cycles mean luminance, Prism / Cycles mean
+    alpha, Cycles' mean alpha), printed as ``MEASURED label``."""
+    from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
+
+    cycles = render_cycles_rgba(scene, samples)
+    prism = render_prism_rgba(scene, samples)
+    light = luminance(prism).mean() / luminance(cycles).mean()
+    coverage = prism[..., 3].mean() / cycles[..., 3].mean()
+    print(f"MEASURED {label}: luminance Prism {luminance(prism).mean():.5f}, Cycles {luminance(cycles).mean():.5f}, "
+          f"ratio {light:.4f}; coverage Prism {prism[..., 3].mean():.4f}, Cycles {cycles[..., 3].mean():.4f}, "
+          f"ratio {coverage:.4f}")
+    return light, coverage, float(cycles[..., 3].mean())
+
+
 def lit(scene):
     """A sun and a grey world; Render ▸ Curves ▸ Shape "3D Curves" (a new scene's is "Rounded Ribbons")."""
     scene.cycles_curves.shape = "THICK"
