@@ -25,6 +25,7 @@ from ..tracer.spheres import SpherePoints
 from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair, unread_inputs_warning
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
+from .bump_space import both_bump_scale_warning
 from .cryptomatte_names import asset_name, material_name
 from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
@@ -175,9 +176,10 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
             _warn_unread_inputs(materials, obj.name, geometry, warnings)
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
-            adaptive = adaptive_subdivision_warning(obj, depsgraph.scene)
-            if adaptive is not None and warnings is not None:
-                warnings.append(adaptive)
+            for message in (adaptive_subdivision_warning(obj, depsgraph.scene),
+                            both_bump_scale_warning(obj) if kind == "MESH" else None):
+                if message is not None and warnings is not None:
+                    warnings.append(message)
             pieces[key] = (_Instances(obj.name, geometry, light_group=obj.lightgroup, flags=flags,
                                       asset=asset_name(obj))
                            if geometry is not None else None)

@@ -189,10 +189,9 @@ def finish(c) -> ShaderProgram:
     """The ``ShaderProgram`` of compiler ``c`` after its walk."""
     method = displacement_method(c.material)
     socket = getattr(c, "displacement", None)
-    if socket is not None and method == "BOTH":
-        c.warn(None, "has Settings ▸ Displacement \"Displacement and Bump\"; Prism renders it as Displacement Only: the "
-                     "vertices move, and the finer bump Cycles adds between them is left out.")
-    default_normal = displacement_bump(c, socket) if socket is not None and method == "BUMP" else None
+    # "Both": the vertices move and the same displacement bends the normal between them, as Cycles'
+    # bump_from_displacement (which Cycles computes in object space: see docs/displacement.md)
+    default_normal = displacement_bump(c, socket) if socket is not None and method in ("BUMP", "BOTH") else None
     moved = true_displacement(c, socket) if socket is not None and method != "BUMP" else None
     normal, own_normals = _closure_normals(c, default_normal)
     closures = []
