@@ -103,8 +103,7 @@ def test_a_textured_displacement_is_the_mesh_it_models(prism_addon, fresh_scene,
     within 0.5 %, pixel by pixel within 2 % of the mean), and Prism / Cycles is the same with displacement as
     without (within 1 %; the ridges themselves render brighter in Prism than in Cycles, displaced or modelled:
     a finding outside displacement, see docs/displacement.md). Bump Only on the flat grid is far from both.
-    With a displacement this fine for its vertices, "Both" adds next to nothing (its bump:
-    ``test_both_also_bends_the_normal_between_the_vertices_as_cycles``)."""
+    ("Both": ``test_both_also_bends_the_normal_between_the_vertices_as_cycles``)."""
     _black_world(fresh_scene)
     method = "DISPLACEMENT"
     material = _displaced_material("Ridges", method, height_node="ShaderNodeTexWave", midlevel=0.5, scale=0.15)
