@@ -12,6 +12,9 @@ identical, 1 = maximal), computed by the ``flip-evaluator`` package with its
 defaults (67 pixels per degree, ACES tone mapper, exposure range taken from the
 reference).
 
+Without a reference, two renders that differ only in their seed estimate either one's relMSE
+(``relmse_from_two_seeds``).
+
 A reference is itself noisy: its expected contribution to the measured relMSE is
 ``noise_floor = mean(var_ref / (r^2 + eps))``, reported beside each table so a
 reader can see how far above the floor a measurement sits.
@@ -37,6 +40,16 @@ def relmse(image, reference, epsilon: float = RELMSE_EPSILON) -> float:
     if image.shape != reference.shape:
         raise ValueError(f"image {image.shape} and reference {reference.shape} differ in shape")
     return float(np.mean((image - reference) ** 2 / (reference ** 2 + epsilon)))
+
+
+def relmse_from_two_seeds(first, second, epsilon: float = RELMSE_EPSILON) -> float:
+    """relMSE of one render, estimated from two renders of the same spp that differ only in the seed, without a
+    reference: for independent ``a`` and ``b`` of the same mean, E[(a - b)^2] / 2 is one render's variance, and
+    their mean stands in for the truth in the denominator. relmse(a, (a + b) / 2) divides (a - b)^2 / 4 by it,
+    so twice that is mean((a - b)^2 / 2 / (((a + b) / 2)^2 + eps)).
+    Unbiased while the noise is small against the pixel values (the mean's own noise adds to the denominator)."""
+    first, second = _as_image(first, "first"), _as_image(second, "second")
+    return 2.0 * relmse(first, 0.5 * (first + second), epsilon)
 
 
 def relmse_noise_floor(reference, reference_variance, epsilon: float = RELMSE_EPSILON) -> float:

@@ -9,6 +9,7 @@ from benchmarks.metrics import (
     error_at_time,
     flip,
     relmse,
+    relmse_from_two_seeds,
     relmse_noise_floor,
     time_to_error,
 )
@@ -44,6 +45,22 @@ def test_noise_floor_matches_expected_relmse_of_noisy_reference():
     assert floor == pytest.approx(sigma**2 / (0.25 + RELMSE_EPSILON))
     # measured relMSE of a noisy image against the truth equals the floor statistically
     assert relmse(noisy, truth) == pytest.approx(floor, rel=0.05)
+
+
+def test_two_seeds_estimate_the_relmse_of_known_noise_without_a_reference():
+    """Pixels from dark (where eps decides) to bright, each with 8 % noise: two independent renders estimate the
+    expected relMSE mean(sigma^2 / (mu^2 + eps)) of either, as the error of one against the truth measures it."""
+    rng = np.random.default_rng(7)
+    truth = rng.uniform(0.02, 2.0, (128, 128, 3))
+    sigma = 0.08 * truth
+    expected = float(np.mean(sigma**2 / (truth**2 + RELMSE_EPSILON)))
+    first, second = (truth + rng.normal(0.0, 1.0, truth.shape) * sigma for _ in range(2))
+    estimate = relmse_from_two_seeds(first, second)
+    assert estimate == pytest.approx(expected, rel=0.03)
+    assert estimate == pytest.approx(relmse(first, truth), rel=0.03)
+    # half the deviation (four times the samples) is a quarter of the relMSE
+    quieter = relmse_from_two_seeds(truth + (first - truth) / 2, truth + (second - truth) / 2)
+    assert quieter == pytest.approx(estimate / 4, rel=0.01)
 
 
 def test_flip_zero_for_identical_and_grows_with_noise():

@@ -12,27 +12,14 @@ import pytest
 
 from helpers.bpy_scenes import add_camera, add_plane, add_point_light, shader_material
 from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
-
-
-def _fog_world(kind, **inputs):
-    """A black world whose Volume is one ``kind`` node with ``inputs`` (names with spaces as given)."""
-    world = bpy.data.worlds.new("Fog")
-    world.use_nodes = True
-    nodes, links = world.node_tree.nodes, world.node_tree.links
-    nodes["Background"].inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-    volume = nodes.new(kind)
-    for name, value in inputs.items():
-        volume.inputs[name].default_value = value
-    links.new(volume.outputs[0], nodes["World Output"].inputs["Volume"])
-    bpy.context.scene.world = world
-    return world
+from helpers.fog_scenes import fog_world, lit_floor, point_light_in_fog
 
 
 def test_absorbing_fog_dims_an_emitter_by_beer_lambert(prism_addon, fresh_scene):
     """An emitting wall 5 m ahead in black fog of absorption 0.2 /m: each pixel is exp(-0.2 (5 m - clip
     start) / cos) of the wall's radiance (the camera ray starts at the clip start, in the fog)."""
     density = 0.2
-    _fog_world("ShaderNodeVolumeAbsorption", Density=density, Color=(0.0, 0.0, 0.0, 1.0))
+    fog_world("ShaderNodeVolumeAbsorption", Density=density, Color=(0.0, 0.0, 0.0, 1.0))
     wall = add_plane("Wall", 20.0, location=(0.0, 5.0, 0.0))
     wall.rotation_euler = (math.pi / 2, 0.0, 0.0)
     wall.data.materials[0] = shader_material("Glow", "ShaderNodeEmission", Strength=2.0)
@@ -50,20 +37,11 @@ def test_absorbing_fog_dims_an_emitter_by_beer_lambert(prism_addon, fresh_scene)
     assert prism.mean() == pytest.approx(cycles.mean(), rel=0.01)
 
 
-def _lit_floor(fresh_scene, light):
-    add_plane("Floor", 8.0, color=(0.5, 0.5, 0.5), specular=0.0)
-    light()
-    add_camera((0.0, -4.0, 2.0), (1.2, 0.0, 0.0), resolution=(32, 24))
-
-
 def test_a_point_light_in_scattering_fog_as_cycles(prism_addon, fresh_scene):
     """A point light above and behind the camera over a grey floor in white fog (Volume Scatter, density
     0.15 /m): the lit fog and the dimmed floor, Prism against Cycles in absolute mean luminance (multiple
-    scattering, 8 bounces). The light stays out of the view: Prism samples distances in fog by the
-    scattering coefficient, not towards lights (equiangular sampling is not done yet), whose variance
-    near a point light seen in the image has no bound."""
-    _fog_world("ShaderNodeVolumeScatter", Density=0.15, Color=(1.0, 1.0, 1.0, 1.0))
-    _lit_floor(fresh_scene, lambda: add_point_light("Bulb", 400.0, (0.0, -5.0, 3.5)))
+    scattering, 8 bounces). The light stays out of the view (a light seen in fog: the last test)."""
+    point_light_in_fog()
     fresh_scene.prism.max_bounces = 8
     prism = render_prism_rgba(fresh_scene, 1024)
     cycles = render_cycles_rgba(fresh_scene, 1024, max_bounces=8)
@@ -80,7 +58,7 @@ def test_a_point_light_in_scattering_fog_as_cycles(prism_addon, fresh_scene):
 def test_sunlight_does_not_cross_fog_that_fills_all_space(prism_addon, fresh_scene):
     """A Sun over the floor in absorbing fog: its light would cross infinite fog, so nothing is lit, in
     Cycles and in Prism; without the fog the floor is lit."""
-    _fog_world("ShaderNodeVolumeAbsorption", Density=0.05, Color=(0.0, 0.0, 0.0, 1.0))
+    fog_world("ShaderNodeVolumeAbsorption", Density=0.05, Color=(0.0, 0.0, 0.0, 1.0))
 
     def sun():
         data = bpy.data.lights.new("Sun", "SUN")
@@ -88,7 +66,7 @@ def test_sunlight_does_not_cross_fog_that_fills_all_space(prism_addon, fresh_sce
         obj = bpy.data.objects.new("Sun", data)
         bpy.context.scene.collection.objects.link(obj)
 
-    _lit_floor(fresh_scene, sun)
+    lit_floor(sun)
     prism = luminance(render_prism_rgba(fresh_scene, 4))
     cycles = luminance(render_cycles_rgba(fresh_scene, 4))
     print(f"MEASURED sun in fog: Prism max {prism.max():.6f}, Cycles max {cycles.max():.6f}")
@@ -101,7 +79,7 @@ def test_world_fog_is_not_warned_any_more(prism_addon, fresh_scene):
     from importlib import import_module
 
     world_module = import_module(f"{prism_addon.__name__}.engine.export.world")
-    _fog_world("ShaderNodeVolumeScatter", Density=0.1)
+    fog_world("ShaderNodeVolumeScatter", Density=0.1)
     warnings: list[str] = []
     world = world_module.export_world(fresh_scene, warnings)
     assert world.medium is not None and not any("Volume" in w or "fog" in w for w in warnings), warnings
@@ -110,7 +88,7 @@ def test_world_fog_is_not_warned_any_more(prism_addon, fresh_scene):
 def test_fog_and_a_light_alone_render(prism_addon, fresh_scene):
     """No mesh at all: the lit fog is what there is to see (Cycles renders it too), so Prism does not refuse
     the scene as empty."""
-    _fog_world("ShaderNodeVolumeScatter", Density=0.2)
+    fog_world("ShaderNodeVolumeScatter", Density=0.2)
     add_point_light("Bulb", 100.0, (0.0, 4.0, 0.0))
     add_camera((0.0, 0.0, 0.0), (math.pi / 2, 0.0, 0.0), resolution=(16, 8))
     assert luminance(render_prism_rgba(fresh_scene, 4)).mean() > 0.0
@@ -143,7 +121,7 @@ def test_a_point_light_seen_in_fog_is_sampled_toward(prism_addon, fresh_scene):
     glow, whose rays pass through the light, against the single-scattering integral and Cycles. Prism
     samples half of the collisions equiangularly toward the light (``media.equiangular``): distance
     sampling alone has unbounded variance in the pixels around the light."""
-    _fog_world("ShaderNodeVolumeScatter", Density=0.15, Color=(1.0, 1.0, 1.0, 1.0))
+    fog_world("ShaderNodeVolumeScatter", Density=0.15, Color=(1.0, 1.0, 1.0, 1.0))
     add_point_light("Bulb", 400.0, (0.0, 3.0, 0.0))
     add_camera((0.0, 0.0, 0.0), (math.pi / 2, 0.0, 0.0), resolution=(16, 8))
     fresh_scene.prism.max_bounces = 0
