@@ -11,12 +11,12 @@ through the stone. Cycles 4.5 has no dispersion (ENVIRONMENT.md): it refracts at
 its sparkles stay white. Prints each image's mean luminance and their ratio; the picture shows both with the same
 view transform.
 
-NOT in the README yet: Prism renders this gem much darker than Cycles, unexplained (16 spp, mean luminance;
-measured 2026-12-05 on 29ea5fb): without the Volume Absorption and without dispersion (Constant IOR) Prism 0.6020,
-Cycles 0.6021; with the absorption as here (Density 2) Prism 0.200, Cycles 0.240; with Density 0.3 Prism 0.430,
-Cycles 0.507 (Prism absorbs about twice what Cycles does even where the medium is thin, while the Glass + Volume
-Absorption test at IOR 1.45 agrees within 0.2 %); with dispersion Prism is 15 % darker again than at Constant IOR
-(0.512 against 0.602 without the medium). To be explained before the picture is published.
+NOT in the README yet: with dispersion on, Prism renders this gem 15-20 % darker than at a constant index
+(64 spp, no medium, two seeds, 24 bounces: 0.477 / 0.488 against 0.597 / 0.609; Cycles 0.618). The loss is
+dispersion's, not the absorption's (the helper's first runs with the medium kept dispersion on: 0.200 against
+Cycles' 0.240 at Density 2, 0.430 against 0.507 at 0.3, the same ratio); it appears only with small lights (2 m
+lights: 0.777 against 0.781), does not depend on light tracing and does not shrink with 64 bounces. A tracer-level
+copy of the brilliant with square 0.25 m lights loses only 3 %. To be explained before the picture is published.
 """
 
 from __future__ import annotations
