@@ -43,13 +43,12 @@ def test_particle_strands_export_from_the_path_cache_with_hair_shape(prism_addon
     warnings = []
     scene = export_scene(prism_addon, warnings)
     curves = scene.curves
-    evaluated = plane.evaluated_get(bpy.context.evaluated_depsgraph_get()).particle_systems[0]
+    evaluated = plane.evaluated_get(bpy.context.evaluated_depsgraph_get())
+    system = evaluated.particle_systems[0]
     steps = (1 << settings.display_step) + 1  # a viewport evaluation: Viewport Display Steps
     assert len(curves) == 10 * (steps - 1) and not any("particle" in w for w in warnings)
-    root = np.array(evaluated.co_hair(plane.evaluated_get(bpy.context.evaluated_depsgraph_get()), particle_no=0,
-                                      step=0))
-    tip = np.array(evaluated.co_hair(plane.evaluated_get(bpy.context.evaluated_depsgraph_get()), particle_no=0,
-                                     step=steps - 1))
+    root = np.array(system.co_hair(evaluated, particle_no=0, step=0))
+    tip = np.array(system.co_hair(evaluated, particle_no=0, step=steps - 1))
     # each strand's ends repeated once (Catmull-Rom control points): strand 0 spans points 0 .. steps + 1
     np.testing.assert_allclose(curves.points[0], root, atol=1e-5)
     np.testing.assert_allclose(curves.points[steps + 1], tip, atol=1e-5)
