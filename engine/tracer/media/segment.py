@@ -41,12 +41,22 @@ def _add_emission(state, i, media, spectra, medium, t, sigma_t):
 
 
 @inlined
+def _scatters(sigma_s, hero, collapsed):
+    """Whether a carried wavelength (the hero alone once collapsed) has a scattering coefficient."""
+    for c in range(sigma_s.shape[0]):
+        if sigma_s[c] > 0.0 and (c == hero or not collapsed):
+            return True
+    return False
+
+
+@inlined
 def cross_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s, lights):
     """Path ``i``'s ray, inside its medium, reaches a surface at ``t`` (inf: none). Adds the medium's
     emission along it and returns where the path scatters (< t, throughput weighted for it) or inf (it
     reaches the surface, throughput weighted by the transmittance). ``sigma_t``, ``sigma_s``: scratch [K].
-    With ``settings.equiangular``, half the segments sample the collision equiangularly toward a light of
-    ``lights`` (``equiangular``) and every weight divides by the two strategies' mixture."""
+    With ``settings.equiangular``, in a medium that scatters at the path's wavelengths, half the segments sample
+    the collision equiangularly toward a light of ``lights`` (``equiangular``) and every weight divides by the
+    two strategies' mixture."""
     medium = state.medium[i]
     lam = state.wavelength[i]
     k = lam.shape[0]
@@ -59,7 +69,11 @@ def cross_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s,
     s = -math.log1p(-u_distance) / chosen if chosen > 0.0 else math.inf
     o = (state.origin[i, 0], state.origin[i, 1], state.origin[i, 2])
     d = (state.direction[i, 0], state.direction[i, 1], state.direction[i, 2])
-    if settings.equiangular:
+    # Only where the path's wavelengths can scatter: in a medium that only absorbs (coloured glass) an
+    # equiangular collision weighs 0, so half the segments would end and the rest count double, and a gem's
+    # chains of internal reflections (2^-n survive, x 2^n) would look darker at any affordable sample count.
+    toward_lights = settings.equiangular and _scatters(sigma_s, state.hero[i], collapsed)
+    if toward_lights:
         u_strategy, u_equiangular = sample_2d(settings.sampler, state.seed[i], state.sample[i],
                                               medium_light_slot(depth))
         if u_strategy >= 0.5:  # toward a light picked as light sampling picks one, if it has a position
@@ -78,7 +92,7 @@ def cross_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s,
         mixture += sigma_s[c] * survival if scatters else survival
     if not collapsed:
         mixture /= k
-    if settings.equiangular:
+    if toward_lights:
         # Distance sampling: half the segments, and the other half's picks of lights without a position.
         equiangular, positional = positional_mixture(lights, o, d, t, at)
         mixture *= 0.5 * (2.0 - positional)

@@ -9,7 +9,7 @@ import pytest
 from engine.tracer.media.spec import MediumSpec
 from engine.tracer.media.table import coefficient_spectra
 from engine.tracer.renderer import Renderer
-from engine.tracer.scene import Camera, Material, SpectrumSpec
+from engine.tracer.scene import Camera, Light, Material, SpectrumSpec
 from engine.tracer.spectra.wavelengths import VISIBLE_NM_GRID
 
 from ..tracer_scenes import look_at, make_scene, quad, settings
@@ -28,7 +28,7 @@ def _box(center, half):
     return corners, tris
 
 
-def _scene(with_slab):
+def _scene(with_slab, point_light=False):
     # A narrow camera straight down: every ray crosses the slab within 0.001 % of its thickness.
     cam = Camera("cam", look_at((0, 0, 5.0), (0, 0, 0), up=(0, 1, 0)), (4, 4), focal_length_mm=50.0,
                  film_width_mm=1.0, film_height_mm=1.0)
@@ -39,13 +39,17 @@ def _scene(with_slab):
     parts = [(*emitter, 0)]
     if with_slab:
         parts.append((*_box((0, 0, 2.0), (3, 3, THICKNESS_M / 2)), 1))
-    return make_scene(parts, materials, cam)
+    # A point light (on the black lamp it lights nothing) turns on equiangular sampling toward lights, which a
+    # medium that only absorbs must not use: each crossing would then weigh 0 or 2 exp(-σ_a d), not exp(-σ_a d).
+    lights = [Light("bulb", "point", np.array([4.0, 0.0, 3.0]), power_w=50.0)] if point_light else []
+    return make_scene(parts, materials, cam, lights)
 
 
-def test_slab_transmits_exp_minus_sigma_a_d_per_wavelength():
+@pytest.mark.parametrize("point_light", [False, True], ids=["area emitter", "and a point light"])
+def test_slab_transmits_exp_minus_sigma_a_d_per_wavelength(point_light):
     films = []
     for with_slab in (False, True):
-        with Renderer(_scene(with_slab), settings(samples=64, samples_per_pass=64, spectral_band_nm=10.0,
+        with Renderer(_scene(with_slab, point_light), settings(samples=64, samples_per_pass=64, spectral_band_nm=10.0,
                                                   max_bounces=4)) as r:
             r.render_pass()
             films.append(r.spectral_film.mean().astype(np.float64).mean((0, 1)))
