@@ -44,15 +44,21 @@ def picture_main(description: str, build, output: Path, samples: int, bounces: i
     sys.path[:0] = [str(root), str(root / "tests")]
     import bpy
 
-    from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
+    from helpers.cycles import configure_cycles, luminance, render_cycles_rgba, render_prism_rgba
     from render import load_addon_package
 
     load_addon_package().register()
     build(bpy)
     scene = bpy.context.scene
     scene.prism.max_bounces = bounces
+    # Prism reads Cycles' Light Paths settings: without this it would render with the factory clamps (Clamp
+    # Indirect 10) and Filter Glossy 1 that Cycles is then rendered without.
+    configure_cycles(scene, arguments.samples, max_bounces=bounces)
     prism = render_prism_rgba(scene, arguments.samples)[..., :3]
     cycles = render_cycles_rgba(scene, arguments.samples, max_bounces=bounces)[..., :3]
     p, c = float(luminance(prism).mean()), float(luminance(cycles).mean())
-    print(f"mean luminance: Prism {p:.4f}, Cycles {c:.4f}, Prism / Cycles {p / c:.4f}")
+    print(f"mean luminance: Prism {p:.4f}, Cycles {c:.4f}, Prism / Cycles {p / c:.4f}", flush=True)
     save_side_by_side(prism, cycles, p, c, output)
+    import os
+
+    os._exit(0)  # the bpy module's interpreter exit can hang after renders (seen with these tools)
