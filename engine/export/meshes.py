@@ -4,7 +4,7 @@ Blender evaluates Text, Curve, Surface and Metaball objects to meshes and lists
 each such mesh as an instance of its own in ``depsgraph.object_instances``; the
 objects themselves are skipped here (as Cycles does), so their surfaces are not
 exported twice. Hair Curves and particle hair (``particle_hair``) become round curves or ribbons (``hair``);
-point clouds become spheres (``point_clouds``, ``tracer.spheres``); volumes are reported (``unrendered``).
+point clouds become spheres (``point_clouds``); Volume objects a null box around a grid medium (``volume_objects``).
 
 The instances of one mesh are gathered while iterating (the only Python work per
 instance is reading its key and matrix) and placed in one numpy step per mesh
@@ -36,6 +36,7 @@ from .data_passes import data_pass_switches, world_ao_distance
 from .surface_attributes import SurfaceCollector
 from .texture_memory import TextureBudget
 from .unrendered import unrendered_type_warning
+from .volume_objects import VolumeReader
 from .view_layer_filter import layer_filter
 from .visibility import object_flags
 
@@ -97,11 +98,13 @@ class _Materials:
         return np.asarray([self._of(m) for m in slot_materials] or [self._of(None)], dtype=np.int32)
 
     def _of(self, material) -> int:
-        key = material.name if material is not None else None
+        made = isinstance(material, Material)  # made by the export itself: a Volume object's grid medium
+        key = ("volume", id(material)) if made else (material.name if material is not None else None)
         if key not in self.index:
             self.index[key] = len(self.materials)
-            self.materials.append(self.exporter.export(material) if material is not None else DEFAULT_MATERIAL)
-            self.pass_index.append(float(material.pass_index) if material is not None else 0.0)
+            self.materials.append(material if made else self.exporter.export(material) if material is not None
+                                  else DEFAULT_MATERIAL)
+            self.pass_index.append(float(getattr(material, "pass_index", 0.0)) if material is not None else 0.0)
             self.cryptomatte_names.append(material_name(material))
         return self.index[key]
 
@@ -142,6 +145,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     warned: set[str] = set()
     included = layer_filter(getattr(depsgraph, "view_layer", None))  # View Layer ▸ Filter, as Cycles syncs it
     render = getattr(depsgraph, "mode", "RENDER") == "RENDER"  # particle hair: render or viewport steps
+    volumes = VolumeReader(lambda material: materials.materials[materials.slot_lookup([material])[0]])
 
     def warn_once(obj, messages):
         name = obj.original.name
@@ -163,6 +167,14 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
                                           asset=asset_name(obj)) if hair is not None else None)
             _place(pieces[key], instance, obj)
         if not instance.show_self or kind in _EVALUATED_AS_MESH_INSTANCE or not included.renders(kind):
+            continue
+        if kind == "VOLUME":  # a piece per instance: its grid medium is placed by the instance's matrix
+            box = volumes.read(obj, instance.matrix_world, warnings)
+            if box is not None:
+                piece = _Instances(obj.name, box, light_group=obj.lightgroup, asset=asset_name(obj),
+                                   flags=object_flags(obj, getattr(depsgraph, "view_layer", None), warnings))
+                pieces[("VOLUME", len(pieces))] = piece
+                _place(piece, instance, obj)
             continue
         if kind not in ("MESH", "CURVES", "POINTCLOUD"):
             message = unrendered_type_warning(obj)

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-_BY_TYPE = {
-    "VOLUME": "Volume '{name}' is not rendered: Prism has no volume rendering yet, so it renders as empty space.",
-}
+_BY_TYPE: dict[str, str] = {}  # Volume objects render (``volume_objects``); it names what they cannot read
 
 
 def unrendered_type_warning(obj) -> str | None:

@@ -53,6 +53,14 @@ SHADER_RAY_KINDS = 2
 #: scenes without subsurface scattering sample as before.
 SLOT_SUBSURFACE = 1 << 26
 SUBSURFACE_SLOTS_PER_BOUNCE = 1 << 10
+#: 2-D, one per tentative collision of delta tracking in a grid medium (``media.delta_tracking``) at each
+#: bounce, in a range of their own so scenes without grid media sample as before. Steps past
+#: ``GRID_SLOTS_PER_BOUNCE`` draw independent numbers (hashed) instead.
+SLOT_GRID_MEDIUM = 1 << 27
+GRID_SLOTS_PER_BOUNCE = 1 << 12
+#: 1-D independent numbers of ratio tracking (``media.ratio_tracking``): a shadow ray may take any number of
+#: steps, so each step hashes its number from the path's sample, the ray and the step.
+SLOT_RATIO_TRACKING = 1 << 29
 
 _MASK = 0xFFFFFFFF
 _INV_2_32 = 1.0 / 4294967296.0
@@ -184,6 +192,14 @@ def subsurface_slot(depth, step, which):
     """The 2-D slot of decision ``which`` (0: wavelength and distance, 1: direction) of step ``step`` of the
     random walk that starts at bounce ``depth``."""
     return SLOT_SUBSURFACE + depth * SUBSURFACE_SLOTS_PER_BOUNCE + 2 * step + which
+
+
+@kernel
+def grid_medium_uniforms(kind, pixel_seed_value, sample_index, depth, step):
+    """Two uniforms for tentative collision ``step`` of delta tracking along the ray of bounce ``depth``."""
+    if step < GRID_SLOTS_PER_BOUNCE:
+        return sample_2d(kind, pixel_seed_value, sample_index, SLOT_GRID_MEDIUM + depth * GRID_SLOTS_PER_BOUNCE + step)
+    return sample_2d(INDEPENDENT, pixel_seed_value, sample_index, SLOT_GRID_MEDIUM + hash32(depth * 7919 + step))
 
 
 @kernel

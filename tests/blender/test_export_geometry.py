@@ -140,7 +140,7 @@ def _volume():
 
 
 WARNING_CASES = {
-    "volume": (_volume, "Volume 'Smoke' is not rendered: Prism has no volume rendering yet"),
+    "volume": (_volume, "Volume 'Smoke' is not rendered: it has no OpenVDB file"),
 }
 
 

@@ -205,10 +205,10 @@ def _is_delta(spec):
     return spec.kind in (CONDUCTOR, DIELECTRIC) and spec.alpha < SMOOTH_ALPHA
 
 
-def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTable:
+def build_materials(materials, used, spectra, outside_medium=None, origin=None) -> MaterialTable:
     """Tables for ``materials`` (``scene.Material``); only indices in ``used`` get closures.
     ``spectra`` is the render's ``SpectrumTable``; ``outside_medium`` the World's Volume (a ``MediumSpec``) or
-    None."""
+    None; ``origin`` (m) the point the kernels' positions are relative to (density grids of media)."""
     from ..spectra.rgb_lut import empty_lut, load_lut
     from ..media.table import build_media
     from ..textures.image import build_textures
@@ -331,10 +331,14 @@ def build_materials(materials, used, spectra, outside_medium=None) -> MaterialTa
                              np.array(instructions or [[0] * op.INSTRUCTION], dtype=np.int32).reshape(-1, op.INSTRUCTION),
                              np.array(constants or [0.0], dtype=np.float64), load_tables())
     white = spectra.emission(SpectrumSpec()) if needs_lut else 0
-    medium, media, outside = build_media(materials, used, spectra, outside_medium)
+    medium, media, outside = build_media(materials, used, spectra, outside_medium, origin)
     flags[medium >= 0] |= MAT_MEDIUM
-    if (medium >= 0).any():
+    gridded = np.zeros(len(materials), bool)
+    gridded[medium >= 0] = media.grid[medium[medium >= 0]] >= 0
+    if ((medium >= 0) & ~gridded).any():
         features.add("homogeneous media")
+    if gridded.any():
+        features.add("grid media (delta tracking)")
     if outside >= 0:
         features.add("world fog")
     arrays = MaterialArrays(flags, start, closure_count, emission_spectrum, emission_strength,

@@ -1,12 +1,18 @@
-"""Participating media inside closed meshes: homogeneous, spectral (extinction, albedo and emission per
-wavelength), as Blender's Volume Absorption, Volume Scatter and Principled Volume define them.
+"""Participating media inside closed meshes: spectral (extinction, albedo and emission per wavelength), as
+Blender's Volume Absorption, Volume Scatter and Principled Volume define them; homogeneous, or scaled point by
+point by a voxel grid of density (a grid medium: Blender's Volume objects).
 
 - ``spec.py``: ``MediumSpec``, a medium as the export layer describes it (Blender's settings, RGB);
 - ``table.py``: ``MediaArrays``, the media of a render as spectra per metre (built with the materials);
 - ``coefficients.py``: σ_s, σ_t at a path's wavelengths, and transmittance;
 - ``phase.py``: the Henyey-Greenstein phase function (evaluate, sample);
 - ``segment.py``: a ray segment inside a medium (emission, distance sampling with spectral MIS);
-- ``scatter.py``: a scattering vertex in a medium (light sampling through media, phase sampling).
+- ``scatter.py``: a scattering vertex in a medium (light sampling through media, phase sampling);
+- ``density_grid.py``: ``DensityGrid`` (voxels and their transform) and ``GridArrays`` (the render's grids);
+- ``grid_lookup.py``: a ray against a grid's bounds, trilinear density in compiled code;
+- ``delta_tracking.py``: a ray segment inside a grid medium (delta tracking with spectral MIS);
+- ``ratio_tracking.py``, ``transmittance.py``: a shadow ray's transmittance (ratio tracking in a grid medium,
+  Beer-Lambert in a homogeneous one).
 
 A path carries the medium it is in (``PathState.medium``, -1 outside every medium): it enters a medium by
 crossing a surface whose material has one against its geometric normal (inward), and leaves it by

@@ -1,4 +1,5 @@
-"""A ray segment inside a homogeneous medium: its emission, then where (if anywhere) the path scatters.
+"""A ray segment inside a homogeneous medium: its emission, then where (if anywhere) the path scatters (in a
+grid medium, ``delta_tracking`` instead).
 
 Along a segment of length t (the next surface) the radiance is ∫₀ᵗ T(s) [ε + σ_s L_s] ds + T(t) L_surface,
 T(s) = exp(-σ_t s), per wavelength. The emission term is added in closed form, ε (1 - T(t)) / σ_t. The
@@ -25,6 +26,7 @@ from ..sampler import medium_light_slot, medium_slot, sample_2d
 from ..spectra.table import spectrum_value
 from ..state import COLLAPSED
 from .coefficients import coefficients_at
+from .delta_tracking import track_grid_medium
 from .equiangular import equiangular_distance, light_line, positional_mixture
 
 
@@ -50,14 +52,17 @@ def _scatters(sigma_s, hero, collapsed):
 
 
 @inlined
-def cross_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s, lights):
+def cross_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s, lights, f, p):
     """Path ``i``'s ray, inside its medium, reaches a surface at ``t`` (inf: none). Adds the medium's
     emission along it and returns where the path scatters (< t, throughput weighted for it) or inf (it
-    reaches the surface, throughput weighted by the transmittance). ``sigma_t``, ``sigma_s``: scratch [K].
-    With ``settings.equiangular``, in a medium that scatters at the path's wavelengths, half the segments sample
-    the collision equiangularly toward a light of ``lights`` (``equiangular``) and every weight divides by the
-    two strategies' mixture."""
+    reaches the surface, throughput weighted by the transmittance). ``sigma_t``, ``sigma_s``, ``f``, ``p``:
+    scratch [K]. With ``settings.equiangular``, in a medium that scatters at the path's wavelengths, half the
+    segments sample the collision equiangularly toward a light of ``lights`` (``equiangular``) and every weight
+    divides by the two strategies' mixture. A grid medium (``MediaArrays.grid``) is crossed by delta tracking
+    instead (``delta_tracking``)."""
     medium = state.medium[i]
+    if media.grid[medium] >= 0:
+        return track_grid_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s, f, p)
     lam = state.wavelength[i]
     k = lam.shape[0]
     coefficients_at(media, spectra, medium, lam, sigma_t, sigma_s)

@@ -1,4 +1,4 @@
-"""``MediumSpec``: a homogeneous medium as the export layer hands it to the tracer (Blender's settings).
+"""``MediumSpec``: a medium as the export layer hands it to the tracer (Blender's settings).
 
 Cycles' volume closures, per unit length (metres): Volume Scatter adds scattering σ_s = density × colour,
 Volume Absorption adds absorption σ_a = density × (1 - colour), Principled Volume adds σ_s = density ×
@@ -21,10 +21,13 @@ class MediumSpec:
     terms, σ_a(λ) = Σ density × Π (1 - R_rgb(λ)) over the term's colours; ``anisotropy``: the
     Henyey-Greenstein g of the scattering (-1..1); ``emission``: (strength, rgb, temperature_k) terms of
     emitted radiance per metre: strength × the RGB emission of ``rgb`` when ``temperature_k`` is None, else
-    strength × the luminance-1 blackbody spectrum at ``temperature_k`` tinted by ``rgb``."""
+    strength × the luminance-1 blackbody spectrum at ``temperature_k`` tinted by ``rgb``; ``density_grid``
+    (a ``density_grid.DensityGrid``), when set, multiplies σ_s and σ_a point by point (a grid medium: delta
+    and ratio tracking; it may not emit), else the medium is homogeneous."""
 
     name: str
     scatter: list = field(default_factory=list)
     absorb: list = field(default_factory=list)
     anisotropy: float = 0.0
     emission: list = field(default_factory=list)
+    density_grid: object = None

@@ -3,8 +3,10 @@
 Every coefficient is a tabulated spectrum of the render's ``SpectrumTable`` on its 1 nm grid, per metre:
 ``scattering`` σ_s and ``absorption`` σ_a (spectrum ids [M]); ``emission`` (spectrum id [M], -1: none)
 with ``emission_strength`` [M] (radiance per metre per unit strength, as surfaces' Emission Strength);
-``anisotropy`` [M] (Henyey-Greenstein g). The emission is the sum of the medium's emission terms
-(``spec.MediumSpec``) tabulated as one spectrum, of strength 1.
+``anisotropy`` [M] (Henyey-Greenstein g); ``grid`` [M] (-1: homogeneous, else the row of ``grids``, a
+``density_grid.GridArrays``, whose density scales σ_s and σ_a: the one flag the kernels branch on). The
+emission is the sum of the medium's emission terms (``spec.MediumSpec``) tabulated as one spectrum, of
+strength 1.
 """
 
 from __future__ import annotations
@@ -14,9 +16,10 @@ from collections import namedtuple
 import numpy as np
 
 from ..errors import PrismInputError
+from .density_grid import build_grids, check_grid
 from ..spectra.wavelengths import VISIBLE_MIN_NM, VISIBLE_NM_GRID
 
-MediaArrays = namedtuple("MediaArrays", "scattering absorption emission emission_strength anisotropy")
+MediaArrays = namedtuple("MediaArrays", "scattering absorption emission emission_strength anisotropy grid grids")
 
 #: g is kept inside (-1, 1): at |g| = 1 the phase function is a delta and its density infinite.
 MAX_ANISOTROPY = 0.999
@@ -77,15 +80,21 @@ def _check(spec):
     colours = [c for _, *cs in spec.scatter + spec.absorb for c in cs] + [rgb for _, rgb, _ in spec.emission]
     if not all(np.isfinite(values)) or not all(np.all(np.isfinite(c)) for c in colours):
         raise PrismInputError(f"Material '{spec.name}': a volume setting is NaN or infinite; set it again.")
+    grid = getattr(spec, "density_grid", None)
+    if grid is not None:
+        check_grid(grid, spec.name)
+        if any(strength > 0.0 for strength, *_ in spec.emission):
+            raise PrismInputError(f"Volume '{spec.name}': a medium driven by a density grid cannot emit in Prism "
+                                  "yet; leave its emission out.")
 
 
-def build_media(materials, used, spectra, outside=None):
+def build_media(materials, used, spectra, outside=None, origin=None):
     """(medium index int32 [len(materials)] (-1: none), ``MediaArrays``, the row of ``outside`` or -1) for the
     ``scene.Material`` list, whose indices in ``used`` get a medium, and ``outside`` (a ``MediumSpec``: the
     World's Volume, the medium everywhere outside meshes that hold one; None: vacuum). ``spectra``: the
-    render's ``SpectrumTable``."""
+    render's ``SpectrumTable``; ``origin`` (m) the point the kernels' positions are relative to (grids)."""
     index = np.full(len(materials), -1, np.int32)
-    scattering, absorption, emission, strength, anisotropy = [], [], [], [], []
+    scattering, absorption, emission, strength, anisotropy, grid, grids = [], [], [], [], [], [], []
     specs = [(m, getattr(material, "medium", None)) for m, material in enumerate(materials) if m in used]
     for m, spec in specs + [(-1, outside)]:
         if spec is None:
@@ -98,6 +107,10 @@ def build_media(materials, used, spectra, outside=None):
         scattering.append(spectra.tabulated(key + ("sigma_s",), float(VISIBLE_MIN_NM), 1.0, sigma_s))
         absorption.append(spectra.tabulated(key + ("sigma_a",), float(VISIBLE_MIN_NM), 1.0, sigma_a))
         anisotropy.append(float(np.clip(spec.anisotropy, -MAX_ANISOTROPY, MAX_ANISOTROPY)))
+        density_grid = getattr(spec, "density_grid", None)
+        grid.append(len(grids) if density_grid is not None else -1)
+        if density_grid is not None:
+            grids.append(density_grid)
         emitted = emission_on_grid(spec)
         if emitted.max() > 0.0:
             emission.append(spectra.tabulated(key + ("emission",), float(VISIBLE_MIN_NM), 1.0, emitted))
@@ -107,5 +120,6 @@ def build_media(materials, used, spectra, outside=None):
             strength.append(0.0)
     arrays = MediaArrays(np.array(scattering or [0], np.int32), np.array(absorption or [0], np.int32),
                          np.array(emission or [-1], np.int32), np.array(strength or [0.0]),
-                         np.array(anisotropy or [0.0]))
+                         np.array(anisotropy or [0.0]), np.array(grid or [-1], np.int32),
+                         build_grids(grids, origin))
     return index, arrays, (len(scattering) - 1 if outside is not None else -1)

@@ -141,7 +141,7 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
         mis_origin = (state.mis_origin[i, 0], state.mis_origin[i, 1], state.mis_origin[i, 2])
         if settings.has_media and state.medium[i] >= 0:
             collision = cross_medium(state, i, t, materials.media, spectra, settings, depth, scratch.mix[0],
-                                     scratch.mix[1], lights)
+                                     scratch.mix[1], lights, scratch.f, scratch.li)
             if collision < t:  # the path scatters in its medium: a vertex for the shading stage
                 if lights.hittable.shape[0] > 0:
                     _add_lights_along(state, i, o, d, collision, mis_origin, lights, spectra, settings, depth, passes,

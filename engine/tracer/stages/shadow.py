@@ -7,7 +7,8 @@ shadow rays are traced as closest-hit queries layer by layer (``film_layer_kerne
 crossed such a surface, attenuated and moved past it; anything else blocks), up to ``MAX_FILM_LAYERS``;
 one occlusion query settles the rest. With media (``KernelSettings.has_media``) shadow rays are always
 traced layer by layer: each stretch inside a medium attenuates them by its transmittance exp(-σ_t(λ) d)
-(analytic: the media are homogeneous), and crossing a volume's null boundary changes their medium.
+(analytic in a homogeneous medium, estimated by ratio tracking in a grid medium: ``media.transmittance``),
+and crossing a volume's null boundary changes their medium.
 With shadow linking (``light_linking``) they are traced layer by layer too: an object outside the blocker
 sets of the ray's light (``ShadowQueue.blockers``) is passed through untouched, as Cycles skips it.
 """
@@ -23,7 +24,7 @@ from ..light_linking import blocks
 from ..materials.light_path import shadow_ray
 from ..materials.surface import surface_transparency
 from ..materials.table import MAT_MEDIUM, MAT_NULL, MAT_TRANSPARENT
-from ..media.coefficients import attenuate
+from ..media.transmittance import transmit
 from .pass_writes import deposit
 
 MAX_FILM_LAYERS = 8
@@ -69,8 +70,11 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
         triangle = hit_triangle[j]
         medium = shadows.medium[j]
         if medium >= 0:  # the stretch to the hit (or to the light) lies in a medium
-            attenuate(materials.media, spectra, medium, state.wavelength[i],
-                      float(hit_t[j]) if triangle >= 0 else shadows.distance[j], shadows.contribution[j])
+            o = (shadows.origin[j, 0], shadows.origin[j, 1], shadows.origin[j, 2])
+            transmit(materials.media, spectra, medium, state.wavelength[i], o,
+                     (shadows.direction[j, 0], shadows.direction[j, 1], shadows.direction[j, 2]),
+                     float(hit_t[j]) if triangle >= 0 else shadows.distance[j], shadows.contribution[j], scratch.mix[0],
+                     state.seed[i], state.sample[i], layer)
         if triangle < 0:
             for k in range(state.radiance.shape[1]):
                 state.radiance[i, k] += shadows.contribution[j, k]

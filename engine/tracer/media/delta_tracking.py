@@ -1,0 +1,118 @@
+"""A ray segment inside a grid medium (coefficients × a voxel density, ``density_grid``): delta tracking
+against the grid's majorant, with the spectral MIS of ``segment`` (one-sample balance heuristic over the
+path's wavelengths).
+
+Null-scattering formulation (Miller, Georgiev & Jarosz 2019, "A null-scattering path integral formulation of
+light transport", §4-5; Novák et al. 2014 for delta and ratio tracking). With D(x) the density, σ_s, σ_t the
+medium's coefficients at density 1 and D_max the grid's largest density, each wavelength k has the majorant
+μ_k = D_max σ_t,k and the null coefficient σ_n,k(x) = μ_k − D(x) σ_t,k >= 0. Along the ray the radiance is
+∫ T_maj(s) [σ_s L_s + σ_n L](x_s) ds + T_maj(t) L_surface, T_maj(s) = exp(-μ s): tentative collisions are
+drawn at rate μ_c of one wavelength c (chosen uniformly per segment, the hero alone on a collapsed path), and
+at each one the path scatters with probability D σ_s,c / μ_c, else it goes on (a null collision; absorption
+is not an event of its own but weights the path, as ``segment`` treats a homogeneous medium's absorption).
+
+The events (n null collisions at x_1..x_n, then a scattering at x_s, or none before the surface) have, per
+wavelength k, the contribution f_k = T_maj,k Π σ_n,k(x_i) [D σ_s,k](x_s) and, for the tracker of wavelength
+j, the probability p_j = T_maj,j Π (μ_j − D σ_s,j)(x_i) [D σ_s,j](x_s); the path is weighted by f_k /
+((1/K) Σ_j p_j). Both are kept divided by common factors (μ_c and exp(-μ_c s) per step, then the largest p)
+so that long walks neither overflow nor underflow: only their ratio matters. With a constant density the
+expectation is the homogeneous medium's; a pure scatterer of one colour weighs every path exactly 1.
+
+Emission of grid media and equiangular sampling toward lights are not used here (``docs/media.md``).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..jit import inlined
+from ..sampler import grid_medium_uniforms, medium_slot, sample_2d
+from ..state import COLLAPSED
+from .coefficients import coefficients_at
+from .grid_lookup import density_along, grid_span, index_ray
+
+
+@inlined
+def _null_or_scatter(f, p, sigma_t, sigma_s, scale_t, k_used, channel, collapsed, density, gap, scatters):
+    """Multiply ``f``, ``p`` by one tentative collision's factors (``gap`` after the previous one, divided by
+    the chosen channel's exp(-μ_c gap) μ_c = ``scale_t``), then by the largest p."""
+    mu_c = scale_t * sigma_t[channel]
+    largest = 0.0
+    for k in range(k_used):
+        if collapsed and k != channel:
+            continue
+        mu_k = scale_t * sigma_t[k]
+        common = math.exp(-(mu_k - mu_c) * gap) / mu_c
+        if scatters:
+            f[k] *= common * density * sigma_s[k]
+            p[k] *= common * density * sigma_s[k]
+        else:
+            f[k] *= common * max(mu_k - density * sigma_t[k], 0.0)
+            p[k] *= common * max(mu_k - density * sigma_s[k], 0.0)
+        largest = max(largest, p[k])
+    if largest > 0.0:
+        for k in range(k_used):
+            if collapsed and k != channel:
+                continue  # not carried: left at 1, never grown by the renormalisation
+            f[k] /= largest
+            p[k] /= largest
+
+
+@inlined
+def track_grid_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s, f, p):
+    """Path ``i``'s ray, inside its grid medium, reaches a surface at ``t`` (inf: none). Returns where it
+    scatters (< t) or inf, its throughput weighted for that. ``sigma_t``, ``sigma_s``, ``f``, ``p``: scratch
+    [K]."""
+    medium = state.medium[i]
+    grids = media.grids
+    g = media.grid[medium]
+    lam = state.wavelength[i]
+    k_used = lam.shape[0]
+    o = (state.origin[i, 0], state.origin[i, 1], state.origin[i, 2])
+    d = (state.direction[i, 0], state.direction[i, 1], state.direction[i, 2])
+    o2, d2 = index_ray(grids, g, o, d)
+    s0, s1 = grid_span(grids, g, o2, d2, t)
+    if not s0 < s1:
+        return math.inf  # the ray misses the grid's voxels: density 0 all along, transmittance 1
+    coefficients_at(media, spectra, medium, lam, sigma_t, sigma_s)
+    collapsed = state.flags[i] & COLLAPSED != 0
+    u_channel, u_distance = sample_2d(settings.sampler, state.seed[i], state.sample[i], medium_slot(depth))
+    channel = state.hero[i] if collapsed else min(int(u_channel * k_used), k_used - 1)
+    scale_t = grids.majorant[g]  # μ_k = scale_t σ_t,k
+    for k in range(k_used):
+        f[k] = 1.0
+        p[k] = 1.0
+    mu_c = scale_t * sigma_t[channel]
+    s = s0
+    collision = math.inf
+    step = 0
+    while True:
+        gap = -math.log1p(-u_distance) / mu_c if mu_c > 0.0 else math.inf
+        if not s + gap < s1:  # no tentative collision before the grid's far side or the surface
+            gap = s1 - s
+            for k in range(k_used):
+                if collapsed and k != channel:
+                    continue
+                common = math.exp(-scale_t * (sigma_t[k] - sigma_t[channel]) * gap)
+                f[k] *= common
+                p[k] *= common
+            break
+        s += gap
+        density = density_along(grids, g, o2, d2, s)
+        u_event, u_distance = grid_medium_uniforms(settings.sampler, state.seed[i], state.sample[i], depth, step)
+        step += 1
+        scatters = u_event * mu_c < density * sigma_s[channel]
+        _null_or_scatter(f, p, sigma_t, sigma_s, scale_t, k_used, channel, collapsed, density, gap, scatters)
+        if scatters:
+            collision = s
+            break
+    mixture = 0.0
+    for k in range(k_used):
+        if collapsed and k != channel:
+            continue
+        mixture += p[k]
+    if not collapsed:
+        mixture /= k_used
+    for k in range(k_used):
+        state.throughput[i, k] = state.throughput[i, k] * f[k] / mixture if mixture > 0.0 else 0.0
+    return collision

@@ -1,0 +1,74 @@
+"""A voxel grid of density that scales a medium's coefficients (an OpenVDB grid, a Blender Volume object's
+"density"): ``DensityGrid`` as the export layer hands it over, and ``GridArrays``, the render's grids as the
+kernels read them (``grid_lookup``).
+
+Values sit at integer index coordinates (voxel centres, as OpenVDB stores them) and are interpolated
+trilinearly; outside the array the density is 0 (OpenVDB's background), so the grid's density is non-zero
+only inside the index box [-1, n] of each axis, its *bounds*. ``index_to_world`` is an affine map (any
+rotation, scale or shear: OpenVDB's transform times the object's), the kernels use its inverse.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import PrismInputError
+
+
+@dataclass
+class DensityGrid:
+    """``values`` float32 [nx, ny, nz] (index x, y, z; unitless density, a factor of the medium's
+    coefficients), ``index_to_world`` float64 [4, 4]: index coordinates (voxel centres at integers) to world
+    metres. ``name`` for messages (the object and grid it came from)."""
+
+    values: np.ndarray
+    index_to_world: np.ndarray
+    name: str = "density"
+
+
+#: The grids of a render. ``values`` float32 (every grid's voxels, C order, one after another), per grid
+#: ``offset`` int64 [G] (its first voxel in ``values``), ``shape`` int64 [G, 3], ``world_to_index`` float64
+#: [G, 3, 4] (from positions relative to the render's origin, as the kernels' rays are), ``majorant``
+#: float64 [G] (the largest density: delta and ratio tracking's bound; trilinear interpolation never
+#: exceeds it).
+GridArrays = namedtuple("GridArrays", "values offset shape world_to_index majorant")
+
+
+def check_grid(grid: DensityGrid, medium_name: str) -> None:
+    """Raise a ``PrismInputError`` naming the medium for a grid that cannot be rendered."""
+    values = np.asarray(grid.values)
+    if values.ndim != 3 or min(values.shape) < 1:
+        raise PrismInputError(f"Volume '{medium_name}': its {grid.name} grid is not a 3-D array of voxels.")
+    if not np.all(np.isfinite(values)):
+        raise PrismInputError(f"Volume '{medium_name}': its {grid.name} grid holds NaN or infinite values.")
+    matrix = np.asarray(grid.index_to_world, dtype=np.float64)
+    if matrix.shape != (4, 4) or not np.all(np.isfinite(matrix)) or abs(np.linalg.det(matrix[:3, :3])) < 1e-300:
+        raise PrismInputError(f"Volume '{medium_name}': the transform of its {grid.name} grid is not invertible "
+                              "(an object scaled to 0?).")
+
+
+def build_grids(grids, origin=None) -> GridArrays:
+    """``GridArrays`` for a list of ``DensityGrid`` (negative densities clamped to 0: a medium's
+    coefficients are never negative); ``origin`` (m, [3]) the point the kernels' positions are relative
+    to."""
+    offset = np.zeros(max(len(grids), 1), np.int64)
+    shape = np.ones((max(len(grids), 1), 3), np.int64)
+    world_to_index = np.zeros((max(len(grids), 1), 3, 4))
+    majorant = np.zeros(max(len(grids), 1))
+    chunks, first = [], 0
+    shift = np.zeros(3) if origin is None else np.asarray(origin, dtype=np.float64)
+    for g, grid in enumerate(grids):
+        values = np.maximum(np.ascontiguousarray(grid.values, dtype=np.float32), 0.0)
+        inverse = np.linalg.inv(np.asarray(grid.index_to_world, dtype=np.float64))
+        # index = A (p + origin) + b for a position p relative to the origin
+        world_to_index[g, :, :3] = inverse[:3, :3]
+        world_to_index[g, :, 3] = inverse[:3, :3] @ shift + inverse[:3, 3]
+        offset[g], shape[g] = first, values.shape
+        majorant[g] = float(values.max())
+        chunks.append(values.ravel())
+        first += values.size
+    values = np.concatenate(chunks) if chunks else np.zeros(1, np.float32)
+    return GridArrays(values, offset, shape, world_to_index, majorant)

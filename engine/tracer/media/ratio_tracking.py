@@ -1,0 +1,69 @@
+"""Transmittance of a shadow ray through a grid medium by ratio tracking (Novák, Selle & Jarosz 2014,
+"Residual ratio tracking for estimating attenuation in participating media", §3): tentative collisions at
+the rate μ = D_max max_k σ_t,k (one rate for every carried wavelength, so one walk serves them all) and, at
+each, every wavelength's estimate multiplied by 1 − D(x) σ_t,k / μ. The product is an unbiased estimate of
+exp(-∫ D σ_t,k ds) per wavelength, in [0, 1]. The walk stops early once every estimate is 0.
+
+A shadow ray may take any number of steps, so its numbers are hashed (``sampler.INDEPENDENT``) from the
+path's sample, a key of the ray (its layer and where it starts) and the step.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..jit import inlined
+from ..sampler import INDEPENDENT, SLOT_RATIO_TRACKING, hash32, sample_1d
+from ..spectra.table import spectrum_value
+from .grid_lookup import density_along, grid_span, index_ray
+
+
+@inlined
+def ray_key(layer, o):
+    """A 32-bit key of a shadow ray: its layer and its origin (metres, to about a micrometre)."""
+    key = hash32(layer + 0x51ED27)
+    for c in range(3):
+        key = hash32(key ^ (int(abs(o[c]) * 1048576.0) & 0xFFFFFFFF))
+    return key
+
+
+@inlined
+def ratio_track(media, spectra, medium, wavelengths_nm, o, d, distance_m, values, sigma_t, pixel_seed, sample,
+                key):
+    """``values[k]`` *= an unbiased estimate of the transmittance of grid medium ``medium`` along ``o`` + s
+    ``d``, s in [0, ``distance_m``]. ``sigma_t``: scratch [K]; ``pixel_seed``, ``sample``, ``key``: the
+    numbers' stream (``ray_key``)."""
+    grids = media.grids
+    g = media.grid[medium]
+    o2, d2 = index_ray(grids, g, o, d)
+    s0, s1 = grid_span(grids, g, o2, d2, distance_m)
+    if not s0 < s1:
+        return
+    largest = 0.0
+    for k in range(wavelengths_nm.shape[0]):
+        lam = wavelengths_nm[k]
+        sigma_t[k] = (spectrum_value(spectra, media.scattering[medium], lam)
+                      + spectrum_value(spectra, media.absorption[medium], lam))
+        if values[k] != 0.0:
+            largest = max(largest, sigma_t[k])
+    mu = grids.majorant[g] * largest
+    if not mu > 0.0:
+        return
+    s = s0
+    step = 0
+    seed = pixel_seed ^ key
+    while True:
+        u = sample_1d(INDEPENDENT, seed, sample, SLOT_RATIO_TRACKING + step)
+        step += 1
+        s -= math.log1p(-u) / mu
+        if not s < s1:
+            return
+        density = density_along(grids, g, o2, d2, s)
+        if density <= 0.0:
+            continue
+        alive = False
+        for k in range(wavelengths_nm.shape[0]):
+            values[k] *= max(1.0 - density * sigma_t[k] / mu, 0.0)
+            alive = alive or values[k] != 0.0
+        if not alive:
+            return
