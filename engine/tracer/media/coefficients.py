@@ -9,9 +9,16 @@ from ..spectra.table import spectrum_value
 
 
 @inlined
+def extinction_at(media, spectra, medium, wavelength_nm):
+    """σ_t = σ_s + σ_a (per metre) of ``medium`` at one wavelength."""
+    return (spectrum_value(spectra, media.scattering[medium], wavelength_nm)
+            + spectrum_value(spectra, media.absorption[medium], wavelength_nm))
+
+
+@inlined
 def coefficients_at(media, spectra, medium, wavelengths_nm, sigma_t, sigma_s):
     """``sigma_t[k]``, ``sigma_s[k]`` (per metre) of ``medium`` at each carried wavelength."""
-    for k in range(wavelengths_nm.shape[0]):
+    for k in range(wavelengths_nm.shape[0]):  # σ_s looked up once: it is both outputs' first term
         s = spectrum_value(spectra, media.scattering[medium], wavelengths_nm[k])
         sigma_s[k] = s
         sigma_t[k] = s + spectrum_value(spectra, media.absorption[medium], wavelengths_nm[k])
@@ -23,8 +30,6 @@ def attenuate(media, spectra, medium, wavelengths_nm, distance_m, values):
     for k in range(wavelengths_nm.shape[0]):
         if values[k] == 0.0:
             continue
-        lam = wavelengths_nm[k]
-        sigma_t = (spectrum_value(spectra, media.scattering[medium], lam)
-                   + spectrum_value(spectra, media.absorption[medium], lam))
+        sigma_t = extinction_at(media, spectra, medium, wavelengths_nm[k])
         if sigma_t > 0.0:
             values[k] *= math.exp(-sigma_t * distance_m)

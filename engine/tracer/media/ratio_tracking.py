@@ -14,7 +14,7 @@ import math
 
 from ..jit import inlined
 from ..sampler import INDEPENDENT, SLOT_RATIO_TRACKING, hash32, sample_1d
-from ..spectra.table import spectrum_value
+from .coefficients import extinction_at
 from .grid_lookup import density_along, grid_span, index_ray
 
 
@@ -41,9 +41,7 @@ def ratio_track(media, spectra, medium, wavelengths_nm, o, d, distance_m, values
         return
     largest = 0.0
     for k in range(wavelengths_nm.shape[0]):
-        lam = wavelengths_nm[k]
-        sigma_t[k] = (spectrum_value(spectra, media.scattering[medium], lam)
-                      + spectrum_value(spectra, media.absorption[medium], lam))
+        sigma_t[k] = extinction_at(media, spectra, medium, wavelengths_nm[k])
         if values[k] != 0.0:
             largest = max(largest, sigma_t[k])
     mu = grids.majorant[g] * largest
