@@ -78,7 +78,8 @@ def main() -> None:
 
     material.prism.glass_source = "PRINCIPLED_IOR"
     predicted = []
-    for wavelength in luminance_quantile_wavelengths(0 if arguments.medium else arguments.quantiles, white):
+    sweep = [] if arguments.medium else luminance_quantile_wavelengths(arguments.quantiles, white)
+    for wavelength in sweep:
         glass_node.inputs["IOR"].default_value = float(glass.index(wavelength))
         predicted.append(_mean_luminance(scene, arguments.samples))
         print(f"constant index {glass.index(wavelength):.4f} (n at {wavelength:.0f} nm): {predicted[-1]:.4f}",
