@@ -6,8 +6,10 @@ Steps: resolve the pinned runtime wheels per platform (``extension_wheels``: num
 embreex, colour-science and their dependencies, never numpy), fetching the missing ones into the
 wheel cache (``wheels/``), stage a copy of the add-on into ``build/extension/`` with those wheels
 listed in its manifest (the committed manifest stays clean), build with Blender's own extension
-tool (``blender_ext.py build --split-platforms``), then validate every zip and check it holds
-exactly one wheel per runtime package. Prints each zip with its size.
+tool (``blender_ext.py build --split-platforms``), add the kernels a first render needs, compiled for a
+portable CPU level, to the zip of the platform the build runs on (``ship_kernels``; ``--no-kernels``
+skips it), then validate every zip and check it holds exactly one wheel per runtime package. Prints each
+zip with its size.
 """
 
 from __future__ import annotations
@@ -129,9 +131,39 @@ def check_zip(zip_path: Path, expected_wheels: set[str]) -> None:
                          f"missing {sorted(expected_wheels - wheels)}")
 
 
+#: Blender's platform names by (sys.platform, machine), and the Python Blender 4.2-5.0 run: kernels can be
+#: compiled into the zip of the platform the build runs on, with Blender's Python (``ship_kernels``).
+BLENDER_PLATFORMS = {("linux", "x86_64"): "linux-x64", ("win32", "amd64"): "windows-x64",
+                     ("darwin", "x86_64"): "macos-x64", ("darwin", "arm64"): "macos-arm64"}
+BLENDER_PYTHON = (3, 11)
+PORTABLE_MACHINES = ("x86_64", "amd64")  # the shipped kernels' CPU level (x86-64-v3) is an x86-64 one
+
+
+def kernels_refused(platform: str, wheels: dict) -> str | None:
+    """Why ``platform``'s zip cannot carry kernels compiled by this Python, or None when it can."""
+    import platform as host
+
+    machine = host.machine().lower()
+    here = BLENDER_PLATFORMS.get((sys.platform, machine))
+    if here != platform:
+        return f"they are compiled on the platform itself (this is {here or sys.platform + ' ' + machine})"
+    if sys.version_info[:2] != BLENDER_PYTHON:
+        return f"this is Python {sys.version_info[0]}.{sys.version_info[1]}, Blender runs {BLENDER_PYTHON[0]}.{BLENDER_PYTHON[1]}"
+    if machine not in PORTABLE_MACHINES:
+        return f"no portable CPU level is defined for {machine}"
+    from importlib import metadata
+
+    for package in ("numba", "llvmlite"):
+        bundled = next((pin.version for pin in wheels if pin.name == package), None)
+        if bundled != metadata.version(package):
+            return f"the zip bundles {package} {bundled}, this Python has {metadata.version(package)}"
+    return None
+
+
 def build(platforms: list[str] | None, output_dir: Path, stage_dir: Path, wheels_dir: Path,
-          download: bool = True, source_dir: Path = ROOT) -> list[Path]:
-    """Build and validate one zip per platform; returns the zip paths."""
+          download: bool = True, source_dir: Path = ROOT, kernels: bool = True) -> list[Path]:
+    """Build and validate one zip per platform (with compiled kernels where ``kernels_refused`` allows
+    and ``kernels`` is True); returns the zip paths."""
     text, manifest = read_manifest(source_dir)
     declared = list(manifest.get("platforms", []))
     platforms = platforms or declared
@@ -164,10 +196,29 @@ def build(platforms: list[str] | None, output_dir: Path, stage_dir: Path, wheels
         zip_path = output_dir / f"{manifest['id']}-{manifest['version']}-{platform.replace('-', '_')}.zip"
         if not zip_path.exists():
             raise BuildError(f"Blender's build tool did not write {zip_path}")
+        if kernels:
+            _ship_kernels(platform, chosen[platform], stage_dir, zip_path, manifest["id"])
         run_blender_ext(blender_ext, "validate", str(zip_path))
         check_zip(zip_path, {w.name for w in chosen[platform].values()})
         zips.append(zip_path)
     return zips
+
+
+def _ship_kernels(platform: str, wheels: dict, stage_dir: Path, zip_path: Path, addon_id: str) -> None:
+    refused = kernels_refused(platform, wheels)
+    if refused is not None:
+        print(f"{platform}: no compiled kernels in the zip ({refused}); the first render compiles them", flush=True)
+        return
+    import ship_kernels
+
+    print(f"{platform}: compiling the kernels a first render needs ({ship_kernels.TARGET}, one core, minutes)",
+          flush=True)
+    try:
+        shipped = ship_kernels.ship(stage_dir, zip_path, addon_id, work_dir=stage_dir.parent)
+    except (ship_kernels.ShipError, subprocess.TimeoutExpired) as error:
+        raise BuildError(f"compiling the kernels to ship failed: {error}") from error
+    print(f"{platform}: {shipped['files']} kernel cache files ({shipped['functions_compiled']} functions, "
+          f"{shipped['target']}) added in {shipped['compile_seconds']} s", flush=True)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -182,10 +233,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--stage-dir", type=Path, default=ROOT / "build" / "extension")
     parser.add_argument("--wheels-dir", type=Path, default=ROOT / "wheels",
                         help="wheel cache (default: wheels/ in the repository)")
+    parser.add_argument("--no-kernels", action="store_true",
+                        help="ship no compiled kernels (faster build; the first render compiles them)")
     args = parser.parse_args(argv)
     try:
         zips = build(args.platforms, args.output_dir, args.stage_dir, args.wheels_dir,
-                     download=not args.no_download, source_dir=args.source_dir)
+                     download=not args.no_download, source_dir=args.source_dir, kernels=not args.no_kernels)
     except (BuildError, ew.WheelError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 1

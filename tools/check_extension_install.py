@@ -9,9 +9,10 @@ The zip goes through ``bpy.ops.extensions.package_install_files`` exactly as "In
 does; then a 16x16 cube lit by a point light is rendered twice with the installed engine,
 importing the bundled wheels (not this environment's copies). The report says where numba and
 the other heavy modules were imported from, where the kernel cache is and which files the first
-render compiled into it, and each render's status bar lines (the first one says it compiles,
-the second one finds the cache warm). Writes a JSON report and ends with ``os._exit``
-because the bpy module can hang at interpreter exit after a render.
+render compiled into it (none where the zip ships kernels for this CPU's level: it loads them), the
+CPU level the kernels were made for, and each render's status bar lines (the first one says it
+compiles unless kernels were shipped, the second one finds the cache warm). Writes a JSON report and
+ends with ``os._exit`` because the bpy module can hang at interpreter exit after a render.
 """
 
 from __future__ import annotations
@@ -143,7 +144,25 @@ def _kernel_cache_facts(bpy) -> dict:
     return {"directory": str(expected), "jit_directory": str(jit.cache_directory()),
             "kernel_directory": str(jit.kernel_directory()),
             "numba_cache_dir": sys.modules["numba"].config.CACHE_DIR,
+            "numba_directory": str(jit.numba_directory()),
             "warm": jit.cache_is_warm(), "kernels_run": _kernels_run(), "files": files}
+
+
+def _count_compiles() -> list:
+    """A list numba's compile events append to: one entry per function compiled (none for one loaded)."""
+    from numba.core import event  # the bundled numba; it makes no code generator yet (the render picks the CPU)
+
+    compiled = []
+
+    class Count(event.Listener):
+        def on_start(self, data):
+            pass
+
+        def on_end(self, data):
+            compiled.append(data)
+
+    event.register("numba:compile", Count())
+    return compiled
 
 
 def _render(bpy, image_path: Path, report: dict) -> None:
@@ -151,7 +170,13 @@ def _render(bpy, image_path: Path, report: dict) -> None:
 
     scene = _build_scene(bpy, samples=2)
     scene.render.filepath = str(image_path)
+    compiled = _count_compiles()
     report["status_bar"] = [_render_once(bpy)]
+    report["compiled_by_first_render"] = len(compiled)
+    target = importlib.import_module(f"{MODULE}.engine.tracer.kernel_target")
+    report["kernel_target"] = target.current()
+    report["shipped_kernels"] = (Path(bpy.utils.user_resource("EXTENSIONS")) / "user_default" / ADDON_ID
+                                 / "kernels" / "manifest.json").is_file()
     report["rendered"] = image_path.exists()
     report["modules_from"] = {m: getattr(sys.modules.get(m), "__file__", None) for m in HEAVY_MODULES}
     report["kernel_cache"] = _kernel_cache_facts(bpy)

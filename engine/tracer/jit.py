@@ -8,7 +8,8 @@ disk so only the first render on a machine pays for compilation:
   module is imported (Blender passes a folder under the extension's user directory, which is writable
   even when the extension itself is installed read-only). Kernels go to a subfolder named after the
   package this copy of the tracer was imported as and the fingerprint of its sources
-  (``kernel_directory()``). Without it the directory is
+  (``kernel_directory()``; kernels compiled for a portable CPU level go to a subfolder named after it,
+  ``numba_directory()``, see ``kernel_target``). Without it the directory is
   ``$PRISM_KERNEL_CACHE``, else ``$NUMBA_CACHE_DIR``, else a per-user cache folder
   (``~/.cache/prism-spectral/kernels`` on Linux, ``~/Library/Caches/...`` on macOS,
   ``%LOCALAPPDATA%\\prism-spectral\\kernels`` on Windows).
@@ -35,6 +36,7 @@ from numba.core import types
 from numba.core.typing.typeof import Purpose
 
 # The cache's folders and stamp live in a module without numba (the add-on asks them at Blender start-up).
+from . import kernel_target
 from .kernel_folder import (  # noqa: F401 - re-exported: jit is where kernel modules and tools look
     _PACKAGE,
     cache_directory,
@@ -42,9 +44,29 @@ from .kernel_folder import (  # noqa: F401 - re-exported: jit is where kernel mo
     configure_cache,
     kernel_directory,
     mark_cache_warm,
+    numba_directory,
     prepare_kernel_directory,
     source_fingerprint,
 )
+
+
+def _apply_cpu_target() -> None:
+    """Make numba generate code for ``kernel_target.current()``: before any kernel is decorated, since
+    numba makes its code generator (target machine and cache key) once, on first use."""
+    target = kernel_target.current()
+    if target is not kernel_target.HOST:
+        before = numba.config.CPU_NAME, numba.config.CPU_FEATURES
+        numba.config.CPU_NAME, numba.config.CPU_FEATURES = target, ""  # the level's own features, no more
+        from numba.core.registry import cpu_target
+
+        if cpu_target.target_context.codegen().magic_tuple()[1:] != (target, ""):
+            # Something else in this process used numba first: its code generator is this CPU's.
+            numba.config.CPU_NAME, numba.config.CPU_FEATURES = before
+            target = kernel_target.HOST
+    kernel_target.applied(target)
+
+
+_apply_cpu_target()
 
 
 # No NRT (numba's reference-counted memory): every array belongs to the Python caller, kernels
@@ -59,7 +81,7 @@ def _use_cache_directory():
     # A folder chosen through $PRISM_KERNEL_CACHE that cannot be used is an error naming it; an unusable
     # default leaves numba its own fallback (``__pycache__`` next to the sources, or no cache).
     if prepare_kernel_directory():
-        numba.config.CACHE_DIR = str(kernel_directory())  # read by numba when a function is decorated
+        numba.config.CACHE_DIR = str(numba_directory())  # read by numba when a function is decorated
 
 
 def kernel(function):

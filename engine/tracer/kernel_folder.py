@@ -11,6 +11,7 @@ add-on, a scene switching to Prism: the background kernel warm-up, ``engine.warm
   refuses, naming the variable, a folder chosen through one of those variables that cannot be used.
 - ``kernel_directory()``: the subfolder of this copy of the tracer (its package name and install
   location) and this version of its sources (``source_fingerprint()``).
+- ``numba_directory()``: where numba caches them for the process's CPU target (``kernel_target``).
 - ``cache_is_warm()`` / ``mark_cache_warm()``: the stamp file saying every kernel of this source is cached.
 """
 
@@ -21,6 +22,8 @@ import os
 import sys
 from importlib import metadata
 from pathlib import Path
+
+from . import kernel_target
 
 _TRACER_ROOT = Path(__file__).resolve().parent
 _configured_directory: Path | None = None
@@ -73,12 +76,12 @@ def cache_directory() -> Path:
 
 
 def prepare_kernel_directory() -> bool:
-    """Create ``kernel_directory()``; True if kernels can be cached there. A folder the user chose through
+    """Create ``numba_directory()``; True if kernels can be cached there. A folder the user chose through
     ``$PRISM_KERNEL_CACHE`` (or ``$NUMBA_CACHE_DIR``) that cannot be used raises ``PrismInputError`` naming
     the variable and the path: the kernels would otherwise land somewhere else without a word (numba falls
     back to ``__pycache__`` beside the sources). False for an unusable default folder (kernels compile
     every time, the first-render notice says so)."""
-    directory = kernel_directory()
+    directory = numba_directory()
     try:
         directory.mkdir(parents=True, exist_ok=True)
         if os.access(directory, os.W_OK):
@@ -119,6 +122,29 @@ def kernel_directory() -> Path:
     return _package_directory() / source_fingerprint()
 
 
+def numba_directory(target: str | None = ...) -> Path:
+    """Where numba caches the kernels compiled for ``target`` (default: this process's,
+    ``kernel_target.current()``): ``kernel_directory()`` for this machine's CPU, its subfolder named after
+    a portable level otherwise (numba keys kernels by CPU, so the two never mix; both go with the version)."""
+    target = kernel_target.current() if target is ... else target
+    return kernel_directory() if target is kernel_target.HOST else kernel_directory() / target
+
+
+def numba_subfolder(source_folder: Path) -> str:
+    """The subfolder of the numba directory where numba caches the kernels of the modules in
+    ``source_folder``: numba names it after the folder and the SHA-1 of its absolute path
+    (``numba.core.caching._CacheLocator.get_suitable_cache_subpath``, checked against numba by the tests).
+    Shipped kernels are copied there, so this module must know it without importing numba."""
+    folder = os.path.abspath(source_folder)
+    return f"{os.path.basename(folder)}_{hashlib.sha1(folder.encode()).hexdigest()}"
+
+
+def tracer_source_folders() -> list[Path]:
+    """Every folder of the tracer's sources, as numba sees them (absolute, links not resolved)."""
+    root = Path(os.path.abspath(os.path.dirname(__file__)))
+    return [root, *sorted(p for p in root.rglob("*") if p.is_dir() and p.name != "__pycache__")]
+
+
 def _package_directory() -> Path:
     # One folder per package name and per install location: cleaning up one checkout's old versions
     # (``mark_cache_warm``) never removes another checkout's kernels.
@@ -153,25 +179,27 @@ def source_fingerprint() -> str:
     return _FINGERPRINT[0]
 
 
-def _stamp() -> Path:
-    return kernel_directory() / f"{_STAMP_PREFIX}{source_fingerprint()}.ok"
+def _stamp(target: str | None = ...) -> Path:
+    return numba_directory(target) / f"{_STAMP_PREFIX}{source_fingerprint()}.ok"
 
 
-def cache_is_warm() -> bool:
-    """True if this tracer source was compiled into the cache directory before (a warm start)."""
-    return _stamp().exists()
+def cache_is_warm(target: str | None = ...) -> bool:
+    """True if this tracer source was compiled for ``target`` (default: this process's CPU target) into
+    the cache directory before (a warm start)."""
+    return _stamp(target).exists()
 
 
-def mark_cache_warm() -> None:
-    """Record that every kernel of this tracer source is in the cache; remove older versions' kernels."""
+def mark_cache_warm(target: str | None = ...) -> None:
+    """Record that every kernel of this tracer source is in the cache for ``target`` (default: this
+    process's); remove older versions' kernels."""
     import shutil
 
     current = kernel_directory()
     try:
-        current.mkdir(parents=True, exist_ok=True)
+        numba_directory(target).mkdir(parents=True, exist_ok=True)
         for folder in _package_directory().iterdir():
             if folder.is_dir() and folder != current and len(folder.name) == len(current.name):
                 shutil.rmtree(folder, ignore_errors=True)
-        _stamp().write_text("compiled\n", encoding="utf-8")
+        _stamp(target).write_text("compiled\n", encoding="utf-8")
     except OSError:
         pass  # a read-only cache only costs the message on the next start

@@ -1,7 +1,7 @@
 """The warm-up process: compile the tracer's kernels into the cache, then mark it warm.
 
     <python> child.py --package bl_ext.user_default.prism_spectral --root <add-on folder> \\
-        --cache <kernel cache directory> --lock <lock file>
+        --cache <kernel cache directory> --lock <lock file> [--cpu-target x86-64-v3]
 
 Run as a script by ``launch.start`` with ``sys.executable`` (Blender's bundled Python, or the tests'),
 never imported. numba's cache index is per module name (``engine.tracer.kernel_folder``), so the tracer
@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import json
 import os
 import sys
 import time
@@ -61,11 +62,13 @@ def _compiled_count():
     return compiled
 
 
-def warm_up(package: str, cache: str) -> dict:
-    """Import the tracer as ``package``, render the warm-up scene into ``cache``; what it did, in seconds."""
+def warm_up(package: str, cache: str, cpu_target: str | None = None) -> dict:
+    """Import the tracer as ``package``, render the warm-up scene into ``cache`` with kernels compiled for
+    ``cpu_target`` (None: this machine's CPU; see ``engine.tracer.kernel_target``); what it did, in seconds."""
     sys.modules.setdefault("matplotlib", None)  # as in Blender: colour-science skips it (~1 s) when absent
     prefix = f"{package}." if package else ""
     start = time.perf_counter()
+    importlib.import_module(f"{prefix}engine.tracer.kernel_target").use(cpu_target)
     jit = importlib.import_module(f"{prefix}engine.tracer.jit")
     jit.configure_cache(cache)
     if jit.cache_is_warm():
@@ -80,6 +83,7 @@ def warm_up(package: str, cache: str) -> dict:
     work.fold_once()
     jit.mark_cache_warm()
     return {"already_warm": False, "kernel_directory": str(jit.kernel_directory()),
+            "numba_directory": str(jit.numba_directory()),
             "functions_compiled": len(compiled), "seconds": round(time.perf_counter() - start, 1)}
 
 
@@ -89,6 +93,7 @@ def main(argv=None) -> int:
     parser.add_argument("--root", required=True, help="the add-on's folder")
     parser.add_argument("--cache", required=True, help="the kernel cache directory the parent configured")
     parser.add_argument("--lock", help="the lock file to remove at the end")
+    parser.add_argument("--cpu-target", help="compile for this portable CPU level (default: this machine's CPU)")
     args = parser.parse_args(argv)
     if hasattr(os, "nice"):
         try:
@@ -101,7 +106,8 @@ def main(argv=None) -> int:
     try:
         print(f"Prism kernel warm-up, pid {os.getpid()}, package {args.package or 'engine'}, cache {args.cache}",
               flush=True)
-        print(f"Prism kernel warm-up done: {warm_up(args.package, args.cache)}", flush=True)
+        done = warm_up(args.package, args.cache, args.cpu_target)
+        print(f"Prism kernel warm-up done: {json.dumps(done)}", flush=True)
         status = 0
     except BaseException:  # noqa: BLE001 - the log says what went wrong; the lock must go in any case
         import traceback

@@ -13,6 +13,8 @@ from Blender's process.
   plain module (``render.py`` with the bpy module, the legacy add-on path), there is no
   extension folder and the tracer's own default applies (``$PRISM_KERNEL_CACHE``, else a per-user
   cache folder; see ``engine.tracer.jit``).
+- It also adopts the kernels shipped inside the extension when this CPU's own are not compiled yet
+  (``shipped_kernels``): the first render then loads instead of compiling.
 - ``compiling_notice()`` is ``COMPILING_MESSAGE`` while this tracer source has not been compiled
   into that folder yet (the first render on a machine, or after an update), else None;
   ``mark_compiled()`` records a render that compiled everything.
@@ -50,7 +52,8 @@ def extension_cache_directory(package: str = ADDON_PACKAGE) -> Path | None:
 
 
 def configure() -> Path:
-    """Choose the kernel cache directory (once per process) and return it."""
+    """Choose the kernel cache directory and, where this CPU's own kernels are not compiled yet, the
+    kernels shipped with the extension (``shipped_kernels``): once per process. Returns the directory."""
     global _configured
     from ..tracer import kernel_folder
 
@@ -62,6 +65,14 @@ def configure() -> Path:
                 kernel_folder.configure_cache(directory)
             except OSError:
                 pass  # keep the tracer's default folder
+        from . import shipped_kernels
+
+        try:
+            shipped_kernels.adopt()
+        except Exception:  # noqa: BLE001 - shipped kernels only save time: without them the render compiles
+            import traceback
+
+            traceback.print_exc()
     return kernel_folder.cache_directory()
 
 

@@ -19,7 +19,7 @@ import time
 from pathlib import Path
 
 from . import kernel_cache
-from ..tracer import kernel_folder
+from ..tracer import kernel_folder, kernel_target
 from . import lock
 
 LOG_NAME = "warmup.log"
@@ -64,7 +64,7 @@ def start() -> subprocess.Popen | None:
     """Start the warm-up process if the cache is cold for this tracer source and none is running; the
     process, or None when none was started."""
     cache = kernel_cache.configure()
-    if kernel_folder.cache_is_warm():
+    if kernel_folder.cache_is_warm(kernel_target.HOST):  # shipped kernels in use or not: this CPU's are faster
         return None
     _reap()
     lock_file = lock_path()

@@ -2,13 +2,14 @@
 own tool validates, that holds the add-on and its runtime wheels (numba and llvmlite included,
 never numpy) and nothing of the developer tree, and that installs through
 `bpy.ops.extensions.package_install_files` and renders through the compiled core: numba comes
-from the extension's site-packages and the kernels compile into the extension's user folder.
+from the extension's site-packages, and the kernels the zip ships (compiled for x86-64-v3 by the build)
+are loaded from the extension's user folder without compiling.
 
 Wheels are cached in the repository's `wheels/` (gitignored), so only the first run downloads
 (the linux wheels only, from PyPI). Without network the build fails with the tool's message.
-The build, and then the install-and-render check (a subprocess with its own Blender user dirs), start
-with the test run in a background thread (`helpers/extension_build.py`), so that the check's kernel
-compile overlaps the run's first one.
+The build (which compiles the kernels it ships), and then the install-and-render check (a subprocess with
+its own Blender user dirs), start with the test run in a background thread (`helpers/extension_build.py`),
+so that the build's kernel compile overlaps the run's first one.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from pathlib import Path
 
 import pytest
 
+from engine.tracer import kernel_folder, kernel_target
 from helpers import extension_build
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -31,6 +33,7 @@ PLATFORM = "linux-x64"
 RUNTIME_WHEELS = ("colour_science", "embreex", "imageio", "llvmlite", "numba", "pillow", "scipy",
                   "typing_extensions")
 COMPILING = "Compiling Prism kernels (first render only)"
+SHIPPED_LEVEL = "x86-64-v3"  # the CPU level tools/ship_kernels.py compiles the shipped kernels for
 DEV_ONLY_DIRS = ("tests/", "benchmarks/", ".ci/", "docs/", "tools/", ".venv/", ".git/",
                  ".coord/", "build/", "dist/", "demo/")
 
@@ -86,6 +89,22 @@ def test_zip_holds_the_addon_and_its_wheels_only(linux_zip):
                                          and tag.endswith("x86_64")), wheel
     assert sorted(f"./{w}" for w in wheels) == sorted(manifest["wheels"])
     assert manifest["build"]["generated"]["platforms"] == [PLATFORM]
+
+
+def test_zip_ships_the_kernels_a_first_render_needs(linux_zip):
+    with zipfile.ZipFile(linux_zip) as zf:
+        names = zf.namelist()
+        shipped = json.loads(zf.read("kernels/manifest.json"))
+    # What "Install from Disk" imports, these very sources, this platform and Python, a portable CPU level.
+    assert shipped["package"] == "bl_ext.user_default.prism_spectral"
+    assert shipped["fingerprint"] == kernel_folder.source_fingerprint()
+    assert shipped["machine"] == kernel_target.machine() and shipped["target"] == SHIPPED_LEVEL
+    files = [n for n in names if n.startswith("kernels/") and n != "kernels/manifest.json"]
+    assert len(files) == shipped["files"] and all(n.startswith(f"kernels/{SHIPPED_LEVEL}/") for n in files)
+    assert all(n.endswith((".nbi", ".nbc")) for n in files)
+    # the whole bounce loop of a chunk, and the material interpreter it calls, by tracer folder
+    assert any(n.startswith(f"kernels/{SHIPPED_LEVEL}/stages/bounce_loop.") for n in files), files[:20]
+    assert any(n.startswith(f"kernels/{SHIPPED_LEVEL}/materials/") for n in files)
 
 
 def test_missing_wheel_error_names_package_and_platform(tmp_path):
@@ -170,16 +189,26 @@ def test_installed_zip_enables_and_renders(linux_zip):
     for module, path in report["modules_from"].items():
         assert path is None or path.startswith(report["site_packages"]), (module, path)
 
-    # The first render says it compiles and marks the cache warm; the second one stays quiet.
+    # The zip ships the kernels a first render needs, compiled for x86-64-v3 (tools/ship_kernels.py): on a
+    # CPU with that level the first render loads them, compiles nothing and says nothing of compiling.
+    # Elsewhere it compiles this CPU's kernels and says so. The second render stays quiet either way.
     cache = report["kernel_cache"]
     assert cache["warm"]
+    assert report["shipped_kernels"], "the Linux zip ships no compiled kernels"
     first, second = report["status_bar"]
-    assert any(COMPILING in line for line in first), first
+    level = SHIPPED_LEVEL if kernel_target.host_supports(SHIPPED_LEVEL) else None
+    assert report["kernel_target"] == level
+    if level is not None:
+        assert report["compiled_by_first_render"] == 0, "the first render compiled despite the shipped kernels"
+        assert first and not any(COMPILING in line for line in first), first
+    else:
+        assert any(COMPILING in line for line in first), first
     assert second and not any(COMPILING in line for line in second), second
     # Kernels compile into the extension's user folder, not next to the installed sources.
     assert cache["directory"].startswith(str(user_dir)) and cache["directory"].endswith("kernel_cache")
     assert cache["jit_directory"] == cache["directory"]
-    assert cache["numba_cache_dir"] == cache["kernel_directory"]
+    assert cache["numba_cache_dir"] == cache["numba_directory"]
+    assert Path(cache["numba_directory"]) == Path(cache["kernel_directory"]) / (level or "")
     # one folder per package name and version of the tracer sources
     assert Path(cache["kernel_directory"]).parent.parent == Path(cache["directory"])
     if report["probe_kernel"]:  # one installed kernel compiled by hand: seen as run, and cached
