@@ -2,7 +2,7 @@
 by Cycles 4.5 (CPU) from the same .blend scene, same threads and bounces.
 
 Each renderer renders each sample count twice (seeds 0 and 1) in a bpy process of its own
-(``_media_renders``); a render's relMSE comes from its two seeds (``metrics.relmse_from_two_seeds``: no
+(``_bpy_renders``); a render's relMSE comes from its two seeds (``metrics.relmse_from_two_seeds``: no
 reference, so neither renderer is scored against the other's image). The equal-time ratio divides Prism's relMSE
 by Cycles' at the same seconds, Cycles' curve interpolated in log-log: below 1, Prism is less noisy in the same
 time. Where noise falls as 1/spp, relMSE x seconds is a constant of a renderer on a scene and the ratio of those
@@ -34,14 +34,14 @@ LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
 
 
 def renders(scene: str, resolution, spp, bounces: int = BOUNCES) -> dict:
-    """``_media_renders``'s npz for ``scene`` (run in a subprocess: bpy stays out of this process)."""
+    """``_bpy_renders``'s npz for ``scene`` (run in a subprocess: bpy stays out of this process)."""
     with tempfile.TemporaryDirectory() as folder:
         out = os.path.join(folder, "renders.npz")
-        command = [sys.executable, "-m", "benchmarks.experiments._media_renders", "--scene", scene, "--resolution",
+        command = [sys.executable, "-m", "benchmarks.experiments._bpy_renders", "--scene", scene, "--resolution",
                    *map(str, resolution), "--spp", *map(str, spp), "--bounces", str(bounces), "--out", out]
         proc = subprocess.run(command, cwd=REPO_ROOT, capture_output=True, text=True, timeout=1800)
         if proc.returncode != 0 or not os.path.exists(out):
-            raise RuntimeError(f"_media_renders --scene {scene} failed ({proc.returncode}): {proc.stderr[-1500:]}")
+            raise RuntimeError(f"_bpy_renders --scene {scene} failed ({proc.returncode}): {proc.stderr[-1500:]}")
         with np.load(out) as data:
             return {key: data[key] for key in data.files}
 
@@ -92,12 +92,12 @@ def measure(data: dict) -> tuple[list[dict], dict]:
     return rows, found
 
 
-def _sentence(scene: str, resolution, found: dict) -> str:
+def _sentence(scene: str, resolution, found: dict, target: float = 1.0) -> str:
     prism, cycles = found["prism"], found["cycles"]
     extended = " (Cycles' curve extended past its measured times)" if found["extrapolated"] else ""
     products = prism["relmse_s"] / cycles["relmse_s"]
     return (f"**{scene}** ({resolution[0]}x{resolution[1]}): Prism's relMSE at equal time is "
-            f"**{found['equal_time']:.2f}x** Cycles'{extended} (target <= 1.0); relMSE·s Prism "
+            f"**{found['equal_time']:.2f}x** Cycles'{extended} (target <= {target}); relMSE·s Prism "
             f"{prism['relmse_s']:.3g}, Cycles {cycles['relmse_s']:.3g} (ratio {products:.2f}); seconds per spp "
             f"Prism {prism['s_per_spp']:.3g}, Cycles {cycles['s_per_spp']:.3g}; mean luminance Prism "
             f"{prism['luminance']:.4g}, Cycles {cycles['luminance']:.4g} (Prism / Cycles "

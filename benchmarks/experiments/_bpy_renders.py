@@ -1,15 +1,19 @@
-"""The bpy side of ``media_vs_cycles``: one scene rendered by Prism and by Cycles at each sample count with two
-seeds, every render timed, in a process of its own (the harness never imports bpy).
+"""The bpy side of the equal-time experiments against Cycles (``media_vs_cycles``, ``real_sizes_vs_cycles``): one
+scene rendered by Prism and by Cycles at each sample count with two seeds, every render timed, in a process of
+its own (the harness never imports bpy).
 
-    python -m benchmarks.experiments._media_renders --scene fog --resolution 96 72 --spp 16 32 64 \\
+    python -m benchmarks.experiments._bpy_renders --scene fog --resolution 96 72 --spp 16 32 64 \\
         --bounces 8 --out renders.npz
 
-Scenes come from the tests' builders (``tests/helpers``), so the benchmark renders what the tests compare with
-Cycles: ``fog`` is ``fog_scenes.point_light_in_fog``, ``subsurface`` is ``subsurface_scenes.skin_spheres_in_sun``.
-Both renderers render through ``bpy.ops.render.render`` (export or scene sync, sampling, the EXR written and read
-back: what an F12 costs), each after one untimed warm-up render (kernels loaded, caches filled), taking turns
-(Prism, Cycles, Prism, Cycles) so that a load on the shared machine falls on both. Writes ``--out`` (npz):
-``images`` [renderer, spp, seed, H, W, 3] scene-linear RGB and ``seconds`` [renderer, spp, seed].
+Scenes: ``fog`` and ``subsurface`` come from the tests' builders (``tests/helpers``), so the benchmark renders
+what the tests compare with Cycles: ``fog_scenes.point_light_in_fog``, ``subsurface_scenes.skin_spheres_in_sun``.
+``demo`` is the README's demo room (``demo/build_demo_scene.py``: gold monkey, dispersive glass prism, blackbody
+lights), ``mesh_1m`` the benchmark's Cornell box with a 1M-triangle sphere (``benchmarks.scenes``), rebuilt in
+Blender as the Cycles peer does (``benchmarks.peers.cycles``). Both renderers render through
+``bpy.ops.render.render`` (export or scene sync, sampling, the EXR written and read back: what an F12 costs),
+each after one untimed warm-up render (kernels loaded, caches filled), taking turns (Prism, Cycles, Prism,
+Cycles) so that a load on the shared machine falls on both. Writes ``--out`` (npz): ``images`` [renderer, spp,
+seed, H, W, 3] scene-linear RGB and ``seconds`` [renderer, spp, seed].
 """
 
 from __future__ import annotations
@@ -29,7 +33,7 @@ THREADS = 2  # Cycles' too: helpers.cycles.configure_cycles fixes 2 threads
 
 def _arguments(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", choices=("fog", "subsurface"), required=True)
+    parser.add_argument("--scene", choices=("fog", "subsurface", "demo", "mesh_1m"), required=True)
     parser.add_argument("--resolution", type=int, nargs=2, required=True, metavar=("WIDTH", "HEIGHT"))
     parser.add_argument("--spp", type=int, nargs="+", required=True)
     parser.add_argument("--bounces", type=int, default=8)
@@ -40,6 +44,22 @@ def _arguments(argv=None):
 def _build(name, resolution):
     import bpy
 
+    if name == "demo":
+        import tempfile
+
+        from demo.build_demo_scene import build
+
+        with tempfile.TemporaryDirectory() as folder:
+            build(Path(folder) / "demo.blend")  # the scene stays open
+        scene = bpy.context.scene
+        scene.render.resolution_x, scene.render.resolution_y = resolution
+        scene.render.resolution_percentage = 100
+        return scene
+    if name == "mesh_1m":
+        from benchmarks import scenes
+        from benchmarks.peers.cycles import build_blender_scene
+
+        return build_blender_scene(scenes.build(name, tuple(resolution)))
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     if name == "fog":
         from helpers.fog_scenes import point_light_in_fog
