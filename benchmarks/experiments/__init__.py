@@ -10,6 +10,7 @@ than the contract is skipped with a note; the rest of the benchmark goes on).
 from __future__ import annotations
 
 import importlib
+import sys
 import time
 import traceback
 from pathlib import Path
@@ -62,3 +63,12 @@ def run_all(quick: bool, log=print) -> list[dict]:
             log(f"  skipped: {record['error']}")
         records.append(record)
     return records
+
+
+def print_run(run, quick: bool | None = None) -> None:
+    """An experiment's ``python -m`` entry: ``run(quick)`` (``--quick`` on the command line unless ``quick`` is
+    given), then its rows, one per line, and its summary."""
+    result = run("--quick" in sys.argv if quick is None else quick)
+    for row in result["rows"]:
+        print(row)
+    print(result["summary"])

@@ -96,7 +96,6 @@ def _summary(rows, resolution, seconds, seeds, ref_spp) -> str:
 
 
 if __name__ == "__main__":
-    result = run(quick=True)
-    for row in result["rows"]:
-        print(row)
-    print(result["summary"])
+    from benchmarks.experiments import print_run
+
+    print_run(run, quick=True)

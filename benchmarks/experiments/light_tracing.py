@@ -150,9 +150,6 @@ def run(quick: bool) -> dict:
 
 
 if __name__ == "__main__":
-    import sys
+    from benchmarks.experiments import print_run
 
-    result = run("--quick" in sys.argv)
-    for row in result["rows"]:
-        print(row)
-    print(result["summary"])
+    print_run(run)

@@ -130,7 +130,6 @@ def run(quick: bool) -> dict:
 
 
 if __name__ == "__main__":
-    result = run("--quick" in sys.argv)
-    for row in result["rows"]:
-        print(row)
-    print(result["summary"])
+    from benchmarks.experiments import print_run
+
+    print_run(run)

@@ -13,8 +13,6 @@ renderer's noise is measured against its own.
 
 from __future__ import annotations
 
-import sys
-
 from benchmarks.experiments.media_vs_cycles import BOUNCES, _sentence, measure, renders
 
 TITLE = "Equal time against Cycles at real sizes (the demo room at 960x540, mesh_1m at 512x512)"
@@ -53,7 +51,6 @@ def run(quick: bool) -> dict:
 
 
 if __name__ == "__main__":
-    result = run("--quick" in sys.argv)
-    for row in result["rows"]:
-        print(row)
-    print(result["summary"])
+    from benchmarks.experiments import print_run
+
+    print_run(run)

@@ -150,7 +150,6 @@ if __name__ == "__main__":
     from pathlib import Path
 
     sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
-    result = run(quick="--quick" in sys.argv)
-    for row in result["rows"]:
-        print(row)
-    print(result["summary"])
+    from benchmarks.experiments import print_run
+
+    print_run(run)

@@ -3,8 +3,8 @@
     <python> child.py --package bl_ext.user_default.prism_spectral --root <add-on folder> \\
         --cache <kernel cache directory> --lock <lock file> [--cpu-target x86-64-v3]
 
-Run as a script by ``launch.start`` with ``sys.executable`` (Blender's bundled Python, or the tests'),
-never imported. numba's cache index is per module name (``engine.tracer.kernel_folder``), so the tracer
+Run as a script by ``launch.start`` with ``sys.executable`` (Blender's bundled Python, or the tests'); the
+add-on never imports it. numba's cache index is per module name (``engine.tracer.kernel_folder``), so the tracer
 is imported under the parent's package name: the packages on the way (``bl_ext``,
 ``bl_ext.user_default``, ``...prism_spectral``) are recreated as plain modules whose ``__path__`` leads to
 the add-on's folder, so the add-on's ``__init__`` (which imports bpy) never runs; ``engine`` and
@@ -45,8 +45,9 @@ def adopt_package(package: str, root: str) -> None:
                 setattr(sys.modules[".".join(parts[: depth - 1])], parts[depth - 1], module)
 
 
-def _compiled_count():
-    """A list that numba's compile events append to (one entry per function compiled, not loaded)."""
+def compile_counter():
+    """A list that numba's compile events append to (one entry per function compiled, not loaded); the
+    install check (``tools/check_extension_install.py``) counts a render's compiles with it too."""
     from numba.core import event
 
     compiled = []
@@ -73,7 +74,7 @@ def warm_up(package: str, cache: str, cpu_target: str | None = None) -> dict:
     jit.configure_cache(cache)
     if jit.cache_is_warm():
         return {"already_warm": True, "kernel_directory": str(jit.kernel_directory())}
-    compiled = _compiled_count()
+    compiled = compile_counter()
     renderer = importlib.import_module(f"{prefix}engine.tracer.renderer")
     settings = importlib.import_module(f"{prefix}engine.tracer.settings")
     work = importlib.import_module(f"{prefix}engine.warmup.scene")

@@ -198,6 +198,7 @@ def test_installed_zip_enables_and_renders(linux_zip):
     first, second = report["status_bar"]
     level = SHIPPED_LEVEL if kernel_target.host_supports(SHIPPED_LEVEL) else None
     assert report["kernel_target"] == level
+    assert report["counter_counts"], "the compile counter does not see the add-on's numba"
     if level is not None:
         assert report["compiled_by_first_render"] == 0, "the first render compiled despite the shipped kernels"
         assert first and not any(COMPILING in line for line in first), first
