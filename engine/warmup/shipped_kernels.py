@@ -19,6 +19,7 @@ faster, which the next session uses. Imports no numba (llvmlite only, to ask the
 from __future__ import annotations
 
 import json
+import os
 import shutil
 from pathlib import Path
 
@@ -61,8 +62,10 @@ def install(manifest: dict, root: Path = ADDON_ROOT) -> int:
     """Copy the shipped kernels into the user's cache for their CPU level and mark it warm; files copied.
 
     Each tracer folder's files go where numba looks for that folder's kernels (its name carries the
-    folder's absolute path, which differs from machine to machine). Compiled code first, indexes last,
-    the stamp after all: an interrupted copy leaves at worst an index whose code numba compiles again."""
+    folder's absolute path, which differs from machine to machine). Each file is written under a temporary
+    name and renamed into place, as numba writes its own (another Blender adopting at the same moment, or
+    reading, finds a file whole or not at all); compiled code first, indexes last, the stamp after all: an
+    interrupted copy leaves at worst an index whose code numba compiles again."""
     target = manifest["target"]
     shipped = root / FOLDER / target
     tracer_root = kernel_folder.tracer_source_folders()[0]
@@ -72,7 +75,9 @@ def install(manifest: dict, root: Path = ADDON_ROOT) -> int:
         relative = path.parent.relative_to(shipped)
         folder = destination / kernel_folder.numba_subfolder(tracer_root / relative)
         folder.mkdir(parents=True, exist_ok=True)
-        shutil.copyfile(path, folder / path.name)
+        partial = folder / f"{path.name}.{os.getpid()}.tmp"
+        shutil.copyfile(path, partial)
+        os.replace(partial, folder / path.name)
     kernel_folder.mark_cache_warm(target)
     return len(files)
 
