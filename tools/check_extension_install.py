@@ -163,8 +163,8 @@ def _render(bpy, image_path: Path, report: dict) -> None:
     report["counter_counts"] = len(compiled) > before
     target = importlib.import_module(f"{MODULE}.engine.tracer.kernel_target")
     report["kernel_target"] = target.current()
-    report["shipped_kernels"] = (Path(bpy.utils.user_resource("EXTENSIONS")) / "user_default" / ADDON_ID
-                                 / "kernels" / "manifest.json").is_file()
+    shipped = importlib.import_module(f"{MODULE}.engine.warmup.shipped_kernels")
+    report["shipped_kernels"] = shipped.read_manifest() is not None
     report["rendered"] = image_path.exists()
     report["modules_from"] = {m: getattr(sys.modules.get(m), "__file__", None) for m in HEAVY_MODULES}
     report["kernel_cache"] = _kernel_cache_facts(bpy)

@@ -58,9 +58,8 @@ def compile_kernels(stage: Path, package: str, cache: Path) -> dict:
 
 def cache_files(numba_directory: Path, stage: Path) -> dict[str, Path]:
     """numba's cache files by their place in the zip: ``kernels/<level>/<tracer folder>/<file>``."""
-    tracer = stage / "engine" / "tracer"
-    folders = {kernel_folder.numba_subfolder(f): f.relative_to(tracer).as_posix()
-               for f in [tracer, *(p for p in tracer.rglob("*") if p.is_dir())]}
+    tracer, *below = kernel_folder.tracer_source_folders(stage / "engine" / "tracer")
+    folders = {kernel_folder.numba_subfolder(f): f.relative_to(tracer).as_posix() for f in [tracer, *below]}
     files = {}
     for pattern in shipped_kernels.CACHE_PATTERNS:
         for path in numba_directory.glob(f"*/{pattern}"):

@@ -92,7 +92,7 @@ def measure(data: dict) -> tuple[list[dict], dict]:
     return rows, found
 
 
-def _sentence(scene: str, resolution, found: dict, target: float = 1.0) -> str:
+def scene_sentence(scene: str, resolution, found: dict, target: float = 1.0) -> str:
     prism, cycles = found["prism"], found["cycles"]
     extended = " (Cycles' curve extended past its measured times)" if found["extrapolated"] else ""
     products = prism["relmse_s"] / cycles["relmse_s"]
@@ -113,7 +113,7 @@ def run(quick: bool) -> dict:
         data = renders(scene, resolution, spp)
         scene_rows, found = measure(data)
         rows += [{"scene": scene, **row} for row in scene_rows]
-        sentences.append(_sentence(scene, resolution, found))
+        sentences.append(scene_sentence(scene, resolution, found))
         blender = str(data["blender"])
     summary = (
         f"Prism and Cycles {blender} (CPU) render the same bpy scenes, 2 threads each, {BOUNCES} bounces, box "

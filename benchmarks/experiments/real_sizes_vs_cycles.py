@@ -13,7 +13,7 @@ renderer's noise is measured against its own.
 
 from __future__ import annotations
 
-from benchmarks.experiments.media_vs_cycles import BOUNCES, _sentence, measure, renders
+from benchmarks.experiments.media_vs_cycles import BOUNCES, scene_sentence, measure, renders
 
 TITLE = "Equal time against Cycles at real sizes (the demo room at 960x540, mesh_1m at 512x512)"
 #: scene -> (full resolution, quick resolution)
@@ -30,7 +30,7 @@ def run(quick: bool) -> dict:
         data = renders(scene, resolution, spp)
         scene_rows, found = measure(data)
         rows += [{"scene": scene, **row} for row in scene_rows]
-        sentences.append(_sentence(scene, resolution, found, TARGET))
+        sentences.append(scene_sentence(scene, resolution, found, TARGET))
         ratios[scene] = found["equal_time"]
         blender = str(data["blender"])
     met = [scene for scene, ratio in ratios.items() if ratio <= TARGET]

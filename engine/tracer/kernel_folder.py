@@ -139,9 +139,15 @@ def numba_subfolder(source_folder: Path) -> str:
     return f"{os.path.basename(folder)}_{hashlib.sha1(folder.encode()).hexdigest()}"
 
 
-def tracer_source_folders() -> list[Path]:
-    """Every folder of the tracer's sources, as numba sees them (absolute, links not resolved)."""
-    root = Path(os.path.abspath(os.path.dirname(__file__)))
+def tracer_root() -> Path:
+    """This tracer's folder as numba sees its sources (absolute, links not resolved)."""
+    return Path(os.path.abspath(os.path.dirname(__file__)))
+
+
+def tracer_source_folders(root: Path | None = None) -> list[Path]:
+    """Every folder of the tracer's sources under ``root`` (default ``tracer_root()``; a staged copy's, for the
+    build): the root first."""
+    root = Path(os.path.abspath(root or tracer_root()))
     return [root, *sorted(p for p in root.rglob("*") if p.is_dir() and p.name != "__pycache__")]
 
 

@@ -68,7 +68,7 @@ def install(manifest: dict, root: Path = ADDON_ROOT) -> int:
     interrupted copy leaves at worst an index whose code numba compiles again."""
     target = manifest["target"]
     shipped = root / FOLDER / target
-    tracer_root = kernel_folder.tracer_source_folders()[0]
+    tracer_root = kernel_folder.tracer_root()
     destination = kernel_folder.numba_directory(target)
     files = sorted((p for pattern in CACHE_PATTERNS for p in shipped.rglob(pattern)), key=lambda p: p.suffix == ".nbi")
     for path in files:

@@ -68,7 +68,7 @@ def test_adopted_kernels_land_where_numba_looks_and_choose_the_level(tmp_path, c
     assert shipped_kernels.adopt(tmp_path) == LEVEL
     assert kernel_target.current() == LEVEL and kernel_folder.cache_is_warm(LEVEL)
     assert not kernel_folder.cache_is_warm(kernel_target.HOST)  # the warm-up still compiles this CPU's own
-    tracer = kernel_folder.tracer_source_folders()[0]
+    tracer = kernel_folder.tracer_root()
     level_folder = kernel_folder.numba_directory(LEVEL)
     top = level_folder / kernel_folder.numba_subfolder(tracer)
     stages = level_folder / kernel_folder.numba_subfolder(tracer / "stages")

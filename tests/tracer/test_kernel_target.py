@@ -21,7 +21,7 @@ def test_the_subfolder_of_each_tracer_folder_is_numbas():
     from numba.core.caching import _CacheLocator
 
     folders = kernel_folder.tracer_source_folders()
-    assert folders[0] == Path(os.path.abspath(kernel_folder.__file__)).parent
+    assert folders[0] == kernel_folder.tracer_root() == Path(os.path.abspath(kernel_folder.__file__)).parent
     assert {"stages", "bsdf", "media"} <= {f.name for f in folders}
     for folder in folders:
         assert kernel_folder.numba_subfolder(folder) == _CacheLocator.get_suitable_cache_subpath(str(folder / "m.py"))
@@ -44,12 +44,8 @@ _COMPILE = """
 import json, sys
 from engine.tracer import kernel_target
 kernel_target.use(sys.argv[1] or None)
-from numba.core import event
-compiled = []
-class Count(event.Listener):
-    def on_start(self, data): pass
-    def on_end(self, data): compiled.append(data)
-event.register("numba:compile", Count())
+from engine.warmup.child import compile_counter
+compiled = compile_counter()
 import numpy as np
 from engine.tracer import jit
 from engine.tracer.spectra import dispersion
