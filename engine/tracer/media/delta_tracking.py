@@ -18,7 +18,9 @@ j, the probability p_j = T_maj,j Π (μ_j − D σ_s,j)(x_i) [D σ_s,j](x_s); th
 so that long walks neither overflow nor underflow: only their ratio matters. With a constant density the
 expectation is the homogeneous medium's; a pure scatterer of one colour weighs every path exactly 1.
 
-Emission of grid media and equiangular sampling toward lights are not used here (``docs/media.md``).
+A walk that needs more than ``density_grid.MAX_TRACKING_STEPS`` tentative collisions ends the path (an
+opaque medium). Emission of grid media and equiangular sampling toward lights are not used here
+(``docs/media.md``).
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ from ..jit import inlined
 from ..sampler import grid_medium_uniforms, medium_slot, sample_2d
 from ..state import COLLAPSED
 from .coefficients import coefficients_at
+from .density_grid import MAX_TRACKING_STEPS
 from .grid_lookup import density_along, grid_span, index_ray
 
 
@@ -87,6 +90,10 @@ def track_grid_medium(state, i, t, media, spectra, settings, depth, sigma_t, sig
     collision = math.inf
     step = 0
     while True:
+        if step == MAX_TRACKING_STEPS:
+            for k in range(k_used):
+                state.throughput[i, k] = 0.0
+            return math.inf
         gap = -math.log1p(-u_distance) / mu_c if mu_c > 0.0 else math.inf
         if not s + gap < s1:  # no tentative collision before the grid's far side or the surface
             gap = s1 - s

@@ -36,6 +36,13 @@ class DensityGrid:
 #: exceeds it).
 GridArrays = namedtuple("GridArrays", "values offset shape world_to_index majorant")
 
+#: The most tentative collisions delta or ratio tracking takes along one ray segment. A walk takes about
+#: μ L of them (the majorant's optical depth across the segment), so a realistic medium stays far below;
+#: the bound keeps an absurd density (a multiplier of 1e20, where free flights fall below the resolution of
+#: a float64 distance and the walk would stand still) from hanging the render. A walk that reaches it
+#: counts as opaque: transmittance 0, the path ends.
+MAX_TRACKING_STEPS = 1 << 20
+
 
 def check_grid(grid: DensityGrid, medium_name: str) -> None:
     """Raise a ``PrismInputError`` naming the medium for a grid that cannot be rendered."""

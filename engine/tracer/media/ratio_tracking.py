@@ -5,7 +5,8 @@ each, every wavelength's estimate multiplied by 1 − D(x) σ_t,k / μ. The prod
 exp(-∫ D σ_t,k ds) per wavelength, in [0, 1]. The walk stops early once every estimate is 0.
 
 A shadow ray may take any number of steps, so its numbers are hashed (``sampler.INDEPENDENT``) from the
-path's sample, a key of the ray (its layer and where it starts) and the step.
+path's sample, a key of the ray (its layer and where it starts) and the step. A walk that needs more than
+``density_grid.MAX_TRACKING_STEPS`` of them counts as opaque.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import math
 from ..jit import inlined
 from ..sampler import INDEPENDENT, SLOT_RATIO_TRACKING, hash32, sample_1d
 from .coefficients import extinction_at
+from .density_grid import MAX_TRACKING_STEPS
 from .grid_lookup import density_along, grid_span, index_ray
 
 
@@ -51,6 +53,10 @@ def ratio_track(media, spectra, medium, wavelengths_nm, o, d, distance_m, values
     step = 0
     seed = pixel_seed ^ key
     while True:
+        if step == MAX_TRACKING_STEPS:
+            for k in range(wavelengths_nm.shape[0]):
+                values[k] = 0.0
+            return
         u = sample_1d(INDEPENDENT, seed, sample, SLOT_RATIO_TRACKING + step)
         step += 1
         s -= math.log1p(-u) / mu

@@ -6,7 +6,8 @@
 - delta tracking with spectral MIS through a chromatic grid (a ray from a fixed point): the throughput of the
   paths that pass estimates T_k(t) = exp(-D σ_t,k t), and that of the paths that scatter in a stretch
   [a, b) estimates ∫_a^b D σ_s,k T_k(s) ds, for every carried wavelength k, also for a collapsed path
-  (its hero alone).
+  (its hero alone);
+- an absurdly dense grid (free flights of 1e-26 m) ends every walk within ``MAX_TRACKING_STEPS``.
 
 Each mean is checked within 4.5 standard errors of its own estimate (fixed seeds)."""
 
@@ -20,7 +21,7 @@ import pytest
 from engine.tracer.errors import PrismInputError
 from engine.tracer.jit import kernel
 from engine.tracer.media.delta_tracking import track_grid_medium
-from engine.tracer.media.density_grid import DensityGrid
+from engine.tracer.media.density_grid import MAX_TRACKING_STEPS, DensityGrid
 from engine.tracer.media.ratio_tracking import ratio_track
 from engine.tracer.media.spec import MediumSpec
 from engine.tracer.media.table import build_media, coefficient_spectra
@@ -98,9 +99,9 @@ def _delta_track(state, media, spectra, settings, t, collisions, sigma_t, sigma_
         collisions[i] = track_grid_medium(state, i, t, media, spectra, settings, 0, sigma_t, sigma_s, f, p)
 
 
-def _delta_tracking(n, sampler, collapsed_hero=-1):
+def _delta_tracking(n, sampler, collapsed_hero=-1, values=None):
     density, t = 1.5, 1.3
-    media, spectra, sigma_s, sigma_t = _media(np.full((16, 16, 16), density))
+    media, spectra, sigma_s, sigma_t = _media(np.full((16, 16, 16), density) if values is None else values)
     k = len(WAVELENGTHS)
     state = new_path_state(n, k)
     state.medium[:] = 0
@@ -152,6 +153,27 @@ def test_a_white_scatterer_weighs_every_path_exactly_one():
                  *(np.empty(k) for _ in range(4)))
     assert np.isfinite(collisions).any() and np.isinf(collisions).any()
     assert np.allclose(state.throughput, 1.0, rtol=1e-12)
+
+
+def _absurdly_dense_half():
+    """A grid empty up to x = 0.7 m and of density 1e25 beyond: free flights of ~1e-26 m, so a walk from x = 0
+    would take ~1e25 steps to reach the dense half without the bound."""
+    values = np.zeros((16, 16, 16), np.float32)
+    values[8:] = 1e25
+    return values
+
+
+def test_an_absurdly_dense_grid_ends_every_walk_within_the_bound():
+    # Shadow rays across the dense half: the transmittance is exp(-1e25), 0 in any float.
+    mean, _, _ = _ratio_mean(_absurdly_dense_half(), (0.0, 0.75, 0.75), (1.0, 0.0, 0.0), 1.5, n=8)
+    assert np.all(mean == 0.0)
+    # Paths from the empty half: each walk ends (the test returns), its path with a weight of 0 (counted as
+    # opaque) or scattered in the dense half, never a NaN or an infinite weight.
+    collisions, weights, _, _, _ = _delta_tracking(8, INDEPENDENT, values=_absurdly_dense_half())
+    ended = np.all(weights == 0.0, axis=1)
+    assert np.all(np.isfinite(weights)) and np.all(weights >= 0.0)
+    assert np.all(ended | ((collisions >= 0.7) & (collisions < 1.3)))
+    print("MEASURED absurdly dense grid: walks ended as opaque", int(ended.sum()), "of", len(ended))
 
 
 def test_a_grid_medium_that_emits_is_refused():
