@@ -54,29 +54,51 @@ def read_mesh(obj, request: AttributeRequest | None = None, warn=None) -> LocalM
             return None
         vertices = np.empty(vertex_count * 3, np.float32)
         mesh.vertices.foreach_get("co", vertices)
-        triangles = np.empty(triangle_count * 3, np.int32)
-        mesh.loop_triangles.foreach_get("vertices", triangles)
-        slot_index = np.empty(triangle_count, np.int32)
-        mesh.loop_triangles.foreach_get("material_index", slot_index)
         loops = np.empty(triangle_count * 3, np.int32)
         mesh.loop_triangles.foreach_get("loops", loops)
+        polygon = np.empty(triangle_count, np.int32)
+        mesh.loop_triangle_polygons.foreach_get("value", polygon)
         normals = np.empty(len(mesh.loops) * 3, np.float32)
         mesh.corner_normals.foreach_get("vector", normals)
-        smooth = np.empty(triangle_count, bool)
-        mesh.loop_triangles.foreach_get("use_smooth", smooth)
+        slot_index = _per_triangle(mesh, "material_index", "INT", polygon, 0).astype(np.int32)
         local = LocalMesh(
             vertices=vertices.reshape(-1, 3).astype(np.float64),
-            triangles=triangles.reshape(-1, 3),
+            triangles=_corner_vertices(mesh, loops).reshape(-1, 3),
             slot_index=slot_index,
             corner_normals=normals.reshape(-1, 3)[loops].reshape(-1, 3, 3),
             slot_materials=[slot.material for slot in obj.material_slots],
-            flat=~smooth,
+            flat=_per_triangle(mesh, "sharp_face", "BOOLEAN", polygon, False),
         )
         if request is not None:
             _read_attributes(obj, mesh, local, loops, request, warn)
         return local
     finally:
         obj.to_mesh_clear()
+
+
+def _corner_vertices(mesh, loops: np.ndarray) -> np.ndarray:
+    """The vertex of each of ``loops`` (corners), int32. Read from the corner attribute Blender keeps them in:
+    a hundred times faster than ``loop_triangles``' "vertices" or ``loops``' "vertex_index", which go through
+    Python's per-element access (0.15 s against 0.001 s for a million triangles)."""
+    corner_vert = mesh.attributes.get(".corner_vert")
+    if corner_vert is None or corner_vert.domain != "CORNER":  # not in Blender's layout: ask per triangle
+        vertices = np.empty(len(loops), np.int32)
+        mesh.loop_triangles.foreach_get("vertices", vertices)
+        return vertices
+    values = np.empty(len(mesh.loops), np.int32)
+    corner_vert.data.foreach_get("value", values)
+    return values[loops]
+
+
+def _per_triangle(mesh, name: str, data_type: str, polygon: np.ndarray, default) -> np.ndarray:
+    """A face attribute (``material_index``, ``sharp_face``) at each triangle's face ``polygon``; ``default``
+    everywhere when the mesh has none (Blender stores them only once a face differs)."""
+    attribute = mesh.attributes.get(name)
+    if attribute is None or attribute.domain != "FACE" or attribute.data_type != data_type:
+        return np.full(len(polygon), default)
+    values = np.empty(len(mesh.polygons), np.int32 if data_type == "INT" else bool)
+    attribute.data.foreach_get("value", values)
+    return values[polygon]
 
 
 def _read_attributes(obj, mesh, local, loops, request, warn):

@@ -345,6 +345,8 @@ class Scene:
         # Per vertex, then gathered per triangle: a loose vertex no triangle uses cannot spoil the image.
         with np.errstate(invalid="ignore"):
             reach = np.abs(self.vertices).max(axis=1)
+        if np.all(reach <= MAX_DISTANCE_M):  # every vertex fine (NaN compares False): no gathering needed
+            return
         bad = ~np.isfinite(reach)[triangles].all(axis=1)
         if bad.any():
             name = self.object_name_of_triangle(int(np.flatnonzero(bad)[0]))
