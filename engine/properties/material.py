@@ -13,8 +13,10 @@ DEFAULT_GLASS = "N-BK7"
 
 GLASS_SOURCE_ITEMS = [
     ("PRINCIPLED_IOR", "Constant IOR", "The Principled BSDF's IOR at every wavelength: no dispersion", 0),
-    ("CATALOGUE", "Catalogue Glass", "A named glass from the manufacturers' catalogues (Sellmeier dispersion)", 1),
-    ("ABBE", "Abbe Number", "A glass defined by its refractive index n_d and Abbe number V_d", 2),
+    ("CATALOGUE", "Catalogue Glass", "A named glass from the manufacturers' catalogues (Sellmeier dispersion: "
+     "a path through it keeps one wavelength, so its light is noisier in colour)", 1),
+    ("ABBE", "Abbe Number", "A glass defined by its refractive index n_d and Abbe number V_d (dispersive, as "
+     "Catalogue Glass)", 2),
 ]
 
 CONDUCTOR_ITEMS = [
