@@ -60,22 +60,26 @@ def check_grid(grid: DensityGrid, medium_name: str) -> None:
 def build_grids(grids, origin=None) -> GridArrays:
     """``GridArrays`` for a list of ``DensityGrid`` (negative densities clamped to 0: a medium's
     coefficients are never negative); ``origin`` (m, [3]) the point the kernels' positions are relative
-    to."""
-    offset = np.zeros(max(len(grids), 1), np.int64)
-    shape = np.ones((max(len(grids), 1), 3), np.int64)
-    world_to_index = np.zeros((max(len(grids), 1), 3, 4))
-    majorant = np.zeros(max(len(grids), 1))
-    chunks, first = [], 0
+    to. Grids that hold the same ``values`` array (instances of one Volume object) share its voxels: one
+    copy, each grid its own transform."""
+    count = max(len(grids), 1)
+    offset = np.zeros(count, np.int64)
+    shape = np.ones((count, 3), np.int64)
+    world_to_index = np.zeros((count, 3, 4))
+    majorant = np.zeros(count)
+    chunks, first, stored = [], 0, {}  # stored: id of a grid's values → (offset, majorant)
     shift = np.zeros(3) if origin is None else np.asarray(origin, dtype=np.float64)
     for g, grid in enumerate(grids):
-        values = np.maximum(np.ascontiguousarray(grid.values, dtype=np.float32), 0.0)
         inverse = np.linalg.inv(np.asarray(grid.index_to_world, dtype=np.float64))
         # index = A (p + origin) + b for a position p relative to the origin
         world_to_index[g, :, :3] = inverse[:3, :3]
         world_to_index[g, :, 3] = inverse[:3, :3] @ shift + inverse[:3, 3]
-        offset[g], shape[g] = first, values.shape
-        majorant[g] = float(values.max())
-        chunks.append(values.ravel())
-        first += values.size
+        shape[g] = np.shape(grid.values)
+        if id(grid.values) not in stored:  # ``grids`` holds every values array, so no id is reused meanwhile
+            values = np.maximum(np.ascontiguousarray(grid.values, dtype=np.float32), 0.0)
+            stored[id(grid.values)] = first, float(values.max())
+            chunks.append(values.ravel())
+            first += values.size
+        offset[g], majorant[g] = stored[id(grid.values)]
     values = np.concatenate(chunks) if chunks else np.zeros(1, np.float32)
     return GridArrays(values, offset, shape, world_to_index, majorant)
