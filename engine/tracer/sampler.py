@@ -189,9 +189,9 @@ def shader_ray_slot(depth, kind):
 
 @kernel
 def subsurface_slot(depth, step, which):
-    """The 2-D slot of decision ``which`` (0: wavelength and distance, 1: direction) of step ``step`` of the
-    random walk that starts at bounce ``depth``."""
-    return SLOT_SUBSURFACE + depth * SUBSURFACE_SLOTS_PER_BOUNCE + 2 * step + which
+    """The 2-D slot of decision ``which`` (0: wavelength and distance, 1: direction, 2: guided or not) of step
+    ``step`` of the random walk that starts at bounce ``depth``."""
+    return SLOT_SUBSURFACE + depth * SUBSURFACE_SLOTS_PER_BOUNCE + 3 * step + which
 
 
 @kernel

@@ -2,15 +2,17 @@
 
 From the entry point the path flies through the closure's medium (``coefficients``): at each step a carried
 wavelength c is chosen with probability ∝ |throughput × α| (one-sample MIS, balance heuristic, as Cycles does
-over its three channels), a distance drawn from σ_t(c) e^(−σ_t(c) s), and the first surface of the same
+over its three channels), a direction (after the first step) from the phase function or, part of the time,
+guided toward the entry surface (``guiding``, as Cycles), a distance drawn from σ_t(c) e^(−σ_t(c) s) (stretched
+along a guided direction), and the first surface of the same
 object along the way (other objects are stepped past, as Cycles' local intersection ignores them) ends the
-walk there: the exit. Each wavelength k is weighted by its own f_k over Σ_j p_j f_j: σ_s,k T_k(s) for a
-collision, T_k(s) for the exit, T = e^(−σ_t s). A collision scatters by Henyey-Greenstein with the
+walk there: the exit. Each wavelength k is weighted by its own f_k over Σ_j P_j p_j, P_j the probability of
+choosing wavelength j and p_j the density of the step under it, mixed over the two direction strategies:
+f_k = σ_s,k T_k(s) for a collision, T_k(s) for the exit, T = e^(−σ_t s). A collision scatters by Henyey-Greenstein with the
 closure's anisotropy; past step 9, isotropically with σ_s reduced to σ_s (1 − g) (similarity, as Cycles).
 A walk ends unfinished after 256 steps or once its throughput falls below 1e-6 (Cycles' bounds).
 
-Not done as in Cycles: its Dwivedi-guided directions (a variance reduction, same expectation) and its first
-ray's look for the opposite side; directions here are always phase-sampled.
+Not done as in Cycles: its first ray's look for the opposite side (and the backward guiding it enables).
 """
 
 from __future__ import annotations
@@ -24,9 +26,10 @@ from ..geometry import offset_origin
 from ..jit import inlined
 from ..materials.hit_inputs import object_row
 from ..materials.shader_rays import step_past
-from ..media.phase import hg_sample
+from ..media.phase import ISOTROPIC_G, hg_sample, hg_value
 from ..sampler import sample_2d, subsurface_slot
 from .coefficients import walk_coefficients
+from .guiding import diffusion_length, guided_cosine, guided_direction, guided_fraction, guided_pdf
 
 MAX_STEPS = 256
 #: Steps after which the walk scatters isotropically with reduced coefficients (Cycles' similarity level).
@@ -72,6 +75,22 @@ def _setup(row, spectral, throughput, sigma_t, alpha):
 
 
 @inlined
+def _phase_pdf(d_from, d_to, g):
+    """The density per steradian with which ``hg_sample`` draws ``d_to`` after ``d_from``."""
+    if abs(g) < ISOTROPIC_G:
+        return 0.25 / math.pi
+    return hg_value(d_from[0] * d_to[0] + d_from[1] * d_to[1] + d_from[2] * d_to[2], g)
+
+
+@inlined
+def _flight_density(sigma, t, exits):
+    """The density (a collision at ``t``) or probability (no collision before the exit at ``t``) of a flight
+    drawn with extinction ``sigma``."""
+    transmittance = math.exp(-sigma * t)
+    return transmittance if exits else sigma * transmittance
+
+
+@inlined
 def random_walk(rays, attributes, own, row, spectral, p, ng, direction, throughput, scratch):
     """Walk from ``p`` (camera-relative, on object ``own``'s surface of geometric normal ``ng``) along
     ``direction`` (into the surface) with the closure ``row`` / ``spectral`` resolved at the entry;
@@ -82,6 +101,15 @@ def random_walk(rays, attributes, own, row, spectral, p, ng, direction, throughp
     sigma_t, alpha, channel_pdf = scratch[0], scratch[1], scratch[2]
     _setup(row, spectral, throughput, sigma_t, alpha)
     g = row[C_SSS_ANISOTROPY]
+    # Guided toward the entry surface's outward normal (``ng`` faces the side the path came from), with the
+    # diffusion length of the most scattering wavelength (Cycles: too low a length gives fireflies).
+    most = 0.0
+    for k in range(k_count):
+        most = max(most, alpha[k])
+    nu = diffusion_length(most) if most > 0.0 else math.inf
+    log_ratio = math.log((nu + 1.0) / (nu - 1.0)) if 1.0 < nu < math.inf else 0.0
+    length = math.sqrt(ng[0] * ng[0] + ng[1] * ng[1] + ng[2] * ng[2])
+    n = (ng[0] / length, ng[1] / length, ng[2] / length)
     position = offset_origin(p, ng, direction)
     d = direction
     for step in range(MAX_STEPS):
@@ -104,10 +132,26 @@ def random_walk(rays, attributes, own, row, spectral, p, ng, direction, throughp
                 break
         for k in range(k_count):
             channel_pdf[k] /= total
+        # The first flight keeps the entry's direction; later ones mix phase sampling with guiding.
+        share, guided, stretch, guide_ratio = 0.0, False, 1.0, 0.0
         if step > 0:
             u1, u2 = sample_2d(rays.kind, rays.seed, rays.sample, subsurface_slot(rays.depth, step, 1))
-            d, _ = hg_sample(d, g_step, u1, u2)
+            if log_ratio > 0.0:
+                share = guided_fraction(g, similar)
+                u_strategy, _ = sample_2d(rays.kind, rays.seed, rays.sample, subsurface_slot(rays.depth, step, 2))
+                guided = u_strategy < share
+            previous = d
+            if guided:
+                d = guided_direction(n, guided_cosine(nu, log_ratio, u1), u2)
+            else:
+                d, _ = hg_sample(d, g_step, u1, u2)
+            if share > 0.0:
+                mu = d[0] * n[0] + d[1] * n[1] + d[2] * n[2]
+                stretch = 1.0 - mu / nu
+                guide_ratio = guided_pdf(nu, log_ratio, mu) / _phase_pdf(previous, d, g_step)
         sigma_c = sigma_t[c] * (1.0 - alpha[c] * g) if similar else sigma_t[c]
+        if guided:
+            sigma_c *= stretch
         t = -math.log(1.0 - u_distance) / sigma_c
         hit, t_hit, u, v = _own_hit(rays, attributes, own, position, d, t)
         exits = hit >= 0
@@ -117,9 +161,12 @@ def random_walk(rays, attributes, own, row, spectral, p, ng, direction, throughp
         mixture = 0.0
         for k in range(k_count):  # the mixture's pdf; channel_pdf[k] then holds wavelength k's own f
             s_t = sigma_t[k] * (1.0 - alpha[k] * g) if similar else sigma_t[k]
-            transmittance = math.exp(-s_t * t)
-            mixture += channel_pdf[k] * (transmittance if exits else s_t * transmittance)
+            density = _flight_density(s_t, t, exits)
+            if share > 0.0:  # phase-sampled and guided steps, relative to the phase function's density
+                density = (1.0 - share) * density + share * guide_ratio * _flight_density(stretch * s_t, t, exits)
+            mixture += channel_pdf[k] * density
             s_s = s_t - sigma_t[k] * (1.0 - alpha[k])  # σ_s (1 − g) past the similarity level, else σ_s
+            transmittance = math.exp(-s_t * t)
             channel_pdf[k] = transmittance if exits else s_s * transmittance
         largest = 0.0
         for k in range(k_count):
