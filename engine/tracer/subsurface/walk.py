@@ -3,14 +3,14 @@
 From the entry point the path flies through the closure's medium (``coefficients``): at each step a carried
 wavelength c is chosen with probability ∝ |throughput × α| (one-sample MIS, balance heuristic, as Cycles does
 over its three channels), a direction (after the first step) from the phase function or, part of the time,
-guided toward the entry surface (``guiding``, as Cycles), a distance drawn from σ_t(c) e^(−σ_t(c) s) (stretched
-along a guided direction), and the first surface of the same
-object along the way (other objects are stepped past, as Cycles' local intersection ignores them) ends the
-walk there: the exit. Each wavelength k is weighted by its own f_k over Σ_j P_j p_j, P_j the probability of
-choosing wavelength j and p_j the density of the step under it, mixed over the two direction strategies:
-f_k = σ_s,k T_k(s) for a collision, T_k(s) for the exit, T = e^(−σ_t s). A collision scatters by Henyey-Greenstein with the
-closure's anisotropy; past step 9, isotropically with σ_s reduced to σ_s (1 − g) (similarity, as Cycles).
-A walk ends unfinished after 256 steps or once its throughput falls below 1e-6 (Cycles' bounds).
+guided toward the entry surface (``guiding``, as Cycles), a distance drawn from σ_t(c) e^(−σ_t(c) s)
+(stretched along a guided direction), and the first surface of the same object along the way (other objects
+are stepped past, as Cycles' local intersection ignores them) ends the walk there: the exit. Each wavelength
+k is weighted by its own f_k over Σ_j P_j p_j, P_j the probability of choosing wavelength j and p_j the
+density of the step under it, mixed over the two direction strategies: f_k = σ_s,k T_k(s) for a collision,
+T_k(s) for the exit, T = e^(−σ_t s). A collision scatters by Henyey-Greenstein with the closure's anisotropy;
+past step 9, isotropically with σ_s reduced to σ_s (1 − g) (similarity, as Cycles). A walk ends unfinished
+after 256 steps or once its throughput falls below 1e-6 (Cycles' bounds).
 
 Not done as in Cycles: its first ray's look for the opposite side (and the backward guiding it enables).
 """
