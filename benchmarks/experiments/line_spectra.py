@@ -10,7 +10,7 @@ import numpy as np
 
 from benchmarks.prism_runs import settings_for
 from benchmarks.scenes import build
-from engine.tracer import renderer as renderer_module
+from engine.tracer import scene_tables
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import SampledSpectrum, SpectrumSpec
 from engine.tracer.spectra import cie
@@ -46,13 +46,14 @@ SPIKY = {f"2 lines {LINES_NM[0]} + {LINES_NM[1]} nm", "FL11 (tri-band fluorescen
 
 @contextmanager
 def _unguided():
-    """The cie sampler as before issue 16: the visible density only (lines apart)."""
-    build_guide = renderer_module.build_guide
-    renderer_module.build_guide = lambda *_: None
+    """The cie sampler as before issue 16: the visible density only (lines apart). The scene's tables build
+    the guide (``scene_tables``), so that is where it is turned off."""
+    build_guide = scene_tables.build_guide
+    scene_tables.build_guide = lambda *_: None
     try:
         yield
     finally:
-        renderer_module.build_guide = build_guide
+        scene_tables.build_guide = build_guide
 
 
 def _lamp_white(spec):
