@@ -31,6 +31,8 @@ from engine.tracer.spectra.table import SpectrumTable
 from engine.tracer.spectra.wavelengths import VISIBLE_NM_GRID
 from engine.tracer.state import COLLAPSED, new_path_state
 
+from .segment_checks import assert_segment_estimates
+
 VOXEL_M = 0.1
 WAVELENGTHS = np.array([450.0, 520.0, 600.0, 680.0])
 SCATTER = [(3.0, (0.9, 0.5, 0.2))]
@@ -125,16 +127,8 @@ def test_delta_tracking_with_spectral_mis_estimates_transmittance_and_collisions
     carried = [hero] if hero >= 0 else range(len(WAVELENGTHS))
     passed = np.isinf(collisions)
     assert np.all(collisions[~passed] < t) and np.all(collisions[~passed] > 0.0)
-    checks = [(passed, np.exp(-s_t * t), "passes")]
-    for a, b in ((0.0, 0.3), (0.3, 0.7), (0.7, t)):
-        inside = (collisions >= a) & (collisions < b)
-        checks.append((inside, s_s / s_t * (np.exp(-s_t * a) - np.exp(-s_t * b)), f"scatters in [{a}, {b:.1f})"))
-    for chosen, expected, what in checks:
-        estimate = np.where(chosen[:, None], weights, 0.0)
-        mean, stderr = estimate.mean(0), estimate.std(0) / math.sqrt(n)
-        print(f"MEASURED delta tracking {what} (sampler {sampler}, hero {hero}): estimate / closed form",
-              np.round(mean[carried] / expected[carried], 4).tolist())
-        assert np.all(np.abs(mean - expected)[carried] < 4.5 * stderr[carried] + 1e-12)
+    assert_segment_estimates(collisions, weights, s_s, s_t, t, ((0.0, 0.3), (0.3, 0.7), (0.7, t)), carried,
+                             f"delta tracking (sampler {sampler}, hero {hero})")
 
 
 def test_a_white_scatterer_weighs_every_path_exactly_one():

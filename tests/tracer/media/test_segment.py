@@ -24,6 +24,8 @@ from engine.tracer.spectra.table import SpectrumTable
 from engine.tracer.spectra.wavelengths import VISIBLE_NM_GRID
 from engine.tracer.state import COLLAPSED, new_path_state
 
+from .segment_checks import assert_segment_estimates
+
 WAVELENGTHS = np.array([450.0, 520.0, 600.0, 680.0])
 T = 1.3
 Settings = namedtuple("Settings", "sampler equiangular")
@@ -72,16 +74,9 @@ def test_equiangular_segments_estimate_transmittance_and_collisions(sampler, her
     carried = [hero] if hero >= 0 else list(range(len(WAVELENGTHS)))
     passed = np.isinf(collisions)
     assert np.all((collisions[~passed] >= 0.0) & (collisions[~passed] < T))
-    checks = [(passed, np.exp(-s_t * T), "passes")]
-    for a, b in ((0.0, 0.3), (0.3, 0.45), (0.45, 0.75), (0.75, T)):  # the light is nearest the ray at 0.5 m
-        inside = (collisions >= a) & (collisions < b)
-        checks.append((inside, s_s / s_t * (np.exp(-s_t * a) - np.exp(-s_t * b)), f"scatters in [{a}, {b})"))
-    for chosen, expected, what in checks:
-        estimate = np.where(chosen[:, None], weights, 0.0)
-        mean, stderr = estimate.mean(0), estimate.std(0) / math.sqrt(n)
-        print(f"MEASURED segment {what} (sampler {sampler}, hero {hero}): estimate / closed form",
-              np.round(mean[carried] / expected[carried], 4).tolist())
-        assert np.all(np.abs(mean - expected)[carried] < 4.5 * stderr[carried] + 1e-12)
+    stretches = ((0.0, 0.3), (0.3, 0.45), (0.45, 0.75), (0.75, T))  # the light is nearest the ray at 0.5 m
+    assert_segment_estimates(collisions, weights, s_s, s_t, T, stretches, carried,
+                             f"segment (sampler {sampler}, hero {hero})")
     # Distance sampling in half the segments and in the sun's picks of the other half (0.3 of it).
     share = (1.0 - 0.7 / 2) * np.exp(-s_s[carried] * T).mean()
     print(f"MEASURED share of paths reaching the surface: {passed.mean():.4f} (expected {share:.4f})")
