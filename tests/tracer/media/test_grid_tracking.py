@@ -7,7 +7,7 @@
   paths that pass estimates T_k(t) = exp(-D σ_t,k t), and that of the paths that scatter in a stretch
   [a, b) estimates ∫_a^b D σ_s,k T_k(s) ds, for every carried wavelength k, also for a collapsed path
   (its hero alone);
-- an absurdly dense grid (free flights of 1e-26 m) ends every walk within ``MAX_TRACKING_STEPS``.
+- an absurdly dense grid (free flights of 1e-26 m) ends every walk within ``density_grid.MAX_TRACKING_STEPS``.
 
 Each mean is checked within 4.5 standard errors of its own estimate (fixed seeds)."""
 
@@ -21,7 +21,7 @@ import pytest
 from engine.tracer.errors import PrismInputError
 from engine.tracer.jit import kernel
 from engine.tracer.media.delta_tracking import track_grid_medium
-from engine.tracer.media.density_grid import MAX_TRACKING_STEPS, DensityGrid
+from engine.tracer.media.density_grid import DensityGrid
 from engine.tracer.media.ratio_tracking import ratio_track
 from engine.tracer.media.spec import MediumSpec
 from engine.tracer.media.table import build_media, coefficient_spectra
