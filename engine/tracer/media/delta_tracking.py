@@ -18,9 +18,10 @@ j, the probability p_j = T_maj,j Π (μ_j − D σ_s,j)(x_i) [D σ_s,j](x_s); th
 so that long walks neither overflow nor underflow: only their ratio matters. With a constant density the
 expectation is the homogeneous medium's; a pure scatterer of one colour weighs every path exactly 1.
 
-A walk that needs more than ``density_grid.MAX_TRACKING_STEPS`` tentative collisions ends the path (an
-opaque medium). Emission of grid media and equiangular sampling toward lights are not used here
-(``docs/media.md``).
+An emitting grid medium adds ``MediaArrays.emission_rate`` to every μ_k (a null rate: σ_n grows by as much)
+and gathers its emission at each tentative collision (``grid_emission``), over the span of its density and
+temperature grids. A walk that needs more than ``density_grid.MAX_TRACKING_STEPS`` tentative collisions ends
+the path (an opaque medium). Equiangular sampling toward lights is not used here (``docs/media.md``).
 """
 
 from __future__ import annotations
@@ -32,19 +33,22 @@ from ..sampler import grid_medium_uniforms, medium_slot, sample_2d
 from ..state import COLLAPSED
 from .coefficients import coefficients_at
 from .density_grid import MAX_TRACKING_STEPS
+from .grid_emission import gather_emission
 from .grid_lookup import density_along, grid_span, index_ray
 
 
 @inlined
-def _null_or_scatter(f, p, sigma_t, sigma_s, scale_t, k_used, channel, collapsed, density, gap, scatters):
+def _null_or_scatter(f, p, sigma_t, sigma_s, walk, k_used, density, gap, scatters):
     """Multiply ``f``, ``p`` by one tentative collision's factors (``gap`` after the previous one, divided by
-    the chosen channel's exp(-μ_c gap) μ_c = ``scale_t``), then by the largest p."""
-    mu_c = scale_t * sigma_t[channel]
+    the chosen channel's exp(-μ_c gap) μ_c), then by the largest p. ``walk``: (medium, channel, collapsed,
+    scale_t, extra), μ_k = scale_t σ_t,k + extra."""
+    _, channel, collapsed, scale_t, extra = walk
+    mu_c = scale_t * sigma_t[channel] + extra
     largest = 0.0
     for k in range(k_used):
         if collapsed and k != channel:
             continue
-        mu_k = scale_t * sigma_t[k]
+        mu_k = scale_t * sigma_t[k] + extra
         common = math.exp(-(mu_k - mu_c) * gap) / mu_c
         if scatters:
             f[k] *= common * density * sigma_s[k]
@@ -75,17 +79,26 @@ def track_grid_medium(state, i, t, media, spectra, settings, depth, sigma_t, sig
     d = (state.direction[i, 0], state.direction[i, 1], state.direction[i, 2])
     o2, d2 = index_ray(grids, g, o, d)
     s0, s1 = grid_span(grids, g, o2, d2, t)
+    emits = media.emission_strength[medium] > 0.0
+    hot = media.emission_grid[medium]
+    o3, d3 = index_ray(grids, max(hot, 0), o, d)
+    if emits and hot >= 0:  # the temperature grid's voxels glow where the density's may not reach
+        e0, e1 = grid_span(grids, hot, o3, d3, t)
+        if e0 < e1:
+            s0, s1 = (min(s0, e0), max(s1, e1)) if s0 < s1 else (e0, e1)
     if not s0 < s1:
         return math.inf  # the ray misses the grid's voxels: density 0 all along, transmittance 1
     coefficients_at(media, spectra, medium, lam, sigma_t, sigma_s)
     collapsed = state.flags[i] & COLLAPSED != 0
     u_channel, u_distance = sample_2d(settings.sampler, state.seed[i], state.sample[i], medium_slot(depth))
     channel = state.hero[i] if collapsed else min(int(u_channel * k_used), k_used - 1)
-    scale_t = grids.majorant[g]  # μ_k = scale_t σ_t,k
+    scale_t = grids.majorant[g]  # μ_k = scale_t σ_t,k + extra
+    extra = media.emission_rate[medium] if emits else 0.0
+    walk = (medium, channel, collapsed, scale_t, extra)
     for k in range(k_used):
         f[k] = 1.0
         p[k] = 1.0
-    mu_c = scale_t * sigma_t[channel]
+    mu_c = scale_t * sigma_t[channel] + extra
     s = s0
     collision = math.inf
     step = 0
@@ -106,10 +119,13 @@ def track_grid_medium(state, i, t, media, spectra, settings, depth, sigma_t, sig
             break
         s += gap
         density = density_along(grids, g, o2, d2, s)
+        if emits:
+            value = density_along(grids, hot, o3, d3, s) if hot >= 0 else 0.0
+            gather_emission(state, i, media, spectra, value, walk, f, p, sigma_t, gap)
         u_event, u_distance = grid_medium_uniforms(settings.sampler, state.seed[i], state.sample[i], depth, step)
         step += 1
         scatters = u_event * mu_c < density * sigma_s[channel]
-        _null_or_scatter(f, p, sigma_t, sigma_s, scale_t, k_used, channel, collapsed, density, gap, scatters)
+        _null_or_scatter(f, p, sigma_t, sigma_s, walk, k_used, density, gap, scatters)
         if scatters:
             collision = s
             break

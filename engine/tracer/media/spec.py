@@ -7,7 +7,8 @@ Emission Strength × Emission Color) is radiance added per metre travelled, not 
 its blackbody emission, σ_SB 10⁻⁶ / π × mix(1, T⁴, Blackbody Intensity) × Blackbody Tint × the blackbody
 colour of luminance 1 at Temperature T. Prism upsamples each colour to a reflectance spectrum
 (``spectra.rgb_to_spectrum``) and uses Planck's law for the blackbody, so σ_s, σ_a and the emission are
-functions of wavelength.
+functions of wavelength. A Volume object's Temperature Attribute grid multiplies the Temperature point
+by point (``temperature_grid``).
 """
 
 from __future__ import annotations
@@ -23,7 +24,12 @@ class MediumSpec:
     emitted radiance per metre: strength × the RGB emission of ``rgb`` when ``temperature_k`` is None, else
     strength × the luminance-1 blackbody spectrum at ``temperature_k`` tinted by ``rgb``; ``density_grid``
     (a ``density_grid.DensityGrid``), when set, multiplies σ_s and σ_a point by point (a grid medium: delta
-    and ratio tracking; it may not emit), else the medium is homogeneous."""
+    and ratio tracking), else the medium is homogeneous. ``blackbody``: the Principled Volumes' blackbody
+    settings as (weight, blackbody intensity, temperature_k, tint rgb), kept beside their ``emission`` term
+    (evaluated at temperature_k) for a ``temperature_grid`` (a ``DensityGrid``, with a ``density_grid``
+    only): when set, the temperature is temperature_k × max(grid value, 0) point by point, as Cycles'
+    Temperature Attribute, and those terms replace the blackbody terms of ``emission``
+    (``temperature_emission``)."""
 
     name: str
     scatter: list = field(default_factory=list)
@@ -31,3 +37,5 @@ class MediumSpec:
     anisotropy: float = 0.0
     emission: list = field(default_factory=list)
     density_grid: object = None
+    blackbody: list = field(default_factory=list)
+    temperature_grid: object = None

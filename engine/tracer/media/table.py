@@ -6,7 +6,11 @@ with ``emission_strength`` [M] (radiance per metre per unit strength, as surface
 ``anisotropy`` [M] (Henyey-Greenstein g); ``grid`` [M] (-1: homogeneous, else the row of ``grids``, a
 ``density_grid.GridArrays``, whose density scales σ_s and σ_a: the one flag the kernels branch on). The
 emission is the sum of the medium's emission terms (``spec.MediumSpec``) tabulated as one spectrum, of
-strength 1.
+strength 1; a grid medium's emission varies with the value of its ``emission_grid`` [M] (a row of ``grids``,
+-1: none, the same everywhere): ``emission_rows`` [M] spectra from id ``emission`` on, one per
+``emission_step`` [M] of the grid's value (``temperature_emission``). ``emission_rate`` [M] (per metre) is
+added to an emitting grid medium's majorant so that delta tracking gathers its emission where nothing
+scatters (``grid_emission``).
 """
 
 from __future__ import annotations
@@ -17,9 +21,15 @@ import numpy as np
 
 from ..errors import PrismInputError
 from .density_grid import build_grids, check_grid
+from .temperature_emission import emission_key, emission_rows
 from ..spectra.wavelengths import VISIBLE_MIN_NM, VISIBLE_NM_GRID
 
-MediaArrays = namedtuple("MediaArrays", "scattering absorption emission emission_strength anisotropy grid grids")
+MediaArrays = namedtuple("MediaArrays", "scattering absorption emission emission_strength anisotropy grid grids "
+                                         "emission_grid emission_rows emission_step emission_rate")
+
+#: Tentative collisions per voxel (of the finest grid's smallest edge) that an emitting grid medium's walk
+#: takes at least, to gather its emission as Cycles 4.5 gathers it once per ray-marching step of a voxel.
+EMISSION_SAMPLES_PER_VOXEL = 1.0
 
 #: g is kept inside (-1, 1): at |g| = 1 the phase function is a delta and its density infinite.
 MAX_ANISOTROPY = 0.999
@@ -83,9 +93,34 @@ def _check(spec):
     grid = getattr(spec, "density_grid", None)
     if grid is not None:
         check_grid(grid, spec.name)
-        if any(strength > 0.0 for strength, *_ in spec.emission):
-            raise PrismInputError(f"Volume '{spec.name}': a medium driven by a density grid cannot emit in Prism "
-                                  "yet; leave its emission out.")
+    if spec.temperature_grid is not None:
+        if grid is None:
+            raise ValueError(f"medium '{spec.name}': a temperature grid needs a density grid")
+        check_grid(spec.temperature_grid, spec.name)
+
+
+def _emission(spec, spectra, key):
+    """(first spectrum id or -1, rows, grid value per row) of a medium's emission (``MediaArrays``)."""
+    if spec.temperature_grid is None:
+        emitted = emission_on_grid(spec)
+        if not emitted.max() > 0.0:
+            return -1, 1, 1.0
+        return spectra.tabulated(key + ("emission",), float(VISIBLE_MIN_NM), 1.0, emitted), 1, 1.0
+    table, step = emission_rows(spec)
+    if not table.max() > 0.0:
+        return -1, 1, 1.0
+    shared = ("grid emission",) + emission_key(spec)  # instances of one Volume object share their rows
+    ids = [spectra.tabulated(shared + (r,), float(VISIBLE_MIN_NM), 1.0, row) for r, row in enumerate(table)]
+    if ids != list(range(ids[0], ids[0] + len(ids))):
+        raise AssertionError("a grid medium's emission rows must be consecutive spectra")
+    return ids[0], len(ids), step
+
+
+def _emission_rate(spec) -> float:
+    """``EMISSION_SAMPLES_PER_VOXEL`` per the smallest voxel edge (m) of an emitting grid medium's grids."""
+    edges = [np.linalg.norm(np.asarray(g.index_to_world, dtype=np.float64)[:3, :3], axis=0).min()
+             for g in (spec.density_grid, spec.temperature_grid) if g is not None]
+    return EMISSION_SAMPLES_PER_VOXEL / float(min(edges))
 
 
 def build_media(materials, used, spectra, outside=None, origin=None):
@@ -95,6 +130,7 @@ def build_media(materials, used, spectra, outside=None, origin=None):
     render's ``SpectrumTable``; ``origin`` (m) the point the kernels' positions are relative to (grids)."""
     index = np.full(len(materials), -1, np.int32)
     scattering, absorption, emission, strength, anisotropy, grid, grids = [], [], [], [], [], [], []
+    emitting_grid, rows, steps, rate = [], [], [], []
     specs = [(m, getattr(material, "medium", None)) for m, material in enumerate(materials) if m in used]
     for m, spec in specs + [(-1, outside)]:
         if spec is None:
@@ -111,15 +147,18 @@ def build_media(materials, used, spectra, outside=None, origin=None):
         grid.append(len(grids) if density_grid is not None else -1)
         if density_grid is not None:
             grids.append(density_grid)
-        emitted = emission_on_grid(spec)
-        if emitted.max() > 0.0:
-            emission.append(spectra.tabulated(key + ("emission",), float(VISIBLE_MIN_NM), 1.0, emitted))
-            strength.append(1.0)
-        else:
-            emission.append(-1)
-            strength.append(0.0)
+        emitting_grid.append(len(grids) if spec.temperature_grid is not None else -1)
+        if spec.temperature_grid is not None:
+            grids.append(spec.temperature_grid)
+        first, count, step = _emission(spec, spectra, key)
+        emission.append(first)
+        strength.append(1.0 if first >= 0 else 0.0)
+        rows.append(count)
+        steps.append(step)
+        rate.append(_emission_rate(spec) if first >= 0 and density_grid is not None else 0.0)
     arrays = MediaArrays(np.array(scattering or [0], np.int32), np.array(absorption or [0], np.int32),
                          np.array(emission or [-1], np.int32), np.array(strength or [0.0]),
                          np.array(anisotropy or [0.0]), np.array(grid or [-1], np.int32),
-                         build_grids(grids, origin))
+                         build_grids(grids, origin), np.array(emitting_grid or [-1], np.int32),
+                         np.array(rows or [1], np.int32), np.array(steps or [1.0]), np.array(rate or [0.0]))
     return index, arrays, (len(scattering) - 1 if outside is not None else -1)

@@ -18,7 +18,6 @@ import math
 import numpy as np
 import pytest
 
-from engine.tracer.errors import PrismInputError
 from engine.tracer.jit import kernel
 from engine.tracer.media.delta_tracking import track_grid_medium
 from engine.tracer.media.density_grid import DensityGrid
@@ -168,13 +167,6 @@ def test_an_absurdly_dense_grid_ends_every_walk_within_the_bound():
     assert np.all(np.isfinite(weights)) and np.all(weights >= 0.0)
     assert np.all(ended | ((collisions >= 0.7) & (collisions < 1.3)))
     print("MEASURED absurdly dense grid: walks ended as opaque", int(ended.sum()), "of", len(ended))
-
-
-def test_a_grid_medium_that_emits_is_refused():
-    grid = DensityGrid(np.ones((2, 2, 2), np.float32), np.eye(4))
-    spec = MediumSpec("glow", scatter=SCATTER, emission=[(1.0, (1.0, 1.0, 1.0), None)], density_grid=grid)
-    with pytest.raises(PrismInputError, match="cannot emit"):
-        build_media([Material("glow", kind="null", medium=spec)], {0}, SpectrumTable())
 
 
 def test_homogeneous_media_have_no_grid():

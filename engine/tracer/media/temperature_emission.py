@@ -1,0 +1,73 @@
+"""Emission of a grid medium as rows of spectra over a grid's values, for the kernels to interpolate
+(``grid_emission``).
+
+Cycles' Principled Volume emits Emission Strength × Emission Color per metre, and blackbody light of
+σ_SB 10⁻⁶ / π × mix(1, T⁴, Blackbody Intensity) × Blackbody Tint × the luminance-1 blackbody colour at T,
+where T = Temperature × max(v, 0) and v the value of the grid its Temperature Attribute names (Cycles'
+``svm_node_principled_volume``; T = Temperature where there is no such grid). The emission is then a
+function of v alone, so it is tabulated here once per medium: ``ROWS`` spectra at v = 0, step, 2 step, ...
+up to the grid's largest value, on the 1 nm grid, linear between rows. T⁴ grows smoothly, so 256 rows keep
+the interpolation within 2·10⁻⁵ of the exact emission at the hottest voxels. Planck's spectrum is coloured
+at T clamped to ``MIN_TEMPERATURE_K``-``MAX_TEMPERATURE_K`` (below 1000 K the light is dim; Cycles holds its
+colour below 800 K), at the intensity of T itself.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..spectra.blackbody import MAX_TEMPERATURE_K, MIN_TEMPERATURE_K, blackbody_luminance, planck_spectral_radiance
+from ..spectra.wavelengths import VISIBLE_NM_GRID
+
+STEFAN_BOLTZMANN = 5.670373e-8  # W m⁻² K⁻⁴, the value Cycles' Principled Volume uses
+
+#: Spectra tabulated over a temperature grid's values.
+ROWS = 256
+
+
+def blackbody_intensity(temperature_k, blend):
+    """Cycles' blackbody scale of a Principled Volume, σ_SB 10⁻⁶ / π × mix(1, T⁴, ``blend``) (any shape)."""
+    t = np.maximum(np.asarray(temperature_k, dtype=np.float64), 0.0)
+    return STEFAN_BOLTZMANN * 1e-6 / math.pi * (1.0 + blend * (t ** 4 - 1.0))
+
+
+def tinted_blackbody(temperature_k, tint) -> np.ndarray:
+    """[len(T), len(VISIBLE_NM_GRID)]: the luminance-1 Planck spectrum at each temperature (clamped to
+    1000-40000 K) filtered by ``tint`` as a reflectance of that colour would (a tint above 1 scales it)."""
+    from .table import reflectance_on_grid
+
+    rgb = np.maximum(np.asarray(tint, dtype=np.float64), 0.0)
+    scale = max(float(rgb.max()), 1.0)
+    shown = np.clip(np.atleast_1d(np.asarray(temperature_k, dtype=np.float64)), MIN_TEMPERATURE_K, MAX_TEMPERATURE_K)
+    lam = np.asarray(VISIBLE_NM_GRID, dtype=np.float64)
+    planck = planck_spectral_radiance(lam[None, :], shown[:, None]) / blackbody_luminance(shown)[:, None]
+    return scale * reflectance_on_grid(rgb / scale)[None, :] * planck
+
+
+def emission_rows(spec) -> tuple[np.ndarray, float]:
+    """(rows [R, len(VISIBLE_NM_GRID)] of emitted radiance per metre, the grid value per row) of a
+    ``MediumSpec`` with a ``temperature_grid``: row r holds the emission where that grid reads r × step,
+    its constant terms (Emission Strength × Color) in every row."""
+    from dataclasses import replace
+
+    from .table import emission_on_grid
+
+    constant = emission_on_grid(replace(spec, emission=[e for e in spec.emission if e[2] is None]))
+    largest = float(np.max(np.maximum(spec.temperature_grid.values, 0.0)))
+    count = ROWS if largest > 0.0 else 1
+    step = largest / (count - 1) if count > 1 else 1.0
+    values = np.arange(count) * step
+    rows = np.repeat(constant[None, :], count, axis=0)
+    for weight, blend, temperature_k, tint in spec.blackbody:
+        temperature = temperature_k * values
+        rows += (weight * blackbody_intensity(temperature, blend))[:, None] * tinted_blackbody(temperature, tint)
+    return np.maximum(rows, 0.0), step
+
+
+def emission_key(spec) -> tuple:
+    """What ``emission_rows`` depends on, for sharing one table between instances of one Volume object."""
+    grid = spec.temperature_grid
+    return (tuple(e for e in spec.emission if e[2] is None), tuple(spec.blackbody),
+            float(np.max(np.maximum(grid.values, 0.0))) if grid is not None else None)
