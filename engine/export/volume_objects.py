@@ -8,10 +8,15 @@ it) and renders the material's medium (``nodes.volumes``) with σ_s and σ_a sca
 (``tracer.media.density_grid``), inside the box of the grid's voxels, a closed null surface placed with the
 grid's transform and the object's matrix.
 
+The Principled Volume's emission renders as Cycles': Emission Strength × Color and blackbody light, whose
+temperature is the node's Temperature times the grid its Temperature Attribute names ("temperature" by
+default; where the file has no such grid, the Temperature alone), read like the density grid and held in the
+same medium (``tracer.media.temperature_emission``); the box then spans both grids.
+
 What cannot be read is warned, naming the object, what is missing and what renders instead: volumes whose
 voxels come from Geometry Nodes or modifiers (bpy exposes no voxels, only files), packed files, grids that
-are not float or not linear; the Color and Temperature Attributes, and emission of a grid medium (the
-tracer does not emit from grids yet).
+are not float or not linear; the Color Attribute; light that fills the box where Cycles fills the active
+voxels only (emission that does not vanish where the grids read 0).
 """
 
 from __future__ import annotations
@@ -24,6 +29,7 @@ from ..tracer.media.density_grid import DensityGrid
 from ..tracer.media.spec import MediumSpec
 from ..tracer.scene import Material
 from .mesh_data import LocalMesh
+from .volume_emission import glow_note, index_box, socket_string, temperature_grid_name
 from .volume_grids import GridUnreadable, float_grid_names, read_float_grid
 
 #: Cycles' default volume shader (a Principled Volume with the node's defaults) for a volume without material.
@@ -40,11 +46,6 @@ CYCLES_VOXEL_OFFSET = 0.5
 # The 12 triangles of the unit cube's faces, outward (corner c at x = c & 1, y = c >> 1 & 1, z = c >> 2 & 1).
 _FACES = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]]
 _BOX_TRIANGLES = np.array([[f[0], f[1], f[2]] for f in _FACES] + [[f[0], f[2], f[3]] for f in _FACES], np.int32)
-
-
-def _socket_string(node, name) -> str:
-    socket = node.inputs.get(name)
-    return str(getattr(socket, "default_value", "") or "") if socket is not None else ""
 
 
 def volume_shaders(material) -> list:
@@ -82,20 +83,16 @@ def _notes(name, material, nodes, grid) -> list[str]:
                      f"'{grid}'; Prism scales them by that grid too (Cycles fills the volume's active voxels "
                      "with them evenly).")
     for node in nodes:
-        for attribute in ("Color Attribute", "Temperature Attribute"):
-            value = _socket_string(node, attribute)
-            uses_temperature = attribute != "Temperature Attribute" or float(
-                getattr(node.inputs.get("Blackbody Intensity"), "default_value", 0.0)) > 0.0
-            if value and uses_temperature:
-                notes.append(f"Volume '{name}': {label}'s {node.name} reads grid '{value}' as its {attribute}; "
-                             f"Prism reads the density grid only and renders the node's own "
-                             f"{attribute.split()[0]} throughout the volume.")
+        value = socket_string(node, "Color Attribute")
+        if value:
+            notes.append(f"Volume '{name}': {label}'s {node.name} reads grid '{value}' as its Color Attribute; "
+                         "Prism does not read colour grids and renders the node's own Color throughout the volume.")
     return notes
 
 
 def _density_grid_name(name, material, nodes, grids, notes) -> str | None:
     """The grid whose values scale the density (a Principled Volume's Density Attribute), or None."""
-    wanted = [_socket_string(n, "Density Attribute") for n in nodes if n.bl_idname == "ShaderNodeVolumePrincipled"]
+    wanted = [socket_string(n, "Density Attribute") for n in nodes if n.bl_idname == "ShaderNodeVolumePrincipled"]
     if material is None:
         wanted = [DEFAULT_DENSITY_ATTRIBUTE]
     wanted = [w for w in wanted if w]
@@ -110,10 +107,11 @@ def _density_grid_name(name, material, nodes, grids, notes) -> str | None:
     return wanted[0] if wanted else None
 
 
-def _box(values_shape, index_to_object) -> LocalMesh:
-    """The closed box of a grid's non-zero density, index -1 .. n per axis, in object space (outward)."""
+def _box(low, high, index_to_object) -> LocalMesh:
+    """The closed box from index corner ``low`` to ``high`` of a grid (its non-zero density: -1 .. n per axis,
+    ``volume_emission.index_box``), in object space (outward)."""
     corners = np.array([[(c & 1), (c >> 1) & 1, (c >> 2) & 1] for c in range(8)], np.float64)
-    corners = corners * (np.asarray(values_shape, np.float64) + 1.0) - 1.0
+    corners = low + corners * (high - low)
     placed = corners @ index_to_object[:3, :3].T + index_to_object[:3, 3]
     triangles = _BOX_TRIANGLES if np.linalg.det(index_to_object[:3, :3]) > 0 else _BOX_TRIANGLES[:, ::-1].copy()
     a, b, c = (placed[triangles[:, k]] for k in range(3))
@@ -178,13 +176,16 @@ class VolumeReader:
         loaded = self._read[key]
         if loaded is None:
             return None
-        spec, values, index_to_object, grid = loaded
+        spec, values, index_to_object, grid, hot = loaded
         matrix = np.asarray(matrix_world, dtype=np.float64).reshape(4, 4)
         if grid is not None:
             spec = replace(spec, name=f"{spec.name} ({name})",
                            density_grid=DensityGrid(values, matrix @ index_to_object, f"'{grid}' of '{name}'"))
+        if hot is not None:
+            spec = replace(spec, temperature_grid=DensityGrid(hot[0], matrix @ hot[1], f"'{hot[2]}' of '{name}'"))
         medium = Material(name=spec.name, kind="null", medium=spec)
-        box = _box(values.shape, index_to_object)
+        others = [(hot[0].shape, hot[1])] if hot is not None else []
+        box = _box(*index_box(values.shape, index_to_object, others), index_to_object)
         box.slot_materials = [medium]
         return box
 
@@ -203,10 +204,6 @@ class VolumeReader:
         if grid == "":
             return None
         notes.extend(_notes(name, material, nodes, grid))
-        if grid is not None and spec.emission:
-            notes.append(f"Volume '{name}': Prism does not render the emission of a volume scaled by a grid yet; "
-                         "it renders the volume without its emission.")
-            spec = replace(spec, emission=[])
         if grid is None:
             notes.append(f"Volume '{name}': its material reads no density grid (no Principled Volume Density "
                          f"Attribute); Prism fills the box of grid '{grids[0]}' evenly (Cycles fills its active "
@@ -219,6 +216,37 @@ class VolumeReader:
         if read is None:
             return None  # no active voxel: nothing to see, as in Cycles
         values, index_to_object = read
-        offset = np.eye(4)
-        offset[:3, 3] = CYCLES_VOXEL_OFFSET
-        return spec, values, index_to_object @ offset, grid
+        hot = self._temperature(name, nodes, path, grids, notes) if grid is not None else None
+        if grid is None and temperature_grid_name(name, nodes, grids, []) is not None:
+            notes.append(f"Volume '{name}': its material reads a temperature grid but no density grid; Prism "
+                         "fills the box evenly at the Temperature set (Cycles multiplies it by the grid).")
+        if hot is not None:
+            spec = replace(spec, temperature_grid=DensityGrid(hot[0], hot[1]))
+        if grid is not None:
+            note = glow_note(name, spec, values)
+            notes.extend([note] if note else [])
+        return spec, values, index_to_object @ _cycles_offset(), grid, hot
+
+    @staticmethod
+    def _temperature(name, nodes, path, grids, notes):
+        """(values, index_to_object, grid name) of the grid the material's blackbody reads as its temperature,
+        or None (none: the Temperature alone, as Cycles renders it)."""
+        hot = temperature_grid_name(name, nodes, grids, notes)
+        if hot is None:
+            return None
+        try:
+            read = read_float_grid(path, hot)
+        except GridUnreadable as error:
+            notes.append(f"Volume '{name}': {error}; Prism renders its blackbody light at the Temperature set, "
+                         "throughout the volume.")
+            return None
+        if read is None:  # no active voxel: nothing to place; the Temperature alone
+            return None
+        return read[0], read[1] @ _cycles_offset(), hot
+
+
+def _cycles_offset() -> np.ndarray:
+    """Index → index shift by ``CYCLES_VOXEL_OFFSET`` (each voxel at the centre of its cell, as Cycles)."""
+    offset = np.eye(4)
+    offset[:3, 3] = CYCLES_VOXEL_OFFSET
+    return offset

@@ -3,12 +3,16 @@
 Volume's Density scaled by the "density" grid as Cycles does.
 
 - The export places the grid where Blender does (its transform against Blender's own ``matrix_object``, each
-  voxel at the centre of its index cell as Cycles samples it) and warns nothing for a plain Principled Volume; emission, which a grid medium does not render yet, is warned.
-- Rendered by Prism and by Cycles 4.5 from the same scene in the test: mean luminance of the pixels around
+  voxel at the centre of its index cell as Cycles samples it) and warns nothing for a plain Principled Volume;
+  it reads the "temperature" grid a blackbody Principled Volume names, and warns, with the share of the box
+  Cycles leaves dark, light that fills the box (Emission Strength).
+- A lit smoke sphere is rendered by Prism and by Cycles 4.5 from the same scene in the test: mean luminance of the pixels around
   the volume within 2 %, and per 4 × 4 block within what the noise of two Prism seeds allows. Cycles 4.5 ray
   marches heterogeneous volumes: its step is the voxel size × Render ▸ Light Paths ▸ Volumes ▸ Step Rate,
   set to 0.1 here (0.0125 m steps, 1/10 voxel; Max Steps 4096), with the volume's grids held at full
   precision (Volume ▸ Render ▸ Precision Full), so that its marching bias is well under the noise.
+- A fire (blackbody light at the Temperature × the "temperature" grid) is rendered the same way; Prism is
+  5 % brighter than Cycles there, a measured difference the test pins (its docstring says what is known).
 """
 
 from __future__ import annotations
@@ -46,6 +50,30 @@ def _write_sphere(vdb, path):
     grid.transform = transform
     vdb.write(str(path), grids=[grid])
     return values
+
+
+FIRE_K = 1500.0  # the Principled Volume's Temperature, times the "temperature" grid (up to 1.5)
+
+
+def _write_fire(vdb, path):
+    """The sphere's "density" grid and a "temperature" grid of 1.5 × it, in one file."""
+    values = _write_sphere(vdb, path)
+    heat = 1.5 * values
+    grids = []
+    for name, array in (("density", values), ("temperature", heat)):
+        grid = vdb.FloatGrid()
+        grid.name = name
+        grid.copyFromArray(array, ijk=(0, 0, 0))
+        transform = vdb.createLinearTransform(voxelSize=VOXEL_M)
+        transform.postTranslate((VOXEL_M / 2 - 1.0,) * 3)
+        grid.transform = transform
+        grids.append(grid)
+    vdb.write(str(path), grids=grids)
+    return values, heat
+
+
+def _fire():
+    return _smoke(Color=(0.5, 0.5, 0.5), Density=0.5, Blackbody_Intensity=1.0, Temperature=FIRE_K)
 
 
 def _volume_object(path, mat=None):
@@ -106,17 +134,64 @@ def test_a_volume_object_exports_its_grid_where_blender_places_it(prism_addon, f
     assert material.kind == "null" and material.medium.scatter[0][0] == pytest.approx(2.0)
 
 
-def test_emission_of_a_volume_object_is_warned(prism_addon, fresh_scene, tmp_path):
-    _write_sphere(_openvdb(prism_addon), tmp_path / "sphere.vdb")
+def test_emission_that_fills_the_box_is_warned_with_what_was_measured(prism_addon, fresh_scene, tmp_path):
+    values = _write_sphere(_openvdb(prism_addon), tmp_path / "sphere.vdb")
     _volume_object(tmp_path / "sphere.vdb", _smoke(Emission_Strength=1.0))
     camera((0.0, -6.0, 1.0), (0.0, 0.0, 1.0), resolution=(8, 8))
     _sun(fresh_scene)
     warnings = []
     scene = _export(prism_addon, warnings)
-    assert warnings == ["Volume 'Cloud': Prism does not render the emission of a volume scaled by a grid yet; it "
-                        "renders the volume without its emission."]
+    empty = 100 * np.mean(values <= 0.0)  # the sphere's active voxels span the whole 16³ box
+    assert warnings == [f"Volume 'Cloud': its material emits light where its grids read 0 (Emission Strength, or "
+                        f"blackbody light a Blackbody Intensity below 1 keeps at 0 K); Prism fills the box around "
+                        f"its voxels with that light evenly and Cycles a smaller region (a 16³ grid with every voxel "
+                        f"active glows 1.25 × Cycles' light in Prism), and {empty:.0f} % of this box holds no "
+                        f"density, which Cycles may leave dark too."]
     used = {int(m) for m in scene.triangle_material}
-    assert [scene.materials[m].medium.emission for m in used] == [[]]  # the box's grid medium, without emission
+    assert [scene.materials[m].medium.emission for m in used] == [[(1.0, (1.0, 1.0, 1.0), None)]]
+
+
+def test_a_temperature_grid_sets_the_blackbody_temperature_voxel_by_voxel(prism_addon, fresh_scene, tmp_path):
+    values, heat = _write_fire(_openvdb(prism_addon), tmp_path / "fire.vdb")
+    _volume_object(tmp_path / "fire.vdb", _fire())
+    camera((0.0, -6.0, 1.0), (0.0, 0.0, 1.0), resolution=(8, 8))
+    warnings = []
+    scene = _export(prism_addon, warnings)
+    assert warnings == []  # blackbody light that vanishes at 0 K, where the temperature grid is 0
+    medium = scene.materials[int(scene.triangle_material[np.isin(scene.triangle_object, [
+        i for i, n in enumerate(scene.object_names) if n == "Cloud"])][0])].medium
+    assert medium.temperature_grid is not None and medium.blackbody == [(1.0, 1.0, FIRE_K, (1.0, 1.0, 1.0))]
+    low = np.argwhere(heat > 0).min(0)
+    assert np.array_equal(medium.temperature_grid.values,
+                          heat[tuple(slice(lo, lo + n) for lo, n in zip(low, medium.temperature_grid.values.shape))])
+    assert np.allclose(medium.temperature_grid.index_to_world, medium.density_grid.index_to_world)
+
+
+def _against_cycles(scene, label, ratio=(0.98, 1.02), blocks_within_noise=True):
+    """Prism (two seeds, 128 spp) and Cycles (256 spp) from the scene: the mean luminance of the pixels around
+    the volume, Prism / Cycles within ``ratio``, and per 4 × 4 block within what the noise of two Prism seeds
+    allows."""
+    scene.cycles.volume_step_rate = 0.1
+    scene.cycles.volume_max_steps = 4096
+    cycles = luminance(render_cycles_rgba(scene, 256, max_bounces=32))
+    scene.prism.max_bounces = 32
+    prism = [luminance(render_prism_rgba(scene, 128, seed=seed)) for seed in (0, 1)]
+    region = (slice(4, 20), slice(4, 20))
+    p, c = (prism[0][region].mean() + prism[1][region].mean()) / 2, cycles[region].mean()
+
+    def blocks(image):
+        return image[region].reshape(4, 4, 4, 4).mean((1, 3))
+
+    difference = np.sqrt(np.mean((blocks((prism[0] + prism[1]) / 2) - blocks(cycles)) ** 2))
+    noise = np.sqrt(np.mean((blocks(prism[0]) - blocks(prism[1])) ** 2))
+    print(f"MEASURED {label}: Prism {p:.5f}, Cycles {c:.5f}, ratio {p / c:.4f}; per 4x4 block "
+          f"RMS Prism - Cycles {difference / c:.4f}, Prism seed 0 - seed 1 {noise / c:.4f} of the mean; "
+          f"volume centre Prism {prism[0][10:14, 10:14].mean():.4f}, Cycles {cycles[10:14, 10:14].mean():.4f}, "
+          f"corner {cycles[0, 0]:.4f}")
+    assert cycles[10:14, 10:14].mean() > 2.0 * cycles[0, 0]  # the volume stands out of the world
+    assert ratio[0] <= p / c <= ratio[1]
+    if blocks_within_noise:
+        assert difference < 2.0 * noise + 0.005 * c
 
 
 def test_a_volume_object_matches_cycles(prism_addon, fresh_scene, tmp_path):
@@ -128,23 +203,19 @@ def test_a_volume_object_matches_cycles(prism_addon, fresh_scene, tmp_path):
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
     _sun(fresh_scene)
     camera((0.0, -6.0, 1.0), (0.1, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
-    fresh_scene.cycles.volume_step_rate = 0.1
-    fresh_scene.cycles.volume_max_steps = 4096
-    cycles = luminance(render_cycles_rgba(fresh_scene, 256, max_bounces=32))
-    fresh_scene.prism.max_bounces = 32
-    prism = [luminance(render_prism_rgba(fresh_scene, 128, seed=seed)) for seed in (0, 1)]
-    region = (slice(4, 20), slice(4, 20))
-    p, c = (prism[0][region].mean() + prism[1][region].mean()) / 2, cycles[region].mean()
+    _against_cycles(fresh_scene, "Volume object (VDB sphere)")
 
-    def blocks(image):
-        return image[region].reshape(4, 4, 4, 4).mean((1, 3))
 
-    difference = np.sqrt(np.mean((blocks((prism[0] + prism[1]) / 2) - blocks(cycles)) ** 2))
-    noise = np.sqrt(np.mean((blocks(prism[0]) - blocks(prism[1])) ** 2))
-    print(f"MEASURED Volume object (VDB sphere): Prism {p:.5f}, Cycles {c:.5f}, ratio {p / c:.4f}; per 4x4 block "
-          f"RMS Prism - Cycles {difference / c:.4f}, Prism seed 0 - seed 1 {noise / c:.4f} of the mean; "
-          f"volume centre Prism {prism[0][10:14, 10:14].mean():.4f}, Cycles {cycles[10:14, 10:14].mean():.4f}, "
-          f"world (corner) {cycles[0, 0]:.4f}")
-    assert cycles[10:14, 10:14].mean() > 2.0 * cycles[0, 0]  # the lit volume stands out of the dim world
-    assert p / c == pytest.approx(1.0, abs=0.02)
-    assert difference < 2.0 * noise + 0.005 * c
+def test_a_fire_against_cycles_is_5_percent_brighter(prism_addon, fresh_scene, tmp_path):
+    """The sphere's smoke glowing at 1500 K × its "temperature" grid (up to 2250 K), in the dark. A measured
+    difference, pinned: Prism is 1.045-1.056 × Cycles 4.5 on every temperature grid tried (T from 1000 to
+    6000 K, spheres and a full box; docs/media.md "Fire"), where the same light in a mesh cube agrees within
+    0.2 % and the tracer's estimator meets its closed forms (tests/tracer/media/test_grid_emission.py); the
+    cause on Cycles' side (the region its ray marching covers, its lookups) is not found. The test fails if
+    the gap grows past 8 % or turns."""
+    _write_fire(_openvdb(prism_addon), tmp_path / "fire.vdb")
+    _volume_object(tmp_path / "fire.vdb", _fire())
+    black_world()
+    camera((0.0, -6.0, 1.0), (0.1, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
+    _against_cycles(fresh_scene, "Volume object fire (blackbody x temperature grid)", ratio=(1.0, 1.08),
+                    blocks_within_noise=False)

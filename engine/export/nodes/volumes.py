@@ -10,13 +10,10 @@ named in a warning too.
 
 from __future__ import annotations
 
-import math
-
 from ...tracer.media.spec import MediumSpec
+from ...tracer.media.temperature_emission import blackbody_intensity
 from .graph import follow
 from .terms import COLOR, FLOAT
-
-STEFAN_BOLTZMANN = 5.670373e-8  # W m⁻² K⁻⁴, the value Cycles' Principled Volume uses
 
 
 def _constant(c, node, name, context, kind):
@@ -74,7 +71,9 @@ def _blackbody(c, node, context, weight, blackbody, spec):
     from ...tracer.spectra.blackbody import MAX_TEMPERATURE_K, MIN_TEMPERATURE_K
 
     temperature = max(_constant(c, node, "Temperature", context, FLOAT), 0.0)
-    intensity = STEFAN_BOLTZMANN * 1e-6 / math.pi * (1.0 + blackbody * (temperature ** 4 - 1.0))
+    tint = tuple(_constant(c, node, "Blackbody Tint", context, COLOR))
+    spec.blackbody.append((weight, blackbody, temperature, tint))  # for a Temperature Attribute grid
+    intensity = float(blackbody_intensity(temperature, blackbody))
     if not intensity > 1e-5:  # Cycles' cutoff for closures
         return
     shown = min(max(temperature, MIN_TEMPERATURE_K), MAX_TEMPERATURE_K)
@@ -82,7 +81,6 @@ def _blackbody(c, node, context, weight, blackbody, spec):
         c.warn(node, f"has a Temperature of {temperature:g} K; Prism's blackbody spectra span "
                      f"{MIN_TEMPERATURE_K:g}-{MAX_TEMPERATURE_K:g} K, so it renders the colour of {shown:g} K "
                      "(at the intensity of the Temperature set).")
-    tint = tuple(_constant(c, node, "Blackbody Tint", context, COLOR))
     spec.emission.append((weight * intensity, tint, shown))
 
 
