@@ -15,10 +15,10 @@ import numpy as np
 from ..tracer.media.temperature_emission import emission_rows
 
 
-#: Prism / Cycles 4.5 mean luminance of a 16³ Volume object, every voxel active, glowing at 2000 K without a
-#: temperature grid (tools/volume_emission_vs_cycles.py boxconst, 2026-12-06); the same
-#: light in a mesh cube of the voxels' size: 0.9986 ("cube").
-FULL_BOX_GLOW_VS_CYCLES = 1.25
+#: Prism / Cycles 4.5 mean luminance of a 16³ Volume object, every voxel active, unturned and unscaled,
+#: glowing at 2000 K without a temperature grid (tools/volume_emission_vs_cycles.py boxconstplain: 1.2050,
+#: 2026-12-06); the same light in a mesh cube of the voxels' size: 0.9986 ("cube").
+FULL_BOX_GLOW_VS_CYCLES = 1.2
 
 
 def socket_string(node, name) -> str:

@@ -13,6 +13,11 @@ temperature is the node's Temperature times the grid its Temperature Attribute n
 default; where the file has no such grid, the Temperature alone), read like the density grid and held in the
 same medium (``tracer.media.temperature_emission``); the box then spans both grids.
 
+Volume ▸ Render ▸ Space "Object" (Blender's default) makes the density follow the object's scale as in
+Cycles 4.5 (``object_volume_density`` of its scene/object.cpp): every coefficient and the emission are
+multiplied by 1 / |M (1, 1, 1) / √3|, M the instance's matrix, so a volume scaled up keeps its look instead
+of thickening; "World" leaves them per world metre.
+
 What cannot be read is warned, naming the object, what is missing and what renders instead: volumes whose
 voxels come from Geometry Nodes or modifiers (bpy exposes no voxels, only files), packed files, grids that
 are not float or not linear; the Color Attribute; light that fills the box where Cycles fills the active
@@ -178,6 +183,8 @@ class VolumeReader:
             return None
         spec, values, index_to_object, grid, hot = loaded
         matrix = np.asarray(matrix_world, dtype=np.float64).reshape(4, 4)
+        if getattr(getattr(obj.data, "render", None), "space", "OBJECT") == "OBJECT":
+            spec = scaled_by(spec, object_space_density(matrix))
         if grid is not None:
             spec = replace(spec, name=f"{spec.name} ({name})",
                            density_grid=DensityGrid(values, matrix @ index_to_object, f"'{grid}' of '{name}'"))
@@ -243,6 +250,23 @@ class VolumeReader:
         if read is None:  # no active voxel: nothing to place; the Temperature alone
             return None
         return read[0], read[1] @ _cycles_offset(), hot
+
+
+def object_space_density(matrix) -> float:
+    """Cycles' factor on a Volume object's density and emission in Object space: 1 / |M (1, 1, 1) / √3| for
+    the object's 4x4 ``matrix`` (1 for any rotation, 1 / s for a uniform scale s)."""
+    unit = np.full(3, 1.0 / np.sqrt(3.0))
+    return float(1.0 / np.linalg.norm(np.asarray(matrix, dtype=np.float64)[:3, :3] @ unit))
+
+
+def scaled_by(spec, factor):
+    """``spec`` with its coefficients and emission multiplied by ``factor`` (the same spec when it is 1)."""
+    if factor == 1.0:
+        return spec
+    return replace(spec, scatter=[(d * factor, *rest) for d, *rest in spec.scatter],
+                   absorb=[(d * factor, *rest) for d, *rest in spec.absorb],
+                   emission=[(s * factor, *rest) for s, *rest in spec.emission],
+                   blackbody=[(w * factor, *rest) for w, *rest in spec.blackbody])
 
 
 def _cycles_offset() -> np.ndarray:
