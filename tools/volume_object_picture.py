@@ -37,23 +37,48 @@ def cloud_density(seed: int = 7) -> np.ndarray:
     return np.clip(density, 0.0, 1.0).astype(np.float32)
 
 
-def _write_cloud(path: Path) -> None:
+def write_vdb(path: Path, named_values) -> None:
+    """(name, [SIZE]³ values) pairs as float grids of one OpenVDB file, voxels of ``VOXEL_M`` centred on the
+    origin, with the OpenVDB module Blender bundles."""
     from render import load_addon_package
 
     package = load_addon_package()
     vdb = importlib.import_module(f"{package.__name__}.engine.export.volume_grids").openvdb_module()
-    grid = vdb.FloatGrid()
-    grid.name = "density"
-    grid.copyFromArray(cloud_density(), ijk=(0, 0, 0))
-    transform = vdb.createLinearTransform(voxelSize=VOXEL_M)
-    transform.postTranslate((-SIZE * VOXEL_M / 2,) * 3)
-    grid.transform = transform
-    vdb.write(str(path), grids=[grid])
+    grids = []
+    for name, values in named_values:
+        grid = vdb.FloatGrid()
+        grid.name = name
+        grid.copyFromArray(values, ijk=(0, 0, 0))
+        transform = vdb.createLinearTransform(voxelSize=VOXEL_M)
+        transform.postTranslate((-SIZE * VOXEL_M / 2,) * 3)
+        grid.transform = transform
+        grids.append(grid)
+    vdb.write(str(path), grids=grids)
+
+
+def add_volume(bpy, name: str, path: Path, **principled):
+    """A Volume object of the file ``path`` at 1.1 m height, its grids at full precision (as the tests), with
+    a Principled Volume of ``principled`` inputs; Cycles set to ray march it at Step Rate 0.1."""
+    from helpers.node_scenes import material, node
+
+    volume = bpy.data.volumes.new(name)
+    volume.filepath = str(path)
+    volume.render.precision = "FULL"
+    mat, nodes, link = material(name)
+    shader = node(nodes, "ShaderNodeVolumePrincipled", **principled)
+    link(shader.outputs[0], nodes["Output"].inputs["Volume"])
+    volume.materials.append(mat)
+    obj = bpy.data.objects.new(name, volume)
+    obj.location = (0.0, 0.0, 1.1)
+    scene = bpy.context.scene
+    scene.collection.objects.link(obj)
+    scene.cycles.volume_step_rate, scene.cycles.volume_max_steps = 0.1, 4096
+    return obj
 
 
 def _scene(bpy):
     from helpers.bpy_scenes import add_plane
-    from helpers.node_scenes import black_world, camera, material, node
+    from helpers.node_scenes import black_world, camera
 
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     scene = bpy.context.scene
@@ -63,22 +88,12 @@ def _scene(bpy):
     background.inputs["Strength"].default_value = 0.4
     add_plane("Floor", 20.0, color=(0.4, 0.4, 0.4), specular=0.0)
     path = Path(tempfile.mkdtemp(prefix="prism_cloud_")) / "cloud.vdb"
-    _write_cloud(path)
-    volume = bpy.data.volumes.new("Cloud")
-    volume.filepath = str(path)
-    volume.render.precision = "FULL"
-    mat, nodes, link = material("Cloud")
-    shader = node(nodes, "ShaderNodeVolumePrincipled", Color=(0.9, 0.9, 0.9), Density=6.0, Anisotropy=0.3)
-    link(shader.outputs[0], nodes["Output"].inputs["Volume"])
-    volume.materials.append(mat)
-    cloud = bpy.data.objects.new("Cloud", volume)
-    cloud.location = (0.0, 0.0, 1.1)
-    scene.collection.objects.link(cloud)
+    write_vdb(path, [("density", cloud_density())])
+    add_volume(bpy, "Cloud", path, Color=(0.9, 0.9, 0.9), Density=6.0, Anisotropy=0.3)
     sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
     sun.data.energy, sun.data.color = 4.0, (1.0, 0.85, 0.7)
     sun.rotation_euler = (math.radians(70.0), 0.0, math.radians(40.0))
     scene.collection.objects.link(sun)
-    scene.cycles.volume_step_rate, scene.cycles.volume_max_steps = 0.1, 4096
     camera((0.0, -4.2, 1.5), (0.0, 0.0, 1.0), lens_mm=50.0, resolution=(240, 180))
     return scene
 
