@@ -180,6 +180,20 @@ def test_a_temperature_grid_sets_the_blackbody_temperature_voxel_by_voxel(prism_
     assert np.allclose(medium.temperature_grid.index_to_world, medium.density_grid.index_to_world)
 
 
+def test_a_temperature_outside_the_spectra_is_warned_truly_for_a_grid(prism_addon, fresh_scene, tmp_path):
+    """Temperature 400 K × a grid of up to 1.5: the warning names the colour rule, not one colour."""
+    _write_fire(_openvdb(prism_addon), tmp_path / "fire.vdb")
+    _volume_object(tmp_path / "fire.vdb", _smoke(Blackbody_Intensity=1.0, Temperature=400.0))
+    camera((0.0, -6.0, 1.0), (0.0, 0.0, 1.0), resolution=(8, 8))
+    warnings = []
+    scene = _export(prism_addon, warnings)
+    assert warnings == ["Material 'Smoke': the 'Principled Volume' node (Principled Volume) has a Temperature of "
+                        "400 K; Prism's blackbody spectra span 1000-40000 K and colour a temperature outside at the "
+                        "nearer end (1000 K here), at the intensity of the temperature itself (on a Volume object "
+                        "with a Temperature Attribute grid, the Temperature times the grid, point by point)."]
+    assert any(m.medium is not None and m.medium.temperature_grid is not None for m in scene.materials)
+
+
 def _against_cycles(scene, label):
     """Prism (two seeds, 128 spp) and Cycles (256 spp) from the scene: the mean luminance of the pixels around
     the volume within 2 %, and per 4 × 4 block within what the noise of two Prism seeds allows."""

@@ -79,8 +79,9 @@ def _blackbody(c, node, context, weight, blackbody, spec):
     shown = min(max(temperature, MIN_TEMPERATURE_K), MAX_TEMPERATURE_K)
     if shown != temperature:
         c.warn(node, f"has a Temperature of {temperature:g} K; Prism's blackbody spectra span "
-                     f"{MIN_TEMPERATURE_K:g}-{MAX_TEMPERATURE_K:g} K, so it renders the colour of {shown:g} K "
-                     "(at the intensity of the Temperature set).")
+                     f"{MIN_TEMPERATURE_K:g}-{MAX_TEMPERATURE_K:g} K and colour a temperature outside at the "
+                     f"nearer end ({shown:g} K here), at the intensity of the temperature itself (on a Volume "
+                     "object with a Temperature Attribute grid, the Temperature times the grid, point by point).")
     spec.emission.append((weight * intensity, tint, shown))
 
 
