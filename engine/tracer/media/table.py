@@ -99,17 +99,26 @@ def _check(spec):
         check_grid(spec.temperature_grid, spec.name)
 
 
-def _emission(spec, spectra, key):
-    """(first spectrum id or -1, rows, grid value per row) of a medium's emission (``MediaArrays``)."""
+def _emission(spec, spectra, key, made):
+    """(first spectrum id or -1, rows, grid value per row) of a medium's emission (``MediaArrays``); ``made``
+    remembers the rows of each temperature grid's voxels and settings, which the instances of one Volume
+    object share, so that they are tabulated once."""
     if spec.temperature_grid is None:
         emitted = emission_on_grid(spec)
         if not emitted.max() > 0.0:
             return -1, 1, 1.0
         return spectra.tabulated(key + ("emission",), float(VISIBLE_MIN_NM), 1.0, emitted), 1, 1.0
+    same = (id(spec.temperature_grid.values), tuple(spec.emission), tuple(spec.blackbody))
+    if same not in made:  # the grids outlive the build, so no id is reused meanwhile
+        made[same] = _temperature_rows(spec, spectra)
+    return made[same]
+
+
+def _temperature_rows(spec, spectra):
     table, step = emission_rows(spec)
     if not table.max() > 0.0:
         return -1, 1, 1.0
-    shared = ("grid emission",) + emission_key(spec)  # instances of one Volume object share their rows
+    shared = ("grid emission",) + emission_key(spec)
     ids = [spectra.tabulated(shared + (r,), float(VISIBLE_MIN_NM), 1.0, row) for r, row in enumerate(table)]
     if ids != list(range(ids[0], ids[0] + len(ids))):
         raise AssertionError("a grid medium's emission rows must be consecutive spectra")
@@ -130,7 +139,7 @@ def build_media(materials, used, spectra, outside=None, origin=None):
     render's ``SpectrumTable``; ``origin`` (m) the point the kernels' positions are relative to (grids)."""
     index = np.full(len(materials), -1, np.int32)
     scattering, absorption, emission, strength, anisotropy, grid, grids = [], [], [], [], [], [], []
-    emitting_grid, rows, steps, rate = [], [], [], []
+    emitting_grid, rows, steps, rate, made = [], [], [], [], {}
     specs = [(m, getattr(material, "medium", None)) for m, material in enumerate(materials) if m in used]
     for m, spec in specs + [(-1, outside)]:
         if spec is None:
@@ -150,7 +159,7 @@ def build_media(materials, used, spectra, outside=None, origin=None):
         emitting_grid.append(len(grids) if spec.temperature_grid is not None else -1)
         if spec.temperature_grid is not None:
             grids.append(spec.temperature_grid)
-        first, count, step = _emission(spec, spectra, key)
+        first, count, step = _emission(spec, spectra, key, made)
         emission.append(first)
         strength.append(1.0 if first >= 0 else 0.0)
         rows.append(count)
