@@ -277,6 +277,9 @@ class PRISM_PT_material_settings(MaterialSubpanel, bpy.types.Panel):
         cycles = getattr(material, "cycles", None)  # Cycles' own material settings
         if cycles is not None and hasattr(cycles, "use_bump_map_correction"):
             layout.prop(cycles, "use_bump_map_correction")
+        if cycles is not None and hasattr(cycles, "volume_step_rate"):
+            # A Density driven by nodes is baked at voxels of Cycles' step over this rate (``baked_density``).
+            layout.prop(cycles, "volume_step_rate", text="Volume Step Rate")
 
 
 CLASSES = (PRISM_PT_material, PRISM_PT_material_base_spectrum, PRISM_PT_material_emission_spectrum,

@@ -210,6 +210,10 @@ class VolumeReader:
         grid = _density_grid_name(name, material, nodes, grids, notes)
         if grid == "":
             return None
+        if spec.density_varies:
+            notes.append(f"Volume '{name}': material '{material.name}' drives its Density by nodes; Prism bakes "
+                         "such a density inside meshes only and renders this Volume object's grid as if the "
+                         "Density input were 1.")
         notes.extend(_notes(name, material, nodes, grid))
         if grid is None:
             notes.append(f"Volume '{name}': its material reads no density grid (no Principled Volume Density "

@@ -22,6 +22,7 @@ class _WorldCompiler(MaterialCompiler):
     """The material compiler for a world's node tree: its warnings name the world."""
 
     subject = "World"
+    bakes_volume_density = False  # fog fills all space: no bounds to bake a varying density over
 
 
 def export_world_volume(world, tree, warnings: list[str] | None):

@@ -154,7 +154,8 @@ class SceneTables:
         if used and (used[0] < 0 or used[-1] >= len(scene.materials)):
             raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
         spectra = SpectrumTable()
-        self.material_table = build_materials(scene.materials, set(used), spectra, scene.world.medium, camera.origin)
+        self.material_table = build_materials(scene.materials, set(used), spectra, scene.world.medium, camera.origin,
+                                              geometry=self.geometry)
         materials = self.material_table.arrays
         groups = tuple(settings.passes.light_groups)
         triangles = len(self.geometry.triangles)  # spheres and curves follow them in ``material``; none is light-sampled

@@ -2,7 +2,7 @@
 anisotropy) lit by a white world and a sun, an emitting Principled Volume cube in the dark, and a Glass BSDF cube holding a Volume Absorption (coloured,
 still refracting glass) in front of an emitter. Both scenes are rendered by both engines in the test; the
 mean luminance of the pixels that see the cube agrees within 3 %. The export keeps every setting (no
-warning), and a textured density is warned, naming material, node and input."""
+warning)."""
 
 from __future__ import annotations
 
@@ -103,7 +103,8 @@ def test_glass_with_absorbing_interior_matches_cycles(prism_addon, fresh_scene):
     assert ratio == pytest.approx(1.0, abs=0.03)
 
 
-def test_volume_settings_export_as_a_medium_and_textured_density_is_warned(prism_addon, fresh_scene):
+def test_volume_settings_export_as_a_medium(prism_addon, fresh_scene):
+    """(A Density driven by nodes: ``test_textured_volume.py``.)"""
     nodes_module = importlib.import_module(f"{prism_addon.__name__}.engine.export.nodes")
     compiled = nodes_module.compile_material(_principled_volume(), load_pixels=False)
     assert compiled.warnings == []
@@ -111,15 +112,7 @@ def test_volume_settings_export_as_a_medium_and_textured_density_is_warned(prism
     (density, colour), = medium.scatter
     assert density == pytest.approx(0.8) and colour == pytest.approx((0.8, 0.7, 0.55))
     assert medium.anisotropy == pytest.approx(0.3)
-    mat, nodes, link = material("Cloud")
-    volume = node(nodes, "ShaderNodeVolumeScatter", Density=1.5)
-    noise = nodes.new("ShaderNodeTexNoise")
-    link(noise.outputs["Fac"], volume.inputs["Density"])
-    link(volume.outputs[0], nodes["Output"].inputs["Volume"])
-    compiled = nodes_module.compile_material(mat, load_pixels=False)
-    assert compiled.medium.scatter[0][0] == pytest.approx(1.5)
-    assert any("Material 'Cloud'" in w and "Density driven by nodes that vary" in w and "1.5" in w
-               for w in compiled.warnings), compiled.warnings
+    assert not medium.density_varies
 
 
 def test_blackbody_principled_volume_matches_cycles(prism_addon, fresh_scene):

@@ -79,3 +79,14 @@ def render_prism_rgba(scene, samples: int, seed: int = 0) -> np.ndarray:
 
 def luminance(rgb: np.ndarray) -> np.ndarray:
     return rgb[..., :3] @ np.array([0.2126, 0.7152, 0.0722])
+
+
+def compare_mean_luminance(scene, samples: int, region, what: str, max_bounces: int = 32):
+    """(Prism / Cycles, Prism's luminance, Cycles' luminance): ``scene`` rendered by both engines with
+    ``samples`` and ``max_bounces``, the ratio of their mean luminance over ``region`` (printed as MEASURED)."""
+    cycles = luminance(render_cycles_rgba(scene, samples, max_bounces=max_bounces))
+    scene.prism.max_bounces = max_bounces
+    prism = luminance(render_prism_rgba(scene, samples))
+    c, p = cycles[region].mean(), prism[region].mean()
+    print(f"MEASURED {what}: Prism {p:.5f}, Cycles {c:.5f}, ratio {p / c:.4f}")
+    return p / c, prism, cycles

@@ -52,11 +52,13 @@ class MaterialCompiler:
     overrides: dict = field(default_factory=dict)  # see ``nodes.compile_material``
     measured_nodes: list = field(default_factory=list)  # names of the nodes whose colour ``reflectance`` replaced
     medium: object = None  # tracer.media.spec.MediumSpec of the Volume socket, or None
+    volume_density: object = None  # the Value of its varying Density (``volume_density``), or None
     aov_outputs: dict = field(default_factory=dict)  # linked AOV Output sockets (``aov_outputs``)
     ao_distance: float = AO_DISTANCE_DEFAULT  # World ▸ Ambient Occlusion ▸ Distance (m)
     _outputs: dict = field(default_factory=dict)
     _warned: set = field(default_factory=set)
     _depth: int = 0  # nodes between the Material Output and the node being compiled
+    bakes_volume_density = True  # a varying volume Density is baked over the meshes (``volume_density``)
 
     def __post_init__(self):
         if self.builder is None:

@@ -127,6 +127,9 @@ class ShaderProgram:
     # register of the Material Output's Displacement vector where Material ▸ Settings ▸ Displacement is
     # "Displacement Only" or "Both" (the vertices move: ``materials.displacement``), or -1
     displacement: int = -1
+    # register of the Volume's Density where nodes make it vary from point to point (``nodes.volume_density``:
+    # baked onto a grid at render time, ``media.baked_density``), or -1
+    volume_density: int = -1
     # AOV Output sockets fed by links: AOV name → {"Color" / "Value": register} where the value varies per hit,
     # {"Color" / "Value": constant} where it folded to one.
     aov_registers: dict = field(default_factory=dict)

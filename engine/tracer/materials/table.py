@@ -102,6 +102,9 @@ class MaterialTable:
     # int32 [materials]: each program's register of its displacement vector (``shader.ShaderProgram.
     # displacement``), -1 for a material whose vertices stay (``materials.displacement`` reads it)
     displacement: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int32))
+    # int32 [materials]: each program's register of its volume's varying Density (``shader.ShaderProgram.
+    # volume_density``), -1 for none (``media.baked_density`` reads it)
+    volume_density: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int32))
 
 
 def _source(colour, spectra, name, bounded=True):
@@ -205,10 +208,12 @@ def _is_delta(spec):
     return spec.kind in (CONDUCTOR, DIELECTRIC) and spec.alpha < SMOOTH_ALPHA
 
 
-def build_materials(materials, used, spectra, outside_medium=None, origin=None) -> MaterialTable:
+def build_materials(materials, used, spectra, outside_medium=None, origin=None, geometry=None) -> MaterialTable:
     """Tables for ``materials`` (``scene.Material``); only indices in ``used`` get closures.
     ``spectra`` is the render's ``SpectrumTable``; ``outside_medium`` the World's Volume (a ``MediumSpec``) or
-    None; ``origin`` (m) the point the kernels' positions are relative to (density grids of media)."""
+    None; ``origin`` (m) the point the kernels' positions are relative to (density grids of media);
+    ``geometry`` (a ``geometry.Geometry`` relative to ``origin``) where varying volume densities are baked
+    over the meshes that hold them (``media.baked_density``; None: not baked)."""
     from ..spectra.rgb_lut import empty_lut, load_lut
     from ..media.table import build_media
     from ..textures.image import build_textures
@@ -225,6 +230,7 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None) 
     normal, emission_register = np.full(count, -1, np.int32), np.full(count, -1, np.int32)
     emission_scale = np.full(count, -1, np.int32)
     displacement = np.full(count, -1, np.int32)
+    volume_density = np.full(count, -1, np.int32)
     rows, glasses, glass_index, features = [], [], {}, set()
     instructions, constants, images, image_index = [], [], [], {}
     image_rows = 0
@@ -278,7 +284,7 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None) 
             flags[m] |= MAT_DELTA
         binds = [[op.BIND, int(multiply), -1, c, column, register] + [-1] * (op.INSTRUCTION - 6)
                  for c, spec in enumerate(closures) for column, register, multiply in spec.bindings]
-        if shader.has_program or binds or shader.displacement >= 0:
+        if shader.has_program or binds or shader.displacement >= 0 or shader.volume_density >= 0:
             flags[m] |= MAT_PROGRAM
             features.add("node program")
             program = np.concatenate([np.array(shader.instructions, dtype=np.int32).reshape(-1, op.INSTRUCTION),
@@ -303,6 +309,7 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None) 
             register_count = max(register_count, len(shader.constants), shader.register_count)
             normal[m] = shader.normal
             displacement[m] = shader.displacement
+            volume_density[m] = shader.volume_density
         emission = shader.emission
         if emission is not None and shader.emission_strength > 0:
             varies = emission.register is not None or shader.emission_scale >= 0
@@ -331,7 +338,23 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None) 
                              np.array(instructions or [[0] * op.INSTRUCTION], dtype=np.int32).reshape(-1, op.INSTRUCTION),
                              np.array(constants or [0.0], dtype=np.float64), load_tables())
     white = spectra.emission(SpectrumSpec()) if needs_lut else 0
-    medium, media, outside = build_media(materials, used, spectra, outside_medium, origin)
+    textures, lut = build_textures(images), load_lut() if needs_lut else empty_lut()
+    closures = closure_rows if len(closure_rows) else np.zeros((1, CLOSURE_ROW))
+
+    def arrays_with(medium, media):
+        return MaterialArrays(flags, start, closure_count, emission_spectrum, emission_strength, closures, glass_rows,
+                              programs, textures, lut, white, medium, media)
+
+    baked = {}
+    if geometry is not None and (volume_density >= 0).any():
+        from ..media.baked_density import bake_densities
+
+        no_media = build_media([], set(), spectra)
+        baked = bake_densities(geometry, arrays_with(no_media[0], no_media[1]), volume_density, register_count,
+                               materials, origin)
+    medium, media, outside = build_media(materials, used, spectra, outside_medium, origin, baked)
+    if baked:
+        features.add("baked volume density")
     flags[medium >= 0] |= MAT_MEDIUM
     gridded = np.zeros(len(materials), bool)
     gridded[medium >= 0] = media.grid[medium[medium >= 0]] >= 0
@@ -341,7 +364,5 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None) 
         features.add("grid media (delta tracking)")
     if outside >= 0:
         features.add("world fog")
-    arrays = MaterialArrays(flags, start, closure_count, emission_spectrum, emission_strength,
-                            closure_rows if len(closure_rows) else np.zeros((1, CLOSURE_ROW)), glass_rows, programs,
-                            build_textures(images), load_lut() if needs_lut else empty_lut(), white, medium, media)
-    return MaterialTable(arrays, glasses, sorted(features), register_count, outside, displacement)
+    return MaterialTable(arrays_with(medium, media), glasses, sorted(features), register_count, outside, displacement,
+                         volume_density)

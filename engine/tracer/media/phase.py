@@ -1,4 +1,6 @@
-"""The Henyey-Greenstein phase function, as Cycles' Volume Scatter and Principled Volume use it.
+"""The Henyey-Greenstein phase function, as Cycles' Volume Scatter and Principled Volume use it, and a
+medium's phase function whichever it is (``medium_phase_value``, ``medium_phase_sample``: Henyey-Greenstein of
+the medium's anisotropy, or its table, ``tabulated_phase``).
 
 Directions are both the way light travels: ``d_in`` the ray that arrived, ``d_out`` the one that leaves,
 so g > 0 scatters forward (d_out near d_in). p(θ) = (1 - g²) / (4π (1 + g² - 2g cos θ)^1.5), cos θ =
@@ -12,6 +14,7 @@ import math
 
 from ..jit import kernel
 from ..vec3 import tangents
+from .tabulated_phase import tabulated_sample, tabulated_value
 
 #: Below this |g| the phase function is sampled as isotropic (the inverted CDF divides by g).
 ISOTROPIC_G = 1e-3
@@ -40,3 +43,21 @@ def hg_sample(d_in, g, u1, u2):
     d_out = (x * t[0] + y * b[0] + cos_theta * d_in[0], x * t[1] + y * b[1] + cos_theta * d_in[1],
              x * t[2] + y * b[2] + cos_theta * d_in[2])
     return d_out, hg_value(cos_theta, g)
+
+
+@kernel
+def medium_phase_value(media, medium, cos_theta):
+    """p(θ) per steradian of row ``medium`` of ``media`` (``table.MediaArrays``)."""
+    row = media.phase_row[medium]
+    if row >= 0:
+        return tabulated_value(media.phase_cdf, row, cos_theta)
+    return hg_value(cos_theta, media.anisotropy[medium])
+
+
+@kernel
+def medium_phase_sample(media, medium, d_in, u1, u2):
+    """(d_out, pdf) drawn from the phase function of row ``medium`` of ``media``."""
+    row = media.phase_row[medium]
+    if row >= 0:
+        return tabulated_sample(media.phase_cdf, row, d_in, u1, u2)
+    return hg_sample(d_in, media.anisotropy[medium], u1, u2)

@@ -1,6 +1,6 @@
 """A scattering vertex inside a medium (a collision ``media.segment`` chose): light sampling with the
-phase function (the shadow ray starts in this medium; ``stages.shadow`` attenuates it through media and
-across volume boundaries), then the next direction drawn from the phase function (weight 1), roulette and
+medium's phase function (the shadow ray starts in this medium; ``stages.shadow`` attenuates it through media
+and across volume boundaries), then the next direction drawn from the phase function (weight 1), roulette and
 the next ray. Its uniforms are the bounce's light, direction and roulette slots, as a surface vertex of
 that bounce would use them (a path has one vertex per bounce).
 """
@@ -19,7 +19,7 @@ from ..stages.nee import FAR, SHADOW_SHORTEN
 from ..stages.queue import push_ray, queue_shadow
 from ..stages.roulette import survives
 from ..warps import power_heuristic
-from .phase import hg_sample, hg_value
+from .phase import medium_phase_sample, medium_phase_value
 
 #: The receiver light set of a medium vertex: Prism's media belong to materials, not objects, so a medium
 #: receives light as an object no linking singles out (set 0); Cycles uses the volume's object.
@@ -27,7 +27,7 @@ MEDIUM_RECEIVER = 0
 
 
 @inlined
-def _light_through_medium(state, i, p, d_in, g, lights, materials, spectra, geometry, settings, depth, shadows, slot,
+def _light_through_medium(state, i, p, d_in, lights, materials, spectra, geometry, settings, depth, shadows, slot,
                           shading):
     """Queue the light-sampled contribution of medium vertex ``p`` at ``slot`` of ``shadows``; 1 if queued."""
     ps, sample = state.seed[i], state.sample[i]
@@ -47,7 +47,7 @@ def _light_through_medium(state, i, p, d_in, g, lights, materials, spectra, geom
         if settings.light_linking and not in_sets(light_sets, MEDIUM_RECEIVER):
             return 0
         delta = delta or shadow_sets != ALL_SETS  # counted by light sampling alone (``light_linking``)
-    phase = hg_value(d_in[0] * wi[0] + d_in[1] * wi[1] + d_in[2] * wi[2], g)
+    phase = medium_phase_value(materials.media, state.medium[i], d_in[0] * wi[0] + d_in[1] * wi[1] + d_in[2] * wi[2])
     weight = 1.0 if (delta or not settings.use_mis) else power_heuristic(pdf_light, phase)
     scale = weight * phase / pdf_light
     contribution = shadows.contribution[slot]
@@ -70,13 +70,12 @@ def scatter_in_medium(state, i, lights, materials, spectra, geometry, settings, 
     t = state.hit_t[i]
     d_in = (state.direction[i, 0], state.direction[i, 1], state.direction[i, 2])
     p = (state.origin[i, 0] + t * d_in[0], state.origin[i, 1] + t * d_in[1], state.origin[i, 2] + t * d_in[2])
-    g = materials.media.anisotropy[state.medium[i]]
     lit = 0
     if lights.select_prob.shape[0] > 0:
-        lit = _light_through_medium(state, i, p, d_in, g, lights, materials, spectra, geometry, settings, depth,
+        lit = _light_through_medium(state, i, p, d_in, lights, materials, spectra, geometry, settings, depth,
                                     shadows, shadowed, shading)
     u1, u2 = sample_2d(settings.sampler, state.seed[i], state.sample[i], bounce_slot(depth, BOUNCE_DIRECTION))
-    d_out, pdf = hg_sample(d_in, g, u1, u2)
+    d_out, pdf = medium_phase_sample(materials.media, state.medium[i], d_in, u1, u2)
     state.flags[i] &= ~(CAMERA_PATH | PREV_DELTA | LAST_DIFFUSE | LAST_TRANSMISSION)
     if settings.light_path:
         after_volume_scatter(state, i)

@@ -29,7 +29,11 @@ class MediumSpec:
     (evaluated at temperature_k) for a ``temperature_grid`` (a ``DensityGrid``, with a ``density_grid``
     only): when set, the temperature is temperature_k × max(grid value, 0) point by point, as Cycles'
     Temperature Attribute, and those terms replace the blackbody terms of ``emission``
-    (``temperature_emission``)."""
+    (``temperature_emission``). ``density_varies``: the density terms are per unit of a density the material's
+    program computes per point (``ShaderProgram.volume_density``), which the render bakes onto a
+    ``density_grid`` over the mesh (``baked_density``) at voxels of Cycles' step size over ``step_rate``
+    (Material ▸ Settings ▸ Volume ▸ Step Rate). ``phase``: the scattering's phase function as a mixture of lobes
+    (weight, kind, parameters) (``phase_functions``), tabulated; empty: Henyey-Greenstein of ``anisotropy``."""
 
     name: str
     scatter: list = field(default_factory=list)
@@ -39,3 +43,6 @@ class MediumSpec:
     density_grid: object = None
     blackbody: list = field(default_factory=list)
     temperature_grid: object = None
+    density_varies: bool = False
+    step_rate: float = 1.0
+    phase: list = field(default_factory=list)

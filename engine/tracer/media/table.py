@@ -10,22 +10,26 @@ strength 1; a grid medium's emission varies with the value of its ``emission_gri
 -1: none, the same everywhere): ``emission_rows`` [M] spectra from id ``emission`` on, one per
 ``emission_step`` [M] of the grid's value (``temperature_emission``). ``emission_rate`` [M] (per metre) is
 added to an emitting grid medium's majorant so that delta tracking gathers its emission where nothing
-scatters (``grid_emission``).
+scatters (``grid_emission``). ``phase_row`` [M] is the row of ``phase_cdf`` [R, BINS + 1] holding a medium's
+tabulated phase function (``tabulated_phase``; -1: Henyey-Greenstein of its ``anisotropy``).
 """
 
 from __future__ import annotations
 
 from collections import namedtuple
+from dataclasses import replace
 
 import numpy as np
 
 from ..errors import PrismInputError
 from .density_grid import build_grids, check_grid
+from .phase_functions import phase_table
+from .tabulated_phase import BINS
 from .temperature_emission import emission_key, emission_rows
 from ..spectra.wavelengths import VISIBLE_MIN_NM, VISIBLE_NM_GRID
 
 MediaArrays = namedtuple("MediaArrays", "scattering absorption emission emission_strength anisotropy grid grids "
-                                         "emission_grid emission_rows emission_step emission_rate")
+                                         "emission_grid emission_rows emission_step emission_rate phase_row phase_cdf")
 
 #: Tentative collisions per voxel (of the finest grid's smallest edge) that an emitting grid medium's walk
 #: takes at least, to gather its emission as Cycles 4.5 gathers it once per ray-marching step of a voxel.
@@ -132,15 +136,40 @@ def _emission_rate(spec) -> float:
     return EMISSION_SAMPLES_PER_VOXEL / float(min(edges))
 
 
-def build_media(materials, used, spectra, outside=None, origin=None):
+def _phase_row(spec, tables) -> int:
+    """The ``phase_cdf`` row of ``spec``'s phase lobes (added to ``tables`` once per set of lobes), or -1."""
+    if not spec.phase:
+        return -1
+    key = tuple((float(w), kind, tuple(float(x) for x in parameters)) for w, kind, parameters in spec.phase)
+    if key not in tables:
+        tables[key] = (len(tables), phase_table(spec.phase))
+    return tables[key][0]
+
+
+def _phase_cdf(tables) -> np.ndarray:
+    """float64 [R, BINS + 1] of the rows ``_phase_row`` made (one unused row where there are none)."""
+    if not tables:
+        return np.zeros((1, BINS + 1))
+    return np.stack([cdf for _, cdf in sorted(tables.values(), key=lambda entry: entry[0])])
+
+
+def _with_baked(spec, grid):
+    """``spec`` with its baked density ``grid`` (a ``DensityGrid``, or None: as it is)."""
+    return spec if grid is None or spec is None else replace(spec, density_grid=grid)
+
+
+def build_media(materials, used, spectra, outside=None, origin=None, baked=None):
     """(medium index int32 [len(materials)] (-1: none), ``MediaArrays``, the row of ``outside`` or -1) for the
     ``scene.Material`` list, whose indices in ``used`` get a medium, and ``outside`` (a ``MediumSpec``: the
     World's Volume, the medium everywhere outside meshes that hold one; None: vacuum). ``spectra``: the
-    render's ``SpectrumTable``; ``origin`` (m) the point the kernels' positions are relative to (grids)."""
+    render's ``SpectrumTable``; ``origin`` (m) the point the kernels' positions are relative to (grids);
+    ``baked``: material index → the ``DensityGrid`` its varying density was baked to (``baked_density``)."""
     index = np.full(len(materials), -1, np.int32)
     scattering, absorption, emission, strength, anisotropy, grid, grids = [], [], [], [], [], [], []
     emitting_grid, rows, steps, rate, made = [], [], [], [], {}
-    specs = [(m, getattr(material, "medium", None)) for m, material in enumerate(materials) if m in used]
+    phase_row, phase_tables = [], {}  # lobes → (row, CDF)
+    specs = [(m, _with_baked(getattr(material, "medium", None), (baked or {}).get(m)))
+             for m, material in enumerate(materials) if m in used]
     for m, spec in specs + [(-1, outside)]:
         if spec is None:
             continue
@@ -165,9 +194,11 @@ def build_media(materials, used, spectra, outside=None, origin=None):
         rows.append(count)
         steps.append(step)
         rate.append(_emission_rate(spec) if first >= 0 and density_grid is not None else 0.0)
+        phase_row.append(_phase_row(spec, phase_tables))
     arrays = MediaArrays(np.array(scattering or [0], np.int32), np.array(absorption or [0], np.int32),
                          np.array(emission or [-1], np.int32), np.array(strength or [0.0]),
                          np.array(anisotropy or [0.0]), np.array(grid or [-1], np.int32),
                          build_grids(grids, origin), np.array(emitting_grid or [-1], np.int32),
-                         np.array(rows or [1], np.int32), np.array(steps or [1.0]), np.array(rate or [0.0]))
+                         np.array(rows or [1], np.int32), np.array(steps or [1.0]), np.array(rate or [0.0]),
+                         np.array(phase_row or [-1], np.int32), _phase_cdf(phase_tables))
     return index, arrays, (len(scattering) - 1 if outside is not None else -1)

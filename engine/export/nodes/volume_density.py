@@ -1,0 +1,101 @@
+"""A volume's Density driven by nodes (a Noise Texture, a gradient over Generated coordinates): compiled into
+the material's program, so that the render bakes it onto a voxel grid over the mesh (``tracer.media.
+baked_density``) and renders the medium as a grid medium, as Cycles evaluates the shader at each step inside.
+
+A baked value is a value per point: it may read where the point is (Position, Generated and Object
+coordinates, Object Info) and anything computed from that. Inside a volume Cycles has no surface, UV map or
+normal there, and the ray's direction changes per sample; a Density that reads those (a UV map, an attribute,
+Normal, Incoming, Fresnel, Light Path, ...) cannot be one grid, so it is rendered at the socket's own value,
+as before, and the warning names why.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ...tracer.materials import opcodes as op
+from .graph import follow
+from .inputs import needs_objects
+from .terms import FLOAT
+
+#: Inputs a program can read at a point inside a volume, wherever the ray came from.
+_POINT_INPUTS = frozenset({op.POSITION, op.GENERATED, op.OBJECT_COORDINATES, op.OBJECT_INFO})
+#: Program inputs (hit readers, ``opcodes`` 1-19) and operations that need a surface or the ray's direction.
+_NOT_AT_A_POINT = (frozenset(range(op.UV, op.COPY)) - _POINT_INPUTS) | {op.FRESNEL, op.LAYER_WEIGHT, op.NORMAL_MAP,
+                                                                       op.BUMP, op.VALID_REFLECTION}
+_NAMES = {getattr(op, name): name.replace("_", " ").title() for name in dir(op)
+          if name.isupper() and isinstance(getattr(op, name), int)}
+
+
+@dataclass
+class DensityField:
+    """The varying Density a volume's nodes share: ``value`` (the program's ``Value``) and the nodes reading it
+    (``varying``), the nodes whose Density stays constant (``constant``)."""
+
+    value: object = None
+    varying: list = field(default_factory=list)
+    constant: list = field(default_factory=list)
+
+
+def _surface_reads(c, value) -> list[str]:
+    """Names of what ``value``'s instructions read that exists only on a surface or along a ray."""
+    rows = c.builder.instructions(live=set(range(value.register, value.register + value.width)))
+    return sorted({_NAMES.get(int(code), str(int(code))) for code in rows[:, op.OP] if int(code) in _NOT_AT_A_POINT})
+
+
+def _constant(node, value, found):
+    if value > 0.0:
+        found.constant.append(node)
+    return value
+
+
+def density(c, node, context, weight, found: DensityField) -> float:
+    """The node's Density times ``weight`` as a constant (clamped at 0, as Cycles clamps it), or ``weight``
+    where it varies per point (the medium's coefficients then scale by ``found.value``, baked)."""
+    socket = c.socket(node, "Density")
+    source, value_socket = follow(socket, context)
+    own = c.known(c.default_value(value_socket, FLOAT))
+    if source is None:
+        return _constant(node, weight * max(own, 0.0), found)
+    value = c.value(node, "Density", context, FLOAT)
+    known = c.known(value)
+    if known is not None:
+        return _constant(node, weight * max(known, 0.0), found)
+    if not c.bakes_volume_density:
+        c.warn(node, f"has its Density driven by nodes that vary; Prism bakes such a density inside meshes only (fog "
+                     f"fills all space), so it uses the Density set on the socket, {own:g}, throughout the volume.")
+        return _constant(node, weight * max(own, 0.0), found)
+    reads = _surface_reads(c, value)
+    if reads:
+        c.warn(node, f"has its Density driven by nodes that read {', '.join(reads)}, which a point inside a volume "
+                     "does not have (no surface there, and the ray's direction changes); Prism uses the Density set "
+                     f"on the socket, {own:g}, throughout the volume.")
+        return _constant(node, weight * max(own, 0.0), found)
+    if found.value is None:
+        found.value = value
+        needs_objects(c)  # Generated, Object coordinates and Object Info read the instance's row
+    elif value.register != found.value.register:
+        c.warn(node, f"has a Density driven by other nodes than '{found.varying[0].name}''s; Prism bakes one density "
+                     f"per volume and scales this node by '{found.varying[0].name}''s Density.")
+    found.varying.append(node)
+    return weight
+
+
+def finish_field(c, spec, found: DensityField) -> None:
+    """Mark ``spec`` (``MediumSpec``) as baked from ``found`` (when some Density varies) and warn what a single
+    field changes: nodes of constant Density beside it scale with it too."""
+    if found.value is None:
+        return
+    spec.density_varies = True
+    c.volume_density = found.value
+    cycles = getattr(c.material, "cycles", None)
+    spec.step_rate = float(getattr(cycles, "volume_step_rate", 1.0))
+    if not spec.step_rate > 0.0:
+        spec.step_rate = 1.0
+    if getattr(cycles, "homogeneous_volume", False):
+        c.warn(c.output_node, "has Settings ▸ Volume ▸ Homogeneous on, so Cycles reads its varying Density at one "
+                              "point of each ray's path through the volume; Prism renders the Density varying "
+                              "through the volume.")
+    for node in found.constant:
+        c.warn(node, f"has a constant Density beside '{found.varying[0].name}''s varying one; Prism bakes one density "
+                     f"per volume and scales this node by '{found.varying[0].name}''s Density too.")

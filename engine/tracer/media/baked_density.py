@@ -1,0 +1,139 @@
+"""A volume's varying Density (a Noise Texture, a gradient: ``export.nodes.volume_density``) baked onto a voxel
+grid over the meshes that hold it, so that the medium renders as a grid medium (delta and ratio tracking,
+trilinear between voxel centres: ``density_grid``).
+
+Cycles 4.5 ray-marches such a volume, evaluating the shader once per step of 1/10 of the mean edge of the
+object's bounds times Material ▸ Settings ▸ Volume ▸ Step Rate (``Object::compute_volume_step_size``). The
+grid's voxels are ``BAKED_VOXELS_PER_STEP`` times finer than that step (so a smaller Step Rate gives a finer
+grid, as it gives Cycles finer steps), across the bounds of every object with the material, their centres on
+the bounds' faces; at most ``MAX_BAKED_VOXELS`` voxels (the voxels grow evenly past it).
+
+The program runs at the voxel centres as at the corners of triangles: three centres make one probe
+triangle, and the kernel that evaluates true displacement at triangle corners (``materials.displacement``)
+evaluates the density there, so no kernel is compiled for baking. The probe triangles have no corner data
+(UV maps, colour attributes read as missing, as inside a Cycles volume) and belong to the object whose bounds
+hold the centre: Generated and Object coordinates and Object Info are that object's. A density that reads
+the surface or the ray is not baked (the export renders it at the socket's value).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..bsdf.closure import CLOSURE_ROW, MAX_CLOSURES
+from ..materials.displacement import corner_displacements
+from ..materials.light_path import FIELDS
+from .density_grid import DensityGrid
+
+#: Cycles' ray-marching step for a volume without voxel grids, as a fraction of the mean edge of its bounds.
+CYCLES_STEP_FRACTION = 0.1
+#: Voxels per Cycles step: fine enough that trilinear interpolation follows what Cycles' steps resolve.
+BAKED_VOXELS_PER_STEP = 8.0
+#: The most voxels one volume's grid holds (64 MiB of float32).
+MAX_BAKED_VOXELS = 1 << 24
+#: Voxel centres evaluated per kernel call (bounds the scratch arrays).
+_POINTS_PER_CALL = 1 << 18
+
+
+def _object_bounds(geometry, triangles):
+    """{instance row: (low, high)} of the vertices of ``triangles`` (positions relative to the origin)."""
+    instance = geometry.attributes.instance
+    rows = instance[triangles] if len(instance) >= geometry.triangles.shape[0] else np.full(len(triangles), -1)
+    bounds = {}
+    for row in np.unique(rows):
+        corners = geometry.vertices[geometry.triangles[triangles[rows == row]].ravel()].astype(np.float64)
+        bounds[int(row)] = (corners.min(axis=0), corners.max(axis=0))
+    return bounds
+
+
+def grid_layout(bounds, step_rate):
+    """(low corner, voxel spacing [3], voxel counts [3]) of the grid over ``bounds`` ({row: (low, high)})."""
+    steps = [CYCLES_STEP_FRACTION * float(np.mean(high - low)) * step_rate for low, high in bounds.values()]
+    steps = [s for s in steps if s > 0.0]
+    low = np.min([lo for lo, _ in bounds.values()], axis=0)
+    high = np.max([hi for _, hi in bounds.values()], axis=0)
+    size = high - low
+    voxel = min(steps) / BAKED_VOXELS_PER_STEP if steps else 1.0
+    while True:
+        counts = np.maximum(np.ceil(size / voxel).astype(np.int64) + 1, 1)
+        if int(np.prod(counts)) <= MAX_BAKED_VOXELS:
+            break
+        voxel *= (float(np.prod(counts)) / MAX_BAKED_VOXELS) ** (1.0 / 3.0) * 1.01
+    spacing = np.where(counts > 1, size / np.maximum(counts - 1, 1), voxel)
+    return low, spacing, counts
+
+
+def _probe(geometry, points, material, row):
+    """A ``Geometry`` whose triangles have ``points`` (float32 [3 P, 3]) as corners, all of ``material`` and
+    instance ``row``, without corner data; the same array types as ``geometry``'s, so the kernel compiled for
+    it runs."""
+    count = len(points) // 3
+    a = geometry.attributes
+
+    def empty(array, axes=(0,)):
+        return np.zeros([0 if axis in axes else n for axis, n in enumerate(array.shape)], array.dtype)
+
+    attributes = a._replace(uvs=empty(a.uvs, (1,)), colors=empty(a.colors, (1,)), tangents=empty(a.tangents, (1,)),
+                            positions=empty(a.positions), instance=np.full(count, row, a.instance.dtype))
+    return geometry._replace(
+        vertices=np.ascontiguousarray(points, dtype=geometry.vertices.dtype),
+        triangles=np.arange(3 * count, dtype=geometry.triangles.dtype).reshape(count, 3),
+        material=np.full(count, material, geometry.material.dtype), normals=empty(geometry.normals),
+        attributes=attributes, flags=np.zeros(count, geometry.flags.dtype), motion=empty(geometry.motion, (0, 1)),
+        motion_normals=empty(geometry.motion_normals, (0, 1)), spheres=empty(geometry.spheres),
+        sphere_random=empty(geometry.sphere_random), curves=empty(geometry.curves),
+        curve_segments=empty(geometry.curve_segments), curve_info=empty(geometry.curve_info))
+
+
+def _evaluate(geometry, arrays, registers, register_count, material, row, points):
+    """The density ``material``'s program computes at ``points`` (float64 [P, 3], relative to the origin)."""
+    padded = np.concatenate([points, np.repeat(points[-1:], (-len(points)) % 3, axis=0)])
+    probe = _probe(geometry, padded.astype(np.float32), material, row)
+    out = np.zeros((len(padded) // 3, 3, 3))
+    regs = np.zeros(max(int(register_count), 1) + FIELDS)
+    corner_displacements(probe, arrays, registers, np.zeros((MAX_CLOSURES, CLOSURE_ROW)), regs, out)
+    return out[:, :, 0].ravel()[:len(points)]
+
+
+def bake_density(geometry, arrays, registers, register_count, material, spec, origin) -> DensityGrid | None:
+    """The ``DensityGrid`` (world metres) of ``material``'s varying density over the objects that hold it, or
+    None when no triangle has the material."""
+    on = np.flatnonzero(geometry.material[:geometry.triangles.shape[0]] == material)
+    if not len(on):
+        return None
+    bounds = _object_bounds(geometry, on)
+    low, spacing, counts = grid_layout(bounds, spec.step_rate)
+    values = np.zeros(counts, np.float32)
+    per_slab = max(1, _POINTS_PER_CALL // int(counts[1] * counts[2]))
+    j, k = np.meshgrid(np.arange(counts[1]), np.arange(counts[2]), indexing="ij")
+    for first in range(0, int(counts[0]), per_slab):
+        i = np.arange(first, min(first + per_slab, int(counts[0])))
+        index = np.stack(np.broadcast_arrays(i[:, None, None], j[None], k[None]), axis=-1).reshape(-1, 3)
+        centres = low + index * spacing
+        owner = np.full(len(centres), -2)
+        for row, (lo, hi) in bounds.items():  # a voxel next to an object's bounds still shades its inside
+            inside = np.all((centres >= lo - spacing) & (centres <= hi + spacing), axis=1) & (owner == -2)
+            owner[inside] = row
+        slab = np.zeros(len(centres))
+        for row in bounds:
+            mine = owner == row
+            if mine.any():
+                slab[mine] = _evaluate(geometry, arrays, registers, register_count, material, row, centres[mine])
+        values[i[0]:i[-1] + 1] = np.where(np.isfinite(slab), slab, 0.0).reshape(len(i), counts[1], counts[2])
+    index_to_world = np.diag([*spacing, 1.0])
+    index_to_world[:3, 3] = low + (np.zeros(3) if origin is None else np.asarray(origin, dtype=np.float64))
+    return DensityGrid(values, index_to_world, f"density baked from material '{spec.name}'")
+
+
+def bake_densities(geometry, arrays, registers, register_count, materials, origin) -> dict:
+    """{material index: ``DensityGrid``} for the materials whose program computes a varying volume density
+    (``registers`` int32 [materials], -1: none) and that some triangle of ``geometry`` has."""
+    baked = {}
+    for m in np.flatnonzero(np.asarray(registers) >= 0):
+        spec = getattr(materials[m], "medium", None)
+        if spec is None or not spec.density_varies:
+            continue
+        grid = bake_density(geometry, arrays, registers, register_count, int(m), spec, origin)
+        if grid is not None:
+            baked[int(m)] = grid
+    return baked
