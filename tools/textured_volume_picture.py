@@ -5,10 +5,10 @@ the same scene, side by side: docs/images/textured_volume.png.
 
 A 2 m cube holds a Principled Volume (Color 0.9, 0.85, 0.8) whose Density is 120 × max(Noise − 0.4, 0) ×
 a Quadratic Sphere Gradient Texture over Object coordinates (1 at the centre, 0 from 1 m out), Noise Texture of
-Scale 2.5 and Detail 4 over the cube's Generated coordinates: a round cloud of lumps, over a grey floor, under a blue-grey world and a low sun. Prism bakes the density onto a grid
-(``tracer.media.baked_density``, Step Rate 0.5: 160 voxels across); Cycles ray marches it at the same Step
-Rate. Prints each image's mean luminance and their ratio (absolute light); the picture shows both with the
-same view transform.
+Scale 2.5 and Detail 4 over the cube's Generated coordinates: a round cloud of lumps, over a grey floor,
+under a blue-grey world and a low sun. Prism bakes the density onto a grid (``tracer.media.baked_density``,
+Step Rate 0.5: 160 voxels across); Cycles ray marches it at the same Step Rate. Prints each image's mean
+luminance and their ratio (absolute light); the picture shows both with the same view transform.
 """
 
 from __future__ import annotations

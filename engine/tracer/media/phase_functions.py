@@ -95,7 +95,8 @@ def mie_parameters(d):
         log_d = math.log(d)
         temp = math.cos(5.68947 * (math.log(log_d) - 0.0292149))
         g_d = 0.500411 - 0.081287 / (-2.0 * log_d + math.tan(log_d) + 1.27551)
-        return 0.0604931 * math.log(log_d) + 0.940256, g_d, 7.30354 * log_d + 6.31675, 0.026914 * (log_d - temp) + 0.3764
+        w = 0.026914 * (log_d - temp) + 0.3764
+        return 0.0604931 * math.log(log_d) + 0.940256, g_d, 7.30354 * log_d + 6.31675, w
     return (math.exp(-0.0990567 / (d - 1.67154)), math.exp(-2.20679 / (d + 3.91029) - 0.428934),
             math.exp(3.62489 - 8.29288 / (d + 5.52825)), math.exp(-0.599085 / (d - 0.641583) - 0.665888))
 
