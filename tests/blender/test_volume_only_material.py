@@ -1,6 +1,7 @@
 """A material with only its Volume linked (no Surface) is a null surface around a medium, as Cycles renders
-a volume's missing surface; a density driven by a texture is rendered at the socket's own value and warned,
-naming the material, node and input."""
+a volume's missing surface; a density driven by what a point inside a volume does not have (the Normal) is
+rendered at the socket's own value and warned, naming the material, node and input (a Noise Texture's is baked:
+``test_textured_volume.py``)."""
 
 from __future__ import annotations
 
@@ -24,8 +25,8 @@ def _volume_only(obj, density=1.0):
 
 
 EXPECTED_WARNING = ("Material 'Fog': the 'Principled Volume' node (Principled Volume) has its Density driven by "
-                    "nodes that vary; Prism renders homogeneous volumes only, so it uses the Density set on the socket, "
-                    "1, throughout the volume.")
+                    "nodes that read Normal, which a point inside a volume does not have (no surface there, and the "
+                    "ray's direction changes); Prism uses the Density set on the socket, 1, throughout the volume.")
 
 
 def test_a_volume_only_material_compiles_to_a_null_surface_around_a_medium(prism_addon, fresh_scene, bad_input,
@@ -40,11 +41,11 @@ def test_a_volume_only_material_compiles_to_a_null_surface_around_a_medium(prism
     assert compiled.warnings == []
     assert compiled.medium.scatter == [(1.0, (0.5, 0.5, 0.5))]  # Principled Volume's defaults
     volume = material.node_tree.nodes["Principled Volume"]
-    noise = material.node_tree.nodes.new("ShaderNodeTexNoise")
-    material.node_tree.links.new(noise.outputs["Fac"], volume.inputs["Density"])
+    geometry = material.node_tree.nodes.new("ShaderNodeNewGeometry")
+    material.node_tree.links.new(geometry.outputs["Normal"], volume.inputs["Density"])
     compiled = nodes.compile_material(material, load_pixels=False)
     assert compiled.warnings == [EXPECTED_WARNING]
-    bad_input("material whose Principled Volume Density is driven by a Noise Texture",
+    bad_input("material whose Principled Volume Density is driven by the Normal",
               *batch_warning(capsys, tmp_path, EXPECTED_WARNING))
 
 
