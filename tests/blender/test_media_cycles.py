@@ -12,7 +12,7 @@ import bpy
 import numpy as np
 import pytest
 
-from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
+from helpers.cycles import compare_mean_luminance
 from helpers.node_scenes import black_world, camera, material, node
 
 
@@ -49,13 +49,7 @@ def _tinted_glass():
 
 
 def _compare(scene, samples, region, what):
-    cycles = luminance(render_cycles_rgba(scene, samples, max_bounces=32))
-    scene.prism.max_bounces = 32
-    prism = luminance(render_prism_rgba(scene, samples))
-    c, p = cycles[region].mean(), prism[region].mean()
-    print(f"MEASURED {what}: Prism {p:.5f}, Cycles {c:.5f}, ratio {p / c:.4f}; whole image Prism "
-          f"{prism.mean():.5f}, Cycles {cycles.mean():.5f}")
-    return p / c
+    return compare_mean_luminance(scene, samples, region, what)[0]
 
 
 def test_principled_volume_cube_matches_cycles(prism_addon, fresh_scene):

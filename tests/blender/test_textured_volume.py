@@ -65,6 +65,9 @@ def test_a_node_driven_density_compiles_to_a_baked_field_and_a_normal_driven_one
     assert compiled.shader.volume_density < 0
     assert any("Material 'Rim'" in w and "Density driven by nodes that read Normal" in w and "1.5" in w
                for w in compiled.warnings), compiled.warnings
+    link(geometry.outputs["Backfacing"], volume.inputs["Density"])
+    compiled = nodes_module.compile_material(mat, load_pixels=False)
+    assert any("Density driven by nodes that read Backfacing, which" in w for w in compiled.warnings), compiled.warnings
 
 
 def _tables(prism_addon):

@@ -18,13 +18,13 @@ from .graph import follow
 from .inputs import needs_objects
 from .terms import FLOAT
 
-#: Inputs a program can read at a point inside a volume, wherever the ray came from.
-_POINT_INPUTS = frozenset({op.POSITION, op.GENERATED, op.OBJECT_COORDINATES, op.OBJECT_INFO})
-#: Program inputs (hit readers, ``opcodes`` 1-19) and operations that need a surface or the ray's direction.
-_NOT_AT_A_POINT = (frozenset(range(op.UV, op.COPY)) - _POINT_INPUTS) | {op.FRESNEL, op.LAYER_WEIGHT, op.NORMAL_MAP,
-                                                                       op.BUMP, op.VALID_REFLECTION}
-_NAMES = {getattr(op, name): name.replace("_", " ").title() for name in dir(op)
-          if name.isupper() and isinstance(getattr(op, name), int)}
+#: What a program can read only on a surface or along a ray (Cycles' names in the warning).
+_NOT_AT_A_POINT = {op.UV: "UV", op.COLOR_ATTRIBUTE: "Color Attribute", op.NORMAL: "Normal",
+                   op.TRUE_NORMAL: "True Normal", op.INCOMING: "Incoming", op.BACKFACING: "Backfacing",
+                   op.TANGENT: "Tangent", op.PARAMETRIC: "Parametric", op.POINT_INFO: "Point Info",
+                   op.HAIR_INFO: "Hair Info", op.LIGHT_PATH: "Light Path", op.AMBIENT_OCCLUSION: "Ambient Occlusion",
+                   op.BEVEL: "Bevel", op.FRESNEL: "Fresnel", op.LAYER_WEIGHT: "Layer Weight",
+                   op.NORMAL_MAP: "Normal Map", op.BUMP: "Bump", op.VALID_REFLECTION: "Bump"}
 
 
 @dataclass
@@ -40,7 +40,7 @@ class DensityField:
 def _surface_reads(c, value) -> list[str]:
     """Names of what ``value``'s instructions read that exists only on a surface or along a ray."""
     rows = c.builder.instructions(live=set(range(value.register, value.register + value.width)))
-    return sorted({_NAMES.get(int(code), str(int(code))) for code in rows[:, op.OP] if int(code) in _NOT_AT_A_POINT})
+    return sorted({_NOT_AT_A_POINT[int(code)] for code in rows[:, op.OP] if int(code) in _NOT_AT_A_POINT})
 
 
 def _constant(node, value, found):
