@@ -145,7 +145,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     warned: set[str] = set()
     included = layer_filter(getattr(depsgraph, "view_layer", None))  # View Layer ▸ Filter, as Cycles syncs it
     render = getattr(depsgraph, "mode", "RENDER") == "RENDER"  # particle hair: render or viewport steps
-    volumes = VolumeReader(lambda material: materials.materials[materials.slot_lookup([material])[0]])
+    volumes = VolumeReader(lambda m: (i := int(materials.slot_lookup([m])[0]), materials.materials[i]))
 
     def warn_once(obj, messages):
         name = obj.original.name

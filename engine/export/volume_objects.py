@@ -8,6 +8,11 @@ it) and renders the material's medium (``nodes.volumes``) with σ_s and σ_a sca
 (``tracer.media.density_grid``), inside the box of the grid's voxels, a closed null surface placed with the
 grid's transform and the object's matrix.
 
+A Density driven by nodes (``nodes.volume_density``) runs on the grid's voxels at render time
+(``tracer.media.voxel_inputs``), its Attribute nodes reading the object's grids of their names (0 where the
+file has none, as in Cycles), and multiplies the Principled Volume's Density Attribute grid, as Cycles
+multiplies the Density by it.
+
 The Principled Volume's emission renders as Cycles': Emission Strength × Color and blackbody light, whose
 temperature is the node's Temperature times the grid its Temperature Attribute names ("temperature" by
 default; where the file has no such grid, the Temperature alone), read like the density grid and held in the
@@ -32,6 +37,7 @@ import numpy as np
 
 from ..tracer.media.density_grid import DensityGrid
 from ..tracer.media.spec import MediumSpec
+from ..tracer.media.voxel_inputs import VoxelInputs, resample
 from ..tracer.scene import Material
 from .mesh_data import LocalMesh
 from .volume_emission import glow_note, index_box, socket_string, temperature_grid_name
@@ -127,11 +133,11 @@ def _box(low, high, index_to_object) -> LocalMesh:
 
 
 class VolumeReader:
-    """Reads each Volume object's grid once per export; ``medium_of(material)`` compiles a Blender material
-    to its tracer material (``MaterialExporter.export``)."""
+    """Reads each Volume object's grid once per export; ``export_material(material)`` compiles a Blender
+    material to (its index in the scene's materials, its tracer material) (``MaterialExporter.export``)."""
 
-    def __init__(self, medium_of):
-        self.medium_of = medium_of
+    def __init__(self, export_material):
+        self.export_material = export_material
         self._read: dict = {}
 
     def _grid(self, obj, notes):
@@ -181,11 +187,16 @@ class VolumeReader:
         loaded = self._read[key]
         if loaded is None:
             return None
-        spec, values, index_to_object, grid, hot = loaded
+        spec, values, index_to_object, grid, hot, inputs = loaded
         matrix = np.asarray(matrix_world, dtype=np.float64).reshape(4, 4)
         if getattr(getattr(obj.data, "render", None), "space", "OBJECT") == "OBJECT":
             spec = scaled_by(spec, object_space_density(matrix))
-        if grid is not None:
+        if inputs is not None:  # the nodes' density, baked on these voxels (× the Density Attribute grid)
+            lattice = DensityGrid(values if grid is not None else np.ones_like(values), matrix @ index_to_object,
+                                  f"'{inputs[2]}' of '{name}'")
+            spec = replace(spec, name=f"{spec.name} ({name})", density_grid=lattice,
+                           voxel_inputs=VoxelInputs(inputs[0], lattice, inputs[1]))
+        elif grid is not None:
             spec = replace(spec, name=f"{spec.name} ({name})",
                            density_grid=DensityGrid(values, matrix @ index_to_object, f"'{grid}' of '{name}'"))
         if hot is not None:
@@ -202,7 +213,10 @@ class VolumeReader:
         if found is None:
             return None
         path, grids = found
-        spec = DEFAULT_VOLUME if material is None else self.medium_of(material).medium
+        source, spec = None, DEFAULT_VOLUME
+        if material is not None:
+            source, exported = self.export_material(material)
+            spec = exported.medium
         if spec is None:
             notes.append(f"Volume '{name}': its material '{material.name}' has no volume shader on its Volume "
                          "output; it renders as empty space, as in Cycles.")
@@ -210,17 +224,15 @@ class VolumeReader:
         grid = _density_grid_name(name, material, nodes, grids, notes)
         if grid == "":
             return None
-        if spec.density_varies:
-            notes.append(f"Volume '{name}': material '{material.name}' drives its Density by nodes; Prism bakes "
-                         "such a density inside meshes only and renders this Volume object's grid as if the "
-                         "Density input were 1.")
         notes.extend(_notes(name, material, nodes, grid))
-        if grid is None:
+        lattice = grid if grid is not None else _lattice_name(spec, grids)
+        if grid is None and lattice not in spec.density_attributes:  # a density of that grid is 0 where it is
+            filled = "with the density its nodes compute" if spec.density_varies else "evenly"
             notes.append(f"Volume '{name}': its material reads no density grid (no Principled Volume Density "
-                         f"Attribute); Prism fills the box of grid '{grids[0]}' evenly (Cycles fills its active "
-                         "voxels).")
+                         f"Attribute or Attribute node); Prism fills the box of grid '{lattice}' {filled} (Cycles "
+                         "fills its active voxels).")
         try:
-            read = read_float_grid(path, grid if grid is not None else grids[0])
+            read = read_float_grid(path, lattice)
         except GridUnreadable as error:
             notes.append(f"Volume '{name}' is not rendered: {error}; it renders as empty space.")
             return None
@@ -236,7 +248,12 @@ class VolumeReader:
         if grid is not None:
             note = glow_note(name, spec, values)
             notes.extend([note] if note else [])
-        return spec, values, index_to_object @ _cycles_offset(), grid, hot
+        index_to_object = index_to_object @ _cycles_offset()
+        inputs = None
+        if spec.density_varies:
+            attributes = _attribute_grids(name, spec, path, grids, values.shape, index_to_object, notes)
+            inputs = (source, attributes, lattice)
+        return spec, values, index_to_object, grid, hot, inputs
 
     @staticmethod
     def _temperature(name, nodes, path, grids, notes):
@@ -254,6 +271,34 @@ class VolumeReader:
         if read is None:  # no active voxel: nothing to place; the Temperature alone
             return None
         return read[0], read[1] @ _cycles_offset(), hot
+
+
+def _lattice_name(spec, grids) -> str:
+    """The grid whose voxels hold a Volume object's density where no Density Attribute names one: the first
+    grid the density's nodes read, else the file's first float grid."""
+    read = [name for name in spec.density_attributes if name in grids] if spec.density_varies else []
+    return read[0] if read else grids[0]
+
+
+def _attribute_grids(name, spec, path, grids, shape, lattice_to_object, notes) -> dict:
+    """{colour slot: float32 ``shape``}: the grid each Attribute node of ``spec``'s density names, resampled
+    onto the lattice (index → object ``lattice_to_object``); zeros where the file has no such float grid (as
+    Cycles reads a missing attribute), warned."""
+    attributes = {}
+    for attribute, slot in spec.density_attributes.items():
+        attributes[slot] = np.zeros(shape, np.float32)
+        if attribute not in grids:
+            notes.append(f"Volume '{name}': its Density reads the attribute '{attribute}', which is not a float grid "
+                         f"of its file (float grids: {grids}); Cycles reads it as 0, and so does Prism.")
+            continue
+        try:
+            read = read_float_grid(path, attribute)
+        except GridUnreadable as error:
+            notes.append(f"Volume '{name}': {error}; Prism reads the attribute '{attribute}' as 0.")
+            continue
+        if read is not None:
+            attributes[slot] = resample(read[0], read[1] @ _cycles_offset(), lattice_to_object, shape)
+    return attributes
 
 
 def object_space_density(matrix) -> float:

@@ -69,6 +69,16 @@ def test_a_node_driven_density_compiles_to_a_baked_field_and_a_normal_driven_one
     compiled = nodes_module.compile_material(mat, load_pixels=False)
     assert any("Density driven by nodes that read Backfacing, which" in w for w in compiled.warnings), compiled.warnings
 
+    # an Attribute node is read at points: a Volume object's grid (inside a mesh, 0 as Cycles reads it there)
+    slots_module = importlib.import_module(f"{prism_addon.__name__}.engine.export.nodes.slots")
+    slots = slots_module.AttributeSlots(["UVMap"], ["Col"])
+    read = nodes.new("ShaderNodeAttribute")
+    read.attribute_name = "flame"
+    link(read.outputs["Fac"], volume.inputs["Density"])
+    compiled = nodes_module.compile_material(mat, slots=slots, load_pixels=False)
+    assert compiled.warnings == [] and compiled.medium.density_varies
+    assert compiled.medium.density_attributes == {"flame": 1}
+
 
 def _tables(prism_addon):
     export = importlib.import_module(f"{prism_addon.__name__}.engine.export")

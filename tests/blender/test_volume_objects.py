@@ -238,3 +238,109 @@ def test_a_fire_matches_cycles(prism_addon, fresh_scene, tmp_path):
     black_world()
     camera((0.0, -6.0, 1.0), (0.1, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
     _against_cycles(fresh_scene, "Volume object fire (blackbody x temperature grid)")
+
+
+def _attribute_density(shaders, attribute, k, **inputs):
+    """A material whose ``shaders`` (Volume Scatter, Volume Absorption, Principled Volume...) take their Density
+    from k × the Fac of an Attribute node reading ``attribute`` (a grid of a Volume object), added together."""
+    mat, nodes, link = material("Attribute smoke")
+    read = nodes.new("ShaderNodeAttribute")
+    read.attribute_name = attribute
+    scale = node(nodes, "ShaderNodeMath", Value_001=k)
+    scale.operation = "MULTIPLY"
+    link(read.outputs["Fac"], scale.inputs[0])
+    made = [node(nodes, kind, **inputs.get(kind, {})) for kind in shaders]
+    total = made[0].outputs[0]
+    for shader in made:
+        link(scale.outputs[0], shader.inputs["Density"])
+        if shader is not made[0]:
+            add = nodes.new("ShaderNodeAddShader")
+            link(total, add.inputs[0])
+            link(shader.outputs[0], add.inputs[1])
+            total = add.outputs[0]
+    link(total, nodes["Output"].inputs["Volume"])
+    return mat
+
+
+def _write_sphere_and_ramp(vdb, path):
+    """The sphere's "density" grid and a "ramp" grid over a larger box (from index -3, so that it is resampled
+    onto the density's voxels), 0.1 × (index x + 4)."""
+    values = _write_sphere(vdb, path)
+    ramp = np.broadcast_to(0.1 * (np.arange(-3, SIZE + 3) + 4.0)[:, None, None], (SIZE + 6,) * 3).astype(np.float32)
+    grids = []
+    for name, array, first in (("density", values, 0), ("ramp", np.ascontiguousarray(ramp), -3)):
+        grid = vdb.FloatGrid()
+        grid.name = name
+        grid.copyFromArray(array, ijk=(first, first, first))
+        transform = vdb.createLinearTransform(voxelSize=VOXEL_M)
+        transform.postTranslate((VOXEL_M / 2 - 1.0,) * 3)
+        grid.transform = transform
+        grids.append(grid)
+    vdb.write(str(path), grids=grids)
+    return values
+
+
+def _baked_cloud(prism_addon, scene):
+    """(the Volume object "Cloud"'s medium, the density the render bakes for it on its voxels)."""
+    baked_density = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.media.baked_density")
+    renderer = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.renderer")
+    settings = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.settings")
+    box = int(scene.triangle_material[np.isin(scene.triangle_object, [
+        i for i, n in enumerate(scene.object_names) if n == "Cloud"])][0])
+    tables = renderer.Renderer(scene, settings.RenderSettings(samples=1)).tables
+    table = tables.material_table
+    baked = baked_density.bake_densities(tables.geometry, table.arrays, table.volume_density, table.register_count,
+                                         scene.materials, tables.geometry.attributes.offset)
+    return scene.materials[box].medium, baked[box]
+
+
+def test_a_density_of_nodes_reading_grids_is_baked_on_the_voxels(prism_addon, fresh_scene, tmp_path):
+    """A Principled Volume whose Density is 2 × the "ramp" grid (Attribute node), times its Density Attribute
+    grid "density" as Cycles multiplies them: the baked voxels hold 2 × ramp × density, the ramp resampled from
+    its own, larger box. Volume Info's Density reads "density"; a grid the file lacks reads 0, warned."""
+    values = _write_sphere_and_ramp(_openvdb(prism_addon), tmp_path / "ramp.vdb")
+    obj = _volume_object(tmp_path / "ramp.vdb", _attribute_density(["ShaderNodeVolumePrincipled"], "ramp", 2.0))
+    camera((0.0, -6.0, 1.0), (0.0, 0.0, 1.0), resolution=(8, 8))
+    _sun(fresh_scene)
+    warnings = []
+    medium, baked = _baked_cloud(prism_addon, _export(prism_addon, warnings))
+    assert warnings == []
+    assert medium.scatter[0][0] == pytest.approx(_object_space(obj))
+    low = np.argwhere(values > 0).min(0)
+    density = values[tuple(slice(lo, lo + n) for lo, n in zip(low, baked.values.shape))]
+    ramp = 0.1 * (np.arange(baked.values.shape[0]) + low[0] + 4.0)
+    np.testing.assert_allclose(baked.values, 2.0 * ramp[:, None, None] * density, rtol=1e-5, atol=1e-6)
+    assert np.allclose(baked.index_to_world, medium.density_grid.index_to_world)
+
+    mat, nodes, link = material("Volume Info")
+    info, scatter = nodes.new("ShaderNodeVolumeInfo"), nodes.new("ShaderNodeVolumeScatter")
+    link(info.outputs["Density"], scatter.inputs["Density"])
+    link(scatter.outputs[0], nodes["Output"].inputs["Volume"])
+    obj.data.materials[0] = mat
+    medium, baked = _baked_cloud(prism_addon, _export(prism_addon, warnings))
+    assert warnings == []
+    np.testing.assert_allclose(baked.values, density, rtol=1e-6)
+
+    obj.data.materials[0] = _attribute_density(["ShaderNodeVolumeScatter"], "smoke", 2.0)
+    _export(prism_addon, warnings)
+    assert warnings == ["Volume 'Cloud': its material reads no density grid (no Principled Volume Density Attribute "
+                        "or Attribute node); Prism fills the box of grid 'density' with the density its nodes "
+                        "compute (Cycles fills its active voxels).",
+                        "Volume 'Cloud': its Density reads the attribute 'smoke', which is not a float grid of its "
+                        "file (float grids: ['density', 'ramp']); Cycles reads it as 0, and so does Prism."]
+
+
+def test_a_volume_object_of_attribute_driven_density_matches_cycles(prism_addon, fresh_scene, tmp_path):
+    """Volume Scatter and Volume Absorption, each of Density 3 × the "density" grid read by an Attribute node
+    (no Density Attribute): Prism bakes it on the voxels and matches Cycles 4.5 in absolute light."""
+    _write_sphere(_openvdb(prism_addon), tmp_path / "sphere.vdb")
+    mat = _attribute_density(["ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption"], "density", 3.0,
+                             ShaderNodeVolumeScatter={"Color": (0.8, 0.7, 0.55), "Anisotropy": 0.2},
+                             ShaderNodeVolumeAbsorption={"Color": (0.85, 0.9, 0.95)})
+    _volume_object(tmp_path / "sphere.vdb", mat)
+    world = black_world()
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.1
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    _sun(fresh_scene)
+    camera((0.0, -6.0, 1.0), (0.1, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
+    _against_cycles(fresh_scene, "Volume object, Density 3 x Attribute 'density'")

@@ -1,5 +1,5 @@
-"""Input nodes: Texture Coordinate, UV Map, Attribute, Color Attribute, Geometry, Object Info, Tangent,
-Value, RGB. Each handler returns {output identifier: (Value, kind)} (see ``compiler``)."""
+"""Input nodes: Texture Coordinate, UV Map, Attribute, Color Attribute, Volume Info, Geometry, Object Info,
+Tangent, Value, RGB. Each handler returns {output identifier: (Value, kind)} (see ``compiler``)."""
 
 from __future__ import annotations
 
@@ -73,6 +73,17 @@ def attribute(c, node, context, variant, identifier):
     colour = rgba.__class__(rgba.register, 3)
     fac = c.emit(op.VECTOR_TO_FLOAT, [colour])
     return {"Color": (colour, COLOR), "Vector": (colour, VECTOR), "Fac": (fac, FLOAT), "Alpha": (rgba.component(3), FLOAT)}
+
+
+def volume_info(c, node, context, variant, identifier):
+    """Cycles' Volume Info: the attributes "color", "density", "flame" and "temperature" (a Volume object's
+    grids), as Cycles expands it into Attribute nodes (their Color and Fac outputs)."""
+    name = {"Color": "color", "Density": "density", "Flame": "flame", "Temperature": "temperature"}[identifier]
+    rgba = c.hit(op.COLOR_ATTRIBUTE, variant, slot=_attribute_slot(c, name), width=4)
+    colour = rgba.__class__(rgba.register, 3)
+    if identifier == "Color":
+        return {identifier: (colour, COLOR)}
+    return {identifier: (c.emit(op.VECTOR_TO_FLOAT, [colour]), FLOAT)}
 
 
 def color_attribute(c, node, context, variant, identifier):
@@ -150,6 +161,7 @@ HANDLERS = {
     "ShaderNodeUVMap": uv_map,
     "ShaderNodeAttribute": attribute,
     "ShaderNodeVertexColor": color_attribute,
+    "ShaderNodeVolumeInfo": volume_info,
     "ShaderNodeNewGeometry": geometry,
     "ShaderNodeObjectInfo": object_info,
     "ShaderNodePointInfo": point_info,

@@ -3,10 +3,11 @@ the material's program, so that the render bakes it onto a voxel grid over the m
 baked_density``) and renders the medium as a grid medium, as Cycles evaluates the shader at each step inside.
 
 A baked value is a value per point: it may read where the point is (Position, Generated and Object
-coordinates, Object Info) and anything computed from that. Inside a volume Cycles has no surface, UV map or
-normal there, and the ray's direction changes per sample; a Density that reads those (a UV map, an attribute,
-Normal, Incoming, Fresnel, Light Path, ...) cannot be one grid, so it is rendered at the socket's own value,
-as before, and the warning names why.
+coordinates, Object Info), the Attribute node (a Volume object's grid of that name, sampled at the voxel, as
+Cycles reads it there; inside a mesh Cycles has no voxels and reads 0, as the bake's points do) and anything
+computed from that. Inside a volume Cycles has no surface, UV map or normal there, and the ray's direction
+changes per sample; a Density that reads those (a UV map, Normal, Incoming, Fresnel, Light Path, ...) cannot
+be one grid, so it is rendered at the socket's own value, as before, and the warning names why.
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ from .inputs import needs_objects
 from .terms import FLOAT
 
 #: What a program can read only on a surface or along a ray (Cycles' names in the warning).
-_NOT_AT_A_POINT = {op.UV: "UV", op.COLOR_ATTRIBUTE: "Color Attribute", op.NORMAL: "Normal",
+_NOT_AT_A_POINT = {op.UV: "UV", op.NORMAL: "Normal",
                    op.TRUE_NORMAL: "True Normal", op.INCOMING: "Incoming", op.BACKFACING: "Backfacing",
                    op.TANGENT: "Tangent", op.PARAMETRIC: "Parametric", op.POINT_INFO: "Point Info",
                    op.HAIR_INFO: "Hair Info", op.LIGHT_PATH: "Light Path", op.AMBIENT_OCCLUSION: "Ambient Occlusion",
@@ -30,17 +31,30 @@ _NOT_AT_A_POINT = {op.UV: "UV", op.COLOR_ATTRIBUTE: "Color Attribute", op.NORMAL
 @dataclass
 class DensityField:
     """The varying Density a volume's nodes share: ``value`` (the program's ``Value``) and the nodes reading it
-    (``varying``), the nodes whose Density stays constant (``constant``)."""
+    (``varying``), the nodes whose Density stays constant (``constant``), the attributes ``value`` reads
+    ({name: colour slot}: a Volume object's grids)."""
 
     value: object = None
     varying: list = field(default_factory=list)
     constant: list = field(default_factory=list)
+    attributes: dict = field(default_factory=dict)
+
+
+def _rows(c, value):
+    return c.builder.instructions(live=set(range(value.register, value.register + value.width)))
 
 
 def _surface_reads(c, value) -> list[str]:
     """Names of what ``value``'s instructions read that exists only on a surface or along a ray."""
-    rows = c.builder.instructions(live=set(range(value.register, value.register + value.width)))
-    return sorted({_NOT_AT_A_POINT[int(code)] for code in rows[:, op.OP] if int(code) in _NOT_AT_A_POINT})
+    return sorted({_NOT_AT_A_POINT[int(code)] for code in _rows(c, value)[:, op.OP] if int(code) in _NOT_AT_A_POINT})
+
+
+def _attributes(c, value) -> dict:
+    """{attribute name: colour slot} of the Attribute nodes ``value`` reads."""
+    rows = _rows(c, value)
+    slots = sorted({int(a) for a in rows[rows[:, op.OP] == op.COLOR_ATTRIBUTE, op.A]})
+    names = c.slots.attribute_names if c.slots else []  # no slots: compiled alone, not for a render
+    return {names[slot]: slot for slot in slots if slot < len(names)}
 
 
 def _constant(node, value, found):
@@ -73,6 +87,7 @@ def density(c, node, context, weight, found: DensityField) -> float:
         return _constant(node, weight * max(own, 0.0), found)
     if found.value is None:
         found.value = value
+        found.attributes = _attributes(c, value)
         needs_objects(c)  # Generated, Object coordinates and Object Info read the instance's row
     elif value.register != found.value.register:
         c.warn(node, f"has a Density driven by other nodes than '{found.varying[0].name}''s; Prism bakes one density "
@@ -87,6 +102,7 @@ def finish_field(c, spec, found: DensityField) -> None:
     if found.value is None:
         return
     spec.density_varies = True
+    spec.density_attributes = dict(found.attributes)
     c.volume_density = found.value
     cycles = getattr(c.material, "cycles", None)
     spec.step_rate = float(getattr(cycles, "volume_step_rate", 1.0))

@@ -216,6 +216,7 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
     over the meshes that hold them (``media.baked_density``; None: not baked)."""
     from ..spectra.rgb_lut import empty_lut, load_lut
     from ..media.table import build_media
+    from ..media.voxel_inputs import program_sources
     from ..textures.image import build_textures
     from .layering import load_tables
 
@@ -236,8 +237,9 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
     image_rows = 0
     needs_lut = False
     register_count = 1
+    compiled = set(used) | program_sources(materials, used)  # a Volume object's density runs its material's program
     for m, material in enumerate(materials):
-        if m not in used:
+        if m not in compiled:
             continue
         shader = material.shader if material.shader is not None else legacy_shader(material)
         closures = shader.closures

@@ -14,6 +14,10 @@ evaluates the density there, so no kernel is compiled for baking. The probe tria
 (UV maps, colour attributes read as missing, as inside a Cycles volume) and belong to the object whose bounds
 hold the centre: Generated and Object coordinates and Object Info are that object's. A density that reads
 the surface or the ray is not baked (the export renders it at the socket's value).
+
+A Volume object's density is baked on its own voxels instead (``bake_on_voxels``, ``voxel_inputs``): the
+probe triangles' corners are its voxel centres and carry its grids as the colour attributes the material's
+Attribute nodes read.
 """
 
 from __future__ import annotations
@@ -35,10 +39,15 @@ MAX_BAKED_VOXELS = 1 << 24
 _POINTS_PER_CALL = 1 << 18
 
 
+def _instance_rows(geometry, triangles):
+    """The object row of each of ``triangles`` (-1 where no object data is exported)."""
+    instance = geometry.attributes.instance
+    return instance[triangles] if len(instance) >= geometry.triangles.shape[0] else np.full(len(triangles), -1)
+
+
 def _object_bounds(geometry, triangles):
     """{instance row: (low, high)} of the vertices of ``triangles`` (positions relative to the origin)."""
-    instance = geometry.attributes.instance
-    rows = instance[triangles] if len(instance) >= geometry.triangles.shape[0] else np.full(len(triangles), -1)
+    rows = _instance_rows(geometry, triangles)
     bounds = {}
     for row in np.unique(rows):
         corners = geometry.vertices[geometry.triangles[triangles[rows == row]].ravel()].astype(np.float64)
@@ -63,17 +72,19 @@ def grid_layout(bounds, step_rate):
     return low, spacing, counts
 
 
-def _probe(geometry, points, material, row):
+def _probe(geometry, points, material, row, colours):
     """A ``Geometry`` whose triangles have ``points`` (float32 [3 P, 3]) as corners, all of ``material`` and
-    instance ``row``, without corner data; the same array types as ``geometry``'s, so the kernel compiled for
-    it runs."""
+    instance ``row``, with ``colours`` [slots, 3 P] as grey colour attributes (alpha 1, as Cycles reads a float
+    grid) and no other corner data; the same array types as ``geometry``'s, so the kernel compiled for it runs."""
     count = len(points) // 3
     a = geometry.attributes
 
     def empty(array, axes=(0,)):
         return np.zeros([0 if axis in axes else n for axis, n in enumerate(array.shape)], array.dtype)
 
-    attributes = a._replace(uvs=empty(a.uvs, (1,)), colors=empty(a.colors, (1,)), tangents=empty(a.tangents, (1,)),
+    corner_colours = np.ones((len(colours), count, 3, 4), a.colors.dtype)
+    corner_colours[..., :3] = np.reshape(colours, (len(colours), count, 3, 1))
+    attributes = a._replace(uvs=empty(a.uvs, (1,)), colors=corner_colours, tangents=empty(a.tangents, (1,)),
                             positions=empty(a.positions), instance=np.full(count, row, a.instance.dtype))
     return geometry._replace(
         vertices=np.ascontiguousarray(points, dtype=geometry.vertices.dtype),
@@ -85,10 +96,14 @@ def _probe(geometry, points, material, row):
         curve_segments=empty(geometry.curve_segments), curve_info=empty(geometry.curve_info))
 
 
-def _evaluate(geometry, arrays, registers, register_count, material, row, points):
-    """The density ``material``'s program computes at ``points`` (float64 [P, 3], relative to the origin)."""
-    padded = np.concatenate([points, np.repeat(points[-1:], (-len(points)) % 3, axis=0)])
-    probe = _probe(geometry, padded.astype(np.float32), material, row)
+def _evaluate(geometry, arrays, registers, register_count, material, row, points, colours=None):
+    """The density ``material``'s program computes at ``points`` (float64 [P, 3], relative to the origin),
+    where its colour attributes read ``colours`` [slots, P] (None: none)."""
+    pad = (-len(points)) % 3
+    padded = np.concatenate([points, np.repeat(points[-1:], pad, axis=0)])
+    colours = np.zeros((0, len(points))) if colours is None else np.asarray(colours)
+    colours = np.concatenate([colours, np.repeat(colours[:, -1:], pad, axis=1)], axis=1)
+    probe = _probe(geometry, padded.astype(np.float32), material, row, colours)
     out = np.zeros((len(padded) // 3, 3, 3))
     regs = np.zeros(max(int(register_count), 1) + FIELDS)
     corner_displacements(probe, arrays, registers, np.zeros((MAX_CLOSURES, CLOSURE_ROW)), regs, out)
@@ -125,10 +140,42 @@ def bake_density(geometry, arrays, registers, register_count, material, spec, or
     return DensityGrid(values, index_to_world, f"density baked from material '{spec.name}'")
 
 
+def bake_on_voxels(geometry, arrays, registers, register_count, inputs, row, origin) -> DensityGrid:
+    """The ``DensityGrid`` of a Volume object's density (``inputs``, a ``voxel_inputs.VoxelInputs``): the
+    program of material ``inputs.source`` at each voxel of ``inputs.lattice``, with its grids as attributes
+    and object row ``row``, times the lattice's own values."""
+    lattice = inputs.lattice
+    shape = lattice.values.shape
+    slots = max(inputs.attributes, default=-1) + 1
+    values = np.zeros(shape, np.float32)
+    matrix = np.asarray(lattice.index_to_world, dtype=np.float64)
+    shift = matrix[:3, 3] - (np.zeros(3) if origin is None else np.asarray(origin, dtype=np.float64))
+    per_slab = max(1, _POINTS_PER_CALL // int(shape[1] * shape[2]))
+    jk = np.indices(shape[1:]).reshape(2, -1).T
+    for first in range(0, int(shape[0]), per_slab):
+        i = np.arange(first, min(first + per_slab, int(shape[0])))
+        index = np.hstack([np.repeat(i, len(jk))[:, None], np.tile(jk, (len(i), 1))])
+        colours = np.zeros((slots, len(index)))
+        for slot, grid in inputs.attributes.items():
+            colours[slot] = grid[i[0]:i[-1] + 1].ravel()
+        slab = _evaluate(geometry, arrays, registers, register_count, inputs.source, row,
+                         index @ matrix[:3, :3].T + shift, colours)
+        values[i[0]:i[-1] + 1] = np.where(np.isfinite(slab), slab, 0.0).reshape(len(i), *shape[1:])
+    return DensityGrid(values * lattice.values, matrix, f"density baked on the voxels of {lattice.name}")
+
+
 def bake_densities(geometry, arrays, registers, register_count, materials, origin) -> dict:
     """{material index: ``DensityGrid``} for the materials whose program computes a varying volume density
-    (``registers`` int32 [materials], -1: none) and that some triangle of ``geometry`` has."""
+    (``registers`` int32 [materials], -1: none) and that some triangle of ``geometry`` has, and for the Volume
+    objects' media whose density such a program computes (``MediumSpec.voxel_inputs``)."""
     baked = {}
+    triangles = geometry.material[:geometry.triangles.shape[0]]
+    for m, material in enumerate(materials):
+        inputs = getattr(getattr(material, "medium", None), "voxel_inputs", None)
+        on = np.flatnonzero(triangles == m) if inputs is not None and registers[inputs.source] >= 0 else []
+        if len(on):
+            row = int(_instance_rows(geometry, on[:1])[0])
+            baked[m] = bake_on_voxels(geometry, arrays, registers, register_count, inputs, row, origin)
     for m in np.flatnonzero(np.asarray(registers) >= 0):
         spec = getattr(materials[m], "medium", None)
         if spec is None or not spec.density_varies:

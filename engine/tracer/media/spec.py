@@ -32,8 +32,11 @@ class MediumSpec:
     (``temperature_emission``). ``density_varies``: the density terms are per unit of a density the material's
     program computes per point (``ShaderProgram.volume_density``), which the render bakes onto a
     ``density_grid`` over the mesh (``baked_density``) at voxels of Cycles' step size over ``step_rate``
-    (Material ▸ Settings ▸ Volume ▸ Step Rate). ``phase``: the scattering's phase function as a mixture of lobes
-    (weight, kind, parameters) (``phase_functions``), tabulated; empty: Henyey-Greenstein of ``anisotropy``."""
+    (Material ▸ Settings ▸ Volume ▸ Step Rate); ``density_attributes`` {name: colour slot}: the attributes that
+    density reads (on a Volume object, its grids of those names); ``voxel_inputs`` (a
+    ``voxel_inputs.VoxelInputs``) where the density is baked on a Volume object's voxels instead of a grid over
+    a mesh. ``phase``: the scattering's phase function as a mixture of lobes (weight, kind, parameters)
+    (``phase_functions``), tabulated; empty: Henyey-Greenstein of ``anisotropy``."""
 
     name: str
     scatter: list = field(default_factory=list)
@@ -45,4 +48,6 @@ class MediumSpec:
     temperature_grid: object = None
     density_varies: bool = False
     step_rate: float = 1.0
+    density_attributes: dict = field(default_factory=dict)
+    voxel_inputs: object = None
     phase: list = field(default_factory=list)
