@@ -26,8 +26,9 @@ from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hai
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
 from .bump_space import both_bump_scale_warning
-from .cryptomatte_names import asset_name, material_name
-from .materials import DEFAULT_MATERIAL, MaterialExporter
+from .cryptomatte_names import asset_name
+from .materials import DEFAULT_MATERIAL
+from .material_rows import MaterialRows
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
 from .particle_hair import read_particle_hair
@@ -80,52 +81,6 @@ class _Instances:
     light_group: str = ""  # Object ▸ Shading ▸ Light Group
     flags: int = 0
     asset: str = ""  # the name of the object's topmost parent (Cryptomatte Asset)
-
-
-class _Materials:
-    """Blender materials → indices into one list of tracer materials, each exported once."""
-
-    def __init__(self, warnings, texture_budget=None, ao_distance=None):
-        self.warnings = warnings
-        self.exporter = MaterialExporter(warnings, texture_budget=texture_budget, ao_distance=ao_distance)
-        self.index: dict[str | None, int] = {}
-        self.materials: list[Material] = []
-        self.uv_pass_slot: int | None = None  # the render UV map's slot when the UV pass is on
-        self.pass_index: list[float] = []  # Material ▸ Settings ▸ Pass Index of each material
-        self.cryptomatte_names: list[str] = []  # Cycles' name of each material (``cryptomatte_names``)
-
-    def slot_lookup(self, slot_materials: list) -> np.ndarray:
-        return np.asarray([self._of(m) for m in slot_materials] or [self._of(None)], dtype=np.int32)
-
-    def _of(self, material) -> int:
-        made = isinstance(material, Material)  # made by the export itself: a Volume object's grid medium
-        key = ("volume", id(material)) if made else (material.name if material is not None else None)
-        if key not in self.index:
-            self.index[key] = len(self.materials)
-            self.materials.append(material if made else self.exporter.export(material) if material is not None
-                                  else DEFAULT_MATERIAL)
-            self.pass_index.append(float(getattr(material, "pass_index", 0.0)) if material is not None else 0.0)
-            self.cryptomatte_names.append(material_name(material))
-        return self.index[key]
-
-    def request(self, slot_materials: list) -> AttributeRequest:
-        """The per-corner data the materials of one object's slots read (their global slot numbers)."""
-        self.slot_lookup(slot_materials)
-        slots = self.exporter.slots
-        request = AttributeRequest()
-        if self.uv_pass_slot is not None:
-            request.uvs[self.uv_pass_slot] = ""
-        for material in slot_materials:
-            if material is None:
-                continue
-            for kind, name in self.exporter.needs.get(material.original.name, ()):
-                if kind == "uv":
-                    request.uvs[slots.uv(name)] = name
-                elif kind == "attribute":
-                    request.attributes[slots.attribute(name)] = name
-                elif kind == "tangent":
-                    request.tangents[slots.tangent(name)] = name
-        return request
 
 
 def read_geometry(key: tuple, obj, request: AttributeRequest | None = None,
@@ -199,7 +154,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     return [piece for piece in pieces.values() if piece is not None]
 
 
-def _warn_unread_inputs(materials: _Materials, name: str, geometry, warnings) -> None:
+def _warn_unread_inputs(materials: MaterialRows, name: str, geometry, warnings) -> None:
     """Warn where hair's materials (the slots its strands use) read UV maps or attributes strands lack."""
     if not isinstance(geometry, LocalHair) or warnings is None:
         return
@@ -231,7 +186,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     returns a piece's geometry (the viewport passes one that keeps what did not change).
     Material warnings and geometry Prism skips are appended to ``warnings``.
     """
-    materials = _Materials(warnings, TextureBudget.for_scene(depsgraph.scene), world_ao_distance(depsgraph.scene))
+    materials = MaterialRows(warnings, TextureBudget.for_scene(depsgraph.scene), world_ao_distance(depsgraph.scene))
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
     names: list[str] = []
     assets: list[str] = []  # parallel to names
@@ -250,7 +205,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     ribbons = curve_shape(depsgraph.scene) == "RIBBONS"
     for piece in pieces:
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
-        lookup = materials.slot_lookup(piece.geometry.slot_materials)
+        lookup = materials.slot_lookup(piece.geometry.slot_materials, owner=id(piece))
         if isinstance(piece.geometry, LocalPoints):
             clouds.append((piece, matrices, lookup))
             continue

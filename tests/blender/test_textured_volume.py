@@ -175,3 +175,26 @@ def test_a_node_driven_density_of_world_fog_is_warned_and_rendered_at_the_socket
     spec = world_volume.export_world_volume(world, world.node_tree, warnings)
     assert not spec.density_varies and spec.scatter[0][0] == pytest.approx(0.2)
     assert any("World 'World'" in w and "inside meshes only" in w and "0.2" in w for w in warnings), warnings
+
+
+def test_objects_far_apart_that_share_a_textured_volume_get_a_grid_each(prism_addon, fresh_scene):
+    """Two 2 m cubes 40 m apart with one material of Density 3 × Generated X: each is baked over its own
+    bounds (81³ voxels at Step Rate 1, as one cube alone), not over the 42 m between them."""
+    baked_density = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.media.baked_density")
+    black_world().node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
+    mat = _gradient_material("Ramp", 3.0)
+    _cube("Near", mat)
+    _cube("Far", mat, location=(40.0, 0.0, 0.0))
+    camera((20.0, -60.0, 0.0), (20.0, 0.0, 0.0), resolution=(8, 8))
+    scene, tables = _tables(prism_addon)
+    table = tables.material_table
+    rows = np.flatnonzero(table.volume_density >= 0)
+    assert len(rows) == 2 and {scene.materials[m].name for m in rows} == {"Ramp"}
+    lows = []
+    for m in rows:
+        grid = baked_density.bake_density(tables.geometry, table.arrays, table.volume_density, table.register_count,
+                                          int(m), scene.materials[m].medium, tables.geometry.attributes.offset)
+        assert grid.values.shape == (81, 81, 81)
+        assert np.allclose(np.diag(grid.index_to_world)[:3] * 80, 2.0)
+        lows.append(grid.index_to_world[0, 3])
+    assert sorted(lows) == pytest.approx([-1.0, 39.0])

@@ -81,8 +81,9 @@ def track_grid_medium(state, i, t, media, spectra, settings, depth, sigma_t, sig
     s0, s1 = grid_span(grids, g, o2, d2, t)
     emits = media.emission_strength[medium] > 0.0
     hot = media.emission_grid[medium]
-    o3, d3 = index_ray(grids, max(hot, 0), o, d)
+    o3, d3 = o2, d2  # the temperature grid's ray, read only where the medium emits
     if emits and hot >= 0:  # the temperature grid's voxels glow where the density's may not reach
+        o3, d3 = index_ray(grids, hot, o, d)
         e0, e1 = grid_span(grids, hot, o3, d3, t)
         if e0 < e1:
             s0, s1 = (min(s0, e0), max(s1, e1)) if s0 < s1 else (e0, e1)
