@@ -31,7 +31,8 @@ __all__ = ["PrismInputError", "export_camera", "export_scene", "render_border", 
 
 def _emits(material) -> bool:
     medium = material.medium
-    if medium is not None and any(strength > 0 and max(rgb) > 0 for strength, rgb, _ in medium.emission):
+    terms = [] if medium is None else [(s, rgb) for s, rgb, _ in medium.emission] + medium.emission_field
+    if any(strength > 0 and max(rgb) > 0 for strength, rgb in terms):
         return True  # an emitting volume lights the scene from inside its mesh
     shader = material.shader
     if shader is not None:

@@ -243,6 +243,11 @@ class VolumeReader:
         if grid is None and temperature_grid_name(name, nodes, grids, []) is not None:
             notes.append(f"Volume '{name}': its material reads a temperature grid but no density grid; Prism "
                          "fills the box evenly at the Temperature set (Cycles multiplies it by the grid).")
+        if hot is not None and spec.emission_field:
+            notes.append(f"Volume '{name}': its material drives both the blackbody Temperature by grid '{hot[2]}' "
+                         "and the Emission Strength by nodes; Prism follows one grid's light per volume, the "
+                         "temperature's, and leaves the Emission Strength × Color light out.")
+            spec = replace(spec, emission_field=[])
         if hot is not None:
             spec = replace(spec, temperature_grid=DensityGrid(hot[0], hot[1]))
         if grid is not None:
@@ -250,7 +255,7 @@ class VolumeReader:
             notes.extend([note] if note else [])
         index_to_object = index_to_object @ _cycles_offset()
         inputs = None
-        if spec.density_varies:
+        if spec.varies:
             attributes = _attribute_grids(name, spec, path, grids, values.shape, index_to_object, notes)
             inputs = (source, attributes, lattice)
         return spec, values, index_to_object, grid, hot, inputs
@@ -276,19 +281,19 @@ class VolumeReader:
 def _lattice_name(spec, grids) -> str:
     """The grid whose voxels hold a Volume object's density where no Density Attribute names one: the first
     grid the density's nodes read, else the file's first float grid."""
-    read = [name for name in spec.density_attributes if name in grids] if spec.density_varies else []
+    read = [name for name in {**spec.density_attributes, **spec.emission_attributes} if name in grids]
     return read[0] if read else grids[0]
 
 
 def _attribute_grids(name, spec, path, grids, shape, lattice_to_object, notes) -> dict:
-    """{colour slot: float32 ``shape``}: the grid each Attribute node of ``spec``'s density names, resampled
-    onto the lattice (index → object ``lattice_to_object``); zeros where the file has no such float grid (as
-    Cycles reads a missing attribute), warned."""
+    """{colour slot: float32 ``shape``}: the grid each Attribute node of ``spec``'s density or emission names,
+    resampled onto the lattice (index → object ``lattice_to_object``); zeros where the file has no such float
+    grid (as Cycles reads a missing attribute), warned."""
     attributes = {}
-    for attribute, slot in spec.density_attributes.items():
+    for attribute, slot in {**spec.density_attributes, **spec.emission_attributes}.items():
         attributes[slot] = np.zeros(shape, np.float32)
         if attribute not in grids:
-            notes.append(f"Volume '{name}': its Density reads the attribute '{attribute}', which is not a float grid "
+            notes.append(f"Volume '{name}': its material reads the attribute '{attribute}', which is not a float grid "
                          f"of its file (float grids: {grids}); Cycles reads it as 0, and so does Prism.")
             continue
         try:
@@ -315,6 +320,7 @@ def scaled_by(spec, factor):
     return replace(spec, scatter=[(d * factor, *rest) for d, *rest in spec.scatter],
                    absorb=[(d * factor, *rest) for d, *rest in spec.absorb],
                    emission=[(s * factor, *rest) for s, *rest in spec.emission],
+                   emission_field=[(s * factor, rgb) for s, rgb in spec.emission_field],
                    blackbody=[(w * factor, *rest) for w, *rest in spec.blackbody])
 
 

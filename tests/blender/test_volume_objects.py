@@ -25,7 +25,7 @@ import numpy as np
 import pytest
 
 from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
-from helpers.node_scenes import black_world, camera, material, node
+from helpers.node_scenes import black_world, camera, glow_material, material, node
 
 VOXEL_M = 0.125
 SIZE = 16
@@ -280,8 +280,9 @@ def _write_sphere_and_ramp(vdb, path):
     return values
 
 
-def _baked_cloud(prism_addon, scene):
-    """(the Volume object "Cloud"'s medium, the density the render bakes for it on its voxels)."""
+def _baked_cloud(prism_addon, scene, field="density"):
+    """(the Volume object "Cloud"'s medium, the ``field`` (density or strength) the render bakes for it on its
+    voxels)."""
     baked_density = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.media.baked_density")
     renderer = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.renderer")
     settings = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.settings")
@@ -289,9 +290,9 @@ def _baked_cloud(prism_addon, scene):
         i for i, n in enumerate(scene.object_names) if n == "Cloud"])][0])
     tables = renderer.Renderer(scene, settings.RenderSettings(samples=1)).tables
     table = tables.material_table
-    baked = baked_density.bake_densities(tables.geometry, table.arrays, table.volume_density, table.register_count,
-                                         scene.materials, tables.geometry.attributes.offset)
-    return scene.materials[box].medium, baked[box]
+    baked = baked_density.bake_fields(tables.geometry, table.arrays, table.volume_density, table.volume_emission,
+                                      table.register_count, scene.materials, tables.geometry.attributes.offset)
+    return scene.materials[box].medium, getattr(baked[box], field)
 
 
 def test_a_density_of_nodes_reading_grids_is_baked_on_the_voxels(prism_addon, fresh_scene, tmp_path):
@@ -326,7 +327,7 @@ def test_a_density_of_nodes_reading_grids_is_baked_on_the_voxels(prism_addon, fr
     assert warnings == ["Volume 'Cloud': its material reads no density grid (no Principled Volume Density Attribute "
                         "or Attribute node); Prism fills the box of grid 'density' with the density its nodes "
                         "compute (Cycles fills its active voxels).",
-                        "Volume 'Cloud': its Density reads the attribute 'smoke', which is not a float grid of its "
+                        "Volume 'Cloud': its material reads the attribute 'smoke', which is not a float grid of its "
                         "file (float grids: ['density', 'ramp']); Cycles reads it as 0, and so does Prism."]
 
 
@@ -344,3 +345,30 @@ def test_a_volume_object_of_attribute_driven_density_matches_cycles(prism_addon,
     _sun(fresh_scene)
     camera((0.0, -6.0, 1.0), (0.1, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
     _against_cycles(fresh_scene, "Volume object, Density 3 x Attribute 'density'")
+
+
+def test_an_emission_strength_of_nodes_reading_a_grid_glows_as_in_cycles(prism_addon, fresh_scene, tmp_path):
+    """A Principled Volume (Density 0.5 × its "density" grid) whose Emission Strength is 4 × the "density"
+    grid (Attribute node), in the dark: the baked strength holds 4 × density at each voxel (not multiplied by
+    the density, as Cycles' emission is not), and the glow matches Cycles 4.5 in absolute light."""
+    values = _write_sphere(_openvdb(prism_addon), tmp_path / "sphere.vdb")
+    def density_attribute(nodes):
+        read = nodes.new("ShaderNodeAttribute")
+        read.attribute_name = "density"
+        return read.outputs["Fac"]
+
+    obj = _volume_object(tmp_path / "sphere.vdb", glow_material("Glow", density_attribute, 4.0, (1.0, 0.5, 0.2)))
+    black_world()
+    camera((0.0, -6.0, 1.0), (0.1, 0.0, 1.0), lens_mm=50.0, resolution=(24, 24))
+    warnings = []
+    scene = _export(prism_addon, warnings)
+    assert warnings == []
+    medium, _ = _baked_cloud(prism_addon, scene, "density")
+    [(weight, colour)] = medium.emission_field
+    assert medium.emission == [] and weight == pytest.approx(_object_space(obj))
+    assert colour == pytest.approx((1.0, 0.5, 0.2))
+    _, strength = _baked_cloud(prism_addon, scene, "strength")
+    low = np.argwhere(values > 0).min(0)
+    density = values[tuple(slice(lo, lo + n) for lo, n in zip(low, strength.values.shape))]
+    np.testing.assert_allclose(strength.values, 4.0 * density, rtol=1e-6)
+    _against_cycles(fresh_scene, "Volume object, Emission Strength 4 x Attribute 'density'")

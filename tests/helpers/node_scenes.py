@@ -138,3 +138,17 @@ def checker_image(name, size, colours, colorspace="sRGB", alpha=None, float_buff
         pixels[..., 3] = alpha
     image.pixels.foreach_set(pixels.ravel())
     return image
+
+
+def glow_material(name, make_source, k, emission_colour):
+    """A grey Principled Volume (Density 0.5) whose Emission Strength is k × the output ``make_source(nodes)``
+    returns (a Noise Texture's Fac, an Attribute's Fac): a volume that glows where the nodes say."""
+    mat, nodes, link = material(name)
+    scale = node(nodes, "ShaderNodeMath", Value_001=k)
+    scale.operation = "MULTIPLY"
+    volume = node(nodes, "ShaderNodeVolumePrincipled", Color=(0.5, 0.5, 0.5), Density=0.5,
+                  Emission_Color=emission_colour)
+    link(make_source(nodes), scale.inputs[0])
+    link(scale.outputs[0], volume.inputs["Emission Strength"])
+    link(volume.outputs[0], nodes["Output"].inputs["Volume"])
+    return mat

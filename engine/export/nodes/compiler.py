@@ -53,6 +53,7 @@ class MaterialCompiler:
     measured_nodes: list = field(default_factory=list)  # names of the nodes whose colour ``reflectance`` replaced
     medium: object = None  # tracer.media.spec.MediumSpec of the Volume socket, or None
     volume_density: object = None  # the Value of its varying Density (``volume_density``), or None
+    volume_emission: object = None  # the Value of its varying Emission Strength (``volume_density``), or None
     aov_outputs: dict = field(default_factory=dict)  # linked AOV Output sockets (``aov_outputs``)
     ao_distance: float = AO_DISTANCE_DEFAULT  # World ▸ Ambient Occlusion ▸ Distance (m)
     _outputs: dict = field(default_factory=dict)

@@ -179,8 +179,9 @@ def _read_registers(program) -> set[int]:
         live.add(program.emission_scale)
     if program.displacement >= 0:
         live.update(range(program.displacement, program.displacement + 3))
-    if program.volume_density >= 0:
-        live.add(program.volume_density)
+    for register in (program.volume_density, program.volume_emission):
+        if register >= 0:
+            live.add(register)
     for registers in program.aov_registers.values():  # read at the first hit (the AOV passes)
         for name, register in registers.items():
             live.update(range(register, register + (3 if name == "Color" else 1)))
@@ -207,6 +208,7 @@ def finish(c) -> ShaderProgram:
     program.normal = normal.register if normal is not None else -1
     program.displacement = moved.register if moved is not None else -1
     program.volume_density = c.volume_density.register if c.volume_density is not None else -1
+    program.volume_emission = c.volume_emission.register if c.volume_emission is not None else -1
     program.bump_map_correction = bump_map_correction(c)
     program.aov_registers, program.aov_constants = aov_results(c, c.aov_outputs)
     program.instructions = c.builder.instructions(live=_read_registers(program))
@@ -214,7 +216,7 @@ def finish(c) -> ShaderProgram:
     program.register_count = c.builder.register_count
     program.images = list(c.images)
     if (not program.has_program and not any(spec.bindings for spec in closures) and program.normal < 0
-            and program.displacement < 0 and program.volume_density < 0):
+            and program.displacement < 0 and max(program.volume_density, program.volume_emission) < 0):
         program.constants = program.constants[:0]
         program.register_count = 0
     return program

@@ -40,6 +40,14 @@ class DensityField:
     attributes: dict = field(default_factory=dict)
 
 
+@dataclass
+class VolumeFields:
+    """What a volume's nodes compute per point: its ``density`` and its Emission Strength (``emission``)."""
+
+    density: DensityField = field(default_factory=DensityField)
+    emission: DensityField = field(default_factory=DensityField)
+
+
 def _rows(c, value):
     return c.builder.instructions(live=set(range(value.register, value.register + value.width)))
 
@@ -63,26 +71,29 @@ def _constant(node, value, found):
     return value
 
 
-def density(c, node, context, weight, found: DensityField) -> float:
-    """The node's Density times ``weight`` as a constant (clamped at 0, as Cycles clamps it), or ``weight``
-    where it varies per point (the medium's coefficients then scale by ``found.value``, baked)."""
-    socket = c.socket(node, "Density")
+def density(c, node, context, weight, found: DensityField, name="Density") -> float:
+    """The node's input ``name`` (its Density, or a Principled Volume's Emission Strength) times ``weight`` as a
+    constant (clamped at 0, as Cycles clamps it), or ``weight`` where it varies per point (the medium's
+    coefficients, or its emission, then scale by ``found.value``, baked)."""
+    socket = c.socket(node, name)
     source, value_socket = follow(socket, context)
     own = c.known(c.default_value(value_socket, FLOAT))
     if source is None:
         return _constant(node, weight * max(own, 0.0), found)
-    value = c.value(node, "Density", context, FLOAT)
+    value = c.value(node, name, context, FLOAT)
     known = c.known(value)
     if known is not None:
         return _constant(node, weight * max(known, 0.0), found)
+    a = "an" if name[0] in "AEIOU" else "a"
     if not c.bakes_volume_density:
-        c.warn(node, f"has its Density driven by nodes that vary; Prism bakes such a density inside meshes only (fog "
-                     f"fills all space), so it uses the Density set on the socket, {own:g}, throughout the volume.")
+        c.warn(node, f"has its {name} driven by nodes that vary; Prism bakes such {a} {name.lower()} inside meshes "
+                     f"only (fog fills all space), so it uses the {name} set on the socket, {own:g}, throughout the "
+                     "volume.")
         return _constant(node, weight * max(own, 0.0), found)
     reads = _surface_reads(c, value)
     if reads:
-        c.warn(node, f"has its Density driven by nodes that read {', '.join(reads)}, which a point inside a volume "
-                     "does not have (no surface there, and the ray's direction changes); Prism uses the Density set "
+        c.warn(node, f"has its {name} driven by nodes that read {', '.join(reads)}, which a point inside a volume "
+                     f"does not have (no surface there, and the ray's direction changes); Prism uses the {name} set "
                      f"on the socket, {own:g}, throughout the volume.")
         return _constant(node, weight * max(own, 0.0), found)
     if found.value is None:
@@ -90,8 +101,8 @@ def density(c, node, context, weight, found: DensityField) -> float:
         found.attributes = _attributes(c, value)
         needs_objects(c)  # Generated, Object coordinates and Object Info read the instance's row
     elif value.register != found.value.register:
-        c.warn(node, f"has a Density driven by other nodes than '{found.varying[0].name}''s; Prism bakes one density "
-                     f"per volume and scales this node by '{found.varying[0].name}''s Density.")
+        c.warn(node, f"has {a} {name} driven by other nodes than '{found.varying[0].name}''s; Prism bakes one "
+                     f"{name.lower()} per volume and scales this node by '{found.varying[0].name}''s {name}.")
     found.varying.append(node)
     return weight
 
@@ -104,14 +115,28 @@ def finish_field(c, spec, found: DensityField) -> None:
     spec.density_varies = True
     spec.density_attributes = dict(found.attributes)
     c.volume_density = found.value
-    cycles = getattr(c.material, "cycles", None)
-    spec.step_rate = float(getattr(cycles, "volume_step_rate", 1.0))
-    if not spec.step_rate > 0.0:
-        spec.step_rate = 1.0
-    if getattr(cycles, "homogeneous_volume", False):
+    _step_rate(c, spec)
+    if getattr(getattr(c.material, "cycles", None), "homogeneous_volume", False):
         c.warn(c.output_node, "has Settings ▸ Volume ▸ Homogeneous on, so Cycles reads its varying Density at one "
                               "point of each ray's path through the volume; Prism renders the Density varying "
                               "through the volume.")
     for node in found.constant:
         c.warn(node, f"has a constant Density beside '{found.varying[0].name}''s varying one; Prism bakes one density "
                      f"per volume and scales this node by '{found.varying[0].name}''s Density too.")
+
+
+def finish_emission(c, spec, found: DensityField) -> None:
+    """Mark ``spec`` as emitting per unit of the Emission Strength ``found`` holds (when some varies): its
+    ``emission_field`` terms were added by the nodes; constant strengths beside it stay constant terms."""
+    if found.value is None:
+        return
+    spec.emission_attributes = dict(found.attributes)
+    c.volume_emission = found.value
+    _step_rate(c, spec)
+
+
+def _step_rate(c, spec) -> None:
+    """Material ▸ Settings ▸ Volume ▸ Step Rate, which sets how fine the bake's voxels are."""
+    spec.step_rate = float(getattr(getattr(c.material, "cycles", None), "volume_step_rate", 1.0))
+    if not spec.step_rate > 0.0:
+        spec.step_rate = 1.0

@@ -2,10 +2,11 @@
 
 Volume Absorption, Volume Scatter and Principled Volume, alone or summed by Add Shader and Mix Shader (of
 constant Fac), with Cycles' meanings (``tracer/media/spec.py``); Volume Scatter's phase functions as Cycles
-4.5's (``tracer/media/phase_functions.py``), several lobes as their scattering-weighted mixture. A Density
-driven by nodes that vary from point to point is baked onto a grid at render time (``volume_density``); any
-other input driven by something that varies (a texture, an attribute) is rendered at the value the socket
-holds under its link, and the warning says so, naming the material, node and input. What Prism does not model
+4.5's (``tracer/media/phase_functions.py``), several lobes as their scattering-weighted mixture. A Density,
+or a Principled Volume's Emission Strength, driven by nodes that vary from point to point is baked onto a grid
+at render time (``volume_density``); any other input driven by something that varies (a texture, an
+attribute) is rendered at the value the socket holds under its link, and the warning says so, naming the
+material, node and input. What Prism does not model
 (other shaders on the Volume socket) is named in a warning too.
 """
 
@@ -37,7 +38,7 @@ def _constant(c, node, name, context, kind):
 
 def _absorption(c, node, context, weight, spec, found):
     colour = _constant(c, node, "Color", context, COLOR)
-    density = volume_density.density(c, node, context, weight, found)
+    density = volume_density.density(c, node, context, weight, found.density)
     spec.absorb.append((density, tuple(colour)))
 
 
@@ -57,20 +58,22 @@ def _phase_lobe(c, node, context, weight):
 
 def _scatter(c, node, context, weight, spec, lobes, found):
     colour = _constant(c, node, "Color", context, COLOR)
-    density = volume_density.density(c, node, context, weight, found)
+    density = volume_density.density(c, node, context, weight, found.density)
     spec.scatter.append((density, tuple(colour)))
     lobes.append(_phase_lobe(c, node, context, density * max(colour)))
 
 
 def _principled(c, node, context, weight, spec, lobes, found):
-    density = volume_density.density(c, node, context, weight, found)
+    density = volume_density.density(c, node, context, weight, found.density)
     colour = tuple(_constant(c, node, "Color", context, COLOR))
     absorption = tuple(max(x, 0.0) ** 0.5 for x in _constant(c, node, "Absorption Color", context, COLOR))
     spec.scatter.append((density, colour))
     spec.absorb.append((density, colour, absorption))  # σ_a = density (1 - colour)(1 - sqrt(absorption colour))
     lobes.append((density * max(colour), HENYEY_GREENSTEIN, (_constant(c, node, "Anisotropy", context, FLOAT),)))
-    strength = weight * _constant(c, node, "Emission Strength", context, FLOAT)
-    if strength > 0.0:
+    strength = volume_density.density(c, node, context, weight, found.emission, "Emission Strength")
+    if node in found.emission.varying:  # radiance per metre per unit of the baked strength
+        spec.emission_field.append((strength, tuple(_constant(c, node, "Emission Color", context, COLOR))))
+    elif strength > 0.0:
         spec.emission.append((strength, tuple(_constant(c, node, "Emission Color", context, COLOR)), None))
     blackbody = min(max(_constant(c, node, "Blackbody Intensity", context, FLOAT), 0.0), 1.0)
     if blackbody > 0.0:
@@ -124,7 +127,7 @@ def _walk(c, socket, context, weight, spec, lobes, found):
 def compile_volume(c, socket):
     """The ``MediumSpec`` of the shaders feeding the Volume input ``socket``, or None if they add nothing."""
     spec = MediumSpec(c.material.name)
-    lobes, found = [], volume_density.DensityField()
+    lobes, found = [], volume_density.VolumeFields()
     _walk(c, socket, (), 1.0, spec, lobes, found)
     total = sum(w for w, _, _ in lobes)
     if total > 0.0 and any(kind != HENYEY_GREENSTEIN for w, kind, _ in lobes if w > 0.0):
@@ -134,7 +137,8 @@ def compile_volume(c, socket):
         if len({g for w, _, (g,) in lobes if w > 0.0}) > 1:
             c.warn(c.output_node, f"mixes volume scattering of different Anisotropy; Prism renders one "
                                   f"Henyey-Greenstein lobe of their scattering-weighted mean, {spec.anisotropy:g}.")
-    if not (any(d > 0 for d, *_ in spec.scatter + spec.absorb) or spec.emission):
+    if not (any(d > 0 for d, *_ in spec.scatter + spec.absorb) or spec.emission or spec.emission_field):
         return None
-    volume_density.finish_field(c, spec, found)
+    volume_density.finish_field(c, spec, found.density)
+    volume_density.finish_emission(c, spec, found.emission)
     return spec

@@ -130,6 +130,9 @@ class ShaderProgram:
     # register of the Volume's Density where nodes make it vary from point to point (``nodes.volume_density``:
     # baked onto a grid at render time, ``media.baked_density``), or -1
     volume_density: int = -1
+    # register of a Principled Volume's Emission Strength where nodes make it vary (``nodes.volume_density``,
+    # baked like the density: ``MediumSpec.emission_field``), or -1
+    volume_emission: int = -1
     # AOV Output sockets fed by links: AOV name → {"Color" / "Value": register} where the value varies per hit,
     # {"Color" / "Value": constant} where it folded to one.
     aov_registers: dict = field(default_factory=dict)

@@ -105,6 +105,7 @@ class MaterialTable:
     # int32 [materials]: each program's register of its volume's varying Density (``shader.ShaderProgram.
     # volume_density``), -1 for none (``media.baked_density`` reads it)
     volume_density: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int32))
+    volume_emission: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int32))  # the same, Emission Strength
 
 
 def _source(colour, spectra, name, bounded=True):
@@ -231,7 +232,7 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
     normal, emission_register = np.full(count, -1, np.int32), np.full(count, -1, np.int32)
     emission_scale = np.full(count, -1, np.int32)
     displacement = np.full(count, -1, np.int32)
-    volume_density = np.full(count, -1, np.int32)
+    volume_density, volume_emission = np.full(count, -1, np.int32), np.full(count, -1, np.int32)
     rows, glasses, glass_index, features = [], [], {}, set()
     instructions, constants, images, image_index = [], [], [], {}
     image_rows = 0
@@ -286,7 +287,8 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
             flags[m] |= MAT_DELTA
         binds = [[op.BIND, int(multiply), -1, c, column, register] + [-1] * (op.INSTRUCTION - 6)
                  for c, spec in enumerate(closures) for column, register, multiply in spec.bindings]
-        if shader.has_program or binds or shader.displacement >= 0 or shader.volume_density >= 0:
+        if shader.has_program or binds or shader.displacement >= 0 or max(shader.volume_density,
+                                                                           shader.volume_emission) >= 0:
             flags[m] |= MAT_PROGRAM
             features.add("node program")
             program = np.concatenate([np.array(shader.instructions, dtype=np.int32).reshape(-1, op.INSTRUCTION),
@@ -311,7 +313,7 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
             register_count = max(register_count, len(shader.constants), shader.register_count)
             normal[m] = shader.normal
             displacement[m] = shader.displacement
-            volume_density[m] = shader.volume_density
+            volume_density[m], volume_emission[m] = shader.volume_density, shader.volume_emission
         emission = shader.emission
         if emission is not None and shader.emission_strength > 0:
             varies = emission.register is not None or shader.emission_scale >= 0
@@ -348,15 +350,15 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
                               programs, textures, lut, white, medium, media)
 
     baked = {}
-    if geometry is not None and (volume_density >= 0).any():
-        from ..media.baked_density import bake_densities
+    if geometry is not None and max(volume_density.max(initial=-1), volume_emission.max(initial=-1)) >= 0:
+        from ..media.baked_density import bake_fields
 
         no_media = build_media([], set(), spectra)
-        baked = bake_densities(geometry, arrays_with(no_media[0], no_media[1]), volume_density, register_count,
-                               materials, origin)
+        baked = bake_fields(geometry, arrays_with(no_media[0], no_media[1]), volume_density, volume_emission,
+                            register_count, materials, origin)
     medium, media, outside = build_media(materials, used, spectra, outside_medium, origin, baked)
     if baked:
-        features.add("baked volume density")
+        features.add("baked volume density or emission")
     flags[medium >= 0] |= MAT_MEDIUM
     gridded = np.zeros(len(materials), bool)
     gridded[medium >= 0] = media.grid[medium[medium >= 0]] >= 0
@@ -367,4 +369,4 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
     if outside >= 0:
         features.add("world fog")
     return MaterialTable(arrays_with(medium, media), glasses, sorted(features), register_count, outside, displacement,
-                         volume_density)
+                         volume_density, volume_emission)

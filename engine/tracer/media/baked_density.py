@@ -8,6 +8,9 @@ grid's voxels are ``BAKED_VOXELS_PER_STEP`` times finer than that step (so a sma
 grid, as it gives Cycles finer steps), across the bounds of every object with the material, their centres on
 the bounds' faces; at most ``MAX_BAKED_VOXELS`` voxels (the voxels grow evenly past it).
 
+A Principled Volume's Emission Strength driven by nodes is baked the same way, onto the same voxels
+(``BakedFields``), and the medium's emission follows it (``temperature_emission.emission_rows``).
+
 The program runs at the voxel centres as at the corners of triangles: three centres make one probe
 triangle, and the kernel that evaluates true displacement at triangle corners (``materials.displacement``)
 evaluates the density there, so no kernel is compiled for baking. The probe triangles have no corner data
@@ -21,6 +24,8 @@ Attribute nodes read.
 """
 
 from __future__ import annotations
+
+from collections import namedtuple
 
 import numpy as np
 
@@ -97,8 +102,8 @@ def _probe(geometry, points, material, row, colours):
 
 
 def _evaluate(geometry, arrays, registers, register_count, material, row, points, colours=None):
-    """The density ``material``'s program computes at ``points`` (float64 [P, 3], relative to the origin),
-    where its colour attributes read ``colours`` [slots, P] (None: none)."""
+    """The value ``material``'s program computes in ``registers`` at ``points`` (float64 [P, 3], relative to
+    the origin), where its colour attributes read ``colours`` [slots, P] (None: none)."""
     pad = (-len(points)) % 3
     padded = np.concatenate([points, np.repeat(points[-1:], pad, axis=0)])
     colours = np.zeros((0, len(points))) if colours is None else np.asarray(colours)
@@ -111,8 +116,8 @@ def _evaluate(geometry, arrays, registers, register_count, material, row, points
 
 
 def bake_density(geometry, arrays, registers, register_count, material, spec, origin) -> DensityGrid | None:
-    """The ``DensityGrid`` (world metres) of ``material``'s varying density over the objects that hold it, or
-    None when no triangle has the material."""
+    """The ``DensityGrid`` (world metres) of what ``material``'s program computes in ``registers`` (its varying
+    density, or Emission Strength) over the objects that hold it, or None when no triangle has the material."""
     on = np.flatnonzero(geometry.material[:geometry.triangles.shape[0]] == material)
     if not len(on):
         return None
@@ -140,10 +145,11 @@ def bake_density(geometry, arrays, registers, register_count, material, spec, or
     return DensityGrid(values, index_to_world, f"density baked from material '{spec.name}'")
 
 
-def bake_on_voxels(geometry, arrays, registers, register_count, inputs, row, origin) -> DensityGrid:
-    """The ``DensityGrid`` of a Volume object's density (``inputs``, a ``voxel_inputs.VoxelInputs``): the
-    program of material ``inputs.source`` at each voxel of ``inputs.lattice``, with its grids as attributes
-    and object row ``row``, times the lattice's own values."""
+def bake_on_voxels(geometry, arrays, registers, register_count, inputs, row, origin, scaled) -> DensityGrid:
+    """The ``DensityGrid`` of what a Volume object's material computes in ``registers`` (``inputs``, a
+    ``voxel_inputs.VoxelInputs``): the program of material ``inputs.source`` at each voxel of ``inputs.lattice``,
+    with its grids as attributes and object row ``row``, times the lattice's own values where ``scaled`` (the
+    density, as Cycles multiplies it by the Density Attribute grid; not the emission)."""
     lattice = inputs.lattice
     shape = lattice.values.shape
     slots = max(inputs.attributes, default=-1) + 1
@@ -161,26 +167,42 @@ def bake_on_voxels(geometry, arrays, registers, register_count, inputs, row, ori
         slab = _evaluate(geometry, arrays, registers, register_count, inputs.source, row,
                          index @ matrix[:3, :3].T + shift, colours)
         values[i[0]:i[-1] + 1] = np.where(np.isfinite(slab), slab, 0.0).reshape(len(i), *shape[1:])
-    return DensityGrid(values * lattice.values, matrix, f"density baked on the voxels of {lattice.name}")
+    what = "density" if scaled else "emission strength"
+    return DensityGrid(values * lattice.values if scaled else values, matrix,
+                       f"{what} baked on the voxels of {lattice.name}")
 
 
-def bake_densities(geometry, arrays, registers, register_count, materials, origin) -> dict:
-    """{material index: ``DensityGrid``} for the materials whose program computes a varying volume density
-    (``registers`` int32 [materials], -1: none) and that some triangle of ``geometry`` has, and for the Volume
-    objects' media whose density such a program computes (``MediumSpec.voxel_inputs``)."""
+#: A medium's baked grids: ``density`` and ``strength`` (its Emission Strength), each a ``DensityGrid`` or None.
+BakedFields = namedtuple("BakedFields", "density strength")
+
+
+def _bake(geometry, arrays, registers, register_count, materials, m, origin, density) -> DensityGrid | None:
+    """Material ``m``'s field of ``registers`` (its density where ``density``, else its emission strength)."""
+    spec = materials[m].medium
+    inputs = spec.voxel_inputs
+    if inputs is None:
+        return bake_density(geometry, arrays, registers, register_count, m, spec, origin) if registers[m] >= 0 else None
+    on = np.flatnonzero(geometry.material[:geometry.triangles.shape[0]] == m)
+    if not len(on) or registers[inputs.source] < 0:
+        return None
+    row = int(_instance_rows(geometry, on[:1])[0])
+    return bake_on_voxels(geometry, arrays, registers, register_count, inputs, row, origin, density)
+
+
+def bake_fields(geometry, arrays, density, emission, register_count, materials, origin) -> dict:
+    """{material index: ``BakedFields``} of the media whose density or Emission Strength a program computes
+    per point (registers int32 [materials] ``density`` and ``emission``, -1: none), over the meshes that hold
+    them, or on a Volume object's voxels (``MediumSpec.voxel_inputs``)."""
     baked = {}
-    triangles = geometry.material[:geometry.triangles.shape[0]]
     for m, material in enumerate(materials):
-        inputs = getattr(getattr(material, "medium", None), "voxel_inputs", None)
-        on = np.flatnonzero(triangles == m) if inputs is not None and registers[inputs.source] >= 0 else []
-        if len(on):
-            row = int(_instance_rows(geometry, on[:1])[0])
-            baked[m] = bake_on_voxels(geometry, arrays, registers, register_count, inputs, row, origin)
-    for m in np.flatnonzero(np.asarray(registers) >= 0):
-        spec = getattr(materials[m], "medium", None)
-        if spec is None or not spec.density_varies:
+        spec = getattr(material, "medium", None)
+        if spec is None or not spec.varies:
             continue
-        grid = bake_density(geometry, arrays, registers, register_count, int(m), spec, origin)
-        if grid is not None:
-            baked[int(m)] = grid
+        fields = BakedFields(
+            _bake(geometry, arrays, density, register_count, materials, m, origin, True) if spec.density_varies
+            else None,
+            _bake(geometry, arrays, emission, register_count, materials, m, origin, False) if spec.emission_field
+            else None)
+        if fields.density is not None or fields.strength is not None:
+            baked[m] = fields
     return baked

@@ -36,7 +36,11 @@ class MediumSpec:
     density reads (on a Volume object, its grids of those names); ``voxel_inputs`` (a
     ``voxel_inputs.VoxelInputs``) where the density is baked on a Volume object's voxels instead of a grid over
     a mesh. ``phase``: the scattering's phase function as a mixture of lobes (weight, kind, parameters)
-    (``phase_functions``), tabulated; empty: Henyey-Greenstein of ``anisotropy``."""
+    (``phase_functions``), tabulated; empty: Henyey-Greenstein of ``anisotropy``. ``emission_field``:
+    (weight, rgb) terms of emitted radiance per metre per unit of an Emission Strength the material's program
+    computes per point (``ShaderProgram.volume_emission``), baked like the density to ``strength_grid`` (its
+    attributes ``emission_attributes``); the emission is then the ``emission`` terms plus the strength × these
+    (``temperature_emission``)."""
 
     name: str
     scatter: list = field(default_factory=list)
@@ -50,4 +54,17 @@ class MediumSpec:
     step_rate: float = 1.0
     density_attributes: dict = field(default_factory=dict)
     voxel_inputs: object = None
+    emission_field: list = field(default_factory=list)
+    emission_attributes: dict = field(default_factory=dict)
+    strength_grid: object = None
+
+    @property
+    def emitting_grid(self):
+        """The grid whose value the emission varies with (temperature or strength), or None."""
+        return self.temperature_grid if self.temperature_grid is not None else self.strength_grid
+
+    @property
+    def varies(self) -> bool:
+        """Whether the material's program computes something of this medium per point (baked)."""
+        return self.density_varies or bool(self.emission_field)
     phase: list = field(default_factory=list)

@@ -22,7 +22,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..errors import PrismInputError
-from .density_grid import build_grids, check_grid
+from .density_grid import DensityGrid, build_grids, check_grid
 from .phase_functions import phase_table
 from .tabulated_phase import BINS
 from .temperature_emission import emission_key, emission_rows
@@ -97,22 +97,22 @@ def _check(spec):
     grid = getattr(spec, "density_grid", None)
     if grid is not None:
         check_grid(grid, spec.name)
-    if spec.temperature_grid is not None:
+    if spec.emitting_grid is not None:
         if grid is None:
-            raise ValueError(f"medium '{spec.name}': a temperature grid needs a density grid")
-        check_grid(spec.temperature_grid, spec.name)
+            raise ValueError(f"medium '{spec.name}': an emission grid needs a density grid")
+        check_grid(spec.emitting_grid, spec.name)
 
 
 def _emission(spec, spectra, key, made):
     """(first spectrum id or -1, rows, grid value per row) of a medium's emission (``MediaArrays``); ``made``
     remembers the rows of each temperature grid's voxels and settings, which the instances of one Volume
     object share, so that they are tabulated once."""
-    if spec.temperature_grid is None:
+    if spec.emitting_grid is None:
         emitted = emission_on_grid(spec)
         if not emitted.max() > 0.0:
             return -1, 1, 1.0
         return spectra.tabulated(key + ("emission",), float(VISIBLE_MIN_NM), 1.0, emitted), 1, 1.0
-    same = (id(spec.temperature_grid.values), tuple(spec.emission), tuple(spec.blackbody))
+    same = (id(spec.emitting_grid.values), tuple(spec.emission), tuple(spec.blackbody), tuple(spec.emission_field))
     if same not in made:  # the grids outlive the build, so no id is reused meanwhile
         made[same] = _temperature_rows(spec, spectra)
     return made[same]
@@ -132,7 +132,7 @@ def _temperature_rows(spec, spectra):
 def _emission_rate(spec) -> float:
     """``EMISSION_SAMPLES_PER_VOXEL`` per the smallest voxel edge (m) of an emitting grid medium's grids."""
     edges = [np.linalg.norm(np.asarray(g.index_to_world, dtype=np.float64)[:3, :3], axis=0).min()
-             for g in (spec.density_grid, spec.temperature_grid) if g is not None]
+             for g in (spec.density_grid, spec.emitting_grid) if g is not None]
     return EMISSION_SAMPLES_PER_VOXEL / float(min(edges))
 
 
@@ -153,9 +153,15 @@ def _phase_cdf(tables) -> np.ndarray:
     return np.stack([cdf for _, cdf in sorted(tables.values(), key=lambda entry: entry[0])])
 
 
-def _with_baked(spec, grid):
-    """``spec`` with its baked density ``grid`` (a ``DensityGrid``, or None: as it is)."""
-    return spec if grid is None or spec is None else replace(spec, density_grid=grid)
+def _with_baked(spec, fields):
+    """``spec`` with its baked fields (``baked_density.BakedFields``, or None: as it is): the density grid,
+    the Emission Strength grid (over a density grid of ones where the density is constant)."""
+    if fields is None or spec is None:
+        return spec
+    density, strength = fields
+    if density is None and strength is not None and spec.density_grid is None:
+        density = DensityGrid(np.ones_like(strength.values), strength.index_to_world, "constant density")
+    return replace(spec, density_grid=density if density is not None else spec.density_grid, strength_grid=strength)
 
 
 def build_media(materials, used, spectra, outside=None, origin=None, baked=None):
@@ -163,7 +169,8 @@ def build_media(materials, used, spectra, outside=None, origin=None, baked=None)
     ``scene.Material`` list, whose indices in ``used`` get a medium, and ``outside`` (a ``MediumSpec``: the
     World's Volume, the medium everywhere outside meshes that hold one; None: vacuum). ``spectra``: the
     render's ``SpectrumTable``; ``origin`` (m) the point the kernels' positions are relative to (grids);
-    ``baked``: material index → the ``DensityGrid`` its varying density was baked to (``baked_density``)."""
+    ``baked``: material index → the ``BakedFields`` its varying density and emission were baked to
+    (``baked_density``)."""
     index = np.full(len(materials), -1, np.int32)
     scattering, absorption, emission, strength, anisotropy, grid, grids = [], [], [], [], [], [], []
     emitting_grid, rows, steps, rate, made = [], [], [], [], {}
@@ -185,9 +192,9 @@ def build_media(materials, used, spectra, outside=None, origin=None, baked=None)
         grid.append(len(grids) if density_grid is not None else -1)
         if density_grid is not None:
             grids.append(density_grid)
-        emitting_grid.append(len(grids) if spec.temperature_grid is not None else -1)
-        if spec.temperature_grid is not None:
-            grids.append(spec.temperature_grid)
+        emitting_grid.append(len(grids) if spec.emitting_grid is not None else -1)
+        if spec.emitting_grid is not None:
+            grids.append(spec.emitting_grid)
         first, count, step = _emission(spec, spectra, key, made)
         emission.append(first)
         strength.append(1.0 if first >= 0 else 0.0)

@@ -49,12 +49,19 @@ def tinted_blackbody(temperature_k, tint) -> np.ndarray:
 
 def emission_rows(spec) -> tuple[np.ndarray, float]:
     """(rows [R, len(VISIBLE_NM_GRID)] of emitted radiance per metre, the grid value per row) of a
-    ``MediumSpec`` with a ``temperature_grid``: row r holds the emission where that grid reads r × step,
-    its constant terms (Emission Strength × Color) in every row."""
+    ``MediumSpec`` with an emitting grid: row r holds the emission where that grid reads r × step, its
+    constant terms (Emission Strength × Color) in every row. A temperature grid's rows follow Planck's law; a
+    strength grid's (``MediumSpec.emission_field``) are linear in its value, so two rows are exact."""
     from dataclasses import replace
 
     from .table import emission_on_grid
 
+    if spec.temperature_grid is None:
+        largest = max(float(np.max(spec.strength_grid.values)), 0.0)
+        per_unit = emission_on_grid(replace(spec, emission=[(w, rgb, None) for w, rgb in spec.emission_field]))
+        values = np.array([0.0, largest])
+        rows = emission_on_grid(spec)[None, :] + values[:, None] * per_unit[None, :]
+        return np.maximum(rows, 0.0), largest if largest > 0.0 else 1.0
     constant = emission_on_grid(replace(spec, emission=[e for e in spec.emission if e[2] is None]))
     largest = float(np.max(np.maximum(spec.temperature_grid.values, 0.0)))
     count = ROWS if largest > 0.0 else 1
@@ -69,6 +76,6 @@ def emission_rows(spec) -> tuple[np.ndarray, float]:
 
 def emission_key(spec) -> tuple:
     """What ``emission_rows`` depends on, for sharing one table between instances of one Volume object."""
-    grid = spec.temperature_grid
-    return (tuple(e for e in spec.emission if e[2] is None), tuple(spec.blackbody),
-            float(np.max(np.maximum(grid.values, 0.0))) if grid is not None else None)
+    grid = spec.emitting_grid
+    return (tuple(e for e in spec.emission if e[2] is None), tuple(spec.blackbody), tuple(spec.emission_field),
+            spec.temperature_grid is None, float(np.max(np.maximum(grid.values, 0.0))) if grid is not None else None)

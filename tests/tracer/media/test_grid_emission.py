@@ -7,7 +7,9 @@ ray at a time through delta tracking, the radiance it gathers per carried wavele
 - a temperature grid rising linearly from 1000 K to 2000 K along the ray inside a constant density, as
   Cycles' Temperature Attribute: ∫ exp(-D σ_t,k s) ε_k(T(s)) ds with Cycles' blackbody intensity
   σ_SB 10⁻⁶ / π T⁴ of the luminance-1 Planck spectrum, by quadrature (the rows interpolated by the kernel
-  are tested through it).
+  are tested through it);
+- an Emission Strength grid rising linearly along the ray (``MediumSpec.emission_field``): the constant
+  emission plus the strength times the field's emission, by quadrature.
 
 Each mean is checked within 4.5 standard errors of its own estimate (fixed seeds)."""
 
@@ -111,6 +113,23 @@ def test_a_temperature_grid_glows_at_its_blackbody_temperature_point_by_point():
     glow = blackbody_intensity(temperature, 1.0)[:, None] * tinted_blackbody(temperature, (1.0, 0.9, 0.8))[:, AT]
     expected = (np.exp(-s[:, None] * _extinction(density)[None, :]) * glow).sum(0) * LENGTH / 4000
     _assert_close(mean, stderr, expected, list(range(len(WAVELENGTHS))), "temperature grid 1000-2000 K")
+
+
+def test_a_strength_grid_glows_in_proportion_to_it_point_by_point():
+    """An Emission Strength baked to a grid rising linearly 0.5 → 2 along the ray (``emission_field``), beside a
+    constant Emission Strength term, inside a constant density: ∫ exp(-D σ_t,k s) (ε_const + S(s) ε_unit) ds."""
+    density = 0.8
+    rise = np.broadcast_to((0.5 + 1.5 * np.arange(16) / 15.0)[:, None, None], (16, 16, 16))
+    field = [(1.5, (0.2, 0.5, 1.0))]
+    spec = MediumSpec("glow", scatter=SCATTER, absorb=ABSORB, emission=GLOW, emission_field=field,
+                      density_grid=_grid(np.full((16, 16, 16), density)), strength_grid=_grid(rise))
+    mean, stderr = _gathered(spec, 32 * 1024)
+    s = (np.arange(4000) + 0.5) * LENGTH / 4000
+    strength = 0.5 + 1.5 * (ORIGIN[0] + s) / VOXEL_M / 15.0
+    unit = emission_on_grid(MediumSpec("unit", emission=[(w, rgb, None) for w, rgb in field]))[AT]
+    glow = emission_on_grid(MediumSpec("constant", emission=GLOW))[AT][None, :] + strength[:, None] * unit[None, :]
+    expected = (np.exp(-s[:, None] * _extinction(density)[None, :]) * glow).sum(0) * LENGTH / 4000
+    _assert_close(mean, stderr, expected, list(range(len(WAVELENGTHS))), "strength grid 0.5-2")
 
 
 def test_grid_media_that_do_not_emit_take_no_emission_rate():
