@@ -1,9 +1,9 @@
 """Blender materials → rows of the scene's one list of tracer materials (``MaterialRows``), each exported once.
 
-A material whose volume Density is driven by nodes gets a row of its own for each piece of geometry that uses
-it (the same compiled material): the render bakes that density on a grid over the bounds of the objects of a
-row (``tracer.media.baked_density``), so objects far apart that share the material each get a grid over their
-own bounds instead of sharing one over the space between them.
+A material whose volume Density or Emission Strength is driven by nodes gets a row of its own for each piece
+of geometry that uses it (the same compiled material): the render bakes them on a grid over the bounds of the
+objects of a row (``tracer.media.baked_density``), so objects far apart that share the material each get a
+grid over their own bounds instead of sharing one over the space between them.
 """
 
 from __future__ import annotations
@@ -18,8 +18,10 @@ from .materials import DEFAULT_MATERIAL, MaterialExporter
 from .mesh_data import AttributeRequest
 
 
-def _bakes_density(material: Material) -> bool:
-    return getattr(material.medium, "density_varies", False) and getattr(material.medium, "voxel_inputs", None) is None
+def _bakes_over_its_mesh(material: Material) -> bool:
+    """Whether the render bakes something of the material's volume (its Density, its Emission Strength) on a
+    grid over the bounds of the meshes that hold it."""
+    return getattr(material.medium, "varies", False) and getattr(material.medium, "voxel_inputs", None) is None
 
 
 class MaterialRows:
@@ -54,7 +56,7 @@ class MaterialRows:
             self._add(key, material if made else self.exporter.export(material) if material is not None
                       else DEFAULT_MATERIAL, material)
         row = self.index[key]
-        if owner is None or made or not _bakes_density(self.materials[row]):
+        if owner is None or made or not _bakes_over_its_mesh(self.materials[row]):
             return row
         own = (key, owner)
         return self.index[own] if own in self.index else self._add(own, replace(self.materials[row]), material)

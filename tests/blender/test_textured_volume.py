@@ -179,7 +179,8 @@ def test_a_node_driven_density_of_world_fog_is_warned_and_rendered_at_the_socket
 
 def test_objects_far_apart_that_share_a_textured_volume_get_a_grid_each(prism_addon, fresh_scene):
     """Two 2 m cubes 40 m apart with one material of Density 3 × Generated X: each is baked over its own
-    bounds (81³ voxels at Step Rate 1, as one cube alone), not over the 42 m between them."""
+    bounds (81³ voxels at Step Rate 1, as one cube alone), not over the 42 m between them; so is a shared
+    Emission Strength driven by nodes."""
     baked_density = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.media.baked_density")
     black_world().node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
     mat = _gradient_material("Ramp", 3.0)
@@ -198,6 +199,11 @@ def test_objects_far_apart_that_share_a_textured_volume_get_a_grid_each(prism_ad
         assert np.allclose(np.diag(grid.index_to_world)[:3] * 80, 2.0)
         lows.append(grid.index_to_world[0, 3])
     assert sorted(lows) == pytest.approx([-1.0, 39.0])
+    glow = glow_material("Glow", lambda nodes: nodes.new("ShaderNodeTexNoise").outputs["Fac"], 2.0, (1.0, 1.0, 1.0))
+    for name in ("Near", "Far"):  # a shared Emission Strength driven by nodes is baked per object too
+        bpy.data.objects[name].data.materials[0] = glow
+    _, tables = _tables(prism_addon)
+    assert len(np.flatnonzero(tables.material_table.volume_emission >= 0)) == 2
 
 
 def test_a_noise_textured_emission_strength_glows_as_in_cycles(prism_addon, fresh_scene):
