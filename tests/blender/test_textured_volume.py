@@ -78,6 +78,11 @@ def test_a_node_driven_density_compiles_to_a_baked_field_and_a_normal_driven_one
     compiled = nodes_module.compile_material(mat, slots=slots, load_pixels=False)
     assert compiled.warnings == [] and compiled.medium.density_varies
     assert compiled.medium.density_attributes == {"flame": 1}
+    vertex_colour = nodes.new("ShaderNodeVertexColor")  # Cycles reads it as 0 in a volume, grids or not
+    vertex_colour.layer_name = "smoke"
+    link(vertex_colour.outputs["Alpha"], volume.inputs["Density"])
+    compiled = nodes_module.compile_material(mat, slots=slots, load_pixels=False)
+    assert compiled.medium.density_varies and compiled.medium.density_attributes == {}
 
 
 def _tables(prism_addon):

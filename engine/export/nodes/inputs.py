@@ -7,6 +7,12 @@ from ...tracer.materials import opcodes as op
 from .terms import COLOR, FLOAT, VECTOR
 
 
+#: The mode of a Color Attribute node's read (the kernels ignore it): Cycles reads a Color Attribute node as 0
+#: inside a volume, even a Volume object's grid of that name, where an Attribute node reads the grid
+#: (``volume_density``).
+COLOR_ATTRIBUTE_NODE = 1
+
+
 def _uv_slot(c, name):
     c.needs.add(("uv", name or ""))
     return c.slots.uv(name) if c.slots else 0
@@ -87,7 +93,8 @@ def volume_info(c, node, context, variant, identifier):
 
 
 def color_attribute(c, node, context, variant, identifier):
-    rgba = c.hit(op.COLOR_ATTRIBUTE, variant, slot=_attribute_slot(c, node.layer_name), width=4)
+    rgba = c.hit(op.COLOR_ATTRIBUTE, variant, slot=_attribute_slot(c, node.layer_name), width=4,
+                 mode=COLOR_ATTRIBUTE_NODE)
     return {"Color": (rgba.__class__(rgba.register, 3), COLOR), "Alpha": (rgba.component(3), FLOAT)}
 
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 from ...tracer.materials import opcodes as op
 from .graph import follow
-from .inputs import needs_objects
+from .inputs import COLOR_ATTRIBUTE_NODE, needs_objects
 from .terms import FLOAT
 
 #: What a program can read only on a surface or along a ray (Cycles' names in the warning).
@@ -58,9 +58,10 @@ def _surface_reads(c, value) -> list[str]:
 
 
 def _attributes(c, value) -> dict:
-    """{attribute name: colour slot} of the Attribute nodes ``value`` reads."""
+    """{attribute name: colour slot} of the Attribute nodes ``value`` reads (not Color Attribute nodes)."""
     rows = _rows(c, value)
-    slots = sorted({int(a) for a in rows[rows[:, op.OP] == op.COLOR_ATTRIBUTE, op.A]})
+    read = (rows[:, op.OP] == op.COLOR_ATTRIBUTE) & (rows[:, op.MODE] != COLOR_ATTRIBUTE_NODE)
+    slots = sorted({int(a) for a in rows[read, op.A]})
     names = c.slots.attribute_names if c.slots else []  # no slots: compiled alone, not for a render
     return {names[slot]: slot for slot in slots if slot < len(names)}
 
