@@ -191,11 +191,11 @@ class VolumeReader:
         matrix = np.asarray(matrix_world, dtype=np.float64).reshape(4, 4)
         if getattr(getattr(obj.data, "render", None), "space", "OBJECT") == "OBJECT":
             spec = scaled_by(spec, object_space_density(matrix))
-        if inputs is not None:  # the nodes' density, baked on these voxels (× the Density Attribute grid)
-            lattice = DensityGrid(values if grid is not None else np.ones_like(values), matrix @ index_to_object,
-                                  f"'{inputs[2]}' of '{name}'")
+        if inputs is not None:  # what the nodes compute, baked on these voxels (× the Density Attribute grid)
+            lattice = replace(inputs.lattice, index_to_world=matrix @ inputs.lattice.index_to_world,
+                              name=f"{inputs.lattice.name} of '{name}'")
             spec = replace(spec, name=f"{spec.name} ({name})", density_grid=lattice,
-                           voxel_inputs=VoxelInputs(inputs[0], lattice, inputs[1]))
+                           voxel_inputs=replace(inputs, lattice=lattice))
         elif grid is not None:
             spec = replace(spec, name=f"{spec.name} ({name})",
                            density_grid=DensityGrid(values, matrix @ index_to_object, f"'{grid}' of '{name}'"))
@@ -255,9 +255,10 @@ class VolumeReader:
             notes.extend([note] if note else [])
         index_to_object = index_to_object @ _cycles_offset()
         inputs = None
-        if spec.varies:
-            attributes = _attribute_grids(name, spec, path, grids, values.shape, index_to_object, notes)
-            inputs = (source, attributes, lattice)
+        if spec.varies:  # in object space; ``_read_box`` places it per instance
+            inputs = VoxelInputs(source, DensityGrid(values if grid is not None else np.ones_like(values),
+                                                     index_to_object, f"'{lattice}'"),
+                                 _attribute_grids(name, spec, path, grids, values.shape, index_to_object, notes))
         return spec, values, index_to_object, grid, hot, inputs
 
     @staticmethod

@@ -280,9 +280,9 @@ def _write_sphere_and_ramp(vdb, path):
     return values
 
 
-def _baked_cloud(prism_addon, scene, field="density"):
-    """(the Volume object "Cloud"'s medium, the ``field`` (density or strength) the render bakes for it on its
-    voxels)."""
+def _baked_cloud(prism_addon, scene):
+    """(the Volume object "Cloud"'s medium, the ``BakedFields`` (density, strength) the render bakes for it on
+    its voxels)."""
     baked_density = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.media.baked_density")
     renderer = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.renderer")
     settings = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.settings")
@@ -292,7 +292,7 @@ def _baked_cloud(prism_addon, scene, field="density"):
     table = tables.material_table
     baked = baked_density.bake_fields(tables.geometry, table.arrays, table.volume_density, table.volume_emission,
                                       table.register_count, scene.materials, tables.geometry.attributes.offset)
-    return scene.materials[box].medium, getattr(baked[box], field)
+    return scene.materials[box].medium, baked[box]
 
 
 def test_a_density_of_nodes_reading_grids_is_baked_on_the_voxels(prism_addon, fresh_scene, tmp_path):
@@ -304,7 +304,7 @@ def test_a_density_of_nodes_reading_grids_is_baked_on_the_voxels(prism_addon, fr
     camera((0.0, -6.0, 1.0), (0.0, 0.0, 1.0), resolution=(8, 8))
     _sun(fresh_scene)
     warnings = []
-    medium, baked = _baked_cloud(prism_addon, _export(prism_addon, warnings))
+    medium, (baked, _) = _baked_cloud(prism_addon, _export(prism_addon, warnings))
     assert warnings == []
     assert medium.scatter[0][0] == pytest.approx(_object_space(obj))
     low = np.argwhere(values > 0).min(0)
@@ -318,7 +318,7 @@ def test_a_density_of_nodes_reading_grids_is_baked_on_the_voxels(prism_addon, fr
     link(info.outputs["Density"], scatter.inputs["Density"])
     link(scatter.outputs[0], nodes["Output"].inputs["Volume"])
     obj.data.materials[0] = mat
-    medium, baked = _baked_cloud(prism_addon, _export(prism_addon, warnings))
+    medium, (baked, _) = _baked_cloud(prism_addon, _export(prism_addon, warnings))
     assert warnings == []
     np.testing.assert_allclose(baked.values, density, rtol=1e-6)
 
@@ -363,11 +363,11 @@ def test_an_emission_strength_of_nodes_reading_a_grid_glows_as_in_cycles(prism_a
     warnings = []
     scene = _export(prism_addon, warnings)
     assert warnings == []
-    medium, _ = _baked_cloud(prism_addon, scene, "density")
+    medium, (density_field, strength) = _baked_cloud(prism_addon, scene)
+    assert density_field is None  # the density is the grid's, not the nodes'
     [(weight, colour)] = medium.emission_field
     assert medium.emission == [] and weight == pytest.approx(_object_space(obj))
     assert colour == pytest.approx((1.0, 0.5, 0.2))
-    _, strength = _baked_cloud(prism_addon, scene, "strength")
     low = np.argwhere(values > 0).min(0)
     density = values[tuple(slice(lo, lo + n) for lo, n in zip(low, strength.values.shape))]
     np.testing.assert_allclose(strength.values, 4.0 * density, rtol=1e-6)

@@ -72,7 +72,7 @@ def _constant(node, value, found):
     return value
 
 
-def density(c, node, context, weight, found: DensityField, name="Density") -> float:
+def varying_input(c, node, context, weight, found: DensityField, name="Density") -> float:
     """The node's input ``name`` (its Density, or a Principled Volume's Emission Strength) times ``weight`` as a
     constant (clamped at 0, as Cycles clamps it), or ``weight`` where it varies per point (the medium's
     coefficients, or its emission, then scale by ``found.value``, baked)."""

@@ -38,7 +38,7 @@ def _constant(c, node, name, context, kind):
 
 def _absorption(c, node, context, weight, spec, found):
     colour = _constant(c, node, "Color", context, COLOR)
-    density = volume_density.density(c, node, context, weight, found.density)
+    density = volume_density.varying_input(c, node, context, weight, found.density)
     spec.absorb.append((density, tuple(colour)))
 
 
@@ -58,19 +58,19 @@ def _phase_lobe(c, node, context, weight):
 
 def _scatter(c, node, context, weight, spec, lobes, found):
     colour = _constant(c, node, "Color", context, COLOR)
-    density = volume_density.density(c, node, context, weight, found.density)
+    density = volume_density.varying_input(c, node, context, weight, found.density)
     spec.scatter.append((density, tuple(colour)))
     lobes.append(_phase_lobe(c, node, context, density * max(colour)))
 
 
 def _principled(c, node, context, weight, spec, lobes, found):
-    density = volume_density.density(c, node, context, weight, found.density)
+    density = volume_density.varying_input(c, node, context, weight, found.density)
     colour = tuple(_constant(c, node, "Color", context, COLOR))
     absorption = tuple(max(x, 0.0) ** 0.5 for x in _constant(c, node, "Absorption Color", context, COLOR))
     spec.scatter.append((density, colour))
     spec.absorb.append((density, colour, absorption))  # σ_a = density (1 - colour)(1 - sqrt(absorption colour))
     lobes.append((density * max(colour), HENYEY_GREENSTEIN, (_constant(c, node, "Anisotropy", context, FLOAT),)))
-    strength = volume_density.density(c, node, context, weight, found.emission, "Emission Strength")
+    strength = volume_density.varying_input(c, node, context, weight, found.emission, "Emission Strength")
     if node in found.emission.varying:  # radiance per metre per unit of the baked strength
         spec.emission_field.append((strength, tuple(_constant(c, node, "Emission Color", context, COLOR))))
     elif strength > 0.0:

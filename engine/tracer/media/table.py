@@ -105,8 +105,8 @@ def _check(spec):
 
 def _emission(spec, spectra, key, made):
     """(first spectrum id or -1, rows, grid value per row) of a medium's emission (``MediaArrays``); ``made``
-    remembers the rows of each temperature grid's voxels and settings, which the instances of one Volume
-    object share, so that they are tabulated once."""
+    remembers the rows of each emitting grid's voxels (temperature or strength) and settings, which the
+    instances of one Volume object share, so that they are tabulated once."""
     if spec.emitting_grid is None:
         emitted = emission_on_grid(spec)
         if not emitted.max() > 0.0:
@@ -114,11 +114,11 @@ def _emission(spec, spectra, key, made):
         return spectra.tabulated(key + ("emission",), float(VISIBLE_MIN_NM), 1.0, emitted), 1, 1.0
     same = (id(spec.emitting_grid.values), tuple(spec.emission), tuple(spec.blackbody), tuple(spec.emission_field))
     if same not in made:  # the grids outlive the build, so no id is reused meanwhile
-        made[same] = _temperature_rows(spec, spectra)
+        made[same] = _grid_rows(spec, spectra)
     return made[same]
 
 
-def _temperature_rows(spec, spectra):
+def _grid_rows(spec, spectra):
     table, step = emission_rows(spec)
     if not table.max() > 0.0:
         return -1, 1, 1.0
