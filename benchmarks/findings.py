@@ -132,8 +132,8 @@ def _reading(results):
             f"with an empty kernel cache {c['process_seconds']:.1f} s (its first pass, which compiles the kernels, "
             f"{c['first_pass_seconds']:.1f} s); with the cache filled {w['process_seconds']:.1f} s (first pass, "
             f"loading the kernels from disk, {w['first_pass_seconds']:.2f} s; importing the tracer "
-            f"{w['import_seconds']:.2f} s; colour-science, imported by the first Renderer of a process, "
-            f"{w['colour_import_seconds']:.2f} s). `cache_is_warm()` said {c['cache_was_warm']} then "
+            f"{w['import_seconds']:.2f} s; colour-science imported: "
+            f"{'yes' if w.get('colour_imported', True) else 'no'}). `cache_is_warm()` said {c['cache_was_warm']} then "
             f"{w['cache_was_warm']}, so the first render alone shows \"Compiling Prism kernels\".")
     demo = results.get("demo")
     if demo:

@@ -63,13 +63,14 @@ def _sampler_table(gains):
 def _startup_table(st):
     keys = [("process_seconds", "whole process (interpreter start-up included)"),
             ("import_seconds", "import the tracer (numba, kernel modules)"),
-            ("colour_import_seconds", "import colour-science (first Renderer of a process)"),
-            ("setup_seconds", "Renderer construction (tables, BVH)"),
+            ("setup_seconds", "Renderer construction (spectral tables, BVH)"),
             ("first_pass_seconds", "first pass (compile, or load the kernels from disk)"),
             ("second_pass_seconds", "second pass")]
     rows = ["| phase | cold cache (s) | warm cache (s) |", "|---|---:|---:|"]
     for key, label in keys:
         rows.append(f"| {label} | {st['cold'].get(key, float('nan')):.3f} | {st['warm'].get(key, float('nan')):.3f} |")
+    rows.append("| imported colour-science | " + " | ".join(
+        "yes" if st[side].get("colour_imported", True) else "no" for side in ("cold", "warm")) + " |")
     return "\n".join(rows)
 
 

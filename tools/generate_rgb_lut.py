@@ -6,9 +6,9 @@ Run once by a developer (not by Blender, not by a render):
 
 Colours computed per hit (textures, node math) become reflectance spectra in the kernels by trilinear
 interpolation of Jakob-Hanika coefficients in this table (``spectra.rgb_lut``). Every grid colour is
-fitted exactly as constant colours are (``rgb_to_spectrum.reflectance_coefficients``: the small
-committed table plus Levenberg-Marquardt polish), so constant and textured colours share one
-upsampling. Grid: for the largest channel c, its value z (a smoothstep-of-smoothstep grid, dense near
+fitted exactly as constant colours are (``rgb_to_spectrum.reflectance_coefficients``: a first
+guess, here from the small committed table (``jakob_start``), plus Levenberg-Marquardt polish), so
+constant and textured colours share one upsampling. Grid: for the largest channel c, its value z (a smoothstep-of-smoothstep grid, dense near
 0 and 1, as Jakob and Hanika use) and the ratios of the next two channels x = rgb[c+1]/z, y = rgb[c+2]/z
 (uniform). Stored as float32 coefficients of x = (λ - 360) / 470 (well conditioned), [3, N, N, N, 3].
 Size 32 round-trips colours within 0.7 % (99 % within 0.35 %).
@@ -47,7 +47,9 @@ def main(argv=None):
     coefficients = np.empty_like(flat)
     started = time.perf_counter()
     for s in range(0, len(flat), 8192):
-        coefficients[s:s + 8192] = rgb_to_spectrum.reflectance_coefficients(flat[s:s + 8192])
+        # First guesses from colour-science's Jakob-Hanika table: the table being made is the default's.
+        coefficients[s:s + 8192] = rgb_to_spectrum.reflectance_coefficients(flat[s:s + 8192],
+                                                                            start=rgb_to_spectrum.jakob_start)
     unit = rgb_to_spectrum._to_unit_domain(coefficients).astype(np.float32).reshape(channel.shape + (3,))
     args.output.parent.mkdir(parents=True, exist_ok=True)
     np.savez_compressed(args.output, coefficients=unit, z_grid=z_grid)

@@ -1,7 +1,8 @@
 """What the warm-up runs: the smallest render that compiles the kernels a typical F12 needs, and the
 constant folder the export runs on node materials.
 
-Built as an ``engine.tracer.scene.Scene`` (no Blender): a grey floor and back wall (diffuse), a
+Built as an ``engine.tracer.scene.Scene`` (no Blender): a clay-coloured floor and back wall (diffuse; a
+colour that is not grey, as in most scenes, is upsampled from the kernels' table: ``rgb_lut``), a
 dispersive glass wedge (dielectric with a catalogue glass: wavelength termination, refraction), an
 area light and a point light, a dim constant world, seen by a pinhole camera. Kernels are typed by the
 arrays' dtypes and the tables' layout, not by their sizes or values, so this stands for larger scenes of
@@ -62,7 +63,7 @@ def warmup_scene() -> Scene:
         vertices=np.concatenate(vertices),
         triangles=np.concatenate(triangles),
         triangle_material=np.concatenate(material),
-        materials=[Material(name="Grey", base_color=(0.6, 0.6, 0.6)),
+        materials=[Material(name="Clay", base_color=(0.6, 0.5, 0.4)),
                    Material(name="Glass", kind="dielectric", glass="N-SF11")],
         camera=_camera(),
         lights=lights,

@@ -75,7 +75,8 @@ _F12 = textwrap.dedent(
         image = render_linear_rgb(bpy.context.scene, samples=2)
         seconds = time.perf_counter() - started
         return dict(warm=warm, compiled=compiled, seconds=seconds, status=status,
-                    finite=bool(np.isfinite(image).all()), mean=float(image.mean()))
+                    finite=bool(np.isfinite(image).all()), mean=float(image.mean()),
+                    colour=sorted(name for name in sys.modules if name.split(".")[0] == "colour")[:3])
 
 
     try:
@@ -125,6 +126,8 @@ def test_the_warmup_leaves_the_cache_warm_and_the_next_f12_compiles_nothing(tmp_
     assert report["compiled"] == [], report["compiled"]  # names of the functions compiled
     assert not any("Compiling" in line or "Waiting" in line for line in report["status"]), report["status"]
     assert report["finite"] and report["mean"] > 0
+    # Half a second of every fresh process: the add-on and a render of RGB colours read Prism's own tables.
+    assert report["colour"] == [], "the F12 imported colour-science"
 
 
 _ADOPT = textwrap.dedent(

@@ -1,8 +1,9 @@
 """CIE 1931 colorimetry: colour-matching functions, XYZ estimators, Rec.709.
 
-Tables come from colour-science and are loaded lazily (``import colour`` takes
-about a second), so importing this module is cheap. ``CMF_Y_INTEGRAL`` and
-``XYZ_TO_LINEAR_REC709`` are module attributes computed on first access.
+Tables come from colour-science through the file Prism ships (``colorimetry_tables``: a
+render does not import colour-science, which takes half a second) and are loaded lazily, so importing
+this module is cheap. ``CMF_Y_INTEGRAL`` and ``XYZ_TO_LINEAR_REC709`` are module attributes computed
+on first access.
 
 Conventions: wavelengths in nm; the CMFs are the CIE 1931 2° observer tabulated
 at 1 nm over 360-830 nm and linearly interpolated (zero outside). ``Y`` is
@@ -17,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import PrismInputError
+from . import colorimetry_tables
 from .trapezoid import trapezoid
 
 _CMF_TABLE = None  # (wavelength_nm [M], xyz [M, 3]) once loaded
@@ -24,7 +26,8 @@ _LAZY = {}
 
 
 def import_colour():
-    """Import colour-science (about a second), silencing its note that matplotlib is absent."""
+    """Import colour-science (half a second), silencing its note that matplotlib is absent: for measured
+    spectra, illuminants by name and file formats, which a render imports only when a scene uses them."""
     import warnings
 
     with warnings.catch_warnings():
@@ -36,12 +39,8 @@ def import_colour():
 def _cmf_table():
     global _CMF_TABLE
     if _CMF_TABLE is None:
-        colour = import_colour()
-        cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
-        wavelength_nm = np.asarray(cmfs.wavelengths, dtype=np.float64)
-        if not np.allclose(np.diff(wavelength_nm), 1.0):
-            raise RuntimeError("colour-science's CIE 1931 table is expected at 1 nm steps.")
-        _CMF_TABLE = (wavelength_nm, np.asarray(cmfs.values, dtype=np.float64))
+        tables = colorimetry_tables.load()
+        _CMF_TABLE = (tables.cmf_nm, tables.cmf_xyz)
     return _CMF_TABLE
 
 
@@ -51,14 +50,7 @@ def _cmf_y_integral():
 
 
 def _xyz_to_linear_rec709():
-    colour = import_colour()
-
-    # The BT.709 colourspace with its matrix derived from primaries and the D65
-    # whitepoint, so XYZ of the D65 white maps to (1, 1, 1) to double precision.
-    space = colour.RGB_COLOURSPACES["ITU-R BT.709"]
-    matrix = np.array(space.matrix_XYZ_to_RGB, dtype=np.float64)
-    matrix.setflags(write=False)
-    return matrix
+    return colorimetry_tables.load().xyz_to_rec709
 
 
 _LAZY_FACTORIES = {"CMF_Y_INTEGRAL": _cmf_y_integral, "XYZ_TO_LINEAR_REC709": _xyz_to_linear_rec709}

@@ -119,6 +119,17 @@ def bounded_coefficients(lut, r, g, b):
 
 
 @kernel
+def table_coefficients(lut, rgb, out):
+    """``out[i]`` = the table's (c0, c1, c2) of reflectance ``rgb[i]`` (components in [0, 1]): the first
+    guesses ``rgb_to_spectrum`` polishes, one call for a render's constant colours."""
+    for i in range(rgb.shape[0]):
+        c0, c1, c2, _ = bounded_coefficients(lut, rgb[i, 0], rgb[i, 1], rgb[i, 2])
+        out[i, 0] = c0
+        out[i, 1] = c1
+        out[i, 2] = c2
+
+
+@kernel
 def reflectance_values(lut, r, g, b, wavelengths_nm, out):
     """``out[k]`` = the reflectance spectrum of linear Rec.709 (r, g, b) (clamped to [0, 1]) at
     ``wavelengths_nm[k]``."""

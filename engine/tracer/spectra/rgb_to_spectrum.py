@@ -4,12 +4,13 @@ A reflectance colour becomes the smooth spectrum
 
     S(λ) = 1/2 + U / (2 sqrt(1 + U²)),   U = c0 λ² + c1 λ + c2   (λ in nm),
 
-which stays within [0, 1]. The coefficients come from a table optimised once by
-colour-science's ``LUT3D_Jakob2019`` (``tools/generate_upsampling_table.py``,
-committed as ``data/rec709_jakob2019.coeff`` and loaded lazily), then each
-looked-up colour is polished by a few damped Gauss-Newton steps on our own
-integration (D65, CIE 1931 at 1 nm, 360-830 nm), so the round trip
-RGB -> spectrum -> RGB is accurate to ~1e-5 although the table is small.
+which stays within [0, 1]. Each colour's first guess is looked up in the table the kernels
+upsample textured colours with (``rgb_lut``, itself made of this module's fits), then polished by a
+few damped Gauss-Newton steps on our own integration (D65, CIE 1931 at 1 nm, 360-830 nm), so the
+round trip RGB -> spectrum -> RGB is accurate to ~1e-5. That table is generated
+(``tools/generate_rgb_lut.py``) from first guesses in the table colour-science's ``LUT3D_Jakob2019``
+optimised once (``tools/generate_upsampling_table.py``, committed as ``data/rec709_jakob2019.coeff``:
+``jakob_start``), so rendering does not import colour-science.
 
 White: the gray axis is handled analytically (constant spectrum), so RGB
 (1, 1, 1) is exactly 1 and (0, 0, 0) exactly 0 at every wavelength. A constant
@@ -30,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import colorimetry_tables
 from .cie import check_rgb, import_colour, lerp_uniform_table
 from ..errors import PrismInputError
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
@@ -45,18 +47,9 @@ _CACHE = {}
 
 
 def _d65_table():
-    """(wavelength_nm, relative power) of CIE D65, 300-830 nm at 5 nm, from colour's daylight basis."""
-    if "d65" not in _CACHE:
-        import_colour()
-        from colour.colorimetry import sd_CIE_illuminant_D_series
-        from colour.temperature import CCT_to_xy_CIE_D
-
-        # D65's CCT is 6500 K on the pre-1968 c2 scale: 6500 * 1.4388 / 1.4380 = 6504 K.
-        sd = sd_CIE_illuminant_D_series(CCT_to_xy_CIE_D(6500.0 * 1.4388 / 1.4380))
-        if not np.allclose(np.diff(sd.wavelengths), 5.0):
-            raise RuntimeError("colour-science's daylight basis is expected at 5 nm steps.")
-        _CACHE["d65"] = (np.asarray(sd.wavelengths, np.float64), np.asarray(sd.values, np.float64))
-    return _CACHE["d65"]
+    """(wavelength_nm, relative power) of CIE D65, 300-830 nm at 5 nm (``colorimetry_tables``)."""
+    tables = colorimetry_tables.load()
+    return tables.d65_nm, tables.d65_power
 
 
 def d65_relative_power(wavelength_nm):
@@ -91,8 +84,10 @@ def white_rgb():
     return _CACHE["white"].copy()
 
 
-def _table():
-    if "lut" not in _CACHE:
+def jakob_start(rgb):
+    """First guesses (nm coefficients [N, 3]) of reflectances ``rgb`` [N, 3] from colour-science's
+    Jakob-Hanika table (imports colour-science: for ``tools/generate_rgb_lut.py``)."""
+    if "jakob" not in _CACHE:
         if not TABLE_PATH.exists():
             raise RuntimeError(
                 f"Missing {TABLE_PATH.name}: run tools/generate_upsampling_table.py (it ships with Prism)."
@@ -100,8 +95,18 @@ def _table():
         import_colour()
         from colour.recovery import LUT3D_Jakob2019
 
-        _CACHE["lut"] = LUT3D_Jakob2019().read(TABLE_PATH)
-    return _CACHE["lut"]
+        _CACHE["jakob"] = LUT3D_Jakob2019().read(TABLE_PATH)
+    return np.asarray(_CACHE["jakob"].RGB_to_coefficients(rgb), np.float64).reshape(-1, 3)
+
+
+def table_start(rgb):
+    """First guesses (nm coefficients [N, 3]) of reflectances ``rgb`` [N, 3] (components in [0, 1], not
+    all equal) from the kernels' table (``rgb_lut``)."""
+    from . import rgb_lut  # compiled code: imported when a colour is first upsampled, not with this module
+
+    out = np.empty((len(rgb), 3))
+    rgb_lut.table_coefficients(rgb_lut.load_lut(), np.ascontiguousarray(rgb, dtype=np.float64), out)
+    return out
 
 
 def _sigmoid(u):
@@ -207,8 +212,10 @@ def _fit(start_unit, target_rgb):
     return best
 
 
-def reflectance_coefficients(rgb):
+def reflectance_coefficients(rgb, start=table_start):
     """Jakob-Hanika coefficients [..., 3] (nm units) of linear Rec.709 reflectances ``rgb`` [..., 3].
+
+    ``start`` gives the fit's first guesses (``table_start``, or ``jakob_start`` to make that table).
 
     Components must be finite and within [0, 1] (a reflectance above 1 would
     create energy; 1 + 1e-6 is taken as 1): anything else raises ``PrismInputError``. Gray colours
@@ -229,9 +236,8 @@ def reflectance_coefficients(rgb):
     out[gray, 2] = _gray_u(flat[gray, 0])
     coloured = np.flatnonzero(~gray)
     if coloured.size:
-        start = np.asarray(_table().RGB_to_coefficients(flat[coloured]), np.float64).reshape(-1, 3)
         target = flat[coloured] * white_rgb()
-        out[coloured] = _to_nm_domain(_fit(_to_unit_domain(start), target))
+        out[coloured] = _to_nm_domain(_fit(_to_unit_domain(start(flat[coloured])), target))
     return out.reshape(shape)
 
 
