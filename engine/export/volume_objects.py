@@ -37,7 +37,8 @@ import numpy as np
 
 from ..tracer.media.density_grid import DensityGrid
 from ..tracer.media.spec import MediumSpec
-from ..tracer.media.voxel_inputs import VoxelInputs, resample
+from ..tracer.media import voxel_inputs
+from ..tracer.media.voxel_inputs import VoxelInputs, resample, sample_axes
 from ..tracer.scene import Material
 from .mesh_data import LocalMesh
 from .volume_emission import glow_note, index_box, socket_string, temperature_grid_name
@@ -256,6 +257,7 @@ class VolumeReader:
         index_to_object = index_to_object @ _cycles_offset()
         inputs = None
         if spec.varies:  # in object space; ``_read_box`` places it per instance
+            notes.extend(_subsampled_note(name, lattice, values.shape))
             inputs = VoxelInputs(source, DensityGrid(values if grid is not None else np.ones_like(values),
                                                      index_to_object, f"'{lattice}'"),
                                  _attribute_grids(name, spec, path, grids, values.shape, index_to_object, notes))
@@ -277,6 +279,19 @@ class VolumeReader:
         if read is None:  # no active voxel: nothing to place; the Temperature alone
             return None
         return read[0], read[1] @ _cycles_offset(), hot
+
+
+def _subsampled_note(name, lattice, shape) -> list[str]:
+    """The warning for a lattice too large to run the material's program on every voxel (``sample_axes``)."""
+    axes = sample_axes(shape)
+    if [len(axis) for axis in axes] == list(shape):
+        return []
+    stride = int(max(axis[1] - axis[0] for axis in axes if len(axis) > 1))
+    samples = int(np.prod([len(axis) for axis in axes]))
+    return [f"Volume '{name}': grid '{lattice}' has {int(np.prod(shape)):,} voxels; Prism runs its material's nodes "
+            f"on one voxel in {stride} along each axis ({samples:,} voxels: it bakes at most "
+            f"{voxel_inputs.MAX_BAKED_VOXELS:,} per volume) and interpolates between them (Cycles runs them at "
+            "every step); the grid's own values keep every voxel."]
 
 
 def _lattice_name(spec, grids) -> str:

@@ -295,10 +295,12 @@ def _baked_cloud(prism_addon, scene):
     return scene.materials[box].medium, baked[box]
 
 
-def test_a_density_of_nodes_reading_grids_is_baked_on_the_voxels(prism_addon, fresh_scene, tmp_path):
+def test_a_density_of_nodes_reading_grids_is_baked_on_the_voxels(prism_addon, fresh_scene, tmp_path, monkeypatch):
     """A Principled Volume whose Density is 2 × the "ramp" grid (Attribute node), times its Density Attribute
     grid "density" as Cycles multiplies them: the baked voxels hold 2 × ramp × density, the ramp resampled from
-    its own, larger box. Volume Info's Density reads "density"; a grid the file lacks reads 0, warned."""
+    its own, larger box. Past the most voxels a bake takes, the nodes run on every few voxels, warned, and their
+    result (linear in the voxel index here) is interpolated exactly. Volume Info's Density reads "density"; a
+    grid the file lacks reads 0, warned."""
     values = _write_sphere_and_ramp(_openvdb(prism_addon), tmp_path / "ramp.vdb")
     obj = _volume_object(tmp_path / "ramp.vdb", _attribute_density(["ShaderNodeVolumePrincipled"], "ramp", 2.0))
     camera((0.0, -6.0, 1.0), (0.0, 0.0, 1.0), resolution=(8, 8))
@@ -312,6 +314,19 @@ def test_a_density_of_nodes_reading_grids_is_baked_on_the_voxels(prism_addon, fr
     ramp = 0.1 * (np.arange(baked.values.shape[0]) + low[0] + 4.0)
     np.testing.assert_allclose(baked.values, 2.0 * ramp[:, None, None] * density, rtol=1e-5, atol=1e-6)
     assert np.allclose(baked.index_to_world, medium.density_grid.index_to_world)
+
+    voxel_inputs = importlib.import_module(f"{prism_addon.__name__}.engine.tracer.media.voxel_inputs")
+    n = baked.values.shape
+    halved = int(np.prod([(m - 2) // 2 + 2 for m in n]))  # every other voxel and the last along each axis
+    with monkeypatch.context() as patch:
+        patch.setattr(voxel_inputs, "MAX_BAKED_VOXELS", halved)
+        _, (coarse, _) = _baked_cloud(prism_addon, _export(prism_addon, warnings))
+    assert warnings == [
+        f"Volume 'Cloud': grid 'density' has {baked.values.size:,} voxels; Prism runs its material's nodes on one "
+        f"voxel in 2 along each axis ({halved:,} voxels: it bakes at most {halved:,} per volume) and interpolates "
+        "between them (Cycles runs them at every step); the grid's own values keep every voxel."]
+    np.testing.assert_allclose(coarse.values, baked.values, rtol=1e-5, atol=1e-6)
+    warnings.clear()
 
     mat, nodes, link = material("Volume Info")
     info, scatter = nodes.new("ShaderNodeVolumeInfo"), nodes.new("ShaderNodeVolumeScatter")

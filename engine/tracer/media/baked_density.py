@@ -20,7 +20,8 @@ the surface or the ray is not baked (the export renders it at the socket's value
 
 A Volume object's density is baked on its own voxels instead (``bake_on_voxels``, ``voxel_inputs``): the
 probe triangles' corners are its voxel centres and carry its grids as the colour attributes the material's
-Attribute nodes read.
+Attribute nodes read. Past ``MAX_BAKED_VOXELS`` the program runs on every few voxels and its result is
+interpolated between them, while the Density Attribute grid it multiplies keeps every voxel.
 """
 
 from __future__ import annotations
@@ -33,13 +34,12 @@ from ..bsdf.closure import CLOSURE_ROW, MAX_CLOSURES
 from ..materials.displacement import corner_displacements
 from ..materials.light_path import FIELDS
 from .density_grid import DensityGrid
+from .voxel_inputs import MAX_BAKED_VOXELS, sample_axes, upsample
 
 #: Cycles' ray-marching step for a volume without voxel grids, as a fraction of the mean edge of its bounds.
 CYCLES_STEP_FRACTION = 0.1
 #: Voxels per Cycles step: fine enough that trilinear interpolation follows what Cycles' steps resolve.
 BAKED_VOXELS_PER_STEP = 8.0
-#: The most voxels one volume's grid holds (64 MiB of float32).
-MAX_BAKED_VOXELS = 1 << 24
 #: Voxel centres evaluated per kernel call (bounds the scratch arrays).
 _POINTS_PER_CALL = 1 << 18
 
@@ -152,21 +152,23 @@ def bake_on_voxels(geometry, arrays, registers, register_count, inputs, row, ori
     density, as Cycles multiplies it by the Density Attribute grid; not the emission)."""
     lattice = inputs.lattice
     shape = lattice.values.shape
+    axes = sample_axes(shape)
+    samples = np.zeros([len(axis) for axis in axes], np.float32)
     slots = max(inputs.attributes, default=-1) + 1
-    values = np.zeros(shape, np.float32)
     matrix = np.asarray(lattice.index_to_world, dtype=np.float64)
     shift = matrix[:3, 3] - (np.zeros(3) if origin is None else np.asarray(origin, dtype=np.float64))
-    per_slab = max(1, _POINTS_PER_CALL // int(shape[1] * shape[2]))
-    jk = np.indices(shape[1:]).reshape(2, -1).T
-    for first in range(0, int(shape[0]), per_slab):
-        i = np.arange(first, min(first + per_slab, int(shape[0])))
+    per_slab = max(1, _POINTS_PER_CALL // int(samples.shape[1] * samples.shape[2]))
+    jk = np.stack(np.meshgrid(axes[1], axes[2], indexing="ij"), axis=-1).reshape(-1, 2)
+    for first in range(0, samples.shape[0], per_slab):
+        i = axes[0][first:first + per_slab]
         index = np.hstack([np.repeat(i, len(jk))[:, None], np.tile(jk, (len(i), 1))])
         colours = np.zeros((slots, len(index)))
         for slot, grid in inputs.attributes.items():
-            colours[slot] = grid[i[0]:i[-1] + 1].ravel()
+            colours[slot] = grid[np.ix_(i, axes[1], axes[2])].ravel()
         slab = _evaluate(geometry, arrays, registers, register_count, inputs.source, row,
                          index @ matrix[:3, :3].T + shift, colours)
-        values[i[0]:i[-1] + 1] = np.where(np.isfinite(slab), slab, 0.0).reshape(len(i), *shape[1:])
+        samples[first:first + len(i)] = np.where(np.isfinite(slab), slab, 0.0).reshape(len(i), *samples.shape[1:])
+    values = upsample(samples, axes, shape)
     what = "density" if scaled else "emission strength"
     return DensityGrid(values * lattice.values if scaled else values, matrix,
                        f"{what} baked on the voxels of {lattice.name}")
