@@ -10,15 +10,18 @@ with shading normals facing the camera too (Cycles rounds a ribbon's normals acr
 The radius is the ``radius`` attribute, or 5 mm where the curves have none (as Cycles); an instance's
 transform scales it by the cube root of its determinant's magnitude for curves (Cycles'
 ``Hair::apply_transform``), by its mean axis scale for ribbons. Strands are read with ``foreach_get``
-and placed for all strands at once. Curves are rendered where they stand at the frame (no motion blur).
+and placed for all strands at once, with the attributes their materials read (``hair_attributes``; 3D
+curves only). Curves are rendered where they stand at the frame (no motion blur).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections import namedtuple
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from .hair_attributes import point_attributes, segment_colors
 from .hair_info import strand_info
 from .instancing import WorldTriangles
 
@@ -29,13 +32,15 @@ DEFAULT_RADIUS_M = 0.005
 class LocalHair:
     """Strands in object space: ``points`` float64 [P, 3], ``radii`` float64 [P], ``offsets``
     int64 [C + 1] (curve c holds points offsets[c]..offsets[c+1]-1), ``curve_slot`` int32 [C]
-    (material slot of each curve), ``slot_materials`` as ``LocalMesh``."""
+    (material slot of each curve), ``slot_materials`` as ``LocalMesh``, ``attributes`` {slot: float32 [P, 4]}
+    (the attributes node materials read, per point: ``hair_attributes``; none for particle hair)."""
 
     points: np.ndarray
     radii: np.ndarray
     offsets: np.ndarray
     curve_slot: np.ndarray
     slot_materials: list
+    attributes: dict = field(default_factory=dict)
 
     @property
     def texture_space(self):
@@ -50,8 +55,9 @@ def curve_shape(scene) -> str:
     return getattr(settings, "shape", "RIBBONS") if settings is not None else "RIBBONS"
 
 
-def read_hair(obj) -> LocalHair | None:
-    """The evaluated strands of a Curves object; None when it has no segment."""
+def read_hair(obj, request=None) -> LocalHair | None:
+    """The evaluated strands of a Curves object, with the attributes ``request`` names
+    (``AttributeRequest``); None when it has no segment."""
     curves = obj.data
     point_count, curve_count = len(curves.points), len(curves.curves)
     if point_count < 2 or curve_count == 0:
@@ -73,14 +79,20 @@ def read_hair(obj) -> LocalHair | None:
         offsets=offsets.astype(np.int64),
         curve_slot=curve_slot,
         slot_materials=[slot.material for slot in obj.material_slots],
+        attributes=point_attributes(curves, request),
     )
 
 
-def placed_strands(hair: LocalHair, matrices: np.ndarray):
-    """(points float64 [K*P, 3], radii float64 [K*P], offsets int64 [K*C' + 1], curve slot int32 [K*C'],
-    Hair Info float32 [K*S, 4] per segment: intercept at its two points, the strand's length and random,
-    ``hair_info``) of one hair's strands at each of ``matrices`` [K, 4, 4], the strands with at least 2 points and
-    every point finite (C' of them); radii scaled by the cube root of each transform's determinant's magnitude."""
+#: One hair's strands placed at its instances (``placed_strands``).
+PlacedStrands = namedtuple("PlacedStrands", "points radii offsets curve_slot info colors")
+
+
+def placed_strands(hair: LocalHair, matrices: np.ndarray) -> PlacedStrands:
+    """One hair's strands at each of ``matrices`` [K, 4, 4], the strands with at least 2 points and every point
+    finite (C' of them): ``points`` float64 [K*P, 3], ``radii`` float64 [K*P] (scaled by the cube root of each
+    transform's determinant's magnitude), ``offsets`` int64 [K*C' + 1], ``curve_slot`` int32 [K*C'], ``info``
+    float32 [K*S, 4] (Hair Info per segment: intercept at its two points, the strand's length and random,
+    ``hair_info``) and ``colors`` {slot: float32 [K*S, 2, 4]} (``hair_attributes.segment_colors``)."""
     counts = np.diff(hair.offsets)
     finite = np.isfinite(hair.points).all(axis=1) & np.isfinite(hair.radii)
     strand_of_point = np.repeat(np.arange(len(counts)), counts)
@@ -102,18 +114,25 @@ def placed_strands(hair: LocalHair, matrices: np.ndarray):
     kept_intercept = intercept[point_kept]
     info = np.column_stack([kept_intercept[starts], kept_intercept[starts + 1], length[keep][strand],
                             random[keep][strand]]).astype(np.float32)
-    return (points.reshape(-1, 3), (scale[:, None] * radii[None, :]).reshape(-1), offsets,
-            np.tile(hair.curve_slot[keep], len(matrices)).astype(np.int32), np.tile(info, (len(matrices), 1)))
+    return PlacedStrands(points.reshape(-1, 3), (scale[:, None] * radii[None, :]).reshape(-1), offsets,
+                         np.tile(hair.curve_slot[keep], len(matrices)).astype(np.int32),
+                         np.tile(info, (len(matrices), 1)),
+                         segment_colors(hair.attributes, point_kept, starts, len(matrices)))
 
 
-def unread_inputs_warning(name: str, slot_materials: list, needs: dict) -> str | None:
-    """The warning for hair ``name`` whose materials read UV maps or attributes (``needs``: material name → the
-    program's (kind, name) reads), which Prism's strands do not carry; None when they read none."""
+def unread_inputs_warning(name: str, slot_materials: list, needs: dict, strands: bool) -> str | None:
+    """The warning for hair ``name`` whose materials read UV maps, or attributes where the hair carries none
+    (``strands``: Hair Curves rendered as 3D curves, which carry their attributes; not particle hair or
+    ribbons), (``needs``: material name → the program's (kind, name) reads); None when they read none."""
+    unread = ("uv",) if strands else ("uv", "attribute")
     reads = sorted({f"{'UV map' if kind == 'uv' else 'attribute'} '{label or '(default)'}'"
                     for material in slot_materials if material is not None
-                    for kind, label in needs.get(material.original.name, ()) if kind in ("uv", "attribute")})
+                    for kind, label in needs.get(material.original.name, ()) if kind in unread})
     if not reads:
         return None
+    if strands:
+        return (f"Hair '{name}': its material reads the {', the '.join(reads)}, but Prism's strands carry no UV "
+                "maps: it reads UV (0, 0) there, where Cycles reads the strands' own.")
     return (f"Hair '{name}': its material reads the {', the '.join(reads)}, but Prism's strands carry no UV maps or "
             "attributes: it reads 0 there (UV (0, 0), attributes black), where Cycles reads the strands' own (for "
             "particle hair, the emitter's at each root).")

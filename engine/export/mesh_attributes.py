@@ -51,6 +51,16 @@ def corner_attribute(mesh, name, loops, triangle_vertices):
             return None
         uv = corner_uvs(mesh, name, loops)
         return np.concatenate([uv, np.zeros_like(uv[..., :1]), np.ones_like(uv[..., :1])], axis=-1)
+    rgba = attribute_rgba(attribute)
+    if rgba is None:
+        return None
+    per_corner = _gather_per_corner(mesh, rgba, attribute.domain, loops, triangle_vertices)
+    return None if per_corner is None else per_corner.reshape(-1, 3, 4)
+
+
+def attribute_rgba(attribute):
+    """float32 [N, 4] RGBA of each element of ``attribute`` (any geometry's): scalars fill r, g, b; alpha 1
+    unless the attribute has one. None for a type Cycles does not read as a colour."""
     width = _WIDTH.get(attribute.data_type)
     if width is None:
         return None
@@ -58,16 +68,13 @@ def corner_attribute(mesh, name, loops, triangle_vertices):
     values = np.empty(count * width, np.float32)
     attribute.data.foreach_get(_PROPERTY[attribute.data_type], values)
     values = values.reshape(count, width)
-    per_corner = _gather_per_corner(mesh, values, attribute.domain, loops, triangle_vertices)
-    if per_corner is None:
-        return None
-    rgba = np.zeros((len(per_corner), 4), np.float32)
+    rgba = np.zeros((count, 4), np.float32)
     rgba[:, 3] = 1.0
     if width == 1:
-        rgba[:, :3] = per_corner
+        rgba[:, :3] = values
     else:
-        rgba[:, :width] = per_corner
-    return rgba.reshape(-1, 3, 4)
+        rgba[:, :width] = values
+    return rgba
 
 
 def _gather_per_corner(mesh, values, domain, loops, triangle_vertices):

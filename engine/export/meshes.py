@@ -23,6 +23,7 @@ from ..tracer.curves import CurveSegments, padded_strands
 from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
 from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair, unread_inputs_warning
+from .hair_attributes import stacked_colors
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
 from .bump_space import both_bump_scale_warning
@@ -91,7 +92,7 @@ def read_geometry(key: tuple, obj, request: AttributeRequest | None = None,
         return read_particle_hair(obj, key[3])
     if key[0] == "MESH":
         return read_mesh(obj, request, warn)
-    return read_points(obj) if key[0] == "POINTCLOUD" else read_hair(obj)
+    return read_points(obj) if key[0] == "POINTCLOUD" else read_hair(obj, request)
 
 
 def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
@@ -116,7 +117,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             key = ("PARTICLES", obj.original.name, obj.data.as_pointer(), render)
             if key not in pieces:
                 hair = read(key, obj, None, lambda message, obj=obj: warn_once(obj, [message]))
-                _warn_unread_inputs(materials, obj.name, hair, warnings)
+                _warn_unread_inputs(materials, obj.name, hair, warnings, strands=False)
                 pieces[key] = (_Instances(obj.name, hair, light_group=obj.lightgroup,
                                           flags=object_flags(obj, getattr(depsgraph, "view_layer", None), warnings),
                                           asset=asset_name(obj)) if hair is not None else None)
@@ -138,10 +139,11 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             continue
         key = (kind, obj.original.name, obj.data.as_pointer())
         if key not in pieces:
-            request = materials.request([slot.material for slot in obj.material_slots]) if kind != "CURVES" else None
+            request = materials.request([slot.material for slot in obj.material_slots])
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
-            _warn_unread_inputs(materials, obj.name, geometry, warnings)
+            _warn_unread_inputs(materials, obj.name, geometry, warnings,
+                                strands=curve_shape(depsgraph.scene) != "RIBBONS")
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
             for message in (adaptive_subdivision_warning(obj, depsgraph.scene),
                             both_bump_scale_warning(obj) if kind == "MESH" else None):
@@ -154,15 +156,16 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     return [piece for piece in pieces.values() if piece is not None]
 
 
-def _warn_unread_inputs(materials: MaterialRows, name: str, geometry, warnings) -> None:
-    """Warn where hair's materials (the slots its strands use) read UV maps or attributes strands lack."""
+def _warn_unread_inputs(materials: MaterialRows, name: str, geometry, warnings, strands: bool) -> None:
+    """Warn where hair's materials (the slots its strands use) read UV maps or attributes strands lack
+    (``strands``: Hair Curves as 3D curves, which carry their attributes)."""
     if not isinstance(geometry, LocalHair) or warnings is None:
         return
     used = [geometry.slot_materials[s] for s in np.unique(geometry.curve_slot) if 0 <= s < len(geometry.slot_materials)]
     if not any(m is not None for m in used):
         return
     materials.slot_lookup(used)  # exports them, which records what they read
-    message = unread_inputs_warning(name, used, materials.exporter.needs)
+    message = unread_inputs_warning(name, used, materials.exporter.needs, strands)
     if message is not None:
         warnings.append(message)
 
@@ -293,18 +296,20 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
     """The strands of every hair instance as round curve segments (objects appended to ``names``, ``groups``,
     ``flags`` and ``assets``), or None without any."""
     points, radii, offsets, material, objects, instance, pass_index, info = [], [], [], [], [], [], [], []
+    colors = []
     first = 0
     for piece, matrices, lookup in strands:
-        placed, scaled, strand_offsets, slots, strand_info = placed_strands(piece.geometry, matrices)
-        if not len(slots):
+        placed = placed_strands(piece.geometry, matrices)
+        if not len(placed.curve_slot):
             continue
-        info.append(strand_info)
-        segments = np.diff(strand_offsets) - 1  # per strand
-        points.append(placed)
-        radii.append(scaled)
-        offsets.append(strand_offsets[1:] + first)
-        first += len(placed)
-        material.append(np.repeat(lookup[np.clip(slots, 0, len(lookup) - 1)], segments))
+        info.append(placed.info)
+        colors.append((len(placed.info), placed.colors))
+        segments = np.diff(placed.offsets) - 1  # per strand
+        points.append(placed.points)
+        radii.append(placed.radii)
+        offsets.append(placed.offsets[1:] + first)
+        first += len(placed.points)
+        material.append(np.repeat(lookup[np.clip(placed.curve_slot, 0, len(lookup) - 1)], segments))
         objects.append(np.full(int(segments.sum()), len(names), np.int32))
         names.append(piece.name)
         assets.append(piece.asset)
@@ -320,7 +325,8 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
                                                     np.concatenate([[0], *offsets]))
     return CurveSegments(padded, padded_radii, segments, np.concatenate(material).astype(np.int32),
                          np.concatenate(objects), np.concatenate(instance).astype(np.int32),
-                         np.concatenate(pass_index), np.concatenate(info))
+                         np.concatenate(pass_index), np.concatenate(info),
+                         stacked_colors(colors, len(surface.slots.attribute_names) if surface.active else 0))
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

@@ -17,7 +17,8 @@ rebuilds the hit as C(u) + r(u) times that direction. The normal (geometric and 
 takes a thick curve's N and Ng alike) is the tube's own, Embree's Ng: that direction leaning along the
 tangent where the radius changes (by -r'/|C'|). Cycles' N = normalize(P - C(u)) does not lean; for hair
 (a radius of 0.1 mm falling to 0 over centimetres) the two differ by about 0.1 degree. Curves do not move with motion blur,
-carry no UV map and are not sampled as lights.
+carry no UV map and are not sampled as lights. Their colour attributes (``CurveSegments.colors``) become rows
+of the per-corner colour table after the triangles' and the spheres' (``corner_colors``).
 """
 
 from __future__ import annotations
@@ -47,6 +48,9 @@ class CurveSegments:
     instance: np.ndarray | None = None
     pass_index: np.ndarray | None = None
     info: np.ndarray | None = None  # float32 [C, 4]: Hair Info per segment (``export.hair_info``); None: zeros
+    #: float32 [A, C, 2, 4]: the colour attributes node materials read (slots as ``SurfaceAttributes.colors``),
+    #: RGBA at each segment's two points; None: none (they read black, alpha 0)
+    colors: np.ndarray | None = None
 
     def __len__(self) -> int:
         return int(len(self.segments))
@@ -70,6 +74,14 @@ def curve_info(curves: CurveSegments | None) -> np.ndarray:
     if curves.info is None:
         return np.zeros((len(curves), 4), np.float32)
     return np.ascontiguousarray(curves.info, np.float32).reshape(len(curves), 4)
+
+
+def corner_colors(curves: CurveSegments) -> np.ndarray:
+    """float32 [A, C, 3, 4]: each segment's colour attributes as the corners of a triangle (its start, its end,
+    its start again), so that ``hit_inputs.corner_color`` with a hit's (u, v) gives (1 - u) start + u end,
+    linear along the segment as Cycles interpolates curve-key attributes, whatever the angle in v."""
+    ends = np.asarray(curves.colors, np.float32)
+    return np.ascontiguousarray(ends[:, :, [0, 1, 0]])
 
 
 def camera_relative(curves: CurveSegments | None, offset) -> tuple[np.ndarray, np.ndarray]:
