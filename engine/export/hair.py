@@ -10,8 +10,8 @@ with shading normals facing the camera too (Cycles rounds a ribbon's normals acr
 The radius is the ``radius`` attribute, or 5 mm where the curves have none (as Cycles); an instance's
 transform scales it by the cube root of its determinant's magnitude for curves (Cycles'
 ``Hair::apply_transform``), by its mean axis scale for ribbons. Strands are read with ``foreach_get``
-and placed for all strands at once, with the attributes their materials read (``hair_attributes``; 3D
-curves only). Curves are rendered where they stand at the frame (no motion blur).
+and placed for all strands at once, with the attributes and UV maps their materials read
+(``hair_attributes``; 3D curves only). Curves are rendered where they stand at the frame (no motion blur).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .hair_attributes import point_attributes, segment_colors
+from .hair_attributes import point_values, segment_ends
 from .hair_info import strand_info
 from .instancing import WorldTriangles
 
@@ -33,7 +33,8 @@ class LocalHair:
     """Strands in object space: ``points`` float64 [P, 3], ``radii`` float64 [P], ``offsets``
     int64 [C + 1] (curve c holds points offsets[c]..offsets[c+1]-1), ``curve_slot`` int32 [C]
     (material slot of each curve), ``slot_materials`` as ``LocalMesh``, ``attributes`` {slot: float32 [P, 4]}
-    (the attributes node materials read, per point: ``hair_attributes``; none for particle hair)."""
+    and ``uvs`` {slot: float32 [P, 2]} (the attributes and UV maps node materials read, per point:
+    ``hair_attributes``; none for particle hair)."""
 
     points: np.ndarray
     radii: np.ndarray
@@ -41,6 +42,7 @@ class LocalHair:
     curve_slot: np.ndarray
     slot_materials: list
     attributes: dict = field(default_factory=dict)
+    uvs: dict = field(default_factory=dict)
 
     @property
     def texture_space(self):
@@ -56,7 +58,7 @@ def curve_shape(scene) -> str:
 
 
 def read_hair(obj, request=None) -> LocalHair | None:
-    """The evaluated strands of a Curves object, with the attributes ``request`` names
+    """The evaluated strands of a Curves object, with the attributes and UV maps ``request`` names
     (``AttributeRequest``); None when it has no segment."""
     curves = obj.data
     point_count, curve_count = len(curves.points), len(curves.curves)
@@ -73,18 +75,20 @@ def read_hair(obj, request=None) -> LocalHair | None:
     material_index = curves.attributes.get("material_index")
     if material_index is not None and material_index.domain == "CURVE":
         material_index.data.foreach_get("value", curve_slot)
+    colors, uvs = point_values(curves, request)
     return LocalHair(
         points=points.reshape(-1, 3).astype(np.float64),
         radii=radii.astype(np.float64),
         offsets=offsets.astype(np.int64),
         curve_slot=curve_slot,
         slot_materials=[slot.material for slot in obj.material_slots],
-        attributes=point_attributes(curves, request),
+        attributes=colors,
+        uvs=uvs,
     )
 
 
 #: One hair's strands placed at its instances (``placed_strands``).
-PlacedStrands = namedtuple("PlacedStrands", "points radii offsets curve_slot info colors")
+PlacedStrands = namedtuple("PlacedStrands", "points radii offsets curve_slot info colors uvs")
 
 
 def placed_strands(hair: LocalHair, matrices: np.ndarray) -> PlacedStrands:
@@ -92,7 +96,8 @@ def placed_strands(hair: LocalHair, matrices: np.ndarray) -> PlacedStrands:
     finite (C' of them): ``points`` float64 [K*P, 3], ``radii`` float64 [K*P] (scaled by the cube root of each
     transform's determinant's magnitude), ``offsets`` int64 [K*C' + 1], ``curve_slot`` int32 [K*C'], ``info``
     float32 [K*S, 4] (Hair Info per segment: intercept at its two points, the strand's length and random,
-    ``hair_info``) and ``colors`` {slot: float32 [K*S, 2, 4]} (``hair_attributes.segment_colors``)."""
+    ``hair_info``), ``colors`` {slot: float32 [K*S, 2, 4]} and ``uvs`` {slot: float32 [K*S, 2, 2]} (each
+    segment's ends: ``hair_attributes.segment_ends``)."""
     counts = np.diff(hair.offsets)
     finite = np.isfinite(hair.points).all(axis=1) & np.isfinite(hair.radii)
     strand_of_point = np.repeat(np.arange(len(counts)), counts)
@@ -117,22 +122,19 @@ def placed_strands(hair: LocalHair, matrices: np.ndarray) -> PlacedStrands:
     return PlacedStrands(points.reshape(-1, 3), (scale[:, None] * radii[None, :]).reshape(-1), offsets,
                          np.tile(hair.curve_slot[keep], len(matrices)).astype(np.int32),
                          np.tile(info, (len(matrices), 1)),
-                         segment_colors(hair.attributes, point_kept, starts, len(matrices)))
+                         segment_ends(hair.attributes, point_kept, starts, len(matrices)),
+                         segment_ends(hair.uvs, point_kept, starts, len(matrices)))
 
 
-def unread_inputs_warning(name: str, slot_materials: list, needs: dict, strands: bool) -> str | None:
-    """The warning for hair ``name`` whose materials read UV maps, or attributes where the hair carries none
-    (``strands``: Hair Curves rendered as 3D curves, which carry their attributes; not particle hair or
-    ribbons), (``needs``: material name → the program's (kind, name) reads); None when they read none."""
-    unread = ("uv",) if strands else ("uv", "attribute")
+def unread_inputs_warning(name: str, slot_materials: list, needs: dict) -> str | None:
+    """The warning for hair ``name`` whose materials (``needs``: material name → the program's (kind, name)
+    reads) read UV maps or attributes, which particle hair and ribbons do not carry (Hair Curves rendered as 3D
+    curves do: ``hair_attributes``); None when they read none."""
     reads = sorted({f"{'UV map' if kind == 'uv' else 'attribute'} '{label or '(default)'}'"
                     for material in slot_materials if material is not None
-                    for kind, label in needs.get(material.original.name, ()) if kind in unread})
+                    for kind, label in needs.get(material.original.name, ()) if kind in ("uv", "attribute")})
     if not reads:
         return None
-    if strands:
-        return (f"Hair '{name}': its material reads the {', the '.join(reads)}, but Prism's strands carry no UV "
-                "maps: it reads UV (0, 0) there, where Cycles reads the strands' own.")
     return (f"Hair '{name}': its material reads the {', the '.join(reads)}, but Prism's strands carry no UV maps or "
             "attributes: it reads 0 there (UV (0, 0), attributes black), where Cycles reads the strands' own (for "
             "particle hair, the emitter's at each root).")

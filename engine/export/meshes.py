@@ -23,7 +23,7 @@ from ..tracer.curves import CurveSegments, padded_strands
 from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
 from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair, unread_inputs_warning
-from .hair_attributes import stacked_colors
+from .hair_attributes import stacked
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
 from .bump_space import both_bump_scale_warning
@@ -117,7 +117,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             key = ("PARTICLES", obj.original.name, obj.data.as_pointer(), render)
             if key not in pieces:
                 hair = read(key, obj, None, lambda message, obj=obj: warn_once(obj, [message]))
-                _warn_unread_inputs(materials, obj.name, hair, warnings, strands=False)
+                _warn_unread_inputs(materials, obj.name, hair, warnings)
                 pieces[key] = (_Instances(obj.name, hair, light_group=obj.lightgroup,
                                           flags=object_flags(obj, getattr(depsgraph, "view_layer", None), warnings),
                                           asset=asset_name(obj)) if hair is not None else None)
@@ -142,8 +142,8 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             request = materials.request([slot.material for slot in obj.material_slots])
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
-            _warn_unread_inputs(materials, obj.name, geometry, warnings,
-                                strands=curve_shape(depsgraph.scene) != "RIBBONS")
+            if kind != "CURVES" or curve_shape(depsgraph.scene) == "RIBBONS":  # 3D curves carry what they read
+                _warn_unread_inputs(materials, obj.name, geometry, warnings)
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
             for message in (adaptive_subdivision_warning(obj, depsgraph.scene),
                             both_bump_scale_warning(obj) if kind == "MESH" else None):
@@ -156,16 +156,15 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     return [piece for piece in pieces.values() if piece is not None]
 
 
-def _warn_unread_inputs(materials: MaterialRows, name: str, geometry, warnings, strands: bool) -> None:
-    """Warn where hair's materials (the slots its strands use) read UV maps or attributes strands lack
-    (``strands``: Hair Curves as 3D curves, which carry their attributes)."""
+def _warn_unread_inputs(materials: MaterialRows, name: str, geometry, warnings) -> None:
+    """Warn where hair's materials (the slots its strands use) read UV maps or attributes strands lack."""
     if not isinstance(geometry, LocalHair) or warnings is None:
         return
     used = [geometry.slot_materials[s] for s in np.unique(geometry.curve_slot) if 0 <= s < len(geometry.slot_materials)]
     if not any(m is not None for m in used):
         return
     materials.slot_lookup(used)  # exports them, which records what they read
-    message = unread_inputs_warning(name, used, materials.exporter.needs, strands)
+    message = unread_inputs_warning(name, used, materials.exporter.needs)
     if message is not None:
         warnings.append(message)
 
@@ -296,7 +295,7 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
     """The strands of every hair instance as round curve segments (objects appended to ``names``, ``groups``,
     ``flags`` and ``assets``), or None without any."""
     points, radii, offsets, material, objects, instance, pass_index, info = [], [], [], [], [], [], [], []
-    colors = []
+    colors, uvs = [], []
     first = 0
     for piece, matrices, lookup in strands:
         placed = placed_strands(piece.geometry, matrices)
@@ -304,6 +303,7 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
             continue
         info.append(placed.info)
         colors.append((len(placed.info), placed.colors))
+        uvs.append((len(placed.info), placed.uvs))
         segments = np.diff(placed.offsets) - 1  # per strand
         points.append(placed.points)
         radii.append(placed.radii)
@@ -326,7 +326,8 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
     return CurveSegments(padded, padded_radii, segments, np.concatenate(material).astype(np.int32),
                          np.concatenate(objects), np.concatenate(instance).astype(np.int32),
                          np.concatenate(pass_index), np.concatenate(info),
-                         stacked_colors(colors, len(surface.slots.attribute_names) if surface.active else 0))
+                         stacked(colors, len(surface.slots.attribute_names) if surface.active else 0, 4),
+                         stacked(uvs, len(surface.slots.uv_names) if surface.active else 0, 2))
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

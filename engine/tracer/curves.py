@@ -17,8 +17,8 @@ rebuilds the hit as C(u) + r(u) times that direction. The normal (geometric and 
 takes a thick curve's N and Ng alike) is the tube's own, Embree's Ng: that direction leaning along the
 tangent where the radius changes (by -r'/|C'|). Cycles' N = normalize(P - C(u)) does not lean; for hair
 (a radius of 0.1 mm falling to 0 over centimetres) the two differ by about 0.1 degree. Curves do not move with motion blur,
-carry no UV map and are not sampled as lights. Their colour attributes (``CurveSegments.colors``) become rows
-of the per-corner colour table after the triangles' and the spheres' (``corner_colors``).
+are not sampled as lights. Their colour attributes and UV maps (``CurveSegments.colors``, ``uvs``) become rows
+of the per-corner tables after the triangles' and the spheres' (``corner_rows``).
 """
 
 from __future__ import annotations
@@ -51,6 +51,8 @@ class CurveSegments:
     #: float32 [A, C, 2, 4]: the colour attributes node materials read (slots as ``SurfaceAttributes.colors``),
     #: RGBA at each segment's two points; None: none (they read black, alpha 0)
     colors: np.ndarray | None = None
+    #: float32 [S, C, 2, 2]: the UV maps they read (slots as ``SurfaceAttributes.uvs``); None: none (UV (0, 0))
+    uvs: np.ndarray | None = None
 
     def __len__(self) -> int:
         return int(len(self.segments))
@@ -76,12 +78,12 @@ def curve_info(curves: CurveSegments | None) -> np.ndarray:
     return np.ascontiguousarray(curves.info, np.float32).reshape(len(curves), 4)
 
 
-def corner_colors(curves: CurveSegments) -> np.ndarray:
-    """float32 [A, C, 3, 4]: each segment's colour attributes as the corners of a triangle (its start, its end,
-    its start again), so that ``hit_inputs.corner_color`` with a hit's (u, v) gives (1 - u) start + u end,
-    linear along the segment as Cycles interpolates curve-key attributes, whatever the angle in v."""
-    ends = np.asarray(curves.colors, np.float32)
-    return np.ascontiguousarray(ends[:, :, [0, 1, 0]])
+def corner_rows(ends) -> np.ndarray:
+    """float32 [A, C, 3, W]: each segment's values at its two ends (``CurveSegments.colors`` or ``uvs``, [A, C, 2,
+    W]) as the corners of a triangle (its start, its end, its start again), so that the kernels' corner lookups
+    (``hit_inputs.corner_color``, ``corner_uv``) with a hit's (u, v) give (1 - u) start + u end, linear along the
+    segment as Cycles interpolates curve-key attributes, whatever the angle in v."""
+    return np.ascontiguousarray(np.asarray(ends, np.float32)[:, :, [0, 1, 0]])
 
 
 def camera_relative(curves: CurveSegments | None, offset) -> tuple[np.ndarray, np.ndarray]:

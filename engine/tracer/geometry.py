@@ -19,8 +19,8 @@ without) and ``sphere_random`` float32 [S] (each point's Point Info ▸ Random):
 camera-relative point and radius, and the first control point of each segment; [0, 4] and [0] without) and
 ``curve_info`` float32 [C, 4] (each segment's Hair Info, ``curves.curve_info``):
 rows T + S .. T + S + C - 1. So ``material``, ``flags`` (and ``attributes.instance`` when it is not empty)
-hold T + S + C entries; the per-corner tables hold T, but for the colour attributes, which hold T + S + C
-rows where the curves carry any (``curves.corner_colors``; the spheres' rows black).
+hold T + S + C entries; the per-corner tables hold T, but for the colour attributes and UV maps, which hold
+T + S + C rows where the curves carry any (``curves.corner_rows``; the spheres' rows 0).
 """
 
 from __future__ import annotations
@@ -95,10 +95,12 @@ def prepare_geometry(scene, offset):
             of_segment = (np.asarray(strands.instance, np.int32) if strands.instance is not None
                           else np.full(len(strands), -1, np.int32))
             attributes = attributes._replace(instance=np.concatenate([attributes.instance, of_segment]))
-        if strands.colors is not None and attributes.colors.shape[0]:
-            spheres = np.zeros((attributes.colors.shape[0], len(rows), 3, 4), np.float32)  # points carry none
-            attributes = attributes._replace(colors=np.ascontiguousarray(np.concatenate(
-                [attributes.colors, spheres, hair.corner_colors(strands)], axis=1)))
+        for table, ends in (("colors", strands.colors), ("uvs", strands.uvs)):
+            corners = getattr(attributes, table)
+            if ends is not None and corners.shape[0]:
+                spheres = np.zeros((corners.shape[0], len(rows), *corners.shape[2:]), np.float32)  # points: none
+                attributes = attributes._replace(**{table: np.ascontiguousarray(np.concatenate(
+                    [corners, spheres, hair.corner_rows(ends)], axis=1))})
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
                         np.ascontiguousarray(material), normals, attributes, np.ascontiguousarray(flags),
                         *_motion_arrays(scene, original, offset, len(normals)), camera_relative(points, rows, offset),

@@ -38,16 +38,18 @@ def check_points(points, material_count: int, object_names) -> None:
             raise PrismInputError(f"Point cloud '{name}' {problem} before rendering.")
 
 
-def check_curves(curves, material_count: int, object_names, color_slots: int = 0) -> None:
-    """``curves`` (a ``curves.CurveSegments``): materials, control points, reachable points, colour attributes
-    (one row per segment, in each of the scene's ``color_slots`` colour-attribute slots)."""
+def check_curves(curves, material_count: int, object_names, color_slots: int = 0, uv_slots: int = 0) -> None:
+    """``curves`` (a ``curves.CurveSegments``): materials, control points, reachable points, colour attributes and
+    UV maps (one row per segment, in each of the scene's ``color_slots`` and ``uv_slots`` slots)."""
     _check_materials("curves", curves.material, material_count)
     segments = np.asarray(curves.segments)
     if segments.min() < 0 or segments.max() + 3 >= len(curves.radii):
         raise PrismInputError("Scene curve segments refer to control points that do not exist: re-export the scene.")
-    if curves.colors is not None and np.shape(curves.colors) != (color_slots, len(segments), 2, 4):
-        raise PrismInputError(f"Scene curve colour attributes have shape {np.shape(curves.colors)}, not "
-                              f"{(color_slots, len(segments), 2, 4)} (slots, segments, ends, RGBA): re-export the scene.")
+    for what, ends, shape in (("colour attributes", curves.colors, (color_slots, len(segments), 2, 4)),
+                              ("UV maps", curves.uvs, (uv_slots, len(segments), 2, 2))):
+        if ends is not None and np.shape(ends) != shape:
+            raise PrismInputError(f"Scene curve {what} have shape {np.shape(ends)}, not {shape} (slots, segments, "
+                                  "ends, values): re-export the scene.")
     far = _reach(curves.points) > MAX_DISTANCE_M
     if far.any():
         first = int(np.searchsorted(segments, int(np.flatnonzero(far)[0]), "right")) - 1
