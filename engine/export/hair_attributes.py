@@ -74,17 +74,3 @@ def segment_ends(values: dict, point_kept, starts, instances: int) -> dict:
         ends = np.stack([kept[starts], kept[starts + 1]], axis=1)
         out[slot] = np.tile(ends, (instances, 1, 1)).astype(np.float32)
     return out
-
-
-def stacked(pieces: list, slot_count: int, width: int) -> np.ndarray | None:
-    """float32 [A, C, 2, width] of every piece's ``segment_ends`` (``pieces``: (segment count, {slot: values}) in
-    the order the segments are assembled), zeros where a piece lacks a slot; None when no piece has any."""
-    if slot_count == 0 or not any(values for _, values in pieces):
-        return None
-    out = np.zeros((slot_count, sum(n for n, _ in pieces), 2, width), np.float32)
-    start = 0
-    for n, values in pieces:
-        for slot, ends in values.items():
-            out[slot, start:start + n] = ends
-        start += n
-    return out

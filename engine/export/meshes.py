@@ -23,7 +23,6 @@ from ..tracer.curves import CurveSegments, padded_strands
 from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
 from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair, unread_inputs_warning
-from .hair_attributes import stacked
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
 from .bump_space import both_bump_scale_warning
@@ -35,7 +34,7 @@ from .object_random import name_random_id
 from .particle_hair import read_particle_hair
 from .point_clouds import LocalPoints, place_points, point_random, read_points
 from .data_passes import data_pass_switches, world_ao_distance
-from .surface_attributes import SurfaceCollector
+from .surface_attributes import SurfaceCollector, stacked_slots
 from .texture_memory import TextureBudget
 from .unrendered import unrendered_type_warning
 from .volume_objects import VolumeReader
@@ -92,7 +91,7 @@ def read_geometry(key: tuple, obj, request: AttributeRequest | None = None,
         return read_particle_hair(obj, key[3])
     if key[0] == "MESH":
         return read_mesh(obj, request, warn)
-    return read_points(obj) if key[0] == "POINTCLOUD" else read_hair(obj, request)
+    return read_points(obj, request) if key[0] == "POINTCLOUD" else read_hair(obj, request)
 
 
 def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
@@ -270,10 +269,12 @@ def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | Non
     if not clouds:
         return None
     centres, radii, material, objects, instance, pass_index, random = [], [], [], [], [], [], []
+    colors = []
     for piece, matrices, lookup in clouds:
         local = piece.geometry
         placed, scaled = place_points(local, matrices)
         count = len(local.radii)
+        colors.append((len(scaled), {slot: np.tile(values, (len(matrices), 1)) for slot, values in local.colors.items()}))
         centres.append(placed)
         radii.append(scaled)
         material.append(np.tile(lookup[np.clip(local.slot, 0, len(lookup) - 1)], len(matrices)))
@@ -288,7 +289,7 @@ def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | Non
         random.append(np.tile(point_random(count), len(matrices)))
     return SpherePoints(np.concatenate(centres), np.concatenate(radii), np.concatenate(material).astype(np.int32),
                         np.concatenate(objects), np.concatenate(instance).astype(np.int32), np.concatenate(pass_index),
-                        np.concatenate(random))
+                        np.concatenate(random), stacked_slots(colors, _slot_count(surface, "attribute_names"), (4,)))
 
 
 def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | None:
@@ -326,8 +327,13 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
     return CurveSegments(padded, padded_radii, segments, np.concatenate(material).astype(np.int32),
                          np.concatenate(objects), np.concatenate(instance).astype(np.int32),
                          np.concatenate(pass_index), np.concatenate(info),
-                         stacked(colors, len(surface.slots.attribute_names) if surface.active else 0, 4),
-                         stacked(uvs, len(surface.slots.uv_names) if surface.active else 0, 2))
+                         stacked_slots(colors, _slot_count(surface, "attribute_names"), (2, 4)),
+                         stacked_slots(uvs, _slot_count(surface, "uv_names"), (2, 2)))
+
+
+def _slot_count(surface, names: str) -> int:
+    """How many slots of ``names`` ("attribute_names", "uv_names") the render's node materials read."""
+    return len(getattr(surface.slots, names)) if surface.active else 0
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

@@ -6,14 +6,19 @@ as POINTCLOUD instances of their own. Positions and the ``radius`` attribute are
 without a ``radius`` attribute Blender 4.5 gives every point 0.01 m (``Point.radius``, checked with bpy
 4.5.15), which is what is read. The material is the slot the point's ``material_index`` attribute names
 (slot 0 without one). An instance's transform moves the centres and scales the radii by the cube root of
-its determinant's magnitude (a sphere stays a sphere, as in Cycles).
+its determinant's magnitude (a sphere stays a sphere, as in Cycles). The attributes node materials read
+(Attribute, Color Attribute) are read per point, as the mesh export converts them (``mesh_attributes``), and
+a point reads its own value anywhere on its sphere, as Cycles reads a point-cloud attribute; a cloud without
+the attribute reads 0 (black, alpha 0).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+
+from .mesh_attributes import attribute_rgba
 
 DEFAULT_RADIUS_M = 0.01
 
@@ -21,12 +26,14 @@ DEFAULT_RADIUS_M = 0.01
 @dataclass
 class LocalPoints:
     """One evaluated point cloud in object space: ``positions`` float64 [P, 3], ``radii`` float64 [P] (m),
-    ``slot`` int32 [P] (material slot of each point), ``slot_materials`` as ``mesh_data.LocalMesh``."""
+    ``slot`` int32 [P] (material slot of each point), ``slot_materials`` as ``mesh_data.LocalMesh``, ``colors``
+    {slot: float32 [P, 4]} (the attributes node materials read, RGBA per point)."""
 
     positions: np.ndarray
     radii: np.ndarray
     slot: np.ndarray
     slot_materials: list
+    colors: dict = field(default_factory=dict)
 
     @property
     def texture_space(self):
@@ -35,8 +42,9 @@ class LocalPoints:
         return 0.5 * (lo + hi), 0.5 * (hi - lo)
 
 
-def read_points(obj) -> LocalPoints | None:
-    """The evaluated points of a POINTCLOUD object; None when it has none."""
+def read_points(obj, request=None) -> LocalPoints | None:
+    """The evaluated points of a POINTCLOUD object, with the attributes ``request`` (``AttributeRequest``) names;
+    None when it has none."""
     cloud = obj.data
     count = len(cloud.points)
     if count == 0:
@@ -50,7 +58,22 @@ def read_points(obj) -> LocalPoints | None:
     if material_index is not None and material_index.domain == "POINT":
         material_index.data.foreach_get("value", slot)
     return LocalPoints(positions.reshape(-1, 3).astype(np.float64), radii.astype(np.float64), slot,
-                       [slot.material for slot in obj.material_slots])
+                       [slot.material for slot in obj.material_slots], _point_colors(cloud, request))
+
+
+def _point_colors(cloud, request) -> dict:
+    """{slot: float32 [P, 4]}: the attributes ``request`` names ("" is the default colour attribute) at each point
+    of ``cloud`` (``bpy.types.PointCloud``), for those it has on the point domain."""
+    colors = {}
+    for slot, name in (request.attributes.items() if request is not None else ()):
+        if not name:
+            name = cloud.color_attributes.default_color_name or (
+                cloud.color_attributes.active_color.name if cloud.color_attributes.active_color else "")
+        attribute = cloud.attributes.get(name) if name else None
+        rgba = attribute_rgba(attribute) if attribute is not None and attribute.domain == "POINT" else None
+        if rgba is not None:
+            colors[slot] = rgba
+    return colors
 
 
 def place_points(local: LocalPoints, matrices: np.ndarray):

@@ -123,3 +123,18 @@ class SurfaceCollector:
                                  colors=stack("colors", self.slots.attribute_names, 4),
                                  tangents=stack("tangents", self.slots.tangent_names, 4),
                                  triangle_instance=instance if self.slots.objects else None, instances=objects)
+
+
+def stacked_slots(pieces: list, slot_count: int, tail: tuple) -> np.ndarray | None:
+    """float32 [slot_count, N, *tail] of the values per slot of every piece of points or curve segments
+    (``pieces``: (row count, {slot: [rows, *tail]}) in the order the rows are assembled), zeros where a piece
+    lacks a slot; None when no piece has any."""
+    if slot_count == 0 or not any(values for _, values in pieces):
+        return None
+    out = np.zeros((slot_count, sum(n for n, _ in pieces), *tail), np.float32)
+    start = 0
+    for n, values in pieces:
+        for slot, rows in values.items():
+            out[slot, start:start + n] = rows
+        start += n
+    return out

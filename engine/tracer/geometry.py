@@ -20,7 +20,8 @@ camera-relative point and radius, and the first control point of each segment; [
 ``curve_info`` float32 [C, 4] (each segment's Hair Info, ``curves.curve_info``):
 rows T + S .. T + S + C - 1. So ``material``, ``flags`` (and ``attributes.instance`` when it is not empty)
 hold T + S + C entries; the per-corner tables hold T, but for the colour attributes and UV maps, which hold
-T + S + C rows where the curves carry any (``curves.corner_rows``; the spheres' rows 0).
+rows for the spheres (each point's colours at all three corners) and the segments (``curves.corner_rows``)
+where these carry any (``_with_primitive_rows``).
 """
 
 from __future__ import annotations
@@ -95,17 +96,31 @@ def prepare_geometry(scene, offset):
             of_segment = (np.asarray(strands.instance, np.int32) if strands.instance is not None
                           else np.full(len(strands), -1, np.int32))
             attributes = attributes._replace(instance=np.concatenate([attributes.instance, of_segment]))
-        for table, ends in (("colors", strands.colors), ("uvs", strands.uvs)):
-            corners = getattr(attributes, table)
-            if ends is not None and corners.shape[0]:
-                spheres = np.zeros((corners.shape[0], len(rows), *corners.shape[2:]), np.float32)  # points: none
-                attributes = attributes._replace(**{table: np.ascontiguousarray(np.concatenate(
-                    [corners, spheres, hair.corner_rows(ends)], axis=1))})
+    attributes = _with_primitive_rows(attributes, points, rows, strands)
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
                         np.ascontiguousarray(material), normals, attributes, np.ascontiguousarray(flags),
                         *_motion_arrays(scene, original, offset, len(normals)), camera_relative(points, rows, offset),
                         point_random(points, rows), *hair.camera_relative(strands, offset), hair.curve_info(strands))
     return geometry, original, int(len(triangles) - len(original))
+
+
+def _with_primitive_rows(attributes, points, rows, strands):
+    """``attributes`` with the colour and UV tables grown by a row per rendered sphere (``rows`` of ``points``: its
+    value at all three corners) and per curve segment (``curves.corner_rows``), where either carries values."""
+    sphere_colors = points.colors if points is not None and len(rows) else None
+    has_curves = hair.curve_count(strands) > 0
+    for table, sphere_values, curve_ends in (("colors", sphere_colors, strands.colors if has_curves else None),
+                                             ("uvs", None, strands.uvs if has_curves else None)):
+        corners = getattr(attributes, table)
+        if not corners.shape[0] or (sphere_values is None and curve_ends is None):
+            continue
+        if sphere_values is None:  # points carry none: they read 0
+            spheres = np.zeros((corners.shape[0], len(rows), *corners.shape[2:]), np.float32)
+        else:
+            spheres = np.repeat(np.asarray(sphere_values, np.float32)[:, rows, None, :], 3, axis=2)
+        parts = [corners, spheres] + ([hair.corner_rows(curve_ends)] if curve_ends is not None else [])
+        attributes = attributes._replace(**{table: np.ascontiguousarray(np.concatenate(parts, axis=1))})
+    return attributes
 
 
 def _motion_arrays(scene, original, offset, smooth):

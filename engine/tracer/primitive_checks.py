@@ -25,9 +25,13 @@ def _reach(positions) -> np.ndarray:
         return np.abs(np.asarray(positions, np.float64)).max(axis=1)
 
 
-def check_points(points, material_count: int, object_names) -> None:
-    """``points`` (a ``spheres.SpherePoints``): materials, finite and reachable centres."""
+def check_points(points, material_count: int, object_names, color_slots: int = 0) -> None:
+    """``points`` (a ``spheres.SpherePoints``): materials, finite and reachable centres, colour attributes (one row
+    per point in each of the scene's ``color_slots`` slots)."""
     _check_materials("points", points.material, material_count)
+    if points.colors is not None and np.shape(points.colors) != (color_slots, len(points), 4):
+        raise PrismInputError(f"Scene point colour attributes have shape {np.shape(points.colors)}, not "
+                              f"{(color_slots, len(points), 4)} (slots, points, RGBA): re-export the scene.")
     reach = _reach(points.centres)
     for bad, problem in ((~np.isfinite(reach), "has points whose position is NaN or infinite: fix or delete them"),
                          (reach > MAX_DISTANCE_M, f"has points more than {MAX_DISTANCE_M:.0e} m from the world "

@@ -311,10 +311,10 @@ class Scene:
         self._validate_camera()
         if triangles and len(self.triangles):
             self._validate_triangles()
+        slots = (self.surface.colors.shape[0], self.surface.uvs.shape[0]) if self.surface is not None else (0, 0)
         if triangles and self.points is not None and len(self.points):
-            check_points(self.points, len(self.materials), self.object_names)
+            check_points(self.points, len(self.materials), self.object_names, slots[0])
         if triangles and self.curves is not None and len(self.curves):
-            slots = (self.surface.colors.shape[0], self.surface.uvs.shape[0]) if self.surface is not None else (0, 0)
             check_curves(self.curves, len(self.materials), self.object_names, *slots)
         for light in self.lights:
             _check_position(f"Light '{light.name}'", light.position)

@@ -26,8 +26,10 @@ class SpherePoints:
     """``centres`` float64 [S, 3] (world, m), ``radii`` float64 [S] (m), ``material`` int32 [S] (index into
     ``Scene.materials``), ``object`` int32 [S] (index into ``Scene.object_names``), ``instance`` int32 [S]
     (row of ``Scene.surface.instances``, what node materials read as Object Info; None when no material reads
-    it), ``pass_index`` float32 [S] (Object ▸ Relations ▸ Pass Index, for the IndexOB pass; None: 0) and
-    ``random`` float32 [S] (Point Info ▸ Random, uniform in [0, 1]; None: 0)."""
+    it), ``pass_index`` float32 [S] (Object ▸ Relations ▸ Pass Index, for the IndexOB pass; None: 0),
+    ``random`` float32 [S] (Point Info ▸ Random, uniform in [0, 1]; None: 0) and ``colors`` float32 [A, S, 4]
+    (the colour attributes node materials read, slots as ``SurfaceAttributes.colors``, RGBA per point; None:
+    none, they read black, alpha 0)."""
 
     centres: np.ndarray
     radii: np.ndarray
@@ -36,6 +38,7 @@ class SpherePoints:
     instance: np.ndarray | None = None
     pass_index: np.ndarray | None = None
     random: np.ndarray | None = None
+    colors: np.ndarray | None = None
 
     def __len__(self) -> int:
         return int(len(self.radii))

@@ -100,16 +100,17 @@ def test_tapering_strands_in_a_white_furnace_render_the_furnace():
 
 
 def test_curve_attributes_and_uvs_interpolate_along_each_segment():
-    """A strand's colour attributes and UV maps (each segment's two ends) follow the triangles' corner values as
-    rows of the same tables, laid out (start, end, start): the kernels' corner lookups at a hit's curve parameter
-    u give (1 - u) start + u end for any v (the angle around the strand), and a check refuses a table of the
-    wrong shape."""
+    """A strand's colour attributes and UV maps (each segment's two ends) follow the triangles' corner values and
+    the rendered points' colours as rows of the same tables, laid out (start, end, start): the kernels' corner
+    lookups at a hit's curve parameter u give (1 - u) start + u end for any v (the angle around the strand), a
+    point's colour is its own at any (u, v), and a check refuses a table of the wrong shape."""
     import pytest
 
     from engine.tracer.errors import PrismInputError
     from engine.tracer.geometry import prepare_geometry
     from engine.tracer.materials.hit_inputs import corner_color, corner_uv
     from engine.tracer.scene import SurfaceAttributes
+    from engine.tracer.spheres import SpherePoints
 
     floor = (*quad((0, 0, -0.8), (6, 0, 0), (0, 6, 0)), 0)
     scene = make_scene([floor], [Material("grey")], _camera(8, eye=(0.0, -3.0, 1.0)), [], World())
@@ -120,18 +121,24 @@ def test_curve_attributes_and_uvs_interpolate_along_each_segment():
     scene.curves.uvs = np.stack([np.zeros_like(uv_ends), uv_ends]).astype(np.float32)  # slot 1 read here
     scene.surface = SurfaceAttributes(colors=np.full((1, 2, 3, 4), 0.25, np.float32),
                                       uvs=np.full((2, 2, 3, 2), 0.5, np.float32))
+    point_colors = np.array([[[0.1, 0.2, 0.3, 1.0], [9.0, 9.0, 9.0, 9.0], [0.7, 0.8, 0.9, 0.5]]], np.float32)
+    scene.points = SpherePoints(np.array([(0.0, 2.0, 0.0), (1.0, 2.0, 0.0), (2.0, 2.0, 0.0)]), np.array([0.1, 0.0, 0.1]),
+                                np.zeros(3, np.int32), np.zeros(3, np.int32), colors=point_colors)
     scene.object_names = ["Floor"]
     scene.validate()
     geometry, _, _ = prepare_geometry(scene, np.zeros(3))
     colors, uvs = geometry.attributes.colors, geometry.attributes.uvs
-    assert colors.shape == (1, 2 + 2, 3, 4) and uvs.shape == (2, 2 + 2, 3, 2)
+    assert colors.shape == (1, 2 + 2 + 2, 3, 4) and uvs.shape == (2, 2 + 2 + 2, 3, 2)  # 2 points render, 2 segments
     np.testing.assert_array_equal(colors[0, :2], 0.25)  # the triangles' own rows first
     np.testing.assert_array_equal(uvs[:, :2], 0.5)
+    np.testing.assert_array_equal(uvs[:, 2:4], 0.0)  # points carry no UV map
+    for row, point in ((2, 0), (3, 2)):  # the point of radius 0 does not render
+        np.testing.assert_allclose(corner_color(colors, 0, row, 0.3, 1.7), point_colors[0, point], atol=1e-6)
     for segment in range(2):
         for u, v in ((0.0, 0.0), (0.3, 2.5), (1.0, -3.0)):
-            got = corner_color(colors, 0, 2 + segment, u, v)
+            got = corner_color(colors, 0, 4 + segment, u, v)
             np.testing.assert_allclose(got, (1 - u) * ends[segment, 0] + u * ends[segment, 1], atol=1e-6)
-            got = corner_uv(uvs, 1, 2 + segment, u, v)
+            got = corner_uv(uvs, 1, 4 + segment, u, v)
             np.testing.assert_allclose(got, (1 - u) * uv_ends[segment, 0] + u * uv_ends[segment, 1], atol=1e-6)
     scene.curves.colors = ends[None, :1].astype(np.float32)
     with pytest.raises(PrismInputError, match="curve colour attributes"):
@@ -139,4 +146,8 @@ def test_curve_attributes_and_uvs_interpolate_along_each_segment():
     scene.curves.colors = ends[None].astype(np.float32)
     scene.curves.uvs = uv_ends[None].astype(np.float32)  # one slot, where the scene has two
     with pytest.raises(PrismInputError, match="curve UV maps"):
+        scene.validate()
+    scene.curves.uvs = None
+    scene.points.colors = point_colors[:, :2]
+    with pytest.raises(PrismInputError, match="point colour attributes"):
         scene.validate()
