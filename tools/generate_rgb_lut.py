@@ -8,8 +8,8 @@ Colours computed per hit (textures, node math) become reflectance spectra in the
 interpolation of Jakob-Hanika coefficients in this table (``spectra.rgb_lut``). Every grid colour is
 fitted exactly as constant colours are (``rgb_to_spectrum.reflectance_coefficients``: a first
 guess, here from the small committed table (``jakob_start``), plus Levenberg-Marquardt polish), so
-constant and textured colours share one upsampling. Grid: for the largest channel c, its value z (a smoothstep-of-smoothstep grid, dense near
-0 and 1, as Jakob and Hanika use) and the ratios of the next two channels x = rgb[c+1]/z, y = rgb[c+2]/z
+constant and textured colours share one upsampling. Grid: for the largest channel c, its value z (a
+smoothstep-of-smoothstep grid, dense near 0 and 1, as Jakob and Hanika use) and the ratios of the next two channels x = rgb[c+1]/z, y = rgb[c+2]/z
 (uniform). Stored as float32 coefficients of x = (λ - 360) / 470 (well conditioned), [3, N, N, N, 3].
 Size 32 round-trips colours within 0.7 % (99 % within 0.35 %).
 """

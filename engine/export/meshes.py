@@ -274,7 +274,8 @@ def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | Non
         local = piece.geometry
         placed, scaled = place_points(local, matrices)
         count = len(local.radii)
-        colors.append((len(scaled), {slot: np.tile(values, (len(matrices), 1)) for slot, values in local.colors.items()}))
+        colors.append((len(scaled), {slot: np.tile(values, (len(matrices), 1))
+                                     for slot, values in local.colors.items()}))
         centres.append(placed)
         radii.append(scaled)
         material.append(np.tile(lookup[np.clip(local.slot, 0, len(lookup) - 1)], len(matrices)))

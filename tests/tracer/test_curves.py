@@ -122,7 +122,8 @@ def test_curve_attributes_and_uvs_interpolate_along_each_segment():
     scene.surface = SurfaceAttributes(colors=np.full((1, 2, 3, 4), 0.25, np.float32),
                                       uvs=np.full((2, 2, 3, 2), 0.5, np.float32))
     point_colors = np.array([[[0.1, 0.2, 0.3, 1.0], [9.0, 9.0, 9.0, 9.0], [0.7, 0.8, 0.9, 0.5]]], np.float32)
-    scene.points = SpherePoints(np.array([(0.0, 2.0, 0.0), (1.0, 2.0, 0.0), (2.0, 2.0, 0.0)]), np.array([0.1, 0.0, 0.1]),
+    scene.points = SpherePoints(np.array([(0.0, 2.0, 0.0), (1.0, 2.0, 0.0), (2.0, 2.0, 0.0)]),
+                                np.array([0.1, 0.0, 0.1]),
                                 np.zeros(3, np.int32), np.zeros(3, np.int32), colors=point_colors)
     scene.object_names = ["Floor"]
     scene.validate()
