@@ -18,32 +18,6 @@ ROOT = Path(__file__).resolve().parents[1]
 OUTPUT = ROOT / "docs" / "images" / "hair_attributes.png"
 
 
-def _diffuse_from(nodes, link, material_output, colour_socket):
-    from helpers.node_scenes import node
-
-    bsdf = node(nodes, "ShaderNodeBsdfDiffuse")
-    link(colour_socket, bsdf.inputs["Color"])
-    link(bsdf.outputs[0], material_output.inputs["Surface"])
-
-
-def _tinted(obj, sizes, rng):
-    from helpers.node_scenes import material, node
-
-    tint = [(*rng.uniform(0.15, 0.9, 3), 1.0) for _ in sizes]
-    obj.data.attributes.new("tint", "FLOAT_COLOR", "CURVE").data.foreach_set("color", [c for t in tint for c in t])
-    fade = [0.25 + 0.75 * i / (size - 1) for size in sizes for i in range(size)]
-    obj.data.attributes.new("fade", "FLOAT", "POINT").data.foreach_set("value", fade)
-    mat, nodes, link = material("Tint x fade")
-    product = node(nodes, "ShaderNodeVectorMath")
-    product.operation = "MULTIPLY"
-    for index, name in enumerate(("tint", "fade")):
-        read = nodes.new("ShaderNodeAttribute")
-        read.attribute_name = name
-        link(read.outputs["Color"], product.inputs[index])
-    _diffuse_from(nodes, link, nodes["Output"], product.outputs[0])
-    return mat
-
-
 def _checkered(obj, positions, sizes):
     from helpers.node_scenes import material, node
 
@@ -54,14 +28,16 @@ def _checkered(obj, positions, sizes):
     coordinates = nodes.new("ShaderNodeTexCoord")
     checker = node(nodes, "ShaderNodeTexChecker", Color1=(0.85, 0.55, 0.15), Color2=(0.15, 0.3, 0.7), Scale=4.0)
     link(coordinates.outputs["UV"], checker.inputs["Vector"])
-    _diffuse_from(nodes, link, nodes["Output"], checker.outputs["Color"])
+    bsdf = node(nodes, "ShaderNodeBsdfDiffuse")
+    link(checker.outputs["Color"], bsdf.inputs["Color"])
+    link(bsdf.outputs[0], nodes["Output"].inputs["Surface"])
     return mat
 
 
 def _scene(bpy):
     import numpy as np
 
-    from helpers.hair_scenes import groom, hair_object, lit
+    from helpers.hair_scenes import groom, hair_object, lit, tint_and_fade
     from helpers.node_scenes import camera
 
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
@@ -72,7 +48,8 @@ def _scene(bpy):
         sizes, positions, radii = groom(count=600)
         obj = hair_object(f"Groom {kind}", sizes, positions, radii=radii)
         obj.location.x = x
-        obj.data.materials.append(_tinted(obj, sizes, rng) if kind == "tint" else _checkered(obj, positions, sizes))
+        obj.data.materials.append(tint_and_fade(obj, sizes, rng, tint_range=(0.15, 0.9), root_fade=0.25)
+                                  if kind == "tint" else _checkered(obj, positions, sizes))
     camera((0.0, -3.4, 1.6), (0.0, 0.0, 0.45), resolution=(240, 120))
     return scene
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .mesh_attributes import attribute_rgba
+from .mesh_attributes import domain_rgba
 
 
 def _per_point(curves, values, domain, counts):
@@ -45,13 +45,7 @@ def point_values(curves, request) -> tuple[dict, dict]:
         return colors, uvs
     counts = [None]
     for slot, name in request.attributes.items():
-        if not name:
-            name = curves.color_attributes.default_color_name or (
-                curves.color_attributes.active_color.name if curves.color_attributes.active_color else "")
-        attribute = curves.attributes.get(name) if name else None
-        if attribute is None or attribute.domain not in ("POINT", "CURVE"):
-            continue
-        rgba = attribute_rgba(attribute)
+        attribute, rgba = domain_rgba(curves, name, ("POINT", "CURVE"))
         if rgba is not None:
             colors[slot] = _per_point(curves, rgba, attribute.domain, counts)
     for slot, name in request.uvs.items():

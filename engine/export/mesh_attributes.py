@@ -41,9 +41,7 @@ def corner_attribute(mesh, name, loops, triangle_vertices):
 
     Byte colours come out scene-linear: their ``color`` property is Blender's sRGB → linear decode of the
     stored bytes (``color_srgb`` holds the encoded value), as Cycles reads them."""
-    if not name:
-        name = mesh.color_attributes.default_color_name or (
-            mesh.color_attributes.active_color.name if mesh.color_attributes.active_color else "")
+    name = attribute_name(mesh, name)
     attribute = mesh.attributes.get(name) if name else None
     if attribute is None:
         layer = mesh.uv_layers.get(name) if name else None
@@ -56,6 +54,26 @@ def corner_attribute(mesh, name, loops, triangle_vertices):
         return None
     per_corner = _gather_per_corner(mesh, rgba, attribute.domain, loops, triangle_vertices)
     return None if per_corner is None else per_corner.reshape(-1, 3, 4)
+
+
+def attribute_name(data, name: str) -> str:
+    """The attribute an Attribute or Color Attribute node named ``name`` reads on ``data`` (a mesh, curves or
+    point cloud): ``name`` itself, or for "" the render colour attribute ("" where there is none)."""
+    if name:
+        return name
+    colours = data.color_attributes
+    return colours.default_color_name or (colours.active_color.name if colours.active_color else "")
+
+
+def domain_rgba(data, name: str, domains: tuple):
+    """(the attribute, float32 [N, 4] RGBA of its elements) that a node reading ``name`` finds on ``data`` (curves
+    or a point cloud) in one of ``domains``, or (None, None) where there is none of a type read as a colour."""
+    name = attribute_name(data, name)
+    attribute = data.attributes.get(name) if name else None
+    if attribute is None or attribute.domain not in domains:
+        return None, None
+    rgba = attribute_rgba(attribute)
+    return (attribute, rgba) if rgba is not None else (None, None)
 
 
 def attribute_rgba(attribute):

@@ -290,7 +290,7 @@ def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | Non
         random.append(np.tile(point_random(count), len(matrices)))
     return SpherePoints(np.concatenate(centres), np.concatenate(radii), np.concatenate(material).astype(np.int32),
                         np.concatenate(objects), np.concatenate(instance).astype(np.int32), np.concatenate(pass_index),
-                        np.concatenate(random), stacked_slots(colors, _slot_count(surface, "attribute_names"), (4,)))
+                        np.concatenate(random), stacked_slots(colors, len(surface.slots.attribute_names), (4,)))
 
 
 def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | None:
@@ -328,13 +328,8 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
     return CurveSegments(padded, padded_radii, segments, np.concatenate(material).astype(np.int32),
                          np.concatenate(objects), np.concatenate(instance).astype(np.int32),
                          np.concatenate(pass_index), np.concatenate(info),
-                         stacked_slots(colors, _slot_count(surface, "attribute_names"), (2, 4)),
-                         stacked_slots(uvs, _slot_count(surface, "uv_names"), (2, 2)))
-
-
-def _slot_count(surface, names: str) -> int:
-    """How many slots of ``names`` ("attribute_names", "uv_names") the render's node materials read."""
-    return len(getattr(surface.slots, names)) if surface.active else 0
+                         stacked_slots(colors, len(surface.slots.attribute_names), (2, 4)),
+                         stacked_slots(uvs, len(surface.slots.uv_names), (2, 2)))
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

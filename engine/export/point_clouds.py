@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .mesh_attributes import attribute_rgba
+from .mesh_attributes import domain_rgba
 
 DEFAULT_RADIUS_M = 0.01
 
@@ -66,11 +66,7 @@ def _point_colors(cloud, request) -> dict:
     of ``cloud`` (``bpy.types.PointCloud``), for those it has on the point domain."""
     colors = {}
     for slot, name in (request.attributes.items() if request is not None else ()):
-        if not name:
-            name = cloud.color_attributes.default_color_name or (
-                cloud.color_attributes.active_color.name if cloud.color_attributes.active_color else "")
-        attribute = cloud.attributes.get(name) if name else None
-        rgba = attribute_rgba(attribute) if attribute is not None and attribute.domain == "POINT" else None
+        rgba = domain_rgba(cloud, name, ("POINT",))[1]
         if rgba is not None:
             colors[slot] = rgba
     return colors

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from helpers.hair_scenes import export_scene as _export, groom as _groom, hair_object as _hair_object, lit as _lit
-from helpers.hair_scenes import luminance_and_coverage
+from helpers.hair_scenes import luminance_and_coverage, tint_and_fade
 from helpers.node_scenes import camera, material, node
 
 
@@ -142,22 +142,7 @@ def test_a_groom_coloured_by_its_attributes_matches_cycles(prism_addon, fresh_sc
     fresh_scene.render.film_transparent = True
     sizes, positions, radii = _groom()
     obj = _hair_object("Groom", sizes, positions, radii=radii)
-    rng = np.random.default_rng(5)
-    tint = np.column_stack([rng.uniform(0.2, 0.9, (len(sizes), 3)), np.ones(len(sizes))])
-    obj.data.attributes.new("tint", "FLOAT_COLOR", "CURVE").data.foreach_set("color", tint.ravel())
-    fade = np.tile(np.linspace(0.3, 1.0, sizes[0]), len(sizes))
-    obj.data.attributes.new("fade", "FLOAT", "POINT").data.foreach_set("value", fade)
-    mat, nodes, link = material("Tinted hair")
-    bsdf = node(nodes, "ShaderNodeBsdfDiffuse")
-    product = node(nodes, "ShaderNodeVectorMath")
-    product.operation = "MULTIPLY"
-    for index, name in enumerate(("tint", "fade")):
-        read = nodes.new("ShaderNodeAttribute")
-        read.attribute_name = name
-        link(read.outputs["Color"], product.inputs[index])
-    link(product.outputs[0], bsdf.inputs["Color"])
-    link(bsdf.outputs[0], nodes["Output"].inputs["Surface"])
-    obj.data.materials.append(mat)
+    obj.data.materials.append(tint_and_fade(obj, sizes, np.random.default_rng(5)))
     camera((0.0, -2.6, 1.2), (0.0, 0.0, 0.45), resolution=(48, 48))
     light, coverage, covered = luminance_and_coverage(fresh_scene, "groom coloured by attributes")
     assert 0.1 < covered < 0.6

@@ -46,6 +46,29 @@ def groom(count=300, points=6, seed=3):
     return [points] * count, positions.reshape(-1, 3), radii
 
 
+def tint_and_fade(obj, sizes, rng, tint_range=(0.2, 0.9), root_fade=0.3):
+    """Give the strands of ``obj`` (``sizes`` points each) a curve-domain colour "tint" (uniform in ``tint_range``
+    per channel, from ``rng``) and a point-domain float "fade" rising from ``root_fade`` at the root to 1 at the
+    tip; return a material whose Diffuse colour is tint × fade (two Attribute nodes)."""
+    from helpers.node_scenes import material, node
+
+    tint = np.column_stack([rng.uniform(*tint_range, (len(sizes), 3)), np.ones(len(sizes))])
+    obj.data.attributes.new("tint", "FLOAT_COLOR", "CURVE").data.foreach_set("color", tint.ravel())
+    fade = np.concatenate([np.linspace(root_fade, 1.0, n) for n in sizes])
+    obj.data.attributes.new("fade", "FLOAT", "POINT").data.foreach_set("value", fade)
+    mat, nodes, link = material("Tint x fade")
+    bsdf = node(nodes, "ShaderNodeBsdfDiffuse")
+    product = node(nodes, "ShaderNodeVectorMath")
+    product.operation = "MULTIPLY"
+    for index, name in enumerate(("tint", "fade")):
+        read = nodes.new("ShaderNodeAttribute")
+        read.attribute_name = name
+        link(read.outputs["Color"], product.inputs[index])
+    link(product.outputs[0], bsdf.inputs["Color"])
+    link(bsdf.outputs[0], nodes["Output"].inputs["Surface"])
+    return mat
+
+
 def luminance_and_coverage(scene, label, samples=64):
     """Prism and Cycles render ``scene`` (a transparent film): (Prism / Cycles mean luminance, Prism / Cycles mean
     alpha, Cycles' mean alpha), printed as ``MEASURED label``."""
