@@ -27,26 +27,16 @@ def _math(nodes, node, operation, **inputs):
 
 
 def _embers_material():
-    from helpers.node_scenes import material, node
+    from helpers.node_scenes import material, node, noise_ball
 
     mat, nodes, link = material("Embers")
     mat.cycles.volume_step_rate = 0.5
-    coordinates = nodes.new("ShaderNodeTexCoord")
-    ball = nodes.new("ShaderNodeTexGradient")
-    ball.gradient_type = "QUADRATIC_SPHERE"
-    noise = node(nodes, "ShaderNodeTexNoise", Scale=3.0, Detail=3.0)
-    cut = _math(nodes, node, "SUBTRACT", Value_001=0.5)
-    cut.use_clamp = True
-    shaped = _math(nodes, node, "MULTIPLY")
+    lumps, ball = noise_ball(nodes, link, scale=3.0, detail=3.0, threshold=0.5)
     glow = _math(nodes, node, "MULTIPLY", Value_001=150.0)
     smoke = _math(nodes, node, "MULTIPLY", Value_001=1.5)
     volume = node(nodes, "ShaderNodeVolumePrincipled", Color=(0.6, 0.6, 0.6), Emission_Color=(1.0, 0.45, 0.12))
-    link(coordinates.outputs["Object"], ball.inputs["Vector"])
-    link(noise.outputs["Fac"], cut.inputs[0])
-    link(cut.outputs[0], shaped.inputs[0])
-    link(ball.outputs["Fac"], shaped.inputs[1])
-    link(shaped.outputs[0], glow.inputs[0])
-    link(ball.outputs["Fac"], smoke.inputs[0])
+    link(lumps, glow.inputs[0])
+    link(ball, smoke.inputs[0])
     link(glow.outputs[0], volume.inputs["Emission Strength"])
     link(smoke.outputs[0], volume.inputs["Density"])
     link(volume.outputs[0], nodes["Output"].inputs["Volume"])

@@ -20,27 +20,15 @@ OUTPUT = ROOT / "docs" / "images" / "textured_volume.png"
 
 
 def _cloud_material(bpy):
-    from helpers.node_scenes import material, node
+    from helpers.node_scenes import material, node, noise_ball
 
     mat, nodes, link = material("Cloud")
     mat.cycles.volume_step_rate = 0.5
-    noise = node(nodes, "ShaderNodeTexNoise", Scale=2.5, Detail=4.0)
-    cut = node(nodes, "ShaderNodeMath", Value_001=0.4)
-    cut.operation = "SUBTRACT"
-    cut.use_clamp = True
-    coordinates = nodes.new("ShaderNodeTexCoord")
-    ball = nodes.new("ShaderNodeTexGradient")
-    ball.gradient_type = "QUADRATIC_SPHERE"
-    shaped = node(nodes, "ShaderNodeMath")
-    shaped.operation = "MULTIPLY"
+    lumps, _ = noise_ball(nodes, link, scale=2.5, detail=4.0, threshold=0.4)
     thick = node(nodes, "ShaderNodeMath", Value_001=120.0)
     thick.operation = "MULTIPLY"
     volume = node(nodes, "ShaderNodeVolumePrincipled", Color=(0.9, 0.85, 0.8))
-    link(noise.outputs["Fac"], cut.inputs[0])
-    link(coordinates.outputs["Object"], ball.inputs["Vector"])
-    link(cut.outputs[0], shaped.inputs[0])
-    link(ball.outputs["Fac"], shaped.inputs[1])
-    link(shaped.outputs[0], thick.inputs[0])
+    link(lumps, thick.inputs[0])
     link(thick.outputs[0], volume.inputs["Density"])
     link(volume.outputs[0], nodes["Output"].inputs["Volume"])
     return mat

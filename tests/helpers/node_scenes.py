@@ -34,6 +34,26 @@ def node(nodes, kind, **inputs):
     return n
 
 
+
+def noise_ball(nodes, link, scale, detail, threshold):
+    """A round lumpy field: max(Noise Texture (``scale``, ``detail``) − ``threshold``, 0) × a Quadratic Sphere
+    Gradient Texture over Object coordinates (1 at the centre, 0 from 1 m out). Returns (the field's output
+    socket, the sphere gradient's Fac)."""
+    coordinates = nodes.new("ShaderNodeTexCoord")
+    ball = nodes.new("ShaderNodeTexGradient")
+    ball.gradient_type = "QUADRATIC_SPHERE"
+    noise = node(nodes, "ShaderNodeTexNoise", Scale=scale, Detail=detail)
+    cut = node(nodes, "ShaderNodeMath", Value_001=threshold)
+    cut.operation = "SUBTRACT"
+    cut.use_clamp = True
+    shaped = node(nodes, "ShaderNodeMath")
+    shaped.operation = "MULTIPLY"
+    link(coordinates.outputs["Object"], ball.inputs["Vector"])
+    link(noise.outputs["Fac"], cut.inputs[0])
+    link(cut.outputs[0], shaped.inputs[0])
+    link(ball.outputs["Fac"], shaped.inputs[1])
+    return shaped.outputs[0], ball.outputs["Fac"]
+
 def socket(n, key, output=False):
     """Input (or output) socket ``key`` of ``n`` by name or identifier."""
     sockets = n.outputs if output else n.inputs
