@@ -79,13 +79,14 @@ def upsample(samples, axes, shape) -> np.ndarray:
         return np.asarray(samples, np.float32)
     # Each voxel's position among the samples, per axis (the last interval may be shorter than a stride).
     at = [np.interp(np.arange(n), axis, np.arange(len(axis))) for n, axis in zip(shape, axes)]
+    samples = np.asarray(samples, np.float32)
     out = np.empty(shape, np.float32)
     per_slab = max(1, _VOXELS_PER_CALL // int(shape[1] * shape[2]))
     for first in range(0, int(shape[0]), per_slab):
         rows = at[0][first:first + per_slab]
         where = np.stack(np.broadcast_arrays(rows[:, None, None], at[1][None, :, None], at[2][None, None, :]))
-        out[first:first + len(rows)] = map_coordinates(np.asarray(samples, np.float32), where.reshape(3, -1),
-                                                       order=1, mode="nearest").reshape(len(rows), *shape[1:])
+        out[first:first + len(rows)] = map_coordinates(samples, where.reshape(3, -1), order=1,
+                                                       mode="nearest").reshape(len(rows), *shape[1:])
     return out
 
 

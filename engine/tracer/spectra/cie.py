@@ -21,7 +21,6 @@ from ..errors import PrismInputError
 from . import colorimetry_tables
 from .trapezoid import trapezoid
 
-_CMF_TABLE = None  # (wavelength_nm [M], xyz [M, 3]) once loaded
 _LAZY = {}
 
 
@@ -37,11 +36,9 @@ def import_colour():
 
 
 def _cmf_table():
-    global _CMF_TABLE
-    if _CMF_TABLE is None:
-        tables = colorimetry_tables.load()
-        _CMF_TABLE = (tables.cmf_nm, tables.cmf_xyz)
-    return _CMF_TABLE
+    """(wavelength_nm [M], xyz [M, 3]) of the observer (``colorimetry_tables``, read once per process)."""
+    tables = colorimetry_tables.load()
+    return tables.cmf_nm, tables.cmf_xyz
 
 
 def _cmf_y_integral():
