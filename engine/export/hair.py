@@ -34,7 +34,8 @@ class LocalHair:
     int64 [C + 1] (curve c holds points offsets[c]..offsets[c+1]-1), ``curve_slot`` int32 [C]
     (material slot of each curve), ``slot_materials`` as ``LocalMesh``, ``attributes`` {slot: float32 [P, 4]}
     and ``uvs`` {slot: float32 [P, 2]} (the attributes and UV maps node materials read, per point:
-    ``hair_attributes``; none for particle hair)."""
+    ``hair_attributes``; for particle hair the emitter's at each root, ``emitter_roots``) and ``uncarried``,
+    the (kind, name) reads the strands have no value for though their source has the data (particle hair)."""
 
     points: np.ndarray
     radii: np.ndarray
@@ -43,6 +44,7 @@ class LocalHair:
     slot_materials: list
     attributes: dict = field(default_factory=dict)
     uvs: dict = field(default_factory=dict)
+    uncarried: tuple = ()
 
     @property
     def texture_space(self):

@@ -18,7 +18,8 @@ _PROPERTY = {"FLOAT": "value", "INT": "value", "BOOLEAN": "value", "INT8": "valu
              "QUATERNION": "value"}
 
 
-def _uv_layer(mesh, name):
+def uv_layer(mesh, name):
+    """UV map ``name`` of ``mesh``, or for "" the active render one (None where there is none)."""
     layers = mesh.uv_layers
     if name:
         return layers.get(name)
@@ -27,7 +28,7 @@ def _uv_layer(mesh, name):
 
 def corner_uvs(mesh, name, loops):
     """float32 [T, 3, 2] of UV map ``name`` at the corners ``loops`` [T * 3], or None if the mesh lacks it."""
-    layer = _uv_layer(mesh, name)
+    layer = uv_layer(mesh, name)
     if layer is None:
         return None
     uv = np.empty(len(mesh.loops) * 2, np.float32)
@@ -114,7 +115,7 @@ def _gather_per_corner(mesh, values, domain, loops, triangle_vertices):
 def corner_tangents(mesh, name, loops, vertices, triangles, uvs, normals, warn):
     """float32 [T, 3, 4]: unit UV tangent (object space) and bitangent sign at each corner, from Blender's
     MikkTSpace for UV map ``name``; per-triangle tangents from the UVs when Blender cannot (n-gons)."""
-    layer = _uv_layer(mesh, name)
+    layer = uv_layer(mesh, name)
     if layer is None:
         return None
     try:

@@ -31,7 +31,7 @@ from .materials import DEFAULT_MATERIAL
 from .material_rows import MaterialRows
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
-from .particle_hair import read_particle_hair
+from .particle_hair import hair_materials, read_particle_hair, uncarried_warning
 from .point_clouds import LocalPoints, place_points, point_random, read_points
 from .data_passes import data_pass_switches, world_ao_distance
 from .surface_attributes import SurfaceCollector, stacked_slots
@@ -88,7 +88,7 @@ def read_geometry(key: tuple, obj, request: AttributeRequest | None = None,
     """The evaluated geometry of ``obj`` (``key``: (type, original name, data pointer), the piece it is;
     ``PARTICLES`` keys add whether this is a render) with the per-corner data ``request`` names (meshes)."""
     if key[0] == "PARTICLES":
-        return read_particle_hair(obj, key[3])
+        return read_particle_hair(obj, key[3], request)
     if key[0] == "MESH":
         return read_mesh(obj, request, warn)
     return read_points(obj, request) if key[0] == "POINTCLOUD" else read_hair(obj, request)
@@ -115,8 +115,13 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
         if kind == "MESH" and instance.show_particles and len(obj.particle_systems) and included.renders("CURVES"):
             key = ("PARTICLES", obj.original.name, obj.data.as_pointer(), render)
             if key not in pieces:
-                hair = read(key, obj, None, lambda message, obj=obj: warn_once(obj, [message]))
-                _warn_unread_inputs(materials, obj.name, hair, warnings)
+                ribbons = curve_shape(depsgraph.scene) == "RIBBONS"
+                request = None if ribbons else materials.request(hair_materials(obj, render))
+                hair = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
+                if ribbons:
+                    _warn_unread_inputs(materials, obj.name, hair, warnings)
+                elif hair is not None and hair.uncarried and warnings is not None:
+                    warnings.append(uncarried_warning(obj.name, hair.uncarried))
                 pieces[key] = (_Instances(obj.name, hair, light_group=obj.lightgroup,
                                           flags=object_flags(obj, getattr(depsgraph, "view_layer", None), warnings),
                                           asset=asset_name(obj)) if hair is not None else None)

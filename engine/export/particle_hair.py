@@ -14,14 +14,15 @@ viewport) whose settings are Hair drawn as Path:
 - Material: the settings' Material slot.
 
 Strands the path cache has no points for (co_hair gives zeros) have no length and are left out; Cycles keeps
-them as a point at the origin. Hair Info then reads them as Curves objects' strands (``hair_info``); the
-emitter's UV map and colour attributes at the root, which Cycles gives particle hair, are not read.
+them as a point at the origin. Hair Info then reads them as Curves objects' strands (``hair_info``). The UV maps
+and byte colour attributes the materials read are the emitter's at each strand's root (``emitter_roots``).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .emitter_roots import root_values
 from .hair import LocalHair
 
 
@@ -35,6 +36,22 @@ def hair_systems(obj, render: bool) -> list:
         if system.settings.type == "HAIR" and system.settings.render_type == "PATH":
             systems.append(system)
     return systems
+
+
+def hair_materials(obj, render: bool) -> list:
+    """The materials of the slots ``obj``'s particle hair uses (Hair Shape's material slot of each system)."""
+    slots = obj.material_slots
+    return [slots[min(max(system.settings.material - 1, 0), len(slots) - 1)].material
+            for system in hair_systems(obj, render) if len(slots)]
+
+
+def uncarried_warning(name: str, uncarried) -> str:
+    """The warning for particle hair of ``name`` whose material reads emitter attributes Cycles gives strands no
+    value for (``emitter_roots``)."""
+    reads = ", ".join(f"'{label}'" if label else "the default colour attribute" for _, label in sorted(uncarried))
+    return (f"Particle hair on '{name}': its material reads the emitter's attribute {reads}, which strands do not "
+            "carry: it reads black there, as in Cycles, which gives particle hair the emitter's UV maps and its "
+            "byte colour attributes on face corners (by name) at each root, nothing else.")
 
 
 def shape_radius(shape: float, root: float, tip: float, time: np.ndarray) -> np.ndarray:
@@ -74,8 +91,9 @@ def _system_strands(obj, system, render: bool, inverse: np.ndarray):
     return local[keep], radius[keep], settings.material - 1
 
 
-def read_particle_hair(obj, render: bool) -> LocalHair | None:
-    """Every strand of ``obj``'s particle hair, in its object space; None when it has none."""
+def read_particle_hair(obj, render: bool, request=None) -> LocalHair | None:
+    """Every strand of ``obj``'s particle hair, in its object space, with the emitter's UV maps and colour
+    attributes ``request`` (``AttributeRequest``) names at each root; None when it has none."""
     inverse = np.linalg.inv(np.array(obj.matrix_world, dtype=np.float64))
     points, radii, counts, slots = [], [], [], []
     slot_count = max(len(obj.material_slots), 1)
@@ -90,6 +108,23 @@ def read_particle_hair(obj, render: bool) -> LocalHair | None:
     if not points:
         return None
     counts = np.concatenate(counts)
-    return LocalHair(points=np.concatenate(points), radii=np.concatenate(radii),
-                     offsets=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
-                     curve_slot=np.concatenate(slots), slot_materials=[slot.material for slot in obj.material_slots])
+    offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    points = np.concatenate(points)
+    colors, uvs, uncarried = _emitter_values(obj, points[offsets[:-1]], request)
+    return LocalHair(points=points, radii=np.concatenate(radii), offsets=offsets, curve_slot=np.concatenate(slots),
+                     slot_materials=[slot.material for slot in obj.material_slots],
+                     attributes={slot: np.repeat(values, counts, axis=0) for slot, values in colors.items()},
+                     uvs={slot: np.repeat(values, counts, axis=0) for slot, values in uvs.items()},
+                     uncarried=tuple(uncarried))
+
+
+def _emitter_values(obj, roots, request):
+    if request is None or not (request.attributes or request.uvs):
+        return {}, {}, []
+    mesh = obj.to_mesh()
+    if mesh is None:
+        return {}, {}, []
+    try:
+        return root_values(mesh, roots, request)
+    finally:
+        obj.to_mesh_clear()
