@@ -11,7 +11,7 @@ The radius is the ``radius`` attribute, or 5 mm where the curves have none (as C
 transform scales it by the cube root of its determinant's magnitude for curves (Cycles'
 ``Hair::apply_transform``), by its mean axis scale for ribbons. Strands are read with ``foreach_get``
 and placed for all strands at once, with the attributes and UV maps their materials read
-(``hair_attributes``; 3D curves only). Curves are rendered where they stand at the frame (no motion blur).
+(``hair_attributes``; 3D curves only). With motion blur, 3D curves move with their points (``hair_motion``).
 """
 
 from __future__ import annotations
@@ -140,12 +140,6 @@ def unread_inputs_warning(name: str, slot_materials: list, needs: dict) -> str |
     return (f"Hair '{name}': its material reads the {', the '.join(reads)}, but Prism's strands carry no UV maps or "
             "attributes: it reads 0 there (UV (0, 0), attributes black), where Cycles reads the strands' own (for "
             "particle hair, the emitter's at each root).")
-
-
-def moving_hair_warning(name: str) -> str:
-    """The warning for hair curves that move during the shutter (rendered where they stand at the frame)."""
-    return (f"Hair curves '{name}' move during the shutter, but Prism renders 3D curves without motion blur: "
-            "the strands are sharp where they stand at the frame.")
 
 
 def segment_starts(offsets: np.ndarray) -> np.ndarray:

@@ -6,8 +6,9 @@ The shutter is open for Shutter (``motion_blur_shutter``, frames) around the fra
 ray time. The scene is evaluated at S = 2^(steps-1)·2 + 1 times across the shutter (Object ▸ Motion Blur
 ▸ Steps, the largest of the moving objects'; default 3: open, middle, close) through ``frame_set`` (the
 render engine's, so the user's frame is untouched; restored after) and re-exported: moving and deforming
-meshes alike get their vertices at each time. An object whose Motion Blur is off stays where it is at
-the frame, as in Cycles; an object with fewer steps than S is interpolated between its own steps.
+meshes alike get their vertices at each time, hair its strands' points (``hair_motion``). An object whose
+Motion Blur is off stays where it is at the frame, as in Cycles; an object with fewer steps than S is
+interpolated between its own steps.
 """
 
 from __future__ import annotations
@@ -16,7 +17,8 @@ import numpy as np
 
 from ..tracer.motion import Motion, motion_step_count, shutter_times
 from .camera import rigid_matrix
-from .hair import moving_hair_warning
+from .hair_motion import hair_steps
+from .motion_steps import is_still, resample
 from .point_clouds import moving_point_cloud_warning
 from .view_layer_filter import layer_filter
 
@@ -59,18 +61,6 @@ def _object_settings(name):
     return bool(settings.use_motion_blur), int(settings.motion_steps), bool(settings.use_deform_motion)
 
 
-def _resample(steps: np.ndarray, own: int) -> np.ndarray:
-    """``steps`` [S, ...] re-made from its ``own`` evenly spaced steps (a subset of the S, nested), linear
-    between them: an object with fewer motion steps moves as Cycles interpolates it."""
-    total = len(steps)
-    stride = (total - 1) // (own - 1)
-    kept = steps[::stride]
-    x = np.linspace(0.0, own - 1, total)
-    lo = np.minimum(x.astype(int), own - 2)
-    f = (x - lo).reshape((-1,) + (1,) * (steps.ndim - 1))
-    return (1.0 - f) * kept[lo] + f * kept[lo + 1]
-
-
 def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warnings) -> None:
     """Give ``tracer_scene`` (already exported at the frame) its motion blur: ``camera.shutter_times``,
     ``camera.motion_to_world`` and ``motion`` where something moves. ``frame_set(frame, subframe)``
@@ -98,7 +88,7 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
                 vertices.append(geometry.vertices)
                 normals.append(geometry.corner_normals)
             clouds.append(getattr(geometry, "points", None))
-            strands.append(getattr(geometry, "curves", None))
+            strands.append((getattr(geometry, "curves", None), list(getattr(geometry, "object_names", []))))
             cameras.append(rigid_matrix(camera_object.evaluated_get(depsgraph).matrix_world))
     finally:
         frame_set(frame, subframe)
@@ -107,19 +97,20 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     if not np.allclose(cameras, cameras[:1], rtol=0.0, atol=1e-12):
         camera.motion_to_world = cameras
     warnings.extend(moving_point_cloud_warning(name) for name in _moving_clouds(tracer_scene, clouds, settings))
-    warnings.extend(moving_hair_warning(name) for name in _moving_hair(tracer_scene, strands, settings))
+    hair = hair_steps(tracer_scene, strands, settings, count, warnings)
+    steps, corner = None, None
     if changed:
         warnings.append(f"Scene '{scene.name}': Motion Blur: a mesh changes its vertices or faces during the shutter "
                         "(a modifier that adds or removes geometry over time), so Prism cannot follow its vertices: "
-                        "objects are rendered still where they are at the frame; the camera's motion is blurred.")
-        return
-    steps = np.stack(vertices)
-    if np.array_equal(steps, np.broadcast_to(steps[:1], steps.shape)):
-        return  # nothing moves: the still scene, no time steps in Embree
-    corner = np.stack(normals) if tracer_scene.corner_normals is not None and len(normals[0]) else None
-    _per_object(tracer_scene, settings, steps, corner, count, warnings)
-    if not np.array_equal(steps, np.broadcast_to(steps[:1], steps.shape)):  # still moving after Object settings
-        tracer_scene.motion = Motion(steps, corner)
+                        "meshes are rendered still where they are at the frame; the camera's motion is blurred.")
+    elif not is_still(np.stack(vertices)):
+        steps = np.stack(vertices)
+        corner = np.stack(normals) if tracer_scene.corner_normals is not None and len(normals[0]) else None
+        _per_object(tracer_scene, settings, steps, corner, count, warnings)
+        if is_still(steps):  # nothing moves after Object settings
+            steps, corner = None, None
+    if steps is not None or hair is not None:  # else the still scene: no time steps in Embree
+        tracer_scene.motion = Motion(steps, corner, hair)
 
 
 def _moving_clouds(tracer_scene, steps, settings) -> list[str]:
@@ -135,25 +126,6 @@ def _moving_clouds(tracer_scene, steps, settings) -> list[str]:
             break
         moving |= (step.centres != points.centres).any(axis=1) | (step.radii != points.radii)
     names = sorted({tracer_scene.object_names[int(i)] for i in np.unique(points.object[moving])})
-    return [name for name in names if settings.get(name, (True,))[0]]
-
-
-def _moving_hair(tracer_scene, steps, settings) -> list[str]:
-    """Names of the hair curves (with Object ▸ Motion Blur on) whose control points at the shutter's time
-    steps ``steps`` (``CurveSegments`` or None each) differ from the frame's."""
-    curves = tracer_scene.curves
-    if curves is None or not len(curves):
-        return []
-    moving = np.zeros(len(curves.radii), bool)
-    for step in steps:
-        if step is None or len(step.radii) != len(curves.radii):
-            moving[:] = True
-            break
-        moving |= (step.points != curves.points).any(axis=1) | (step.radii != curves.radii)
-    touched = np.zeros(len(curves), bool)
-    for k in range(4):  # a segment moves where any of its 4 control points does
-        touched |= moving[curves.segments + k]
-    names = sorted({tracer_scene.object_names[int(i)] for i in np.unique(curves.object[touched])})
     return [name for name in names if settings.get(name, (True,))[0]]
 
 
@@ -184,9 +156,9 @@ def _per_object(tracer_scene, settings, steps, corner, count, warnings) -> None:
                             "exactly.")
         own = min(motion_step_count(own_steps), count)
         if own < count:
-            steps[:, on_vertex] = _resample(steps[:, on_vertex], own)
+            steps[:, on_vertex] = resample(steps[:, on_vertex], own)
             if corner is not None:
-                corner[:, on_triangle] = _resample(corner[:, on_triangle], own)
+                corner[:, on_triangle] = resample(corner[:, on_triangle], own)
         if not deform:
             warnings.append(f"Object '{name}': Motion Blur ▸ Deformation is off, but Prism blurs the mesh's vertices as "
                             "they move, so any deformation (armature, shape keys, modifiers) is blurred too (Cycles "

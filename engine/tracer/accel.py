@@ -40,10 +40,12 @@ class Accel:
             geometries.append(SphereGeometry(geometry.spheres))
             self._rows.update(sphere_geometry=len(geometries) - 1, first_sphere=len(geometry.triangles))
         if len(geometry.curve_segments):
-            geometries.append(CurveGeometry(geometry.curves, geometry.curve_segments))
+            steps = list(geometry.curve_motion) if len(geometry.curve_motion) > 1 else geometry.curves
+            geometries.append(CurveGeometry(steps, geometry.curve_segments))
             self._rows.update(curve_geometry=len(geometries) - 1,
                               first_curve=len(geometry.triangles) + len(geometry.spheres),
-                              curves=geometry.curves, curve_segments=geometry.curve_segments)
+                              curves=geometry.curves, curve_segments=geometry.curve_segments,
+                              curve_motion=geometry.curve_motion)
         self._scene = Scene(geometries)
         self._local = threading.local()
         #: Chunks trace in compiled loops that query Embree themselves; False makes them call this

@@ -160,9 +160,13 @@ def _motion_note(camera, geometry) -> str:
     if camera.data.shutter_times.shape[0] == 0:
         return ""
     from .accel import moving_triangles
+    from .curves import moving_segments
 
     moving = moving_triangles(geometry)
     what = [f"{int(moving.sum())} moving triangles x{geometry.motion.shape[0]} steps"] if moving is not None else []
+    strands = moving_segments(geometry.curve_motion, geometry.curve_segments)
+    if strands:
+        what.append(f"{strands} moving curve segments x{geometry.curve_motion.shape[0]} steps")
     if camera.data.poses.shape[0]:
         what.append("moving camera")
     return "motion blur (" + (", ".join(what) or "nothing moves") + ")"

@@ -16,14 +16,22 @@ tapered strands: |hit - C(u)| = r(u) within 4e-7 m, (hit - C(u)) . C'(u) = 0), s
 rebuilds the hit as C(u) + r(u) times that direction. The normal (geometric and shading alike, as Cycles
 takes a thick curve's N and Ng alike) is the tube's own, Embree's Ng: that direction leaning along the
 tangent where the radius changes (by -r'/|C'|). Cycles' N = normalize(P - C(u)) does not lean; for hair
-(a radius of 0.1 mm falling to 0 over centimetres) the two differ by about 0.1 degree. Curves do not move with motion blur,
-are not sampled as lights. Their colour attributes and UV maps (``CurveSegments.colors``, ``uvs``) become rows
+(a radius of 0.1 mm falling to 0 over centimetres) the two differ by about 0.1 degree. Curves are not sampled as
+lights.
+
+With motion blur ``Geometry.curve_motion`` holds the control points at the shutter's S time steps (``motion``),
+which Embree interpolates linearly by ray time; every function here reads a segment's control points at the
+ray's ``time`` the same way (``control_point``), so a hit's code, its surface and the way out of the tube are
+those of the strand where the ray met it. ``time`` < 0 (``geometry.FRAME_TIME``) or no motion reads the frame's.
+The functions take ``strands``, a record with ``curves``, ``curve_segments`` and ``curve_motion``
+(``geometry.Geometry``, ``embree.queries.RayCaster``). Their colour attributes and UV maps (``CurveSegments.colors``, ``uvs``) become rows
 of the per-corner tables after the triangles' and the spheres' (``corner_rows``).
 """
 
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,6 +71,16 @@ def no_curves() -> tuple[np.ndarray, np.ndarray]:
     return np.zeros((0, 4), np.float32), np.zeros(0, np.int32)
 
 
+def no_curve_motion() -> np.ndarray:
+    """``Geometry.curve_motion`` of a render whose strands do not move: empty, so kernels read the frame's."""
+    return np.zeros((0, 0, 4), np.float32)
+
+
+#: The tables the curve functions below read, on their own (``geometry.Geometry`` and ``embree.queries.RayCaster``
+#: carry the same fields).
+Strands = namedtuple("Strands", "curves curve_segments curve_motion", defaults=(no_curve_motion(),))
+
+
 def curve_count(curves: CurveSegments | None) -> int:
     """How many segments render (all of them: the export keeps finite strands only)."""
     return 0 if curves is None else len(curves)
@@ -94,6 +112,28 @@ def camera_relative(curves: CurveSegments | None, offset) -> tuple[np.ndarray, n
     table[:, :3] = np.asarray(curves.points, np.float64) - np.asarray(offset, np.float64)
     table[:, 3] = np.asarray(curves.radii, np.float64)
     return np.ascontiguousarray(table.astype(np.float32)), np.ascontiguousarray(curves.segments, np.int32)
+
+
+def camera_relative_motion(curves: CurveSegments | None, steps, offset) -> np.ndarray:
+    """``Geometry.curve_motion``: float32 [S, P, 4] of the control points at the shutter's time steps ``steps``
+    (``motion.Motion.curves``, world) minus ``offset`` (in float64), radius; empty where they do not move."""
+    if curves is None or not len(curves) or steps is None:
+        return no_curve_motion()
+    table = np.array(steps, np.float64)
+    table[..., :3] -= np.asarray(offset, np.float64)
+    return np.ascontiguousarray(table.astype(np.float32))
+
+
+def moving_segments(curve_motion: np.ndarray, segments: np.ndarray) -> int:
+    """How many segments have a control point that moves over the shutter's time steps ``curve_motion``
+    (``Geometry.curve_motion``)."""
+    if curve_motion.shape[0] < 2 or not len(segments):
+        return 0
+    moving = ~(curve_motion == curve_motion[:1]).all(axis=(0, 2))
+    touched = np.zeros(len(segments), bool)
+    for k in range(4):
+        touched |= moving[np.asarray(segments, np.int64) + k]
+    return int(touched.sum())
 
 
 def padded_strands(points: np.ndarray, radii: np.ndarray, offsets: np.ndarray):
@@ -129,14 +169,31 @@ def _weights(u):
 
 
 @inlined
-def curve_at(controls, segments, c, u):
-    """(centre (x, y, z), radius, d centre / du, d radius / du) of segment ``c`` at parameter ``u``."""
-    k = segments[c]
+def control_point(strands, k, time):
+    """(x, y, z, radius) of control point ``k`` at ray time ``time`` (0..1 over the shutter): linear between the two
+    time steps around it, as Embree interpolates them; the frame's where nothing moves or ``time`` < 0."""
+    m = strands.curve_motion
+    if m.shape[0] == 0 or time < 0.0:
+        p = strands.curves
+        return float(p[k, 0]), float(p[k, 1]), float(p[k, 2]), float(p[k, 3])
+    x = min(time, 1.0) * (m.shape[0] - 1)
+    s = min(int(x), m.shape[0] - 2)
+    f = x - s
+    return ((1.0 - f) * float(m[s, k, 0]) + f * float(m[s + 1, k, 0]),
+            (1.0 - f) * float(m[s, k, 1]) + f * float(m[s + 1, k, 1]),
+            (1.0 - f) * float(m[s, k, 2]) + f * float(m[s + 1, k, 2]),
+            (1.0 - f) * float(m[s, k, 3]) + f * float(m[s + 1, k, 3]))
+
+
+@inlined
+def curve_at(strands, c, u, time):
+    """(centre (x, y, z), radius, d centre / du, d radius / du) of segment ``c`` at parameter ``u``, ray time
+    ``time``."""
+    k = strands.curve_segments[c]
     w, d = _weights(u)
     x = y = z = r = dx = dy = dz = dr = 0.0
     for i in range(4):
-        px, py, pz, pr = float(controls[k + i, 0]), float(controls[k + i, 1]), float(controls[k + i, 2]), \
-            float(controls[k + i, 3])
+        px, py, pz, pr = control_point(strands, k + i, time)
         x += w[i] * px
         y += w[i] * py
         z += w[i] * pz
@@ -149,16 +206,16 @@ def curve_at(controls, segments, c, u):
 
 
 @inlined
-def _frame(controls, segments, c, tangent):
+def _frame(strands, c, tangent, time):
     """(unit tangent, s, t, |tangent|): a right-handed frame around the curve's tangent at a point of segment
     ``c``. s is a vector fixed for the whole segment (across its chord, the control points 2 to 3), made
     perpendicular to the tangent: the frame then turns smoothly along the segment and does not hang on the
     rounding of the tangent (whose components cancel to noise along a straight strand, and round
     differently where the kernels compute it), so a hit's code and its surface agree."""
-    k = segments[c]
-    cx = float(controls[k + 2, 0]) - float(controls[k + 1, 0])
-    cy = float(controls[k + 2, 1]) - float(controls[k + 1, 1])
-    cz = float(controls[k + 2, 2]) - float(controls[k + 1, 2])
+    k = strands.curve_segments[c]
+    ax, ay, az, _ = control_point(strands, k + 1, time)
+    bx, by, bz, _ = control_point(strands, k + 2, time)
+    cx, cy, cz = bx - ax, by - ay, bz - az
     chord = math.sqrt(cx * cx + cy * cy + cz * cz)
     length = math.sqrt(tangent[0] * tangent[0] + tangent[1] * tangent[1] + tangent[2] * tangent[2])
     if length > 0.0:
@@ -181,23 +238,24 @@ def _frame(controls, segments, c, tangent):
 
 
 @inlined
-def hit_code(controls, segments, c, u, nx, ny, nz):
-    """The angle (radians) of the normal (nx, ny, nz) (any length) around the tangent of segment ``c`` at ``u``."""
-    _, _, du, _ = curve_at(controls, segments, c, u)
-    _, s, t, _ = _frame(controls, segments, c, du)
+def hit_code(strands, c, u, nx, ny, nz, time):
+    """The angle (radians) of the normal (nx, ny, nz) (any length) around the tangent of segment ``c`` at ``u``,
+    ray time ``time``."""
+    _, _, du, _ = curve_at(strands, c, u, time)
+    _, s, t, _ = _frame(strands, c, du, time)
     return math.atan2(nx * t[0] + ny * t[1] + nz * t[2], nx * s[0] + ny * s[1] + nz * s[2])
 
 
 @inlined
-def curve_surface(controls, segments, c, u, angle):
+def curve_surface(strands, c, u, angle, time):
     """(point, unit outward normal, the same as shading normal) of segment ``c`` where the hit code (u, ``angle``)
     points: the point is the curve's centre at ``u`` plus its radius across the tangent at ``angle`` around it;
     the normal is the tube's own, which leans along the tangent where the radius changes (by -r'/|C'|, as
     Embree's Ng): rays leave the surface along it, so a tapering strand does not catch the rays it sheds,
     and the shading normal is the same (as Cycles' N and Ng of a thick curve are), so no bounce lies on
-    different sides of the two."""
-    centre, r, du, dr = curve_at(controls, segments, c, u)
-    axis, s, t, length = _frame(controls, segments, c, du)
+    different sides of the two. ``time``: the ray's."""
+    centre, r, du, dr = curve_at(strands, c, u, time)
+    axis, s, t, length = _frame(strands, c, du, time)
     ca, sa = math.cos(angle), math.sin(angle)
     lean = min(max(-dr / length, -0.99), 0.99) if length > 0.0 else 0.0
     across = math.sqrt(1.0 - lean * lean)
@@ -208,9 +266,9 @@ def curve_surface(controls, segments, c, u, angle):
 
 
 @inlined
-def curve_tangent(controls, segments, c, u):
-    """d centre / du of segment ``c`` at ``u`` (Cycles' dPdu of a curve; not unit)."""
-    return curve_at(controls, segments, c, u)[2]
+def curve_tangent(strands, c, u, time):
+    """d centre / du of segment ``c`` at ``u``, ray time ``time`` (Cycles' dPdu of a curve; not unit)."""
+    return curve_at(strands, c, u, time)[2]
 
 
 EXIT_MARGIN = 1e-3  # a ray crossing a strand starts this fraction of the radius outside its far wall
@@ -218,9 +276,9 @@ EXIT_STEPS = 3  # Newton steps that find the curve parameter of the far wall's p
 
 
 @inlined
-def _radial(controls, segments, c, u, x):
+def _radial(strands, c, u, x, time):
     """(centre, radius, unit tangent, |C'|, the part of x - centre across the tangent) at ``u``."""
-    centre, r, du, _ = curve_at(controls, segments, c, u)
+    centre, r, du, _ = curve_at(strands, c, u, time)
     size = math.sqrt(du[0] * du[0] + du[1] * du[1] + du[2] * du[2])
     a = (du[0] / size, du[1] / size, du[2] / size) if size > 0.0 else (0.0, 0.0, 1.0)
     ex, ey, ez = x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]
@@ -229,7 +287,7 @@ def _radial(controls, segments, c, u, x):
 
 
 @inlined
-def leave_tube(controls, segments, c, u, p, d):
+def leave_tube(strands, c, u, p, d, time):
     """(origin, distance travelled) of a ray from ``p`` (on segment ``c``'s surface at ``u``) along unit ``d`` that
     points into the tube: it starts just outside the tube's far wall; distance 0 where ``d`` points outward.
     A fibre's closure scatters light through the fibre as if it left where it entered (a far-field model): the
@@ -237,8 +295,8 @@ def leave_tube(controls, segments, c, u, p, d):
     instead of meeting the tube's inside. The far wall: the chord of the circle the ray's projection crosses
     (exact for a straight tube of one radius), then the curve's point nearest it (Newton on (x - C(u)) . C'(u) =
     0, the segment's u clamped to 0-1), and the origin put radially ``EXIT_MARGIN`` outside the radius there (a
-    bent or tapering strand's wall is not where the straight chord ends)."""
-    centre, r, a, size, e, _ = _radial(controls, segments, c, u, p)
+    bent or tapering strand's wall is not where the straight chord ends). ``time``: the ray's."""
+    centre, r, a, size, e, _ = _radial(strands, c, u, p, time)
     e_size = math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
     if not (size > 0.0 and r > 0.0 and e_size > 0.0):
         return p, 0.0
@@ -250,11 +308,11 @@ def leave_tube(controls, segments, c, u, p, d):
     x = (p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2])
     w = min(max(u + t * d_along / size, 0.0), 1.0)
     for _ in range(EXIT_STEPS):
-        centre, r, a, size, e, along = _radial(controls, segments, c, w, x)
+        centre, r, a, size, e, along = _radial(strands, c, w, x, time)
         if not size > 0.0:
             break
         w = min(max(w + along / size, 0.0), 1.0)
-    centre, r, a, size, e, along = _radial(controls, segments, c, w, x)
+    centre, r, a, size, e, along = _radial(strands, c, w, x, time)
     e_size = math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
     if not e_size > 0.0:
         return x, t

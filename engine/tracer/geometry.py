@@ -17,7 +17,8 @@ vertices interpolated linearly between the two steps around τ·(S-1), as Embree
 without) and ``sphere_random`` float32 [S] (each point's Point Info ▸ Random): rows T .. T + S - 1 of the render's primitives.
 ``curves`` float32 [P, 4] and ``curve_segments`` int32 [C] (``curves``: the control points of hair strands,
 camera-relative point and radius, and the first control point of each segment; [0, 4] and [0] without) and
-``curve_info`` float32 [C, 4] (each segment's Hair Info, ``curves.curve_info``):
+``curve_info`` float32 [C, 4] (each segment's Hair Info, ``curves.curve_info``) and ``curve_motion`` float32
+[S, P, 4] (with motion blur, the control points at the shutter's time steps; [0, 0, 4] without):
 rows T + S .. T + S + C - 1. So ``material``, ``flags`` (and ``attributes.instance`` when it is not empty)
 hold T + S + C entries; the per-corner tables hold T, but for the colour attributes and UV maps, which hold
 rows for the spheres (each point's colours at all three corners) and the segments (``curves.corner_rows``)
@@ -37,8 +38,9 @@ from .vec3 import tangents
 from .spheres import camera_relative, no_spheres, point_random, rendered_rows, sphere_surface
 
 Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags motion motion_normals spheres "
-                      "sphere_random curves curve_segments curve_info",
-                      defaults=(no_spheres(), np.zeros(0, np.float32), *hair.no_curves(), np.zeros((0, 4), np.float32)))
+                      "sphere_random curves curve_segments curve_info curve_motion",
+                      defaults=(no_spheres(), np.zeros(0, np.float32), *hair.no_curves(), np.zeros((0, 4), np.float32),
+                                hair.no_curve_motion()))
 
 #: A ``surface_at`` time that reads the positions at the frame (``Geometry.vertices``), where the light
 #: table's emitters stand, instead of those at a ray time of the shutter.
@@ -100,7 +102,9 @@ def prepare_geometry(scene, offset):
     geometry = Geometry(np.ascontiguousarray(relative32), np.ascontiguousarray(triangles[original], dtype=np.int32),
                         np.ascontiguousarray(material), normals, attributes, np.ascontiguousarray(flags),
                         *_motion_arrays(scene, original, offset, len(normals)), camera_relative(points, rows, offset),
-                        point_random(points, rows), *hair.camera_relative(strands, offset), hair.curve_info(strands))
+                        point_random(points, rows), *hair.camera_relative(strands, offset), hair.curve_info(strands),
+                        hair.camera_relative_motion(strands, getattr(getattr(scene, "motion", None), "curves", None),
+                                                    offset))
     return geometry, original, int(len(triangles) - len(original))
 
 
@@ -223,7 +227,7 @@ def surface_at(geometry, triangle, u, v, time):
         s = triangle - geometry.triangles.shape[0]
         if s < geometry.spheres.shape[0]:
             return sphere_surface(geometry.spheres, s, u, v)
-        return hair.curve_surface(geometry.curves, geometry.curve_segments, s - geometry.spheres.shape[0], u, v)
+        return hair.curve_surface(geometry, s - geometry.spheres.shape[0], u, v, time)
     a = geometry.triangles[triangle, 0]
     b = geometry.triangles[triangle, 1]
     c = geometry.triangles[triangle, 2]
@@ -265,15 +269,15 @@ def offset_origin(p, ng, toward):
 
 
 @inlined
-def hit_tangent(geometry, triangle, u, n, along_v):
+def hit_tangent(geometry, triangle, u, n, along_v, time):
     """A unit tangent at a hit, the direction Cycles' hair closures take as the fibre's: a curve's tangent at
-    ``u``; on a triangle d position / d barycentric u (its first edge; Cycles' ``sd->dPdu``), or with ``along_v``
+    ``u`` at ray time ``time``; on a triangle d position / d barycentric u (its first edge; Cycles' ``sd->dPdu``), or with ``along_v``
     d position / d v (its second edge, ``sd->dPdv``, what the Hair BSDF takes); on a sphere a tangent of its
     normal ``n``."""
     if triangle >= geometry.triangles.shape[0]:
         s = triangle - geometry.triangles.shape[0]
         if s >= geometry.spheres.shape[0]:
-            t = hair.curve_tangent(geometry.curves, geometry.curve_segments, s - geometry.spheres.shape[0], u)
+            t = hair.curve_tangent(geometry, s - geometry.spheres.shape[0], u, time)
         else:
             t = tangents(n)[0]
     else:
@@ -294,12 +298,13 @@ def on_curve(geometry, triangle):
 
 
 @inlined
-def leave_surface(geometry, triangle, u, p, ng, toward):
+def leave_surface(geometry, triangle, u, p, ng, toward, time):
     """(origin, distance skipped) of a ray leaving the hit at ``p`` along unit ``toward``: ``offset_origin``, or,
-    into a hair strand's tube, from just outside the tube's far wall (``curves.leave_tube``)."""
+    into a hair strand's tube, from just outside the tube's far wall (``curves.leave_tube``; the strand where it
+    stands at the ray's ``time``)."""
     if on_curve(geometry, triangle) and toward[0] * ng[0] + toward[1] * ng[1] + toward[2] * ng[2] < 0.0:
         first_curve = geometry.triangles.shape[0] + geometry.spheres.shape[0]
-        q, t = hair.leave_tube(geometry.curves, geometry.curve_segments, triangle - first_curve, u, p, toward)
+        q, t = hair.leave_tube(geometry, triangle - first_curve, u, p, toward, time)
         if t > 0.0:
             return offset_origin(q, toward, toward), t
     return offset_origin(p, ng, toward), 0.0

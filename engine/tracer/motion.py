@@ -27,11 +27,13 @@ SHUTTER_TABLE_SIZE = 256
 @dataclass
 class Motion:
     """The scene's geometry at the shutter's S time steps: ``vertices`` float64 [S, V, 3] (world, m, the
-    same vertices as ``Scene.vertices`` in the same order) and ``corner_normals`` float32 [S, T, 3, 3]
-    (or None for flat shading)."""
+    same vertices as ``Scene.vertices`` in the same order; None where no triangle moves), ``corner_normals``
+    float32 [S, T, 3, 3] (or None for flat shading) and ``curves`` float64 [S, P, 4] (the hair strands' control
+    points, world, and radii, in the order of ``Scene.curves``; None where no strand moves)."""
 
-    vertices: np.ndarray
+    vertices: np.ndarray | None
     corner_normals: np.ndarray | None = None
+    curves: np.ndarray | None = None
 
 
 def motion_step_count(steps: int) -> int:

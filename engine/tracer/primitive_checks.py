@@ -42,13 +42,23 @@ def check_points(points, material_count: int, object_names, color_slots: int = 0
             raise PrismInputError(f"Point cloud '{name}' {problem} before rendering.")
 
 
-def check_curves(curves, material_count: int, object_names, color_slots: int = 0, uv_slots: int = 0) -> None:
+def check_curves(curves, material_count: int, object_names, color_slots: int = 0, uv_slots: int = 0,
+                 motion=None) -> None:
     """``curves`` (a ``curves.CurveSegments``): materials, control points, reachable points, colour attributes and
-    UV maps (one row per segment, in each of the scene's ``color_slots`` and ``uv_slots`` slots)."""
+    UV maps (one row per segment, in each of the scene's ``color_slots`` and ``uv_slots`` slots), and the control
+    points at the shutter's time steps ``motion`` (``motion.Motion.curves``: [S, P, 4], finite, radii >= 0)."""
     _check_materials("curves", curves.material, material_count)
     segments = np.asarray(curves.segments)
     if segments.min() < 0 or segments.max() + 3 >= len(curves.radii):
         raise PrismInputError("Scene curve segments refer to control points that do not exist: re-export the scene.")
+    if motion is not None:
+        steps = np.asarray(motion)
+        if steps.ndim != 3 or steps.shape[0] < 2 or steps.shape[1:] != (len(curves.radii), 4):
+            raise PrismInputError(f"Scene curve motion has shape {steps.shape}, not (steps >= 2, {len(curves.radii)}, "
+                                  "4) (time steps, control points, position and radius): re-export the scene.")
+        if not (np.isfinite(steps).all() and (steps[..., 3] >= 0).all()):
+            raise PrismInputError("Scene curve motion has control points that are not finite or radii below 0: "
+                                  "re-export the scene.")
     for what, ends, shape in (("colour attributes", curves.colors, (color_slots, len(segments), 2, 4)),
                               ("UV maps", curves.uvs, (uv_slots, len(segments), 2, 2))):
         if ends is not None and np.shape(ends) != shape:

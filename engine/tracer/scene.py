@@ -315,7 +315,8 @@ class Scene:
         if triangles and self.points is not None and len(self.points):
             check_points(self.points, len(self.materials), self.object_names, slots[0])
         if triangles and self.curves is not None and len(self.curves):
-            check_curves(self.curves, len(self.materials), self.object_names, *slots)
+            check_curves(self.curves, len(self.materials), self.object_names, *slots,
+                         motion=getattr(self.motion, "curves", None))
         for light in self.lights:
             _check_position(f"Light '{light.name}'", light.position)
 

@@ -47,7 +47,8 @@ class _Subset:
                        geometry.motion_normals[:, triangles] if len(geometry.motion_normals) else geometry.motion_normals,
                        np.ascontiguousarray(geometry.spheres[spheres]), geometry.sphere_random[spheres],
                        geometry.curves, np.ascontiguousarray(geometry.curve_segments[segments]),
-                       geometry.curve_info[segments] if len(geometry.curve_info) else geometry.curve_info)
+                       geometry.curve_info[segments] if len(geometry.curve_info) else geometry.curve_info,
+                       geometry.curve_motion)
         self.accel = Accel(sub)
 
     def _map(self, hit):

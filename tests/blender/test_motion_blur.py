@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from helpers.cycles import render_cycles_rgba, render_prism_rgba
+from helpers.node_scenes import linear_keys
 
 PIXELS_X, PIXELS_Y, VIEW_M = 48, 16, 6.0  # 1/8 m a pixel
 SPEED_M_PER_FRAME, SHUTTER_FRAMES = 2.0, 0.5  # travel while open: 1 m, 8 px
@@ -42,7 +43,7 @@ def _moving_card_scene(scene):
     for frame, x in ((0, -SPEED_M_PER_FRAME), (2, SPEED_M_PER_FRAME)):  # x = 0 at frame 1
         card.location = (x, 0.0, 0.0)
         card.keyframe_insert("location", frame=frame)
-    _linear_keys(card)
+    linear_keys(card)
     camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
     camera.location = (0.0, 0.0, 5.0)
     camera.data.type = "ORTHO"
@@ -102,12 +103,6 @@ def test_the_smear_matches_cycles_in_absolute_light(fresh_scene):
     assert _profile(cycles).max() > 0.95  # Cycles blurred it too (a plateau of 1 and ramps)
 
 
-def _linear_keys(datablock):
-    for curve in datablock.animation_data.action.fcurves:
-        for key in curve.keyframe_points:
-            key.interpolation = "LINEAR"
-
-
 def _camera_moves_instead(scene, card):
     """The card stands at x = 0; the camera flies at the card's speed the other way (the same smear)."""
     card.animation_data_clear()
@@ -116,7 +111,7 @@ def _camera_moves_instead(scene, card):
     for frame, x in ((0, SPEED_M_PER_FRAME), (2, -SPEED_M_PER_FRAME)):
         camera.location = (x, 0.0, 5.0)
         camera.keyframe_insert("location", frame=frame)
-    _linear_keys(camera)
+    linear_keys(camera)
 
 
 def _card_deforms_instead(scene, card):
@@ -132,7 +127,7 @@ def _card_deforms_instead(scene, card):
     for frame, value in ((0, 0.0), (2, 1.0)):
         slide.value = value
         slide.keyframe_insert("value", frame=frame)
-    _linear_keys(card.data.shape_keys)
+    linear_keys(card.data.shape_keys)
 
 
 @pytest.mark.parametrize("motion", [_camera_moves_instead, _card_deforms_instead])

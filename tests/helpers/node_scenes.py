@@ -107,6 +107,13 @@ def uv_sphere(name, radius, location, mat=None, segments=48, rings=24):
     return obj
 
 
+def linear_keys(datablock):
+    """Make every keyframe of ``datablock``'s action interpolate linearly (constant speed between keys)."""
+    for curve in datablock.animation_data.action.fcurves:
+        for key in curve.keyframe_points:
+            key.interpolation = "LINEAR"
+
+
 def camera(location, look_at, lens_mm=50.0, resolution=(64, 48), sensor_mm=36.0):
     scene = bpy.context.scene
     cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))

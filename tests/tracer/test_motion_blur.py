@@ -1,11 +1,13 @@
 """Motion blur against its closed form: an emitting square moving sideways at constant speed during the
 shutter, seen by an orthographic camera over a black world, smears into the box convolution of its
-sharp profile (linear ramps of width speed × shutter) and keeps its energy; a still square seen by a
-camera moving the other way gives the same smear; a still scene renders bit for bit as without motion."""
+sharp profile (linear ramps of width speed × shutter) and keeps its energy; so does a glowing hair strand
+(a round curve as wide as the square) moving the same way; a still square seen by a camera moving the other
+way gives the same smear; a still scene renders bit for bit as without motion."""
 
 import numpy as np
 import pytest
 
+from engine.tracer.curves import CurveSegments, padded_strands
 from engine.tracer.motion import Motion, shutter_times
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Material, SpectrumSpec
@@ -86,6 +88,38 @@ def test_a_moving_square_smears_into_the_box_convolution_and_keeps_its_energy():
     pixel_area = (WIDTH_M / PIXELS) ** 2
     assert energy_blurred / energy_sharp == pytest.approx(1.0, abs=0.01)
     assert energy_sharp * pixel_area == pytest.approx(SIDE_M ** 2, rel=0.01)
+
+
+def _strand_scene(travel_m):
+    """A glowing round strand of diameter ``SIDE_M`` along y across the whole view (its ends outside it), moving
+    ``travel_m`` along x over the shutter (3 time steps); a black speck far outside the view is the scene's only
+    triangle."""
+    glow = Material("glow", base_color=(0.0, 0.0, 0.0), emission=SpectrumSpec(), emission_strength=1.0)
+    black = Material("black", base_color=(0.0, 0.0, 0.0))
+    scene = make_scene([(*quad((100.0, 0.0, 0.0), (0.1, 0, 0), (0, 0.1, 0)), 1)], [glow, black], _camera())
+    points, radii, segments = padded_strands(np.linspace([0.0, -3.0, 0.0], [0.0, 3.0, 0.0], 4), np.full(4, SIDE_M / 2),
+                                             np.array([0, 4]))
+    scene.curves = CurveSegments(points, radii, segments, np.zeros(len(segments), np.int32),
+                                 np.zeros(len(segments), np.int32))
+    scene.object_names, scene.triangle_object = ["Hair", "Speck"], np.ones(2, np.int32)
+    if travel_m > 0.0:
+        scene.camera.shutter_times = shutter_times([1.0, 1.0])
+        frame = np.column_stack([points, radii])
+        scene.motion = Motion(None, None, np.stack([frame + [dx, 0.0, 0.0, 0.0]
+                                                    for dx in _steps(-travel_m / 2, travel_m / 2)]))
+    return scene
+
+
+def test_a_moving_strand_smears_into_the_box_convolution_and_keeps_its_energy():
+    sharp = _render(_strand_scene(0.0))
+    blurred = _render(_strand_scene(TRAVEL_M), says="motion blur (3 moving curve segments x3 steps)")
+    profile = _middle_rows(blurred)
+    expected = _box_profile(0.0, TRAVEL_M)
+    assert np.abs(profile - expected).max() < 0.03, np.round(np.c_[profile, expected][20:44], 3)
+    assert abs(np.sum(profile > 0.01) - (SIDE_M + TRAVEL_M) / WIDTH_M * PIXELS) <= 1  # smear: side + travel
+    pixel_area = (WIDTH_M / PIXELS) ** 2
+    assert blurred.sum() / sharp.sum() == pytest.approx(1.0, abs=0.01)
+    assert sharp.sum() * pixel_area == pytest.approx(SIDE_M * WIDTH_M, rel=0.01)  # the strand across the view
 
 
 def test_a_moving_camera_smears_a_still_square_the_same_way():

@@ -10,6 +10,8 @@ bounce loop runs in one compiled call (the issue "Every core of an artist's work
 - ``device``: an Embree device and its errors (``EmbreeError``).
 - ``scene``: a scene of triangle geometry over shared camera-relative float32 buffers (vertex time
   steps for motion blur's moving triangles).
+- ``spheres``, ``curves``: point clouds' spheres and hair's round Catmull-Rom curves (control point time
+  steps for moving hair).
 - ``queries``: per-ray compiled functions (closest hit, occlusion) and whole-queue kernels.
 
 embreex's Python API stays the oracle the tests compare this layer with (same hits, same primitive ids).

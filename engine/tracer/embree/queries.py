@@ -29,12 +29,12 @@ from .layout import ALL_MASK, DIR_X, FLAGS, GEOM_ID, INST_ID, INVALID_ID, MASK, 
 #: ``sphere_geometry`` the geometry id of the sphere points (-1: none) and ``first_sphere`` the row of its
 #: sphere 0 (spheres follow the triangles: row = ``first_sphere`` + primitive id); ``curve_geometry`` the
 #: geometry id of the curve segments (-1: none), ``first_curve`` the row of its segment 0 (after the spheres)
-#: and ``curves`` / ``curve_segments`` their control points and segments (``Geometry.curves``), which a
-#: curve hit's code is computed from.
+#: and ``curves`` / ``curve_segments`` / ``curve_motion`` their control points, segments and control points at
+#: the shutter's time steps (``Geometry.curves``, ``curve_motion``), which a curve hit's code is computed from.
 RayCaster = namedtuple("RayCaster", "scene words ids moving_geometry triangle_of first_moving sphere_geometry "
-                       "first_sphere curve_geometry first_curve curves curve_segments",
+                       "first_sphere curve_geometry first_curve curves curve_segments curve_motion",
                        defaults=(-1, np.zeros(1, np.int32), 0, -1, 0, -1, 0, np.zeros((0, 4), np.float32),
-                                 np.zeros(0, np.int32)))
+                                 np.zeros(0, np.int32), np.zeros((0, 0, 4), np.float32)))
 
 library.load()  # before any kernel below is compiled or loaded: they link to its symbols by name
 
@@ -83,8 +83,8 @@ def closest_hit(caster, ox, oy, oz, dx, dy, dz, tmax, time):
                 np.float32(nv))
     if np.int64(ids[GEOM_ID]) == caster.curve_geometry:
         c = np.int64(ids[PRIM_ID])
-        angle = hit_code(caster.curves, caster.curve_segments, c, float(words[U]), float(words[NG_X]),
-                         float(words[NG_X + 1]), float(words[NG_X + 2]))
+        angle = hit_code(caster, c, float(words[U]), float(words[NG_X]), float(words[NG_X + 1]),
+                         float(words[NG_X + 2]), time)
         return np.int32(caster.first_curve + c), words[TFAR], words[U], np.float32(angle)
     if caster.moving_geometry < 0:
         return np.int32(ids[PRIM_ID]), words[TFAR], words[U], words[V]

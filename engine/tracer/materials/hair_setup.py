@@ -90,14 +90,14 @@ def _unit_or(regs, r, fallback):
 
 
 @inlined
-def set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength_nm, regs):
+def set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength_nm, regs, time):
     """Every ``HAIR`` closure among ``count`` at the hit (``triangle``, ``u``; ``ng`` facing the view ``wo``, world):
     parameters, absorption, h, and the unit tangent (world; turned into the shading frame by
     ``closure_normals.orient_closures``). As Cycles' ``svm/closure.h``, the Hair BSDF's lobes take the linked
     Tangent (``C_HAIR_TANGENT``, a register of ``regs``) where there is one, else off curves d position / d v and
     no Offset."""
     curve = on_curve(geometry, triangle)
-    tangent = hit_tangent(geometry, triangle, u, ng, False)
+    tangent = hit_tangent(geometry, triangle, u, ng, False, time)
     segment = triangle - geometry.triangles.shape[0] - geometry.spheres.shape[0]
     has_info = curve and segment < geometry.curve_info.shape[0]
     strand_random = float(geometry.curve_info[segment, 3]) if has_info else 0.0
@@ -113,6 +113,6 @@ def set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength
         elif rows[c, C_HAIR_TANGENT] >= 0.0:
             t = _unit_or(regs, int(rows[c, C_HAIR_TANGENT]), tangent)
         elif not curve:
-            t = hit_tangent(geometry, triangle, u, ng, True)
+            t = hit_tangent(geometry, triangle, u, ng, True, time)
             rows[c, C_HAIR_OFFSET] = 0.0
         rows[c, C_HAIR_TX], rows[c, C_HAIR_TY], rows[c, C_HAIR_TZ] = t

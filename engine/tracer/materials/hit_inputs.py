@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 
-from ..curves import curve_tangent
+from ..curves import control_point, curve_tangent
 from ..geometry import FRAME_TIME, surface_at
 from ..jit import inlined, kernel
 from ..octahedral import decode
@@ -183,12 +183,12 @@ def raw_normal(geometry, triangle, u, v):
 
 
 @inlined
-def hair_info(geometry, triangle, u, wo, field):
+def hair_info(geometry, triangle, u, wo, field, time):
     """Cycles' Hair Info output ``field`` (``opcodes.HAIR_INFO_FIELDS``) at curve parameter ``u`` of the segment in
     row ``triangle`` seen along ``wo``, as a 3-tuple (scalars in its first entry); zeros off curves, as Cycles
     finds no curve attribute there (``svm_node_hair_info``, ``geom/curve.h``). Intercept is interpolated linearly
     between the segment's points, Thickness is twice the radius interpolated so, Tangent Normal is the view
-    direction made perpendicular to the tangent."""
+    direction made perpendicular to the tangent (the strand as it stands at ray time ``time``)."""
     first = geometry.triangles.shape[0] + geometry.spheres.shape[0]
     s = triangle - first
     if s < 0 or s >= geometry.curve_segments.shape[0]:
@@ -196,7 +196,7 @@ def hair_info(geometry, triangle, u, wo, field):
     if field == 0:
         return (1.0, 0.0, 0.0)
     if field == 4:
-        t = curve_tangent(geometry.curves, geometry.curve_segments, s, u)
+        t = curve_tangent(geometry, s, u, time)
         t2 = t[0] * t[0] + t[1] * t[1] + t[2] * t[2]
         along = (t[0] * wo[0] + t[1] * wo[1] + t[2] * wo[2]) / t2 if t2 > 0.0 else 0.0
         x, y, z = wo[0] - along * t[0], wo[1] - along * t[1], wo[2] - along * t[2]
@@ -204,7 +204,7 @@ def hair_info(geometry, triangle, u, wo, field):
         return (x / size, y / size, z / size) if size > 0.0 else (0.0, 0.0, 0.0)
     if field == 3:
         k = geometry.curve_segments[s]
-        r0, r1 = float(geometry.curves[k + 1, 3]), float(geometry.curves[k + 2, 3])
+        r0, r1 = control_point(geometry, k + 1, time)[3], control_point(geometry, k + 2, time)[3]
         return (2.0 * ((r1 - r0) * u + r0), 0.0, 0.0)
     info = geometry.curve_info
     if info.shape[0] <= s:

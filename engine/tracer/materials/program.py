@@ -30,7 +30,7 @@ from . import opcodes as op
 from .closure_normals import valid_specular_normal
 from .layering import dielectric_darkening, dielectric_s
 from .light_path import light_path_output
-from .shader_rays import traced_node
+from .shader_rays import ray_time, traced_node
 
 #: Per material: instruction range ``start`` / ``count``, register-file range ``const_start`` /
 #: ``const_count`` in ``constants``; ``normal``, ``emission`` (colour) and ``emission_scale`` registers (-1:
@@ -129,7 +129,7 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
             elif code == op.POINT_INFO:
                 _point_info(regs, dst, mode, geometry, triangle, attrs.offset)
             elif code == op.HAIR_INFO:
-                info = hit.hair_info(geometry, triangle, hu, wo, mode)
+                info = hit.hair_info(geometry, triangle, hu, wo, mode, ray_time(rays))
                 if mode == 4:  # Tangent Normal
                     _put3(regs, dst, info)
                 else:

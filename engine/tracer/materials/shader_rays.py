@@ -25,7 +25,7 @@ import math
 from collections import namedtuple
 
 from ..embree.queries import closest_hit, is_occluded
-from ..geometry import OFFSET_ABSOLUTE, OFFSET_RELATIVE, offset_origin, surface_at
+from ..geometry import FRAME_TIME, OFFSET_ABSOLUTE, OFFSET_RELATIVE, offset_origin, surface_at
 from ..jit import inlined, kernel
 from ..sampler import sample_2d, shader_ray_slot
 from ..vec3 import tangents
@@ -199,6 +199,15 @@ def _unit_or(v, fallback):
     if length == 0.0 or not math.isfinite(length):
         return fallback
     return (v[0] / length, v[1] / length, v[2] / length)
+
+
+@kernel
+def ray_time(rays):
+    """The ray time of the hit a material runs at: ``rays.time``, or ``FRAME_TIME`` with ``rays`` None (light
+    tracing, baking: no motion blur there). A kernel of its own, so that numba compiles it without the rays."""
+    if rays is not None:
+        return float(rays.time)
+    return FRAME_TIME
 
 
 @kernel

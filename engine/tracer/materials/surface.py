@@ -25,6 +25,7 @@ from .resolve import _fill, copy_rows, resolve_material, resolve_spectral, selec
 from .layering import under_layer
 from .sheen_setup import set_up_sheen
 from .hair_setup import set_up_hair
+from .shader_rays import ray_time
 from .closure_normals import SAME_NORMAL, set_up_normals
 from .table import (MAT_BUMP_CORRECTION, MAT_CLOSURE_NORMALS, MAT_HAIR, MAT_LAYERED, MAT_MULTISCATTER, MAT_ONE_SIDED,
                     MAT_OWN_NORMALS, MAT_PROGRAM, MAT_SHEEN)
@@ -70,7 +71,7 @@ def shade_surface(materials, spectra, geometry, material, triangle, u, v, p, ng,
         r = materials.programs.normal[material]
         shading = (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else n
     if flags & MAT_HAIR:
-        set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength_nm, regs)
+        set_up_hair(rows, spectral, count, geometry, triangle, u, ng, wo, wavelength_nm, regs, ray_time(rays))
     if flags & MAT_CLOSURE_NORMALS and (flags & MAT_OWN_NORMALS or
                                         shading[0] * ng[0] + shading[1] * ng[1] + shading[2] * ng[2] < SAME_NORMAL):
         set_up_normals(rows, count, regs, wo, ng, n, shading, flags & MAT_BUMP_CORRECTION != 0)

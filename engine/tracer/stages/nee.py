@@ -74,7 +74,7 @@ def sample_direct(state, i, vertex, bsdf, lights, materials, spectra, geometry, 
         factor = clamp_factor(settings, state, i, contribution, depth > 0)
         for k in range(li.shape[0]):
             contribution[k] *= factor
-    origin, skipped = leave_surface(geometry, state.hit_triangle[i], state.hit_u[i], p, ng, wi)
+    origin, skipped = leave_surface(geometry, state.hit_triangle[i], state.hit_u[i], p, ng, wi, state.time[i])
     distance = (dist - skipped) * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
     # the medium: the path's; the shading stage corrects it where the surface bounds a medium
     if not queue_shadow(shadows, slot, i, origin, wi, distance, group, state.medium[i], shadow_sets):

@@ -224,7 +224,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                 state.receiver[i] = lights.links.receiver_set[triangle]
         if has_media and mflags & MAT_MEDIUM:
             state.medium[i] = side_medium(materials, material, wi, ng, settings.outside_medium)
-        origin, _ = leave_surface(geometry, triangle, state.hit_u[i], p, ng, wi)
+        origin, _ = leave_surface(geometry, triangle, state.hit_u[i], p, ng, wi, state.time[i])
         pushed = push_ray(state, next_rays, queued, i, origin, wi)
         queued += pushed
         rejected[0] += 1 - pushed

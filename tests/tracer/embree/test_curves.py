@@ -10,7 +10,7 @@ find it again."""
 import numpy as np
 import pytest
 
-from engine.tracer.curves import curve_at, curve_surface, padded_strands
+from engine.tracer.curves import Strands, curve_at, curve_surface, padded_strands
 from engine.tracer.embree.curves import CurveGeometry
 from engine.tracer.embree.errors import EmbreeError
 from engine.tracer.embree.layout import new_ray_hit_record
@@ -85,21 +85,25 @@ def _analytic(a, b, r, origin, direction):
     return best, best_t, normal, margin, capped
 
 
-def _trace(scene, origin, direction, caster_rows):
+def _trace(scene, origin, direction, caster_rows, time=None):
     caster = RayCaster(scene.handle, *new_ray_hit_record(), **caster_rows)
     n = len(origin)
     hits = HitRecord(np.empty(n, np.int32), np.empty(n, np.float32), np.empty(n, np.float32), np.empty(n, np.float32))
-    queue = RayQueue(np.arange(n, dtype=np.int32), origin, direction, np.full(n, 1e30, np.float32), np.full(n, 0.5))
+    queue = RayQueue(np.arange(n, dtype=np.int32), origin, direction, np.full(n, 1e30, np.float32),
+                     np.full(n, 0.5) if time is None else time)
     closest_hits(caster, queue, n, False, hits)
     blocked = np.empty(n, np.int32)
     occlusion(caster, queue, n, blocked)
     return hits, blocked
 
 
-def _surface(controls, segments, hits, chosen, first_curve):
-    """(points, geometric normals, shading normals) rebuilt from the hits ``chosen``."""
-    rebuilt = [curve_surface(controls, segments, int(row) - first_curve, float(u), float(v))
-               for row, u, v in zip(hits.triangle[chosen], hits.u[chosen], hits.v[chosen])]
+def _surface(controls, segments, hits, chosen, first_curve, motion=None, time=None):
+    """(points, geometric normals, shading normals) rebuilt from the hits ``chosen`` (at their rays' ``time``
+    where the curves have ``motion``)."""
+    strands = Strands(controls, segments) if motion is None else Strands(controls, segments, motion)
+    times = np.full(len(hits.triangle), 0.5) if time is None else time
+    rebuilt = [curve_surface(strands, int(row) - first_curve, float(u), float(v), float(tau))
+               for row, u, v, tau in zip(hits.triangle[chosen], hits.u[chosen], hits.v[chosen], times[chosen])]
     return tuple(np.array([r[i] for r in rebuilt]) for i in range(3))
 
 
@@ -113,12 +117,7 @@ def test_straight_segments_match_the_analytic_capsule():
     origin = rng.uniform(-2.0, 2.0, (n, 3))
     toward = rng.uniform(-1.5, 1.5, (n, 3))  # aim at the capsules' region, so many rays hit them
     direction = (toward - origin) * rng.uniform(0.5, 2.0, (n, 1))  # not unit
-    # outside every capsule (Embree's round curves are seen from outside)
-    outside = np.ones(n, bool)
-    for k in range(len(a)):
-        w = (b[k] - a[k]) / np.linalg.norm(b[k] - a[k])
-        along = np.clip((origin - a[k]) @ w, 0, np.linalg.norm(b[k] - a[k]))
-        outside &= np.linalg.norm(origin - (a[k] + along[:, None] * w), axis=1) > r[k] * 1.01
+    outside = _outside(a, b, r, origin)
     origin, direction = origin[outside].astype(np.float32), direction[outside].astype(np.float32)
     rows = dict(curve_geometry=2, first_curve=2, curves=controls, curve_segments=segments32)
     hits, blocked = _trace(scene, origin, direction, rows)
@@ -136,6 +135,50 @@ def test_straight_segments_match_the_analytic_capsule():
     angle = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", nrm, normal[on_curve]), -1, 1)))
     assert angle.max() < 0.1, angle.max()
     np.testing.assert_array_equal(blocked[clear], np.where(hits.triangle[clear] >= 0, 0, -1))
+
+
+def _outside(a, b, r, origin):
+    """Which ``origin`` points lie outside every capsule (Embree's round curves are seen from outside)."""
+    outside = np.ones(len(origin), bool)
+    for k in range(len(a)):
+        w = (b[k] - a[k]) / np.linalg.norm(b[k] - a[k])
+        along = np.clip((origin - a[k]) @ w, 0, np.linalg.norm(b[k] - a[k]))
+        outside &= np.linalg.norm(origin - (a[k] + along[:, None] * w), axis=1) > r[k] * 1.01
+    return outside
+
+
+def test_moving_segments_are_met_where_they_stand_at_each_rays_time():
+    """The capsules at 3 time steps, moving 0.7 m in a straight line over the shutter (the middle step the frame's):
+    a ray at time τ meets them moved by (τ - 1/2) of the travel (the analytic capsules, with the ray moved back
+    instead), and the surface rebuilt from its hit code at τ (the control points read at the ray's time) is where
+    the ray met it, its normal the analytic one."""
+    controls, segments, a, b, r = _capsules()
+    segments32 = segments.astype(np.int32)
+    travel = np.array([0.6, -0.2, 0.3])
+    motion = np.stack([controls + np.r_[travel * f, 0.0] for f in (-0.5, 0.0, 0.5)]).astype(np.float32)
+    scene = Scene([CurveGeometry(list(motion), segments)])
+    rng = np.random.default_rng(8)
+    n = 30000
+    time = rng.uniform(0.0, 1.0, n)
+    shift = (time - 0.5)[:, None] * travel  # where the capsules stand at each ray's time, from the frame's
+    origin = rng.uniform(-2.0, 2.0, (n, 3))
+    direction = (rng.uniform(-1.5, 1.5, (n, 3)) + shift - origin) * rng.uniform(0.5, 2.0, (n, 1))
+    outside = _outside(a, b, r, origin - shift)
+    origin, direction, time, shift = (origin[outside].astype(np.float32), direction[outside].astype(np.float32),
+                                      time[outside], shift[outside])
+    rows = dict(curve_geometry=0, first_curve=0, curves=motion[1], curve_segments=segments32, curve_motion=motion)
+    hits, _ = _trace(scene, origin, direction, rows, time)
+    best, t, normal, margin, capped = _analytic(a, b, r, origin - shift, direction)
+    clear = (margin > 1e-3) & ~capped
+    on_curve = clear & (best >= 0)
+    assert on_curve.sum() > 2500 and (clear & (best < 0)).sum() > 1000
+    np.testing.assert_array_equal(hits.triangle[clear], np.where(best[clear] >= 0, best[clear], -1))
+    np.testing.assert_allclose(hits.t[on_curve], t[on_curve], rtol=1e-4, atol=1e-5)
+    p, nrm, _ = _surface(motion[1], segments32, hits, on_curve, 0, motion, time)
+    hit_point = origin[on_curve].astype(np.float64) + t[on_curve, None] * direction[on_curve].astype(np.float64)
+    assert np.linalg.norm(p - hit_point, axis=1).max() < 1e-4 * np.abs(hit_point).max() + 1e-5
+    angle = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", nrm, normal[on_curve]), -1, 1)))
+    assert angle.max() < 0.1, angle.max()
 
 
 def _bent_strands(count=40, seed=7):
@@ -196,7 +239,7 @@ def test_bent_tapered_strands_rebuild_the_hit_point_and_shed_their_own_rays():
     np.testing.assert_array_equal(shading, nrm)
     across = []  # the direction from the curve's centre at u to the hit, across the tangent
     for row, u in zip(hits.triangle[hit], hits.u[hit]):
-        centre, radius, _, _ = curve_at(controls, segments32, int(row), float(u))
+        centre, radius, _, _ = curve_at(Strands(controls, segments32), int(row), float(u), 0.5)
         across.append(np.array(centre))
     across = p - np.array(across)
     across /= np.linalg.norm(across, axis=1, keepdims=True)
@@ -258,7 +301,7 @@ def test_rays_into_a_strand_leave_from_its_far_wall():
     d = -nrm + rng.normal(size=nrm.shape) * 0.7
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     inward = np.einsum("ij,ij->i", d, nrm) < 0
-    left = [leave_tube(controls, segments32, int(row), float(u), tuple(a), tuple(b))
+    left = [leave_tube(Strands(controls, segments32), int(row), float(u), tuple(a), tuple(b), 0.5)
             for row, u, a, b in zip(hits.triangle[hit], hits.u[hit], p, d)]
     start = np.array([q for q, _ in left])
     travelled = np.array([t for _, t in left])
