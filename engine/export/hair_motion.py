@@ -30,6 +30,22 @@ def _table(curves) -> np.ndarray:
     return np.column_stack([np.asarray(curves.points, np.float64), np.asarray(curves.radii, np.float64)])
 
 
+def _frame_indices(names, step_names) -> np.ndarray:
+    """int64 [len(step_names) + 1]: the frame's object index of each object of a step's export (-1: none, also
+    at the end), matched by name and, for a name given twice (a mesh and its particle hair), by occurrence."""
+    where: dict = {}
+    for index, name in enumerate(names):
+        where.setdefault(name, []).append(index)
+    seen: dict = {}
+    out = np.full(len(step_names) + 1, -1, np.int64)
+    for index, name in enumerate(step_names):
+        occurrence = seen[name] = seen.get(name, -1) + 1
+        found = where.get(name, ())
+        if occurrence < len(found):
+            out[index] = found[occurrence]
+    return out
+
+
 def hair_steps(tracer_scene, steps, settings, count, warnings) -> np.ndarray | None:
     """float64 [S, P, 4]: the control points (world) and radii of ``tracer_scene.curves`` at the shutter's ``count``
     time steps, from ``steps`` ((``CurveSegments`` or None, object names) exported at each), matched by object name
@@ -46,7 +62,7 @@ def hair_steps(tracer_scene, steps, settings, count, warnings) -> np.ndarray | N
     for s, (step, step_names) in enumerate(steps):
         present = step is not None and len(step) > 0
         step_table = _table(step) if present else np.zeros((0, 4))
-        as_frame = np.array([names.index(n) if n in names else -1 for n in step_names] + [-1], np.int64)
+        as_frame = _frame_indices(names, step_names)
         step_owner = as_frame[_point_objects(step)] if present else np.zeros(0, np.int64)
         for index in np.unique(owner):
             on, on_step = owner == index, step_owner == index

@@ -228,3 +228,26 @@ def test_a_particle_groom_coloured_by_its_emitter_matches_cycles(prism_addon, fr
     assert 0.05 < covered < 0.6
     assert light == pytest.approx(1.0, abs=0.02)
     assert coverage == pytest.approx(1.0, abs=0.02)
+
+
+def test_particle_hair_moves_with_its_emitter_under_motion_blur(prism_addon, fresh_scene):
+    """An emitter keyed to move 0.4 m per frame along x, Motion Blur on (Shutter 0.5 frame, centred): its strands'
+    control points at the shutter's 3 steps lie 0.1 m left of, at and right of the frame's (the emitter's mesh and
+    its hair share the object's name: matched in order)."""
+    from helpers.node_scenes import linear_keys
+
+    lit(fresh_scene)
+    plane, settings = _scalp(10, 0.3)
+    for frame, x in ((0, -0.4), (2, 0.4)):
+        plane.location.x = x
+        plane.keyframe_insert("location", index=0, frame=frame)
+    linear_keys(plane)
+    fresh_scene.frame_set(1)
+    fresh_scene.render.use_motion_blur = True
+    camera((0.0, -3.0, 0.5), (0.0, 0.0, 0.2), resolution=(8, 8))
+    warnings = []
+    scene = export_scene(prism_addon, warnings)
+    steps = scene.motion.curves
+    assert steps.shape == (3, len(scene.curves.radii), 4) and not [w for w in warnings if "Scalp" in w]
+    for step, shift in ((0, -0.1), (1, 0.0), (2, 0.1)):
+        np.testing.assert_allclose(steps[step, :, :3], scene.curves.points + [shift, 0.0, 0.0], atol=1e-5)
