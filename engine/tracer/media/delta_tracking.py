@@ -4,7 +4,8 @@ path's wavelengths).
 
 Null-scattering formulation (Miller, Georgiev & Jarosz 2019, "A null-scattering path integral formulation of
 light transport", §4-5; Novák et al. 2014 for delta and ratio tracking). With D(x) the density, σ_s, σ_t the
-medium's coefficients at density 1 and D_max the grid's largest density, each wavelength k has the majorant
+medium's coefficients at density 1 and D_max the largest density of the block of voxels the walk is in
+(``brick_majorants``: piecewise constant along the ray, 0 in empty blocks), each wavelength k has the majorant
 μ_k = D_max σ_t,k and the null coefficient σ_n,k(x) = μ_k − D(x) σ_t,k >= 0. Along the ray the radiance is
 ∫ T_maj(s) [σ_s L_s + σ_n L](x_s) ds + T_maj(t) L_surface, T_maj(s) = exp(-μ s): tentative collisions are
 drawn at rate μ_c of one wavelength c (chosen uniformly per segment, the hero alone on a collapsed path), and
@@ -15,7 +16,9 @@ The events (n null collisions at x_1..x_n, then a scattering at x_s, or none bef
 wavelength k, the contribution f_k = T_maj,k Π σ_n,k(x_i) [D σ_s,k](x_s) and, for the tracker of wavelength
 j, the probability p_j = T_maj,j Π (μ_j − D σ_s,j)(x_i) [D σ_s,j](x_s); the path is weighted by f_k /
 ((1/K) Σ_j p_j). Both are kept divided by common factors (μ_c and exp(-μ_c s) per step, then the largest p)
-so that long walks neither overflow nor underflow: only their ratio matters. With a constant density the
+so that long walks neither overflow nor underflow: only their ratio matters. T_maj,k = exp(-∫ μ_k) is gathered
+block by block: crossing a block's stretch without a collision multiplies f_k and p_k by exp(-(μ_k − μ_c)
+length), and the free flight's optical depth carries over into the next block. With a constant density the
 expectation is the homogeneous medium's; a pure scatterer of one colour weighs every path exactly 1.
 
 An emitting grid medium adds ``MediaArrays.emission_rate`` to every μ_k (a null rate: σ_n grows by as much)
@@ -32,6 +35,7 @@ from ..jit import inlined
 from ..sampler import grid_medium_uniforms, medium_slot, sample_2d
 from ..state import COLLAPSED
 from .coefficients import coefficients_at
+from .brick_majorants import brick_advance, brick_entry, brick_majorant
 from .density_grid import MAX_TRACKING_STEPS
 from .grid_emission import gather_emission
 from .grid_lookup import density_along, grid_span, index_ray
@@ -66,6 +70,18 @@ def _null_or_scatter(f, p, sigma_t, sigma_s, walk, k_used, density, gap, scatter
 
 
 @inlined
+def _carry(f, p, sigma_t, channel, collapsed, k_used, scale_t, length):
+    """Multiply ``f``, ``p`` by a block's stretch of ``length`` without a tentative collision (divided by the
+    chosen channel's exp(-μ_c length)): exp(-(μ_k − μ_c) length), μ_k − μ_c = ``scale_t`` (σ_t,k − σ_t,c)."""
+    for k in range(k_used):
+        if collapsed and k != channel:
+            continue
+        common = math.exp(-scale_t * (sigma_t[k] - sigma_t[channel]) * length)
+        f[k] *= common
+        p[k] *= common
+
+
+@inlined
 def track_grid_medium(state, i, t, media, spectra, settings, depth, sigma_t, sigma_s, f, p):
     """Path ``i``'s ray, inside its grid medium, reaches a surface at ``t`` (inf: none). Returns where it
     scatters (< t) or inf, its throughput weighted for that. ``sigma_t``, ``sigma_s``, ``f``, ``p``: scratch
@@ -93,31 +109,35 @@ def track_grid_medium(state, i, t, media, spectra, settings, depth, sigma_t, sig
     collapsed = state.flags[i] & COLLAPSED != 0
     u_channel, u_distance = sample_2d(settings.sampler, state.seed[i], state.sample[i], medium_slot(depth))
     channel = state.hero[i] if collapsed else min(int(u_channel * k_used), k_used - 1)
-    scale_t = grids.majorant[g]  # μ_k = scale_t σ_t,k + extra
     extra = media.emission_rate[medium] if emits else 0.0
-    walk = (medium, channel, collapsed, scale_t, extra)
     for k in range(k_used):
         f[k] = 1.0
         p[k] = 1.0
-    mu_c = scale_t * sigma_t[channel] + extra
     s = s0
     collision = math.inf
     step = 0
+    crossings = 0
+    block, following, width, stride = brick_entry(grids, g, o2, d2, s0)
+    flight = -math.log1p(-u_distance)  # the free flight's optical depth at the tracker's rate
     while True:
-        if step == MAX_TRACKING_STEPS:
+        if step == MAX_TRACKING_STEPS or crossings == MAX_TRACKING_STEPS:
             for k in range(k_used):
                 state.throughput[i, k] = 0.0
             return math.inf
-        gap = -math.log1p(-u_distance) / mu_c if mu_c > 0.0 else math.inf
-        if not s + gap < s1:  # no tentative collision before the grid's far side or the surface
-            gap = s1 - s
-            for k in range(k_used):
-                if collapsed and k != channel:
-                    continue
-                common = math.exp(-scale_t * (sigma_t[k] - sigma_t[channel]) * gap)
-                f[k] *= common
-                p[k] *= common
-            break
+        end = min(following[0], following[1], following[2], s1)
+        scale_t = brick_majorant(grids, g, block)  # μ_k = scale_t σ_t,k + extra in this block
+        mu_c = scale_t * sigma_t[channel] + extra
+        if not flight < mu_c * (end - s):  # no tentative collision in this block before the far side or surface
+            _carry(f, p, sigma_t, channel, collapsed, k_used, scale_t, end - s)
+            if not end < s1:
+                break
+            flight -= mu_c * (end - s)
+            s = end
+            block, following = brick_advance(block, following, width, stride)
+            crossings += 1
+            continue
+        walk = (medium, channel, collapsed, scale_t, extra)
+        gap = flight / mu_c
         s += gap
         density = density_along(grids, g, o2, d2, s)
         if emits:
@@ -130,6 +150,7 @@ def track_grid_medium(state, i, t, media, spectra, settings, depth, sigma_t, sig
         if scatters:
             collision = s
             break
+        flight = -math.log1p(-u_distance)
     mixture = 0.0
     for k in range(k_used):
         if collapsed and k != channel:

@@ -16,6 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import PrismInputError
+from . import brick_majorants
+from .brick_majorants import brick_maxima
 
 
 @dataclass
@@ -32,9 +34,11 @@ class DensityGrid:
 #: The grids of a render. ``values`` float32 (every grid's voxels, C order, one after another), per grid
 #: ``offset`` int64 [G] (its first voxel in ``values``), ``shape`` int64 [G, 3], ``world_to_index`` float64
 #: [G, 3, 4] (from positions relative to the render's origin, as the kernels' rays are), ``majorant``
-#: float64 [G] (the largest density: delta and ratio tracking's bound; trilinear interpolation never
-#: exceeds it).
-GridArrays = namedtuple("GridArrays", "values offset shape world_to_index majorant")
+#: float64 [G] (the largest density; trilinear interpolation never exceeds it); the per-block majorants that
+#: bound delta and ratio tracking (``brick_majorants``): ``bricks`` float32 (every grid's blocks, C order),
+#: ``brick_offset`` int64 [G], ``brick_shape`` int64 [G, 3] and ``brick_voxels`` int64 [G] (a block's edge).
+GridArrays = namedtuple("GridArrays", "values offset shape world_to_index majorant bricks brick_offset brick_shape "
+                        "brick_voxels")
 
 #: The most tentative collisions delta or ratio tracking takes along one ray segment. A walk takes about
 #: μ L of them (the majorant's optical depth across the segment), so a realistic medium stays far below;
@@ -57,17 +61,24 @@ def check_grid(grid: DensityGrid, medium_name: str) -> None:
                               "(an object scaled to 0?).")
 
 
-def build_grids(grids, origin=None) -> GridArrays:
+def build_grids(grids, origin=None, brick_voxels: int | None = None) -> GridArrays:
     """``GridArrays`` for a list of ``DensityGrid`` (negative densities clamped to 0: a medium's
     coefficients are never negative); ``origin`` (m, [3]) the point the kernels' positions are relative
-    to. Grids that hold the same ``values`` array (instances of one Volume object) share its voxels: one
-    copy, each grid its own transform."""
+    to. Grids that hold the same ``values`` array (instances of one Volume object) share its voxels and
+    blocks: one copy, each grid its own transform. ``brick_voxels``: the blocks' edge (default
+    ``brick_majorants.BRICK_VOXELS``, read when called; a size past every grid's gives one block, the whole
+    grid's majorant, as before blocks)."""
+    if brick_voxels is None:
+        brick_voxels = brick_majorants.BRICK_VOXELS
     count = max(len(grids), 1)
     offset = np.zeros(count, np.int64)
     shape = np.ones((count, 3), np.int64)
     world_to_index = np.zeros((count, 3, 4))
     majorant = np.zeros(count)
-    chunks, first, stored = [], 0, {}  # stored: id of a grid's values → (offset, majorant)
+    brick_offset = np.zeros(count, np.int64)
+    brick_shape = np.ones((count, 3), np.int64)
+    block_chunks, first_block = [], 0
+    chunks, first, stored = [], 0, {}  # stored: id of a grid's values → (offset, majorant, blocks, their shape)
     shift = np.zeros(3) if origin is None else np.asarray(origin, dtype=np.float64)
     for g, grid in enumerate(grids):
         inverse = np.linalg.inv(np.asarray(grid.index_to_world, dtype=np.float64))
@@ -77,9 +88,14 @@ def build_grids(grids, origin=None) -> GridArrays:
         shape[g] = np.shape(grid.values)
         if id(grid.values) not in stored:  # ``grids`` holds every values array, so no id is reused meanwhile
             values = np.maximum(np.ascontiguousarray(grid.values, dtype=np.float32), 0.0)
-            stored[id(grid.values)] = first, float(values.max())
+            blocks = brick_maxima(values, brick_voxels)
+            stored[id(grid.values)] = first, float(values.max()), first_block, blocks.shape
             chunks.append(values.ravel())
+            block_chunks.append(blocks.ravel())
             first += values.size
-        offset[g], majorant[g] = stored[id(grid.values)]
+            first_block += blocks.size
+        offset[g], majorant[g], brick_offset[g], brick_shape[g] = stored[id(grid.values)]
     values = np.concatenate(chunks) if chunks else np.zeros(1, np.float32)
-    return GridArrays(values, offset, shape, world_to_index, majorant)
+    bricks = np.concatenate(block_chunks) if block_chunks else np.zeros(1, np.float32)
+    return GridArrays(values, offset, shape, world_to_index, majorant, bricks, brick_offset, brick_shape,
+                      np.full(count, brick_voxels, np.int64))

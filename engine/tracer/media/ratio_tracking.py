@@ -1,7 +1,8 @@
 """Transmittance of a shadow ray through a grid medium by ratio tracking (Novák, Selle & Jarosz 2014,
 "Residual ratio tracking for estimating attenuation in participating media", §3): tentative collisions at
-the rate μ = D_max max_k σ_t,k (one rate for every carried wavelength, so one walk serves them all) and, at
-each, every wavelength's estimate multiplied by 1 − D(x) σ_t,k / μ. The product is an unbiased estimate of
+the rate μ = D_max max_k σ_t,k (one rate for every carried wavelength, so one walk serves them all; D_max the
+majorant of the block the walk crosses, ``brick_majorants``: empty blocks cost no step) and, at each, every
+wavelength's estimate multiplied by 1 − D(x) σ_t,k / μ. The product is an unbiased estimate of
 exp(-∫ D σ_t,k ds) per wavelength, in [0, 1]. The walk stops early once every estimate is 0.
 
 A shadow ray may take any number of steps, so its numbers are hashed (``sampler.INDEPENDENT``) from the
@@ -16,6 +17,7 @@ import math
 from ..jit import inlined
 from ..sampler import INDEPENDENT, SLOT_RATIO_TRACKING, hash32, sample_1d
 from .coefficients import extinction_at
+from .brick_majorants import brick_advance, brick_entry, brick_majorant
 from .density_grid import MAX_TRACKING_STEPS
 from .grid_lookup import density_along, grid_span, index_ray
 
@@ -46,22 +48,32 @@ def ratio_track(media, spectra, medium, wavelengths_nm, o, d, distance_m, values
         sigma_t[k] = extinction_at(media, spectra, medium, wavelengths_nm[k])
         if values[k] != 0.0:
             largest = max(largest, sigma_t[k])
-    mu = grids.majorant[g] * largest
-    if not mu > 0.0:
+    if not grids.majorant[g] * largest > 0.0:
         return
     s = s0
     step = 0
     seed = pixel_seed ^ key
+    block, following, width, stride = brick_entry(grids, g, o2, d2, s0)
+    depth = -math.log1p(-sample_1d(INDEPENDENT, seed, sample, SLOT_RATIO_TRACKING))  # to the next collision
+    crossings = 0
     while True:
-        if step == MAX_TRACKING_STEPS:
+        if step == MAX_TRACKING_STEPS or crossings == MAX_TRACKING_STEPS:
             for k in range(wavelengths_nm.shape[0]):
                 values[k] = 0.0
             return
-        u = sample_1d(INDEPENDENT, seed, sample, SLOT_RATIO_TRACKING + step)
+        end = min(following[0], following[1], following[2], s1)
+        mu = brick_majorant(grids, g, block) * largest
+        if not depth < mu * (end - s):  # no collision in this block
+            if not end < s1:
+                return
+            depth -= mu * (end - s)
+            s = end
+            block, following = brick_advance(block, following, width, stride)
+            crossings += 1
+            continue
+        s += depth / mu
         step += 1
-        s -= math.log1p(-u) / mu
-        if not s < s1:
-            return
+        depth = -math.log1p(-sample_1d(INDEPENDENT, seed, sample, SLOT_RATIO_TRACKING + step))
         density = density_along(grids, g, o2, d2, s)
         if density <= 0.0:
             continue
