@@ -2,7 +2,7 @@
 
 - every block's majorant is the largest voxel its trilinear interpolation reads (brute force, odd grid sizes),
   and no point of the grid interpolates above its block's;
-- through a sparse grid (a dense plume in empty air) along slanted rays, ratio tracking's mean estimates
+- through a sparse grid (a plume in empty air) along a slanted ray, ratio tracking's mean estimates
   exp(-σ_t(λ) ∫ D ds) per wavelength (the optical depth integrated on a fine grid), with blocks of 8 voxels and
   with one block for the whole grid (the grid's own majorant);
 - delta tracking with spectral MIS through the same grid: the paths that pass estimate T_k(t) and those that
@@ -10,19 +10,14 @@
 
 Each mean is checked within 4.5 standard errors of its own estimate (fixed seeds)."""
 
-from collections import namedtuple
-
 import math
 
 import numpy as np
 import pytest
 
-from engine.tracer.jit import kernel
 from engine.tracer.media.brick_majorants import brick_entry, brick_majorant, brick_maxima
-from engine.tracer.media.delta_tracking import track_grid_medium
 from engine.tracer.media.density_grid import DensityGrid, build_grids
 from engine.tracer.media.grid_lookup import grid_density, index_ray
-from engine.tracer.media.ratio_tracking import ratio_track
 from engine.tracer.media.spec import MediumSpec
 from engine.tracer.media.table import build_media, coefficient_spectra
 from engine.tracer.sampler import INDEPENDENT, SOBOL, pixel_seed
@@ -31,15 +26,16 @@ from engine.tracer.spectra.table import SpectrumTable
 from engine.tracer.spectra.wavelengths import VISIBLE_NM_GRID
 from engine.tracer.state import new_path_state
 
+from .grid_walks import Settings, delta_track, ratio_estimates
+
 VOXEL_M = 0.05
 WAVELENGTHS = np.array([450.0, 520.0, 600.0, 680.0])
 SCATTER = [(6.0, (0.9, 0.5, 0.2))]
 ABSORB = [(2.0, (0.3, 0.6, 0.9))]
-Settings = namedtuple("Settings", "sampler")
 
 
 def _plume(shape=(40, 24, 24), seed=4):
-    """Empty air with a lumpy dense plume in a corner of the grid (about 3 % of the voxels)."""
+    """Empty air with a lumpy plume (density 0.2-0.6) in a corner of the grid (about 2 % of the voxels)."""
     rng = np.random.default_rng(seed)
     x, y, z = np.meshgrid(*(np.arange(n) for n in shape), indexing="ij")
     inside = (x - 27.0) ** 2 / 36.0 + (y - 15.0) ** 2 / 16.0 + (z - 12.0) ** 2 / 25.0 < 1.0
@@ -102,20 +98,12 @@ RAY_O, RAY_D = (0.0, 0.1, 0.05), tuple(np.array([1.35, 0.65, 0.55]) / np.linalg.
 RAY_T = 2.0  # across the plume (s from about 1.3 to 1.9 m) and a little past it
 
 
-@kernel
-def _ratio_estimates(media, spectra, wavelengths, o, d, distance, out, scratch):
-    for r in range(out.shape[0]):
-        for k in range(out.shape[1]):
-            out[r, k] = 1.0
-        ratio_track(media, spectra, 0, wavelengths, o, d, distance, out[r], scratch, 977, r, 13)
-
-
 @pytest.mark.parametrize("brick_voxels", [None, 1000])
 def test_ratio_tracking_through_a_sparse_plume_is_beer_lambert(brick_voxels):
     media, spectra, _, sigma_t = _media(_plume(), brick_voxels)
     n = 40000
     out = np.empty((n, len(WAVELENGTHS)))
-    _ratio_estimates(media, spectra, WAVELENGTHS, RAY_O, RAY_D, RAY_T, out, np.empty(len(WAVELENGTHS)))
+    ratio_estimates(media, spectra, WAVELENGTHS, RAY_O, RAY_D, RAY_T, out, np.empty(len(WAVELENGTHS)))
     tau = _optical_depth(media, RAY_O, RAY_D, [RAY_T])[0][0]
     expected = np.exp(-sigma_t * tau)
     mean, stderr = out.mean(0), out.std(0) / math.sqrt(n)
@@ -123,12 +111,6 @@ def test_ratio_tracking_through_a_sparse_plume_is_beer_lambert(brick_voxels):
           np.round(mean / expected, 4).tolist(), "expected", np.round(expected, 4).tolist())
     assert 0.05 < expected.min() and expected.max() < 0.95  # the ray crosses the plume
     assert np.all(np.abs(mean - expected) < 4.5 * stderr)
-
-
-@kernel
-def _delta_track(state, media, spectra, settings, t, collisions, sigma_t, sigma_s, f, p):
-    for i in range(collisions.shape[0]):
-        collisions[i] = track_grid_medium(state, i, t, media, spectra, settings, 0, sigma_t, sigma_s, f, p)
 
 
 @pytest.mark.parametrize("sampler", [INDEPENDENT, SOBOL])
@@ -141,7 +123,7 @@ def test_delta_tracking_through_a_sparse_plume_estimates_transmittance_and_colli
     state.sample[:] = np.arange(n) // 64
     state.origin[:], state.direction[:], state.throughput[:] = RAY_O, RAY_D, 1.0
     collisions = np.empty(n)
-    _delta_track(state, media, spectra, Settings(sampler), RAY_T, collisions, *(np.empty(k) for _ in range(4)))
+    delta_track(state, media, spectra, Settings(sampler), RAY_T, collisions, *(np.empty(k) for _ in range(4)))
     weights = state.throughput
     _, s, density = _optical_depth(media, RAY_O, RAY_D, [RAY_T])
     ds = s[1] - s[0]

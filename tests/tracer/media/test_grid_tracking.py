@@ -11,17 +11,12 @@
 
 Each mean is checked within 4.5 standard errors of its own estimate (fixed seeds)."""
 
-from collections import namedtuple
-
 import math
 
 import numpy as np
 import pytest
 
-from engine.tracer.jit import kernel
-from engine.tracer.media.delta_tracking import track_grid_medium
 from engine.tracer.media.density_grid import DensityGrid
-from engine.tracer.media.ratio_tracking import ratio_track
 from engine.tracer.media.spec import MediumSpec
 from engine.tracer.media.table import build_media, coefficient_spectra
 from engine.tracer.sampler import INDEPENDENT, SOBOL, pixel_seed
@@ -30,13 +25,13 @@ from engine.tracer.spectra.table import SpectrumTable
 from engine.tracer.spectra.wavelengths import VISIBLE_NM_GRID
 from engine.tracer.state import COLLAPSED, new_path_state
 
+from .grid_walks import Settings, delta_track, ratio_estimates
 from .segment_checks import assert_segment_estimates
 
 VOXEL_M = 0.1
 WAVELENGTHS = np.array([450.0, 520.0, 600.0, 680.0])
 SCATTER = [(3.0, (0.9, 0.5, 0.2))]
 ABSORB = [(1.0, (0.3, 0.6, 0.9))]
-Settings = namedtuple("Settings", "sampler")
 
 
 def _media(values):
@@ -51,18 +46,10 @@ def _media(values):
     return media, spectra.arrays(), sigma_s[at], sigma_s[at] + sigma_a[at]
 
 
-@kernel
-def _ratio_estimates(media, spectra, wavelengths, o, d, distance, out, scratch):
-    for r in range(out.shape[0]):
-        for k in range(out.shape[1]):
-            out[r, k] = 1.0
-        ratio_track(media, spectra, 0, wavelengths, o, d, distance, out[r], scratch, 977, r, 13)
-
-
 def _ratio_mean(values, o, d, distance, n=40000):
     media, spectra, _, sigma_t = _media(values)
     out = np.empty((n, len(WAVELENGTHS)))
-    _ratio_estimates(media, spectra, WAVELENGTHS, o, d, distance, out, np.empty(len(WAVELENGTHS)))
+    ratio_estimates(media, spectra, WAVELENGTHS, o, d, distance, out, np.empty(len(WAVELENGTHS)))
     return out.mean(0), out.std(0) / math.sqrt(n), sigma_t
 
 
@@ -94,12 +81,6 @@ def test_a_ray_that_misses_the_grid_is_not_attenuated():
     assert np.all(mean == 1.0)
 
 
-@kernel
-def _delta_track(state, media, spectra, settings, t, collisions, sigma_t, sigma_s, f, p):
-    for i in range(collisions.shape[0]):
-        collisions[i] = track_grid_medium(state, i, t, media, spectra, settings, 0, sigma_t, sigma_s, f, p)
-
-
 def _delta_tracking(n, sampler, collapsed_hero=-1, values=None):
     density, t = 1.5, 1.3
     media, spectra, sigma_s, sigma_t = _media(np.full((16, 16, 16), density) if values is None else values)
@@ -115,7 +96,7 @@ def _delta_tracking(n, sampler, collapsed_hero=-1, values=None):
     state.direction[:] = (1.0, 0.0, 0.0)
     state.throughput[:] = 1.0
     collisions = np.empty(n)
-    _delta_track(state, media, spectra, Settings(sampler), t, collisions, *(np.empty(k) for _ in range(4)))
+    delta_track(state, media, spectra, Settings(sampler), t, collisions, *(np.empty(k) for _ in range(4)))
     return collisions, state.throughput.copy(), density * sigma_s, density * sigma_t, t
 
 
@@ -142,7 +123,7 @@ def test_a_white_scatterer_weighs_every_path_exactly_one():
     state.seed[:], state.sample[:] = [pixel_seed(i, 2) for i in range(n)], 0
     state.origin[:], state.direction[:], state.throughput[:] = (0.1, 0.7, 0.7), (1.0, 0.0, 0.0), 1.0
     collisions = np.empty(n)
-    _delta_track(state, media, spectra.arrays(), Settings(INDEPENDENT), 1.3, collisions,
+    delta_track(state, media, spectra.arrays(), Settings(INDEPENDENT), 1.3, collisions,
                  *(np.empty(k) for _ in range(4)))
     assert np.isfinite(collisions).any() and np.isinf(collisions).any()
     assert np.allclose(state.throughput, 1.0, rtol=1e-12)
