@@ -24,8 +24,9 @@ which Embree interpolates linearly by ray time; every function here reads a segm
 ray's ``time`` the same way (``control_point``), so a hit's code, its surface and the way out of the tube are
 those of the strand where the ray met it. ``time`` < 0 (``geometry.FRAME_TIME``) or no motion reads the frame's.
 The functions take ``strands``, a record with ``curves``, ``curve_segments`` and ``curve_motion``
-(``geometry.Geometry``, ``embree.queries.RayCaster``). Their colour attributes and UV maps (``CurveSegments.colors``, ``uvs``) become rows
-of the per-corner tables after the triangles' and the spheres' (``corner_rows``).
+(``geometry.Geometry``, ``embree.queries.RayCaster``, ``Strands``). The strands' colour attributes and UV maps
+(``CurveSegments.colors``, ``uvs``) become rows of the per-corner tables after the triangles' and the spheres'
+(``corner_rows``).
 """
 
 from __future__ import annotations
