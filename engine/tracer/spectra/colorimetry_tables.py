@@ -5,7 +5,8 @@ and every render needed it for three tables only: the CIE 1931 2° colour-matchi
 relative power and the BT.709 XYZ → RGB matrix. ``tools/generate_colorimetry_tables.py`` writes them
 from colour-science (``from_colour_science``) into ``data/colorimetry.npz``; ``load`` reads that file
 (about a millisecond), and ``tests/tracer/spectra/test_colorimetry_tables.py`` checks that the file still
-equals what colour-science gives, bit for bit. Renders that read a measured spectrum, an illuminant by
+equals what colour-science gives (the tabulated data bit for bit, the matrix, an inverse whose last bit depends
+on the machine's LAPACK, to 1e-14). Renders that read a measured spectrum, an illuminant by
 name or a colour checker still import colour-science for those.
 """
 
