@@ -77,8 +77,8 @@ def run(quick: bool) -> dict:
     apart = abs(rows[0]["mean luminance"] - rows[1]["mean luminance"]) / max(rows[1]["mean luminance"], 1e-12)
     summary = (f"A {size}³ grid, empty but for a plume of about 1 % of its voxels (density 2-6), in a 2 m box under "
                f"a sun and a sky, {resolution}×{resolution} px, {spp} spp, 16 bounces, 2 threads, median of "
-               f"{repeats} interleaved passes: with one majorant for the whole grid a pass takes {one / blocks:.2f}× as "
-               f"long as with blocks; their mean luminances differ by {apart:.2%} (standard errors "
+               f"{repeats} interleaved passes: with one majorant for the whole grid a pass takes "
+               f"{one / blocks:.2f}× as long as with blocks; their mean luminances differ by {apart:.2%} (standard errors "
                f"{rows[0]['standard error'] / rows[0]['mean luminance']:.2%} and "
                f"{rows[1]['standard error'] / rows[1]['mean luminance']:.2%}).")
     return {"rows": rows, "summary": summary}

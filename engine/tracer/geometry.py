@@ -271,9 +271,9 @@ def offset_origin(p, ng, toward):
 @inlined
 def hit_tangent(geometry, triangle, u, n, along_v, time):
     """A unit tangent at a hit, the direction Cycles' hair closures take as the fibre's: a curve's tangent at
-    ``u`` at ray time ``time``; on a triangle d position / d barycentric u (its first edge; Cycles' ``sd->dPdu``), or with ``along_v``
-    d position / d v (its second edge, ``sd->dPdv``, what the Hair BSDF takes); on a sphere a tangent of its
-    normal ``n``."""
+    ``u`` at ray time ``time``; on a triangle d position / d barycentric u (its first edge; Cycles'
+    ``sd->dPdu``), or with ``along_v`` d position / d v (its second edge, ``sd->dPdv``, what the Hair BSDF takes);
+    on a sphere a tangent of its normal ``n``."""
     if triangle >= geometry.triangles.shape[0]:
         s = triangle - geometry.triangles.shape[0]
         if s >= geometry.spheres.shape[0]:
