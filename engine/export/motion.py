@@ -6,7 +6,8 @@ The shutter is open for Shutter (``motion_blur_shutter``, frames) around the fra
 ray time. The scene is evaluated at S = 2^(steps-1)·2 + 1 times across the shutter (Object ▸ Motion Blur
 ▸ Steps, the largest of the moving objects'; default 3: open, middle, close) through ``frame_set`` (the
 render engine's, so the user's frame is untouched; restored after) and re-exported: moving and deforming
-meshes alike get their vertices at each time, hair its strands' points (``hair_motion``). An object whose
+meshes alike get their vertices at each time, hair its strands' points (``hair_motion``), point clouds their
+points (``point_motion``). An object whose
 Motion Blur is off stays where it is at the frame, as in Cycles; an object with fewer steps than S is
 interpolated between its own steps.
 """
@@ -19,7 +20,7 @@ from ..tracer.motion import Motion, motion_step_count, shutter_times
 from .camera import rigid_matrix
 from .hair_motion import hair_steps
 from .motion_steps import is_still, resample
-from .point_clouds import moving_point_cloud_warning
+from .point_motion import point_steps
 from .view_layer_filter import layer_filter
 
 #: Where the shutter's middle lies relative to the frame, in shutter lengths (Cycles' motion position).
@@ -87,7 +88,7 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
             else:
                 vertices.append(geometry.vertices)
                 normals.append(geometry.corner_normals)
-            clouds.append(getattr(geometry, "points", None))
+            clouds.append((getattr(geometry, "points", None), list(getattr(geometry, "object_names", []))))
             strands.append((getattr(geometry, "curves", None), list(getattr(geometry, "object_names", []))))
             cameras.append(rigid_matrix(camera_object.evaluated_get(depsgraph).matrix_world))
     finally:
@@ -96,8 +97,8 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     cameras = np.asarray(cameras)
     if not np.allclose(cameras, cameras[:1], rtol=0.0, atol=1e-12):
         camera.motion_to_world = cameras
-    warnings.extend(moving_point_cloud_warning(name) for name in _moving_clouds(tracer_scene, clouds, settings))
     hair = hair_steps(tracer_scene, strands, settings, count, warnings)
+    points = point_steps(tracer_scene, clouds, settings, count, warnings)
     steps, corner = None, None
     if changed:
         warnings.append(f"Scene '{scene.name}': Motion Blur: a mesh changes its vertices or faces during the shutter "
@@ -109,24 +110,8 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
         _per_object(tracer_scene, settings, steps, corner, count, warnings)
         if is_still(steps):  # nothing moves after Object settings
             steps, corner = None, None
-    if steps is not None or hair is not None:  # else the still scene: no time steps in Embree
-        tracer_scene.motion = Motion(steps, corner, hair)
-
-
-def _moving_clouds(tracer_scene, steps, settings) -> list[str]:
-    """Names of the point clouds (with Object ▸ Motion Blur on) whose points at the shutter's time steps
-    ``steps`` (``SpherePoints`` or None each) differ from the frame's."""
-    points = tracer_scene.points
-    if points is None or not len(points):
-        return []
-    moving = np.zeros(len(points), bool)
-    for step in steps:
-        if step is None or len(step) != len(points):
-            moving[:] = True
-            break
-        moving |= (step.centres != points.centres).any(axis=1) | (step.radii != points.radii)
-    names = sorted({tracer_scene.object_names[int(i)] for i in np.unique(points.object[moving])})
-    return [name for name in names if settings.get(name, (True,))[0]]
+    if steps is not None or hair is not None or points is not None:  # else still: no time steps in Embree
+        tracer_scene.motion = Motion(steps, corner, hair, points)
 
 
 def _per_object(tracer_scene, settings, steps, corner, count, warnings) -> None:

@@ -94,9 +94,3 @@ def point_random(count: int) -> np.ndarray:
     x = (x * np.uint64(0x846CA68B)) & mask
     x ^= x >> np.uint64(16)
     return (x.astype(np.float64) / 4294967295.0).astype(np.float32)
-
-
-def moving_point_cloud_warning(name: str) -> str:
-    """The warning for a point cloud that moves during the shutter (rendered where it stands at the frame)."""
-    return (f"Point cloud '{name}' moves during the shutter, but Prism renders point clouds without motion blur: "
-            "its points are sharp where they stand at the frame.")

@@ -16,8 +16,8 @@ import numpy as np
 
 class Accel:
     """Queries against a ``geometry.Geometry`` (camera-relative float32 vertices; its spheres, rows after
-    the triangles, as one more Embree geometry of sphere points; its curve segments, rows after the spheres,
-    as one of round Catmull-Rom curves)."""
+    the triangles, as one more Embree geometry of sphere points, with the shutter's time steps where they move;
+    its curve segments, rows after the spheres, as one of round Catmull-Rom curves)."""
 
     def __init__(self, geometry):
         from .embree.curves import CurveGeometry
@@ -37,7 +37,8 @@ class Accel:
             self._rows = dict(moving_geometry=len(geometries) - 1, first_moving=len(static_rows),
                               triangle_of=np.concatenate([static_rows, moving_rows]).astype(np.int32))
         if len(geometry.spheres):
-            geometries.append(SphereGeometry(geometry.spheres))
+            steps = list(geometry.sphere_motion) if len(geometry.sphere_motion) > 1 else geometry.spheres
+            geometries.append(SphereGeometry(steps))
             self._rows.update(sphere_geometry=len(geometries) - 1, first_sphere=len(geometry.triangles))
         if len(geometry.curve_segments):
             steps = list(geometry.curve_motion) if len(geometry.curve_motion) > 1 else geometry.curves

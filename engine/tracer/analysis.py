@@ -161,12 +161,16 @@ def _motion_note(camera, geometry) -> str:
         return ""
     from .accel import moving_triangles
     from .curves import moving_segments
+    from .spheres import moving_spheres
 
     moving = moving_triangles(geometry)
     what = [f"{int(moving.sum())} moving triangles x{geometry.motion.shape[0]} steps"] if moving is not None else []
     strands = moving_segments(geometry.curve_motion, geometry.curve_segments)
     if strands:
         what.append(f"{strands} moving curve segments x{geometry.curve_motion.shape[0]} steps")
+    points = moving_spheres(geometry.sphere_motion)
+    if points:
+        what.append(f"{points} moving spheres x{geometry.sphere_motion.shape[0]} steps")
     if camera.data.poses.shape[0]:
         what.append("moving camera")
     return "motion blur (" + (", ".join(what) or "nothing moves") + ")"

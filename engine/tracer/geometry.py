@@ -14,7 +14,9 @@ times of the shutter, camera-relative; [0, 0, 3] without) and ``motion_normals``
 corner normals at those times; [0, 0, 3, 3] without, or for flat shading). A ray at time τ (0..1) sees
 vertices interpolated linearly between the two steps around τ·(S-1), as Embree interpolates them.
 ``spheres`` float32 [S, 4] (``spheres``: the points of point clouds, camera-relative centre and radius; [0, 4]
-without) and ``sphere_random`` float32 [S] (each point's Point Info ▸ Random): rows T .. T + S - 1 of the render's primitives.
+without), ``sphere_random`` float32 [S] (each point's Point Info ▸ Random) and ``sphere_motion`` float32 [M, S, 4]
+(with motion blur, the spheres at the shutter's time steps; [0, 0, 4] without): rows T .. T + S - 1 of the
+render's primitives.
 ``curves`` float32 [P, 4] and ``curve_segments`` int32 [C] (``curves``: the control points of hair strands,
 camera-relative point and radius, and the first control point of each segment; [0, 4] and [0] without) and
 ``curve_info`` float32 [C, 4] (each segment's Hair Info, ``curves.curve_info``) and ``curve_motion`` float32
@@ -35,12 +37,13 @@ import numpy as np
 from . import curves as hair
 from .jit import inlined, kernel
 from .vec3 import tangents
-from .spheres import camera_relative, no_spheres, point_random, rendered_rows, sphere_surface
+from .spheres import (camera_relative, camera_relative_steps, no_sphere_motion, no_spheres, point_random, rendered_rows,
+                      sphere_surface)
 
 Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags motion motion_normals spheres "
-                      "sphere_random curves curve_segments curve_info curve_motion",
+                      "sphere_random curves curve_segments curve_info curve_motion sphere_motion",
                       defaults=(no_spheres(), np.zeros(0, np.float32), *hair.no_curves(), np.zeros((0, 4), np.float32),
-                                hair.no_curve_motion()))
+                                hair.no_curve_motion(), no_sphere_motion()))
 
 #: A ``surface_at`` time that reads the positions at the frame (``Geometry.vertices``), where the light
 #: table's emitters stand, instead of those at a ray time of the shutter.
@@ -80,6 +83,7 @@ def prepare_geometry(scene, offset):
     from .visibility import curve_flags, sphere_flags, triangle_flags
 
     points = getattr(scene, "points", None)
+    motion = getattr(scene, "motion", None)
     rows = rendered_rows(points)
     flags = triangle_flags(scene, original)
     attributes = surface_arrays(scene.surface, original, offset)
@@ -103,8 +107,8 @@ def prepare_geometry(scene, offset):
                         np.ascontiguousarray(material), normals, attributes, np.ascontiguousarray(flags),
                         *_motion_arrays(scene, original, offset, len(normals)), camera_relative(points, rows, offset),
                         point_random(points, rows), *hair.camera_relative(strands, offset), hair.curve_info(strands),
-                        hair.camera_relative_motion(strands, getattr(getattr(scene, "motion", None), "curves", None),
-                                                    offset))
+                        hair.camera_relative_motion(strands, getattr(motion, "curves", None), offset),
+                        camera_relative_steps(points, rows, getattr(motion, "points", None), offset))
     return geometry, original, int(len(triangles) - len(original))
 
 
@@ -226,7 +230,7 @@ def surface_at(geometry, triangle, u, v, time):
     if triangle >= geometry.triangles.shape[0]:
         s = triangle - geometry.triangles.shape[0]
         if s < geometry.spheres.shape[0]:
-            return sphere_surface(geometry.spheres, s, u, v)
+            return sphere_surface(geometry, s, u, v, time)
         return hair.curve_surface(geometry, s - geometry.spheres.shape[0], u, v, time)
     a = geometry.triangles[triangle, 0]
     b = geometry.triangles[triangle, 1]

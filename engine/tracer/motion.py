@@ -28,12 +28,15 @@ SHUTTER_TABLE_SIZE = 256
 class Motion:
     """The scene's geometry at the shutter's S time steps: ``vertices`` float64 [S, V, 3] (world, m, the
     same vertices as ``Scene.vertices`` in the same order; None where no triangle moves), ``corner_normals``
-    float32 [S, T, 3, 3] (or None for flat shading) and ``curves`` float64 [S, P, 4] (the hair strands' control
-    points, world, and radii, in the order of ``Scene.curves``; None where no strand moves)."""
+    float32 [S, T, 3, 3] (or None for flat shading), ``curves`` float64 [S, P, 4] (the hair strands' control
+    points, world, and radii, in the order of ``Scene.curves``; None where no strand moves) and ``points`` float64
+    [S, N, 4] (the point clouds' centres, world, and radii, in the order of ``Scene.points``; None where no point
+    moves)."""
 
     vertices: np.ndarray | None
     corner_normals: np.ndarray | None = None
     curves: np.ndarray | None = None
+    points: np.ndarray | None = None
 
 
 def motion_step_count(steps: int) -> int:

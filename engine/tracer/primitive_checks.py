@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import PrismInputError
+from .spheres import rendered_rows
 
 #: Positions beyond this (m, about 6700 astronomical units) leave too little float32 range for the
 #: products of distances the tracer forms (areas, squared lengths): such a scene cannot render reliably.
@@ -25,10 +26,26 @@ def _reach(positions) -> np.ndarray:
         return np.abs(np.asarray(positions, np.float64)).max(axis=1)
 
 
-def check_points(points, material_count: int, object_names, color_slots: int = 0) -> None:
+def _check_steps(kind: str, what: str, motion, count: int, rows) -> None:
+    """``motion`` [S >= 2, ``count``, 4] (position and radius at the shutter's time steps), finite with radii >= 0 at
+    ``rows``."""
+    steps = np.asarray(motion)
+    if steps.ndim != 3 or steps.shape[0] < 2 or steps.shape[1:] != (count, 4):
+        raise PrismInputError(f"Scene {kind} motion has shape {steps.shape}, not (steps >= 2, {count}, 4) (time steps, "
+                              f"{what}, position and radius): re-export the scene.")
+    steps = steps[:, rows]
+    if not (np.isfinite(steps).all() and (steps[..., 3] >= 0).all()):
+        raise PrismInputError(f"Scene {kind} motion has {what} that are not finite or radii below 0: re-export the "
+                              "scene.")
+
+
+def check_points(points, material_count: int, object_names, color_slots: int = 0, motion=None) -> None:
     """``points`` (a ``spheres.SpherePoints``): materials, finite and reachable centres, colour attributes (one row
-    per point in each of the scene's ``color_slots`` slots)."""
+    per point in each of the scene's ``color_slots`` slots), and the points at the shutter's time steps ``motion``
+    (``motion.Motion.points``: [S, N, 4], finite with radii >= 0 where the point renders)."""
     _check_materials("points", points.material, material_count)
+    if motion is not None:
+        _check_steps("point", "points", motion, len(points), rendered_rows(points))
     if points.colors is not None and np.shape(points.colors) != (color_slots, len(points), 4):
         raise PrismInputError(f"Scene point colour attributes have shape {np.shape(points.colors)}, not "
                               f"{(color_slots, len(points), 4)} (slots, points, RGBA): re-export the scene.")
@@ -52,13 +69,7 @@ def check_curves(curves, material_count: int, object_names, color_slots: int = 0
     if segments.min() < 0 or segments.max() + 3 >= len(curves.radii):
         raise PrismInputError("Scene curve segments refer to control points that do not exist: re-export the scene.")
     if motion is not None:
-        steps = np.asarray(motion)
-        if steps.ndim != 3 or steps.shape[0] < 2 or steps.shape[1:] != (len(curves.radii), 4):
-            raise PrismInputError(f"Scene curve motion has shape {steps.shape}, not (steps >= 2, {len(curves.radii)}, "
-                                  "4) (time steps, control points, position and radius): re-export the scene.")
-        if not (np.isfinite(steps).all() and (steps[..., 3] >= 0).all()):
-            raise PrismInputError("Scene curve motion has control points that are not finite or radii below 0: "
-                                  "re-export the scene.")
+        _check_steps("curve", "control points", motion, len(curves.radii), slice(None))
     for what, ends, shape in (("colour attributes", curves.colors, (color_slots, len(segments), 2, 4)),
                               ("UV maps", curves.uvs, (uv_slots, len(segments), 2, 2))):
         if ends is not None and np.shape(ends) != shape:

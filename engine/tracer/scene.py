@@ -313,7 +313,8 @@ class Scene:
             self._validate_triangles()
         slots = (self.surface.colors.shape[0], self.surface.uvs.shape[0]) if self.surface is not None else (0, 0)
         if triangles and self.points is not None and len(self.points):
-            check_points(self.points, len(self.materials), self.object_names, slots[0])
+            check_points(self.points, len(self.materials), self.object_names, slots[0],
+                         motion=getattr(self.motion, "points", None))
         if triangles and self.curves is not None and len(self.curves):
             check_curves(self.curves, len(self.materials), self.object_names, *slots,
                          motion=getattr(self.motion, "curves", None))

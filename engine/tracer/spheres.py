@@ -7,8 +7,10 @@ primitives after the triangles: row T + s is sphere s, so ``Geometry.material`` 
 (and the instance of each row, when node materials read object data) hold T + S entries and every
 stage reads a sphere's material the way it reads a triangle's. A sphere hit's (u, v) is its outward
 normal as an octahedral code (``embree.queries.closest_hit``), so ``surface_at`` rebuilds the point
-exactly on the sphere. Spheres do not move with motion blur, carry no UV map and are not sampled as
-lights (an emissive sphere is found by rays, as Cycles finds emissive points).
+exactly on the sphere. With motion blur a sphere's centre and radius at the shutter's time steps
+(``motion.Motion.points``) become ``Geometry.sphere_motion``, which Embree and ``sphere_surface`` interpolate
+linearly by ray time. Spheres carry no UV map and are not sampled as lights (an emissive sphere is found by
+rays, as Cycles finds emissive points).
 """
 
 from __future__ import annotations
@@ -49,6 +51,11 @@ def no_spheres() -> np.ndarray:
     return np.zeros((0, 4), np.float32)
 
 
+def no_sphere_motion() -> np.ndarray:
+    """``Geometry.sphere_motion`` of a render whose points do not move: empty, so kernels read the frame's."""
+    return np.zeros((0, 0, 4), np.float32)
+
+
 def rendered_rows(points: SpherePoints | None) -> np.ndarray:
     """int64 indices of the points that render: a positive, finite radius (Cycles shows no zero-radius
     point either) and a finite centre."""
@@ -70,6 +77,24 @@ def camera_relative(points: SpherePoints | None, rows, offset) -> np.ndarray:
     return np.ascontiguousarray(table.astype(np.float32))
 
 
+def camera_relative_steps(points: SpherePoints | None, rows, steps, offset) -> np.ndarray:
+    """``Geometry.sphere_motion``: float32 [S, R, 4] of the points ``rows`` at the shutter's time steps ``steps``
+    (``motion.Motion.points``, world) as (centre - ``offset``, radius), the origin subtracted in float64; empty
+    where they do not move."""
+    if points is None or not len(rows) or steps is None:
+        return no_sphere_motion()
+    table = np.array(np.asarray(steps, np.float64)[:, rows])
+    table[..., :3] -= np.asarray(offset, np.float64)
+    return np.ascontiguousarray(table.astype(np.float32))
+
+
+def moving_spheres(sphere_motion: np.ndarray) -> int:
+    """How many spheres move over the shutter's time steps ``sphere_motion`` (``Geometry.sphere_motion``)."""
+    if sphere_motion.shape[0] < 2:
+        return 0
+    return int((~(sphere_motion == sphere_motion[:1]).all(axis=(0, 2))).sum())
+
+
 def point_random(points: SpherePoints | None, rows) -> np.ndarray:
     """float32 [S]: Point Info ▸ Random of the points ``rows`` (0 where the export gave none)."""
     if points is None or points.random is None:
@@ -78,9 +103,27 @@ def point_random(points: SpherePoints | None, rows) -> np.ndarray:
 
 
 @inlined
-def sphere_surface(spheres, s, u, v):
-    """(point, unit outward normal, the same as shading normal) on sphere ``s`` of ``spheres`` where the
-    octahedral code (u, v) points."""
+def sphere_at(geometry, s, time):
+    """(x, y, z, radius) of sphere ``s`` of ``geometry`` (``Geometry.spheres`` and ``sphere_motion``) at ray time
+    ``time`` (0..1 over the shutter): linear between the two time steps around it, as Embree interpolates them;
+    the frame's where nothing moves or ``time`` < 0."""
+    m = geometry.sphere_motion
+    if m.shape[0] == 0 or time < 0.0:
+        c = geometry.spheres
+        return float(c[s, 0]), float(c[s, 1]), float(c[s, 2]), float(c[s, 3])
+    x = min(time, 1.0) * (m.shape[0] - 1)
+    k = min(int(x), m.shape[0] - 2)
+    f = x - k
+    return ((1.0 - f) * float(m[k, s, 0]) + f * float(m[k + 1, s, 0]),
+            (1.0 - f) * float(m[k, s, 1]) + f * float(m[k + 1, s, 1]),
+            (1.0 - f) * float(m[k, s, 2]) + f * float(m[k + 1, s, 2]),
+            (1.0 - f) * float(m[k, s, 3]) + f * float(m[k + 1, s, 3]))
+
+
+@inlined
+def sphere_surface(geometry, s, u, v, time):
+    """(point, unit outward normal, the same as shading normal) on sphere ``s`` of ``geometry`` at ray time
+    ``time`` where the octahedral code (u, v) points."""
     n = decode(u, v)
-    cx, cy, cz, r = float(spheres[s, 0]), float(spheres[s, 1]), float(spheres[s, 2]), float(spheres[s, 3])
+    cx, cy, cz, r = sphere_at(geometry, s, time)
     return (cx + r * n[0], cy + r * n[1], cz + r * n[2]), n, n

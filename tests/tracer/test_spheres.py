@@ -3,6 +3,7 @@ sky, pixel for pixel), and a diffuse sphere lit by a point light and the sky aga
 fine triangle mesh (absolute mean within its Monte Carlo error)."""
 
 import numpy as np
+import pytest
 
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Light, Material, World
@@ -143,3 +144,22 @@ def test_a_point_outside_a_lights_blocker_sets_casts_none_of_its_shadow():
     spot = (slice(6, 10), slice(5, 9))
     assert shadowed[spot].mean() < 0.7 * free[spot].mean()
     np.testing.assert_allclose(linked[spot].mean(), free[spot].mean(), rtol=0.02)
+
+
+def test_point_info_reads_a_moving_points_centre_at_the_rays_time_and_its_radius_at_the_frame():
+    """Cycles' Point Info on a moving point (``hit_inputs.point_info``): Position where the point stands at the
+    ray's time (linear between the shutter's steps, as Cycles' ``point_position`` interpolates it), the frame's
+    at ``FRAME_TIME``; Radius the frame's, as Cycles' ``point_radius`` reads it; zeros on the triangle row."""
+    from collections import namedtuple
+
+    from engine.tracer.geometry import FRAME_TIME
+    from engine.tracer.materials.hit_inputs import point_info
+
+    Tables = namedtuple("Tables", "triangles spheres sphere_motion sphere_random")
+    motion = np.array([[[0.0, 0.0, 1.0, 0.1]], [[0.5, 0.0, 1.0, 0.2]], [[1.5, 0.0, 1.0, 0.4]]], np.float32)
+    tables = Tables(np.zeros((1, 3), np.int32), motion[1], motion, np.array([0.25], np.float32))
+    for time, x in ((0.0, 0.0), (0.25, 0.25), (0.5, 0.5), (0.75, 1.0), (1.0, 1.5), (FRAME_TIME, 0.5)):
+        assert point_info(tables, 1, 0, time) == pytest.approx((x, 0.0, 1.0)), time
+    assert point_info(tables, 1, 1, 0.9)[0] == pytest.approx(0.2)
+    assert point_info(tables, 1, 2, 0.9)[0] == pytest.approx(0.25)
+    assert point_info(tables, 0, 0, 0.5) == (0.0, 0.0, 0.0)

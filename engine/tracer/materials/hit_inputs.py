@@ -5,8 +5,8 @@ Corner data is interpolated with the hit's barycentrics (corner weights 1 - u - 
 evaluates heights at the point moved a small step along the surface (``bump_step``): the inputs then read
 the moved point (``moved``), so textures see consistent coordinates. Rows past the triangles are spheres
 (``spheres``), then curve segments (``curves``): no corner data (UVs, colours and tangents read as on a mesh
-without them), (u, v) the normal's code; a curve segment's Hair Info (``hair_info``) comes from its control
-points and ``Geometry.curve_info``.
+without them), (u, v) the normal's code; a sphere's Point Info (``point_info``) comes from ``Geometry.spheres``,
+a curve segment's Hair Info (``hair_info``) from its control points and ``Geometry.curve_info``.
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from ..curves import control_point, curve_tangent
 from ..geometry import FRAME_TIME, surface_at
 from ..jit import inlined, kernel
 from ..octahedral import decode
+from ..spheres import sphere_at
 from ..vec3 import tangents
 
 # ``SurfaceArrays.objects`` columns: world→object affine (row-major 3 x 4, camera offset folded in),
@@ -180,6 +181,23 @@ def raw_normal(geometry, triangle, u, v):
     cn = geometry.normals[triangle]
     return (w * cn[0, 0] + u * cn[1, 0] + v * cn[2, 0], w * cn[0, 1] + u * cn[1, 1] + v * cn[2, 1],
             w * cn[0, 2] + u * cn[1, 2] + v * cn[2, 2])
+
+
+@inlined
+def point_info(geometry, triangle, field, time):
+    """Cycles' Point Info on sphere row ``triangle``, ``field`` as ``opcodes.POINT_INFO_FIELDS``: 0 its centre
+    (camera-relative, where it stands at ray time ``time``, as Cycles interpolates it), 1 its radius (the frame's,
+    as Cycles reads it) or 2 its random number, the scalars in the first of three; zeros on triangles and curves,
+    as on a mesh in Blender."""
+    s = triangle - geometry.triangles.shape[0]
+    if s < 0 or s >= geometry.spheres.shape[0]:
+        return 0.0, 0.0, 0.0
+    if field == 0:
+        x, y, z, _ = sphere_at(geometry, s, time)
+        return x, y, z
+    if field == 1:
+        return float(geometry.spheres[s, 3]), 0.0, 0.0
+    return float(geometry.sphere_random[s]), 0.0, 0.0
 
 
 @inlined

@@ -57,27 +57,6 @@ def _optional3(regs, r, fallback):
     return (regs[r], regs[r + 1], regs[r + 2]) if r >= 0 else fallback
 
 
-@inlined
-def _point_info(regs, dst, mode, geometry, triangle, offset):
-    """Cycles' Point Info node on sphere row ``triangle``: its centre (world, m), radius (m) or random
-    number (``mode``: ``opcodes.POINT_INFO_FIELDS``); 0 on triangles and curves, as on a mesh in Blender."""
-    s = triangle - geometry.triangles.shape[0]
-    if s >= geometry.spheres.shape[0]:
-        s = -1
-    if mode == 0:
-        if s < 0:
-            _put3(regs, dst, (0.0, 0.0, 0.0))
-        else:
-            sp = geometry.spheres
-            _put3(regs, dst, (float(sp[s, 0]) + offset[0], float(sp[s, 1]) + offset[1], float(sp[s, 2]) + offset[2]))
-    elif s < 0:
-        regs[dst] = 0.0
-    elif mode == 1:
-        regs[dst] = float(geometry.spheres[s, 3])
-    else:
-        regs[dst] = float(geometry.sphere_random[s])
-
-
 @kernel
 def run_program(instructions, first, count, regs, rows, tables, textures, geometry, triangle, u, v, p, ng, n, wo,
                 backfacing, rays):
@@ -127,7 +106,11 @@ def run_program(instructions, first, count, regs, rows, tables, textures, geomet
             elif code == op.PARAMETRIC:
                 _put3(regs, dst, (1.0 - hu - hv, hu, 0.0))
             elif code == op.POINT_INFO:
-                _point_info(regs, dst, mode, geometry, triangle, attrs.offset)
+                info = hit.point_info(geometry, triangle, mode, ray_time(rays))
+                if mode == 0:  # Position: world
+                    _put3(regs, dst, (info[0] + attrs.offset[0], info[1] + attrs.offset[1], info[2] + attrs.offset[2]))
+                else:
+                    regs[dst] = info[0]
             elif code == op.HAIR_INFO:
                 info = hit.hair_info(geometry, triangle, hu, wo, mode, ray_time(rays))
                 if mode == 4:  # Tangent Normal

@@ -2,6 +2,8 @@
 sphere (row), distance and outward normal, for random rays from outside and inside the spheres, in a
 scene that also holds a triangle (rows of spheres follow the triangles)."""
 
+from collections import namedtuple
+
 import numpy as np
 import pytest
 
@@ -11,7 +13,11 @@ from engine.tracer.embree.queries import RayCaster, closest_hits, occlusion
 from engine.tracer.embree.scene import Scene, TriangleGeometry
 from engine.tracer.embree.spheres import SphereGeometry
 from engine.tracer.octahedral import decode, encode
+from engine.tracer.spheres import sphere_surface
 from engine.tracer.state import HitRecord, RayQueue
+
+#: What ``spheres.sphere_surface`` reads of a ``geometry.Geometry``.
+SphereTables = namedtuple("SphereTables", "spheres sphere_motion")
 
 TRIANGLE = np.array([[-4.0, -4.0, -3.0], [4.0, -4.0, -3.0], [0.0, 4.0, -3.0]])
 
@@ -74,11 +80,11 @@ def _rays(n, seed=5):
     return origin, direction, tmax
 
 
-def _trace(scene, origin, direction, tmax, sphere_geometry, first_sphere):
+def _trace(scene, origin, direction, tmax, sphere_geometry, first_sphere, time=None):
     caster = RayCaster(scene.handle, *new_ray_hit_record(), sphere_geometry=sphere_geometry, first_sphere=first_sphere)
     n = len(origin)
     hits = HitRecord(np.empty(n, np.int32), np.empty(n, np.float32), np.empty(n, np.float32), np.empty(n, np.float32))
-    queue = RayQueue(np.arange(n, dtype=np.int32), origin, direction, tmax, np.full(n, 0.5))
+    queue = RayQueue(np.arange(n, dtype=np.int32), origin, direction, tmax, np.full(n, 0.5) if time is None else time)
     closest_hits(caster, queue, n, False, hits)
     blocked = np.empty(n, np.int32)
     occlusion(caster, queue, n, blocked)
@@ -102,6 +108,53 @@ def test_sphere_hits_match_the_analytic_intersection():
     assert error.max() < 0.05, error.max()  # degrees; float32 Ng of spheres up to 0.5 m seen from 4 m
     # occlusion sees the spheres too (-1 free, 0 blocked)
     np.testing.assert_array_equal(blocked[clear], np.where(row[clear] >= 0, 0, -1))
+
+
+def test_moving_spheres_are_met_where_they_stand_at_each_rays_time():
+    """The spheres and the triangle at 3 time steps, moving 0.8 m in a straight line over the shutter (the middle
+    step the frame's): a ray at time τ meets them moved by (τ - 1/2) of the travel (the analytic scene, with the ray
+    moved back instead), and ``sphere_surface`` at τ rebuilds the point where the ray met a sphere."""
+    points = _spheres()
+    travel = np.array([0.5, -0.3, 0.55])
+    fractions = (-0.5, 0.0, 0.5)
+    motion = np.stack([points + np.r_[travel * f, 0.0] for f in fractions]).astype(np.float32)
+    triangle = [(TRIANGLE + travel * f).astype(np.float32) for f in fractions]
+    scene = Scene([TriangleGeometry(triangle, np.array([[0, 1, 2]])), SphereGeometry(list(motion))])
+    origin, direction, tmax = _rays(20000, seed=6)
+    time = np.random.default_rng(4).uniform(0.0, 1.0, len(origin))
+    moved_back = (origin - (time - 0.5)[:, None] * travel).astype(np.float32)
+    hits, blocked = _trace(scene, origin, direction, tmax, 1, 1, time)
+    row, t, normal, margin = _analytic(points, moved_back, direction, tmax)
+    clear = margin > 1e-3
+    on_sphere = clear & (row >= 1)
+    assert on_sphere.sum() > 1000 and (clear & (row == 0)).sum() > 500 and (clear & (row < 0)).sum() > 500
+    np.testing.assert_array_equal(hits.triangle[clear], row[clear])
+    np.testing.assert_allclose(hits.t[clear & (row >= 0)], t[clear & (row >= 0)], rtol=2e-5, atol=1e-6)
+    np.testing.assert_array_equal(blocked[clear], np.where(row[clear] >= 0, 0, -1))
+    tables = SphereTables(motion[1], motion)
+    rebuilt = np.array([sphere_surface(tables, int(r) - 1, float(u), float(v), float(tau))[0] for r, u, v, tau in
+                        zip(hits.triangle[on_sphere], hits.u[on_sphere], hits.v[on_sphere], time[on_sphere])])
+    hit_point = origin[on_sphere] + t[on_sphere, None] * direction[on_sphere].astype(np.float64)
+    assert np.linalg.norm(rebuilt - hit_point, axis=1).max() < 1e-4
+    # at the frame's time (-1) the frame's spheres, whatever the steps
+    frame = sphere_surface(tables, 0, *encode(0.0, 0.0, 1.0), -1.0)[0]
+    np.testing.assert_allclose(frame, points[0, :3] + [0.0, 0.0, points[0, 3]], atol=1e-6)
+
+
+def test_a_growing_sphere_is_met_at_its_radius_at_each_rays_time():
+    """A sphere whose radius grows from 0 to 0.6 m over the shutter (Embree interpolates it with the centre): rays
+    from 3 m away aimed at its centre meet it at 3 - r(τ)."""
+    motion = np.array([[[0.0, 0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0, 0.3]], [[0.0, 0.0, 0.0, 0.6]]], np.float32)
+    scene = Scene([SphereGeometry(list(motion))])
+    rng = np.random.default_rng(2)
+    n = 2000
+    toward = rng.normal(size=(n, 3))
+    toward /= np.linalg.norm(toward, axis=1, keepdims=True)
+    time = rng.uniform(0.02, 1.0, n)
+    hits, _ = _trace(scene, (-3.0 * toward).astype(np.float32), toward.astype(np.float32),
+                     np.full(n, 1e30, np.float32), 0, 0, time)
+    assert (hits.triangle == 0).all()
+    np.testing.assert_allclose(hits.t, 3.0 - 0.6 * time, atol=2e-5)
 
 
 def test_rays_leaving_a_sphere_from_its_offset_surface_do_not_hit_it_again():
@@ -138,3 +191,7 @@ def test_bad_spheres_are_refused():
         SphereGeometry(np.array([[0, 0, 0, 0.0]], np.float32))
     with pytest.raises(EmbreeError, match="shape"):
         SphereGeometry(np.zeros((3, 3), np.float32))
+    with pytest.raises(EmbreeError, match="every time step"):
+        SphereGeometry([np.ones((2, 4), np.float32), np.ones((3, 4), np.float32)])
+    with pytest.raises(EmbreeError, match="positive"):  # a radius below 0 at some step
+        SphereGeometry([np.ones((1, 4), np.float32), -np.ones((1, 4), np.float32)])
