@@ -18,8 +18,13 @@ import os
 
 import numpy as np
 
-#: Scene fields that only label messages.
-_LABELS = {"name", "object_names", "triangle_object"}
+#: Scene fields that only label messages (and Cryptomatte's names, which label its IDs the same way).
+_LABELS = {"name", "object_names", "triangle_object", "asset_names", "material_names"}
+#: Scene fields beside the triangles that change the image, hashed with the geometry where a scene has them
+#: (absent: the hashes of scenes without them): per-object ray visibility and holdouts, flat shading, the UV maps,
+#: colour attributes and object data node materials read, light groups, the data passes' inputs, and the
+#: geometry at the shutter's time steps (motion blur).
+_GEOMETRY_EXTRAS = ("object_flags", "triangle_flat", "surface", "object_light_groups", "data_passes", "motion")
 #: Settings fields a chunk carries itself or that do not change the image.
 _PER_CHUNK_SETTINGS = {"samples", "threads", "seed"}
 PARTS = ("frame", "geometry", "materials", "lights", "camera", "world", "settings")
@@ -33,6 +38,10 @@ def render_fingerprint(scene, settings, frame: float) -> dict[str, str]:
         geometry += (scene.points,)
     if getattr(scene, "curves", None) is not None:  # hair as curves (absent: the hashes of scenes before them)
         geometry += (scene.curves,)
+    for name in _GEOMETRY_EXTRAS:
+        value = getattr(scene, name, None)
+        if value is not None and not _is_default(scene, name, value):
+            geometry += (name, value)
     settings_fields = {
         f.name: getattr(settings, f.name) for f in dataclasses.fields(settings) if f.name not in _PER_CHUNK_SETTINGS
     }
@@ -40,6 +49,15 @@ def render_fingerprint(scene, settings, frame: float) -> dict[str, str]:
     lights = scene.lights if links is None else (scene.lights, links)
     values = (geometry, scene.materials, lights, scene.camera, scene.world, settings_fields)
     return {"frame": frame_label(frame), **{part: _digest(value) for part, value in zip(PARTS[1:], values)}}
+
+
+def _is_default(scene, name: str, value) -> bool:
+    """Whether ``value`` is what a scene without the field ``name`` holds (an empty list, the default record)."""
+    if isinstance(value, list):
+        return not value
+    fields = {f.name: f for f in dataclasses.fields(scene)} if dataclasses.is_dataclass(scene) else {}
+    factory = getattr(fields.get(name), "default_factory", dataclasses.MISSING)
+    return factory is not dataclasses.MISSING and _digest(value) == _digest(factory())
 
 
 def frame_label(frame: float) -> str:

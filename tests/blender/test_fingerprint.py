@@ -70,3 +70,42 @@ def test_a_lens_file_counts_by_its_content_not_its_path(tmp_path):
     mounted.write_bytes(original.read_bytes().replace(b"thickness_mm = 3.76", b"thickness_mm = 3.80"))
     assert differing_parts(render_fingerprint(_scene(str(original)), settings, 1),
                            render_fingerprint(_scene(str(mounted)), settings, 1)) == ["camera"]
+
+
+def test_what_beside_the_triangles_changes_the_image_changes_the_geometry_part():
+    """Ray visibility, flat shading, a UV map, a light group, a pass's input and motion blur's time steps each change
+    the geometry part alone; a scene that holds them at their defaults hashes as one without them."""
+    from engine.tracer.data_passes import DataPassInputs
+    from engine.tracer.motion import Motion
+    from engine.tracer.scene import SurfaceAttributes
+
+    scene, settings = _scene(), RenderSettings()
+    base = render_fingerprint(scene, settings, 1)
+    defaults = copy.deepcopy(scene)
+    defaults.object_light_groups, defaults.data_passes = [], DataPassInputs()
+    assert render_fingerprint(defaults, settings, 1) == base
+    uv = np.zeros((1, 1, 3, 2), np.float32)
+    changes = {
+        "object_flags": np.array([3], np.uint8),
+        "triangle_flat": np.array([True]),
+        "surface": SurfaceAttributes(uvs=uv),
+        "object_light_groups": ["Key"],
+        "data_passes": DataPassInputs(mist_depth_m=10.0),
+        "motion": Motion(np.stack([scene.vertices, scene.vertices + [0.1, 0.0, 0.0]])),
+    }
+    for name, value in changes.items():
+        changed = copy.deepcopy(scene)
+        setattr(changed, name, value)
+        assert differing_parts(base, render_fingerprint(changed, settings, 1)) == ["geometry"], name
+    moved = copy.deepcopy(scene)
+    moved.motion = Motion(np.stack([scene.vertices, scene.vertices + [0.2, 0.0, 0.0]]))
+    assert differing_parts(render_fingerprint(moved, settings, 1),
+                           render_fingerprint(dataclasses.replace(scene, motion=changes["motion"]), settings, 1)) == [
+        "geometry"]
+    uv[0, 0, 0, 0] = 0.5  # another UV map
+    changed = copy.deepcopy(scene)
+    changed.surface = SurfaceAttributes(uvs=uv)
+    other = copy.deepcopy(scene)
+    other.surface = SurfaceAttributes(uvs=np.zeros((1, 1, 3, 2), np.float32))
+    assert differing_parts(render_fingerprint(changed, settings, 1), render_fingerprint(other, settings, 1)) == [
+        "geometry"]
