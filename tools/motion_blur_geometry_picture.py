@@ -17,19 +17,9 @@ OUTPUT = ROOT / "docs" / "images" / "motion_blur_geometry.png"
 SPEED_M = 0.6  # per frame, along x
 
 
-def _keyed(obj, x):
-    """``obj`` keyed at ``x`` on frame 1, moving ``SPEED_M`` a frame at constant speed."""
-    from helpers.node_scenes import linear_keys
-
-    for frame in (0, 2):
-        obj.location.x = x + SPEED_M * (frame - 1)
-        obj.keyframe_insert("location", index=0, frame=frame)
-    linear_keys(obj)
-
-
 def _scene(bpy):
     from helpers.hair_scenes import groom, hair_object, lit
-    from helpers.node_scenes import camera, material, node
+    from helpers.node_scenes import camera, material, node, slide_during_shutter
     from helpers.point_scenes import points_object
 
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
@@ -43,13 +33,10 @@ def _scene(bpy):
     sizes, positions, radii = groom()
     hair = hair_object("Groom", sizes, positions, radii=radii)
     hair.data.materials.append(looks[0])
-    _keyed(hair, -0.8)
+    slide_during_shutter(hair, scene, SPEED_M, -0.8)
     grid = [(x, y, z) for x in (-0.4, -0.2, 0.0, 0.2, 0.4) for y in (0.0,) for z in (0.1, 0.3, 0.5, 0.7, 0.9)]
     cloud = points_object("Dust", grid, looks[1], radius=0.06)
-    _keyed(cloud, 0.8)
-    scene.frame_set(1)
-    scene.render.use_motion_blur = True
-    scene.render.motion_blur_shutter = 0.5
+    slide_during_shutter(cloud, scene, SPEED_M, 0.8)
     camera((0.0, -4.2, 1.0), (0.0, 0.0, 0.5), resolution=(240, 120))
     return scene
 

@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .jit import inlined, kernel
+from .time_steps import row_at
 from .vec3 import tangents
 
 
@@ -173,17 +174,7 @@ def _weights(u):
 def control_point(strands, k, time):
     """(x, y, z, radius) of control point ``k`` at ray time ``time`` (0..1 over the shutter): linear between the two
     time steps around it, as Embree interpolates them; the frame's where nothing moves or ``time`` < 0."""
-    m = strands.curve_motion
-    if m.shape[0] == 0 or time < 0.0:
-        p = strands.curves
-        return float(p[k, 0]), float(p[k, 1]), float(p[k, 2]), float(p[k, 3])
-    x = min(time, 1.0) * (m.shape[0] - 1)
-    s = min(int(x), m.shape[0] - 2)
-    f = x - s
-    return ((1.0 - f) * float(m[s, k, 0]) + f * float(m[s + 1, k, 0]),
-            (1.0 - f) * float(m[s, k, 1]) + f * float(m[s + 1, k, 1]),
-            (1.0 - f) * float(m[s, k, 2]) + f * float(m[s + 1, k, 2]),
-            (1.0 - f) * float(m[s, k, 3]) + f * float(m[s + 1, k, 3]))
+    return row_at(strands.curves, strands.curve_motion, k, time)
 
 
 @inlined

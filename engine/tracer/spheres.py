@@ -21,6 +21,7 @@ import numpy as np
 
 from .jit import inlined
 from .octahedral import decode
+from .time_steps import row_at
 
 
 @dataclass
@@ -107,17 +108,7 @@ def sphere_at(geometry, s, time):
     """(x, y, z, radius) of sphere ``s`` of ``geometry`` (``Geometry.spheres`` and ``sphere_motion``) at ray time
     ``time`` (0..1 over the shutter): linear between the two time steps around it, as Embree interpolates them;
     the frame's where nothing moves or ``time`` < 0."""
-    m = geometry.sphere_motion
-    if m.shape[0] == 0 or time < 0.0:
-        c = geometry.spheres
-        return float(c[s, 0]), float(c[s, 1]), float(c[s, 2]), float(c[s, 3])
-    x = min(time, 1.0) * (m.shape[0] - 1)
-    k = min(int(x), m.shape[0] - 2)
-    f = x - k
-    return ((1.0 - f) * float(m[k, s, 0]) + f * float(m[k + 1, s, 0]),
-            (1.0 - f) * float(m[k, s, 1]) + f * float(m[k + 1, s, 1]),
-            (1.0 - f) * float(m[k, s, 2]) + f * float(m[k + 1, s, 2]),
-            (1.0 - f) * float(m[k, s, 3]) + f * float(m[k + 1, s, 3]))
+    return row_at(geometry.spheres, geometry.sphere_motion, s, time)
 
 
 @inlined

@@ -114,6 +114,19 @@ def linear_keys(datablock):
             key.interpolation = "LINEAR"
 
 
+def slide_during_shutter(obj, scene, speed_m=0.4, x=0.0):
+    """Key ``obj`` to move ``speed_m`` along x a frame at constant speed, at ``x`` on frame 1, and set ``scene`` to
+    frame 1 with Render ▸ Motion Blur on, Shutter 0.5 frame centred on it (``speed_m`` / 2 of travel while it is
+    open)."""
+    for frame in (0, 2):
+        obj.location.x = x + speed_m * (frame - 1)
+        obj.keyframe_insert("location", index=0, frame=frame)
+    linear_keys(obj)
+    scene.frame_set(1)
+    scene.render.use_motion_blur = True
+    scene.render.motion_blur_shutter = 0.5
+
+
 def camera(location, look_at, lens_mm=50.0, resolution=(64, 48), sensor_mm=36.0):
     scene = bpy.context.scene
     cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
