@@ -128,20 +128,6 @@ def placed_strands(hair: LocalHair, matrices: np.ndarray) -> PlacedStrands:
                          segment_ends(hair.uvs, point_kept, starts, len(matrices)))
 
 
-def unread_inputs_warning(name: str, slot_materials: list, needs: dict) -> str | None:
-    """The warning for hair ``name`` whose materials (``needs``: material name → the program's (kind, name)
-    reads) read UV maps or attributes, which particle hair and ribbons do not carry (Hair Curves rendered as 3D
-    curves do: ``hair_attributes``); None when they read none."""
-    reads = sorted({f"{'UV map' if kind == 'uv' else 'attribute'} '{label or '(default)'}'"
-                    for material in slot_materials if material is not None
-                    for kind, label in needs.get(material.original.name, ()) if kind in ("uv", "attribute")})
-    if not reads:
-        return None
-    return (f"Hair '{name}': its material reads the {', the '.join(reads)}, but Prism's strands carry no UV maps or "
-            "attributes: it reads 0 there (UV (0, 0), attributes black), where Cycles reads the strands' own (for "
-            "particle hair, the emitter's at each root).")
-
-
 def segment_starts(offsets: np.ndarray) -> np.ndarray:
     """Index of the first point of every segment (each point but the last of its curve)."""
     is_last = np.zeros(offsets[-1], dtype=bool)

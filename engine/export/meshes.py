@@ -22,7 +22,7 @@ import numpy as np
 from ..tracer.curves import CurveSegments, padded_strands
 from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
-from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair, unread_inputs_warning
+from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
 from .bump_space import both_bump_scale_warning
@@ -115,12 +115,9 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
         if kind == "MESH" and instance.show_particles and len(obj.particle_systems) and included.renders("CURVES"):
             key = ("PARTICLES", obj.original.name, obj.data.as_pointer(), render)
             if key not in pieces:
-                ribbons = curve_shape(depsgraph.scene) == "RIBBONS"
-                request = None if ribbons else materials.request(hair_materials(obj, render))
+                request = materials.request(hair_materials(obj, render))
                 hair = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
-                if ribbons:
-                    _warn_unread_inputs(materials, obj.name, hair, warnings)
-                elif hair is not None and hair.uncarried and warnings is not None:
+                if hair is not None and hair.uncarried and warnings is not None:
                     warnings.append(uncarried_warning(obj.name, hair.uncarried))
                 pieces[key] = (_Instances(obj.name, hair, light_group=obj.lightgroup,
                                           flags=object_flags(obj, getattr(depsgraph, "view_layer", None), warnings),
@@ -146,8 +143,6 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             request = materials.request([slot.material for slot in obj.material_slots])
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
-            if kind != "CURVES" or curve_shape(depsgraph.scene) == "RIBBONS":  # 3D curves carry what they read
-                _warn_unread_inputs(materials, obj.name, geometry, warnings)
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
             for message in (adaptive_subdivision_warning(obj, depsgraph.scene),
                             both_bump_scale_warning(obj) if kind == "MESH" else None):
@@ -158,19 +153,6 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
                            if geometry is not None else None)
         _place(pieces[key], instance, obj)
     return [piece for piece in pieces.values() if piece is not None]
-
-
-def _warn_unread_inputs(materials: MaterialRows, name: str, geometry, warnings) -> None:
-    """Warn where hair's materials (the slots its strands use) read UV maps or attributes strands lack."""
-    if not isinstance(geometry, LocalHair) or warnings is None:
-        return
-    used = [geometry.slot_materials[s] for s in np.unique(geometry.curve_slot) if 0 <= s < len(geometry.slot_materials)]
-    if not any(m is not None for m in used):
-        return
-    materials.slot_lookup(used)  # exports them, which records what they read
-    message = unread_inputs_warning(name, used, materials.exporter.needs)
-    if message is not None:
-        warnings.append(message)
 
 
 def _place(piece: _Instances | None, instance, obj) -> None:
@@ -219,13 +201,13 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
             strands.append((piece, matrices, lookup))
             continue
         if isinstance(piece.geometry, LocalHair):
-            for matrix in matrices:  # ribbons face the camera from where each instance stands
+            for matrix, info in zip(matrices, piece.infos):  # ribbons face the camera from where each instance stands
                 placed, slots = hair_ribbons(piece.geometry, matrix, camera)
                 parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
                 names.append(piece.name)
                 assets.append(piece.asset)
                 groups.append(piece.light_group)
-                surface.add_other(len(placed.triangles))
+                surface.add_ribbons(piece.geometry, placed, matrix, info)
                 flags.append(piece.flags)
                 pass_index.append(np.full(len(placed.triangles), piece.infos[0][1] if piece.infos else 0, np.float32))
                 has_uv.append(np.zeros(len(placed.triangles), bool))

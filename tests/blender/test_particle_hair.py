@@ -85,12 +85,10 @@ def test_a_particle_groom_matches_cycles_in_luminance_and_coverage(prism_addon, 
     assert coverage == pytest.approx(1.0, abs=0.02)
 
 
-def test_ribbon_hair_reading_a_uv_map_or_attribute_is_warned(prism_addon, fresh_scene):
-    """Ribbons (Render ▸ Curves ▸ Shape "Rounded Ribbons") carry no UV maps or attributes in Prism (Cycles gives
-    particle hair the emitter's UV at the root): a hair material reading them is named, with what it reads and
-    what renders instead."""
+def test_ribbon_hair_carries_the_emitters_uv_map_and_colour_as_3d_curves_do(prism_addon, fresh_scene):
+    """Ribbons (Render ▸ Curves ▸ Shape "Rounded Ribbons") read the emitter's UV map and colour attribute at each
+    root, unwarned: every ribbon corner holds the root's value that the same strands carry as 3D curves."""
     lit(fresh_scene)
-    fresh_scene.cycles_curves.shape = "RIBBONS"
     plane, settings = _scalp(5, 0.3)
     mat, nodes, link = material("Textured fur")
     shader = node(nodes, "ShaderNodeBsdfDiffuse")
@@ -104,13 +102,19 @@ def test_ribbon_hair_reading_a_uv_map_or_attribute_is_warned(prism_addon, fresh_
     link(mix.outputs[0], shader.inputs["Color"])
     link(shader.outputs[0], nodes["Output"].inputs["Surface"])
     plane.data.materials.append(mat)
+    _paint(plane.data, "col", lambda uv: np.column_stack([uv, np.full(len(uv), 0.5)]))
     camera((0.0, -3.0, 0.5), (0.0, 0.0, 0.2), resolution=(8, 8))
     warnings = []
-    export_scene(prism_addon, warnings)
-    assert [w for w in warnings if w.startswith("Hair 'Scalp'")] == [
-        "Hair 'Scalp': its material reads the UV map 'UVMap', the attribute 'col', but Prism's strands carry no UV "
-        "maps or attributes: it reads 0 there (UV (0, 0), attributes black), where Cycles reads the strands' own (for "
-        "particle hair, the emitter's at each root)."]
+    curves = export_scene(prism_addon, warnings).curves
+    fresh_scene.cycles_curves.shape = "RIBBONS"
+    scene = export_scene(prism_addon, warnings)
+    hair = scene.triangle_object == scene.object_names.index("Scalp")  # the strands, named before their emitter
+    assert warnings == [] and hair.sum() == 2 * len(curves)  # two triangles a segment
+    for table, strands in ((scene.surface.uvs, curves.uvs), (scene.surface.colors, curves.colors)):
+        slot = next(s for s in range(len(strands)) if strands[s].any())
+        ribbon = table[slot][hair].reshape(len(curves), 2, 3, -1)  # each segment's two triangles
+        assert len(np.unique(np.round(ribbon[:, 0, 0], 5), axis=0)) == 5  # a value per strand
+        np.testing.assert_allclose(ribbon, np.broadcast_to(strands[slot][:, :1, None], ribbon.shape), atol=1e-6)
 
 
 def _paint(mesh, name, rgb_of_uv):
