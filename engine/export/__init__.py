@@ -151,7 +151,8 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
     if motion:
         frame_set = frame_set or (lambda f, s: scene.frame_set(f, subframe=s))
         meshes_again = lambda evaluated: export_meshes(evaluated, None, camera_position=camera.camera_to_world[:3, 3])  # noqa: E731
-        export_motion(scene, depsgraph, tracer_scene, frame_set, meshes_again, warnings if warnings is not None else [])
+        export_motion(scene, depsgraph, tracer_scene, frame_set, meshes_again, warnings if warnings is not None else [],
+                      geometry.point_velocity)
         export_vector_pass(scene, depsgraph, tracer_scene, frame_set, meshes_again,
                            warnings if warnings is not None else [])
     tracer_scene.validate()

@@ -32,7 +32,7 @@ from .material_rows import MaterialRows
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
 from .particle_hair import hair_materials, read_particle_hair, uncarried_warning
-from .point_clouds import LocalPoints, place_points, point_random, read_points
+from .point_clouds import LocalPoints, place_points, placed_velocity, point_random, read_points
 from .data_passes import data_pass_switches, world_ao_distance
 from .surface_attributes import SurfaceCollector, stacked_slots
 from .texture_memory import TextureBudget
@@ -64,6 +64,7 @@ class ExportedGeometry:
     pass_uv: np.ndarray | None = None
     material_pass_index: tuple = ()
     points: SpherePoints | None = None  # the points of point clouds (objects numbered after the triangles')
+    point_velocity: np.ndarray | None = None  # float64 [N, 3]: their velocity attribute (m/s, world; NaN: none)
     curves: CurveSegments | None = None  # the strands of hair curves (objects numbered after the points')
     triangle_flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat
     object_asset_names: list[str] = field(default_factory=list)  # per object_names entry (Cryptomatte Asset)
@@ -231,6 +232,9 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                                         len(local.triangles)))
     geometry = _assemble(parts, names, materials.materials)
     geometry.points = _points(clouds, names, groups, flags, surface, assets)
+    if any(piece.geometry.velocity is not None for piece, _, _ in clouds):
+        geometry.point_velocity = np.concatenate([placed_velocity(piece.geometry, matrices)
+                                                  for piece, matrices, _ in clouds])
     geometry.curves = _curves(strands, names, groups, flags, surface, assets)
     geometry.object_names = list(names)
     geometry.object_asset_names = list(assets)

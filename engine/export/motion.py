@@ -20,7 +20,7 @@ from ..tracer.motion import Motion, motion_step_count, shutter_times
 from .camera import rigid_matrix
 from .hair_motion import hair_steps
 from .motion_steps import is_still, resample
-from .point_motion import point_steps
+from .point_motion import point_steps, velocity_steps
 from .view_layer_filter import layer_filter
 
 #: Where the shutter's middle lies relative to the frame, in shutter lengths (Cycles' motion position).
@@ -62,10 +62,11 @@ def _object_settings(name):
     return bool(settings.use_motion_blur), int(settings.motion_steps), bool(settings.use_deform_motion)
 
 
-def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warnings) -> None:
+def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warnings, point_velocity=None) -> None:
     """Give ``tracer_scene`` (already exported at the frame) its motion blur: ``camera.shutter_times``,
     ``camera.motion_to_world`` and ``motion`` where something moves. ``frame_set(frame, subframe)``
-    re-evaluates ``depsgraph``; ``export_meshes(depsgraph)`` exports its meshes as at the frame."""
+    re-evaluates ``depsgraph``; ``export_meshes(depsgraph)`` exports its meshes as at the frame;
+    ``point_velocity`` (``ExportedGeometry.point_velocity``) the points' velocity attribute at the frame."""
     if not motion_blur_on(scene, getattr(depsgraph, "view_layer", None)):
         return
     camera = tracer_scene.camera
@@ -98,7 +99,9 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     if not np.allclose(cameras, cameras[:1], rtol=0.0, atol=1e-12):
         camera.motion_to_world = cameras
     hair = hair_steps(tracer_scene, strands, settings, count, warnings)
-    points = point_steps(tracer_scene, clouds, settings, count, warnings)
+    fps = float(scene.render.fps) / float(scene.render.fps_base)
+    seconds = (frames - (frame + subframe)) / fps  # each step's time from the frame's
+    points = point_steps(tracer_scene, clouds, settings, count, warnings, velocity_steps(point_velocity, seconds))
     steps, corner = None, None
     if changed:
         warnings.append(f"Scene '{scene.name}': Motion Blur: a mesh changes its vertices or faces during the shutter "

@@ -65,13 +65,21 @@ class StepRows:
     ``frame`` float64 [N, 4] (position, world, and radius at the frame), ``owner`` int [N] (each row's object,
     an index into the frame's ``names``), ``steps`` [(float64 [M, 4], int [M] owner as a frame index, -1: none)]
     one per time step, and the warnings for an object whose rows change in number (``changing(name)``) and for
-    one moving with Object ▸ Motion Blur ▸ Deformation off (``deforming(name)``)."""
+    one moving with Object ▸ Motion Blur ▸ Deformation off (``deforming(name)``); ``unmatched`` float64 [S, N, 4]
+    (or None): the rows at each step for an object whose rows change in number (points moved by their velocity),
+    NaN where there are none."""
 
     frame: np.ndarray
     owner: np.ndarray
     steps: list
     changing: Callable[[str], str]
     deforming: Callable[[str], str]
+    unmatched: np.ndarray | None = None
+
+
+def _follows(unmatched, on, finite) -> bool:
+    """Whether ``unmatched`` gives every row ``on`` (where the frame's is ``finite``) a finite place at every step."""
+    return unmatched is not None and bool(np.isfinite(unmatched[:, on][:, finite[on]]).all())
 
 
 def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.ndarray | None:
@@ -89,7 +97,9 @@ def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.nd
         for index in np.unique(rows.owner):
             on, on_step = rows.owner == index, step_owner == index
             values = step_table[on_step]
-            if on.sum() != on_step.sum():
+            if on.sum() != on_step.sum() and _follows(rows.unmatched, on, frame_finite):
+                table[s, on] = rows.unmatched[s, on]
+            elif on.sum() != on_step.sum():
                 changed.add(int(index))
             elif not np.isfinite(values[frame_finite[on]]).all():
                 broken.add(int(index))

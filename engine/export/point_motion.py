@@ -4,9 +4,15 @@
 ``export.motion`` re-exports the scene at each step; here each point cloud's points at a step are matched to the
 frame's by object (instances of one cloud by occurrence) and then by point order, as Cycles matches a point
 cloud's points (``export_pointcloud_motion``), through ``motion_steps.object_steps``: Object ▸ Motion Blur off
-keeps a cloud still at the frame; fewer Steps than the scene's are interpolated between its own. A cloud whose
-number of points changes during the shutter stays still at the frame, as in Cycles, and is named in a warning.
-The steps carry each point's radius too, so points that grow or shrink blur as Cycles blurs them.
+keeps a cloud still at the frame; fewer Steps than the scene's are interpolated between its own. The steps carry
+each point's radius too, so points that grow or shrink blur as Cycles blurs them.
+
+A cloud whose number of points changes during the shutter (a simulation emitting or removing particles) cannot be
+matched point by point: where its points carry a ``velocity`` attribute (m/s, as simulations write it), each moves
+in a straight line by it, ``velocity × (step time - frame time)`` (``velocity_steps``), as Cycles blurs points
+by their velocity; without one the cloud stays still at the frame and is named in a warning (Cycles silently
+drops its motion). Cycles moves the points whose index the step's cloud still has to that step's point of the
+same index instead, which is another particle once one has died; Prism uses the velocity for all of them.
 """
 
 from __future__ import annotations
@@ -24,23 +30,38 @@ def _owner(points) -> np.ndarray:
     return np.asarray(points.object, np.int64)
 
 
-def point_steps(tracer_scene, steps, settings, count, warnings) -> np.ndarray | None:
+def velocity_steps(velocity, seconds) -> np.ndarray | None:
+    """float64 [S, N, 3]: how far each point's ``velocity`` (float64 [N, 3], m/s, world; NaN: none) carries it at
+    each time step, ``seconds`` [S] from the frame; None without velocities."""
+    if velocity is None or seconds is None:
+        return None
+    return np.asarray(seconds, np.float64)[:, None, None] * np.asarray(velocity, np.float64)[None]
+
+
+def point_steps(tracer_scene, steps, settings, count, warnings, drift=None) -> np.ndarray | None:
     """float64 [S, N, 4]: the centres (world) and radii of ``tracer_scene.points`` at the shutter's ``count`` time
     steps, from ``steps`` ((``SpherePoints`` or None, object names) exported at each), per object as the module
-    says; None where no point moves. ``settings``: object name → (motion blur on, steps, deformation on)."""
+    says, clouds whose number of points changes moved by ``drift`` (``velocity_steps``, NaN where a point has no
+    velocity); None where no point moves. ``settings``: object name → (motion blur on, steps, deformation on)."""
     points = tracer_scene.points
     if points is None or not len(points):
         return None
     names = tracer_scene.object_names
-    rows = StepRows(_table(points), _owner(points), matched_steps(names, steps, _table, _owner),
-                    changing_points_warning, _deforming_points_warning)
+    frame = _table(points)
+    unmatched = None
+    if drift is not None:
+        unmatched = np.repeat(frame[None], len(drift), axis=0)
+        unmatched[..., :3] += drift
+    rows = StepRows(frame, _owner(points), matched_steps(names, steps, _table, _owner), changing_points_warning,
+                    _deforming_points_warning, unmatched)
     return object_steps(rows, names, settings, count, warnings)
 
 
 def changing_points_warning(name: str) -> str:
-    """The warning for a point cloud whose number of points changes during the shutter."""
-    return (f"Point cloud '{name}': its number of points changes during the shutter, so Prism cannot follow its "
-            "points (nor can Cycles): they are rendered still where they are at the frame, without motion blur.")
+    """The warning for a point cloud whose number of points changes during the shutter and that has no velocity."""
+    return (f"Point cloud '{name}': its number of points changes during the shutter and its points have no "
+            "'velocity' attribute, so Prism cannot follow them: they are rendered still where they are at the frame, "
+            "without motion blur (as Cycles renders them).")
 
 
 def _deforming_points_warning(name: str) -> str:
