@@ -128,6 +128,17 @@ def placed_strands(hair: LocalHair, matrices: np.ndarray) -> PlacedStrands:
                          segment_ends(hair.uvs, point_kept, starts, len(matrices)))
 
 
+def ribbon_hair_info_warning(name: str, reads: list, strand_random: bool) -> str:
+    """The warning for hair ``name`` rendered as Rounded Ribbons whose materials read Hair Info's outputs ``reads``
+    or (``strand_random``) have a Principled Hair BSDF whose unlinked Random takes the strand's random number."""
+    lost = ([f"Hair Info ▸ {', '.join(reads)} reads 0 there"] if reads else []) + (
+        ["the Principled Hair BSDF's unlinked Random takes its value on the node, not the strand's random number"]
+        if strand_random else [])
+    return (f"Hair '{name}' renders as Rounded Ribbons, which Prism makes of triangles without the strands' Hair "
+            f"Info: {'; '.join(lost)}, where Cycles' ribbons read each strand's. Render ▸ Curves ▸ Shape \"3D "
+            "Curves\" gives Prism's strands their Hair Info.")
+
+
 def segment_starts(offsets: np.ndarray) -> np.ndarray:
     """Index of the first point of every segment (each point but the last of its curve)."""
     is_last = np.zeros(offsets[-1], dtype=bool)

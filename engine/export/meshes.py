@@ -22,7 +22,7 @@ import numpy as np
 from ..tracer.curves import CurveSegments, padded_strands
 from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
-from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair
+from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair, ribbon_hair_info_warning
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
 from .bump_space import both_bump_scale_warning
@@ -118,6 +118,8 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             if key not in pieces:
                 request = materials.request(hair_materials(obj, render))
                 hair = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
+                if curve_shape(depsgraph.scene) == "RIBBONS":
+                    _warn_ribbon_hair_info(materials, obj.name, hair, warnings)
                 if hair is not None and hair.uncarried and warnings is not None:
                     warnings.append(uncarried_warning(obj.name, hair.uncarried))
                 pieces[key] = (_Instances(obj.name, hair, light_group=obj.lightgroup,
@@ -144,6 +146,8 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             request = materials.request([slot.material for slot in obj.material_slots])
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
+            if kind == "CURVES" and curve_shape(depsgraph.scene) == "RIBBONS":
+                _warn_ribbon_hair_info(materials, obj.name, geometry, warnings)
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
             for message in (adaptive_subdivision_warning(obj, depsgraph.scene),
                             both_bump_scale_warning(obj) if kind == "MESH" else None):
@@ -154,6 +158,20 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
                            if geometry is not None else None)
         _place(pieces[key], instance, obj)
     return [piece for piece in pieces.values() if piece is not None]
+
+
+def _warn_ribbon_hair_info(materials: MaterialRows, name: str, hair, warnings) -> None:
+    """Warn where ribbon hair's materials (the slots its strands use) read Hair Info, which Prism's ribbons,
+    triangles, do not carry (Cycles' ribbons are curves)."""
+    if not isinstance(hair, LocalHair) or warnings is None:
+        return
+    used = [hair.slot_materials[s] for s in np.unique(hair.curve_slot) if 0 <= s < len(hair.slot_materials)]
+    used = [m for m in used if m is not None]
+    materials.slot_lookup(used)  # exports them, which records what they read
+    needs = {need for m in used for need in materials.exporter.needs.get(m.original.name, ())}
+    reads = sorted(field for kind, field in needs if kind == "hair_info")
+    if reads or ("strand_random", "") in needs:
+        warnings.append(ribbon_hair_info_warning(name, reads, ("strand_random", "") in needs))
 
 
 def _place(piece: _Instances | None, instance, obj) -> None:

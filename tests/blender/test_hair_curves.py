@@ -245,6 +245,37 @@ def test_ribbons_coloured_by_their_attributes_glow_as_in_cycles(prism_addon, fre
     assert coverage == pytest.approx(1.0, abs=0.02)
 
 
+def test_ribbons_whose_material_reads_hair_info_are_warned(prism_addon, fresh_scene):
+    """Ribbons are triangles in Prism, without the strands' Hair Info: a material reading Hair Info ▸ Intercept, or a
+    Principled Hair BSDF whose unlinked Random varies its colour, is named with what it loses; the same hair as 3D
+    Curves, and a Principled Hair without random variation, are not warned."""
+    _lit(fresh_scene)
+    obj = _hair_object("Fur", [4, 3], [(0, 0, 0), (0, 0, 0.5), (0.1, 0, 1.0), (0.2, 0, 1.5), (1, 0, 0), (1, 0, 0.5),
+                                       (1, 0.2, 1.0)], radii=np.full(7, 0.02))
+    mat, nodes, link = material("Fur")
+    hair = node(nodes, "ShaderNodeBsdfHairPrincipled", Melanin=0.5)
+    hair.parametrization = "MELANIN"
+    hair.inputs["Random Roughness"].default_value = 0.0
+    info = nodes.new("ShaderNodeHairInfo")
+    link(info.outputs["Intercept"], hair.inputs["Melanin Redness"])
+    link(hair.outputs[0], nodes["Output"].inputs["Surface"])
+    obj.data.materials.append(mat)
+    camera((0.0, -6.0, 1.0), (0.0, 0.0, 0.5), resolution=(8, 8))
+    start = "Hair 'Fur' renders as Rounded Ribbons, which Prism makes of triangles without the strands' Hair Info: "
+    end = ", where Cycles' ribbons read each strand's. Render ▸ Curves ▸ Shape \"3D Curves\" gives Prism's strands " \
+          "their Hair Info."
+    for shape, random_colour, lost in (
+            ("THICK", 0.5, None),
+            ("RIBBONS", 0.0, "Hair Info ▸ Intercept reads 0 there"),
+            ("RIBBONS", 0.5, "Hair Info ▸ Intercept reads 0 there; the Principled Hair BSDF's unlinked Random takes "
+                             "its value on the node, not the strand's random number")):
+        fresh_scene.cycles_curves.shape = shape
+        hair.inputs["Random Color"].default_value = random_colour
+        warnings = []
+        _export(prism_addon, warnings)
+        assert warnings == ([] if lost is None else [start + lost + end]), (shape, random_colour)
+
+
 def test_a_groom_coloured_through_its_surface_uv_matches_cycles(prism_addon, fresh_scene):
     """300 strands with the curve-domain 2D vector "surface_uv_coordinate" (where Blender records the root of hair
     grown on a surface) and a Diffuse colour (U, V, 0.3) from Texture Coordinate ▸ UV: Cycles takes the first such
