@@ -9,7 +9,7 @@ import bpy
 import numpy as np
 import pytest
 
-from helpers.hair_scenes import export_scene, lit, luminance_and_coverage
+from helpers.hair_scenes import assert_matches_cycles, export_scene, lit
 from helpers.node_scenes import camera, material, node
 
 
@@ -79,10 +79,7 @@ def test_a_particle_groom_matches_cycles_in_luminance_and_coverage(prism_addon, 
     plane.data.materials.append(_diffuse("Hair", (0.7, 0.5, 0.3)))
     plane.show_instancer_for_render = False  # the strands alone: Render ▸ Show Emitter off
     camera((0.0, -2.4, 1.0), (0.0, 0.0, 0.3), resolution=(48, 48))
-    light, coverage, covered = luminance_and_coverage(fresh_scene, "particle groom")
-    assert 0.05 < covered < 0.6  # the strands cover part of the picture
-    assert light == pytest.approx(1.0, abs=0.02)
-    assert coverage == pytest.approx(1.0, abs=0.02)
+    assert_matches_cycles(fresh_scene, "particle groom", covered=(0.05, 0.6))
 
 
 def test_ribbon_hair_carries_the_emitters_uv_map_and_colour_as_3d_curves_do(prism_addon, fresh_scene):
@@ -228,10 +225,7 @@ def test_a_particle_groom_coloured_by_its_emitter_matches_cycles(prism_addon, fr
     grid.data.materials.append(mat)
     grid.show_instancer_for_render = False
     camera((0.0, -2.4, 1.0), (0.0, 0.0, 0.3), resolution=(48, 48))
-    light, coverage, covered = luminance_and_coverage(fresh_scene, "particle groom coloured by its emitter")
-    assert 0.05 < covered < 0.6
-    assert light == pytest.approx(1.0, abs=0.02)
-    assert coverage == pytest.approx(1.0, abs=0.02)
+    assert_matches_cycles(fresh_scene, "particle groom coloured by its emitter", covered=(0.05, 0.6))
 
 
 def test_particle_hair_moves_with_its_emitter_under_motion_blur(prism_addon, fresh_scene):

@@ -84,6 +84,18 @@ def luminance_and_coverage(scene, label, samples=64):
     return light, coverage, float(cycles[..., 3].mean())
 
 
+def assert_matches_cycles(scene, label, covered=(0.1, 0.6), samples=64):
+    """Prism's mean luminance and coverage within 2 % of Cycles' (``luminance_and_coverage``), with Cycles' mean
+    alpha inside ``covered`` (the strands cover part of the picture; None: not checked)."""
+    import pytest
+
+    light, coverage, seen = luminance_and_coverage(scene, label, samples)
+    if covered is not None:
+        assert covered[0] < seen < covered[1]
+    assert light == pytest.approx(1.0, abs=0.02)
+    assert coverage == pytest.approx(1.0, abs=0.02)
+
+
 def lit(scene):
     """A sun and a grey world; Render ▸ Curves ▸ Shape "3D Curves" (a new scene's is "Rounded Ribbons")."""
     scene.cycles_curves.shape = "THICK"
