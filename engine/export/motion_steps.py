@@ -66,8 +66,8 @@ class StepRows:
     an index into the frame's ``names``), ``steps`` [(float64 [M, 4], int [M] owner as a frame index, -1: none)]
     one per time step, and the warnings for an object whose rows change in number (``changing(name)``) and for
     one moving with Object ▸ Motion Blur ▸ Deformation off (``deforming(name)``); ``unmatched`` float64 [S, N, 4]
-    (or None): the rows at each step for an object whose rows change in number (points moved by their velocity),
-    NaN where there are none."""
+    (or None): the rows at every step for an object whose rows change in number at some step (points moved by their
+    velocity), NaN where there are none."""
 
     frame: np.ndarray
     owner: np.ndarray
@@ -77,9 +77,17 @@ class StepRows:
     unmatched: np.ndarray | None = None
 
 
-def _follows(unmatched, on, finite) -> bool:
-    """Whether ``unmatched`` gives every row ``on`` (where the frame's is ``finite``) a finite place at every step."""
-    return unmatched is not None and bool(np.isfinite(unmatched[:, on][:, finite[on]]).all())
+def _groups(owner: np.ndarray, size: int):
+    """(order, counts, starts): the rows of ``owner`` (object indices < ``size``) sorted by object, keeping their
+    order within one (stable), how many each object has, and where each object's run starts in ``order``."""
+    order = np.argsort(owner, kind="stable")
+    counts = np.bincount(owner, minlength=size)
+    return order, counts, np.cumsum(counts) - counts
+
+
+def _any_per_object(flagged: np.ndarray, owner: np.ndarray, size: int) -> np.ndarray:
+    """bool [size]: the objects with a row ``flagged``."""
+    return np.bincount(owner[flagged], minlength=size) > 0
 
 
 def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.ndarray | None:
@@ -87,34 +95,44 @@ def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.nd
     matches curve keys and points: Object ▸ Motion Blur off keeps an object still at the frame; fewer Steps than
     the scene's are interpolated between its own; an object whose rows change in number, or stop being finite,
     during the shutter stays still, warned. None where nothing moves. ``settings``: object name → (motion blur on,
-    steps, deformation on)."""
+    steps, deformation on). Objects are grouped once, so thousands of instances cost no more than one object of
+    as many rows."""
     if not len(rows.frame):
         return None
-    table = np.repeat(rows.frame[None], count, axis=0)
+    size = len(names)
+    owner = np.asarray(rows.owner, np.int64)
+    order, counts, starts = _groups(owner, size)
+    rank = np.empty(len(owner), np.int64)  # each row's place among its object's rows
+    rank[order] = np.arange(len(owner)) - np.repeat(starts, counts)
     frame_finite = np.isfinite(rows.frame).all(axis=1)
-    changed, broken = set(), set()
+    follows = np.zeros(size, bool)  # objects whose rows ``unmatched`` places at every step
+    if rows.unmatched is not None:
+        follows = ~_any_per_object(frame_finite & ~np.isfinite(rows.unmatched).all(axis=(0, 2)), owner, size)
+    table = np.repeat(rows.frame[None], count, axis=0)
+    differs, broken = np.zeros(size, bool), np.zeros(size, bool)
     for s, (step_table, step_owner) in enumerate(rows.steps):
-        for index in np.unique(rows.owner):
-            on, on_step = rows.owner == index, step_owner == index
-            values = step_table[on_step]
-            if on.sum() != on_step.sum() and _follows(rows.unmatched, on, frame_finite):
-                table[s, on] = rows.unmatched[s, on]
-            elif on.sum() != on_step.sum():
-                changed.add(int(index))
-            elif not np.isfinite(values[frame_finite[on]]).all():
-                broken.add(int(index))
-            else:
-                table[s, on] = values
+        valid = np.asarray(step_owner) >= 0
+        step_order, step_counts, step_starts = _groups(np.asarray(step_owner, np.int64)[valid], size)
+        differs |= step_counts != counts
+        matched = np.flatnonzero(~differs[owner])  # rows whose object has had as many rows at every step so far
+        values = np.asarray(step_table)[valid][step_order[step_starts[owner[matched]] + rank[matched]]]
+        table[s, matched] = values
+        broken |= _any_per_object(matched[frame_finite[matched] & ~np.isfinite(values).all(axis=1)], owner, size)
+    moved = (differs & follows)[owner]  # the whole shutter from ``unmatched``, not one step here and one there
+    if moved.any():
+        table[:, moved] = rows.unmatched[:, moved]
+    changed = differs & ~follows
+    broken &= ~differs
     table[..., 3] = np.maximum(table[..., 3], 0.0)  # a radius below 0 at a step renders as none
-    for index in np.unique(rows.owner):
-        on = rows.owner == index
+    for index in np.flatnonzero(counts):
+        on = order[starts[index]:starts[index] + counts[index]]
         name = names[int(index)]
         blur, own_steps, deform = settings.get(name, (True, 1, True))
         said = []
-        if int(index) in changed | broken or not blur or is_still(table[:, on]):
-            if int(index) in changed and blur:
+        if changed[index] or broken[index] or not blur or is_still(table[:, on]):
+            if changed[index] and blur:
                 said.append(rows.changing(name))
-            elif int(index) in broken and blur:
+            elif broken[index] and blur:
                 said.append(f"Object '{name}': its positions are not finite (NaN or infinite) at a time step of the "
                             "shutter, so Prism renders it still where it is at the frame, without motion blur.")
             table[:, on] = rows.frame[on]
