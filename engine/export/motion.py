@@ -89,8 +89,9 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
             else:
                 vertices.append(geometry.vertices)
                 normals.append(geometry.corner_normals)
-            clouds.append((getattr(geometry, "points", None), list(getattr(geometry, "object_names", []))))
-            strands.append((getattr(geometry, "curves", None), list(getattr(geometry, "object_names", []))))
+            step_names = list(getattr(geometry, "object_names", []))
+            clouds.append((getattr(geometry, "points", None), step_names))
+            strands.append((getattr(geometry, "curves", None), step_names))
             cameras.append(rigid_matrix(camera_object.evaluated_get(depsgraph).matrix_world))
     finally:
         frame_set(frame, subframe)
