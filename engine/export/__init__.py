@@ -152,9 +152,9 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
         frame_set = frame_set or (lambda f, s: scene.frame_set(f, subframe=s))
         meshes_again = lambda evaluated: export_meshes(evaluated, None, camera_position=camera.camera_to_world[:3, 3])  # noqa: E731
         export_motion(scene, depsgraph, tracer_scene, frame_set, meshes_again, warnings if warnings is not None else [],
-                      geometry.point_velocity)
+                      geometry)
         export_vector_pass(scene, depsgraph, tracer_scene, frame_set, meshes_again,
-                           warnings if warnings is not None else [])
+                           warnings if warnings is not None else [], geometry)
     tracer_scene.validate()
     if warnings is not None:
         from .camera_in_medium import camera_in_medium_warnings

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .mesh_attributes import corner_attribute, corner_tangents, corner_uvs
+from .velocity import read_velocity
 
 
 @dataclass
@@ -30,6 +31,7 @@ class LocalMesh:
     tangents: dict = field(default_factory=dict)  # tangent slot → float32 [T, 3, 4] (object space + sign)
     texture_space: tuple = ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))  # (location, size) for generated coordinates
     flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat (what displacement recomputes)
+    velocity: np.ndarray | None = None  # float64 [V, 3]: the vertices' ``velocity`` attribute (m/s), or None
 
 
 @dataclass
@@ -68,6 +70,7 @@ def read_mesh(obj, request: AttributeRequest | None = None, warn=None) -> LocalM
             corner_normals=normals.reshape(-1, 3)[loops].reshape(-1, 3, 3),
             slot_materials=[slot.material for slot in obj.material_slots],
             flat=_per_triangle(mesh, "sharp_face", "BOOLEAN", polygon, False),
+            velocity=read_velocity(mesh, vertex_count),
         )
         if request is not None:
             _read_attributes(obj, mesh, local, loops, request, warn)

@@ -32,11 +32,12 @@ from .material_rows import MaterialRows
 from .mesh_data import AttributeRequest, LocalMesh, read_mesh
 from .object_random import name_random_id
 from .particle_hair import hair_materials, read_particle_hair, uncarried_warning
-from .point_clouds import LocalPoints, place_points, placed_velocity, point_random, read_points
+from .point_clouds import LocalPoints, place_points, point_random, read_points
 from .data_passes import data_pass_switches, world_ao_distance
 from .surface_attributes import SurfaceCollector, stacked_slots
 from .texture_memory import TextureBudget
 from .unrendered import unrendered_type_warning
+from .velocity import placed_velocity
 from .volume_objects import VolumeReader
 from .view_layer_filter import layer_filter
 from .visibility import object_flags
@@ -65,6 +66,8 @@ class ExportedGeometry:
     material_pass_index: tuple = ()
     points: SpherePoints | None = None  # the points of point clouds (objects numbered after the triangles')
     point_velocity: np.ndarray | None = None  # float64 [N, 3]: their velocity attribute (m/s, world; NaN: none)
+    vertex_object: np.ndarray | None = None  # int32 [V]: each vertex's object (an index into object_names)
+    vertex_velocity: np.ndarray | None = None  # float64 [V, 3]: the velocity attribute of meshes (as points')
     curves: CurveSegments | None = None  # the strands of hair curves (objects numbered after the points')
     triangle_flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat
     object_asset_names: list[str] = field(default_factory=list)  # per object_names entry (Cryptomatte Asset)
@@ -209,6 +212,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     has_uv: list[np.ndarray] = []  # per triangle: its mesh has the render UV map (the UV pass's A)
     flat: list[np.ndarray] = []  # per triangle: shaded flat (``ExportedGeometry.triangle_flat``)
     clouds, strands = [], []
+    velocities: list[np.ndarray | None] = []  # per part: its vertices' velocity attribute (world), or None
     ribbons = curve_shape(depsgraph.scene) == "RIBBONS"
     for piece in pieces:
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
@@ -223,6 +227,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
             for matrix, info in zip(matrices, piece.infos):  # ribbons face the camera from where each instance stands
                 placed, slots = hair_ribbons(piece.geometry, matrix, camera)
                 parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
+                velocities.append(None)
                 names.append(piece.name)
                 assets.append(piece.asset)
                 groups.append(piece.light_group)
@@ -236,6 +241,8 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
         placed = instance_triangles(local.vertices, local.triangles, local.corner_normals, matrices)
         slots = lookup[np.clip(local.slot_index, 0, len(lookup) - 1)]
         parts.append((placed, np.tile(slots, len(matrices))))
+        velocities.append(None if local.velocity is None else placed_velocity(local.velocity, len(local.vertices),
+                                                                               matrices))
         names.append(piece.name)
         assets.append(piece.asset)
         groups.append(piece.light_group)
@@ -250,9 +257,14 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
                                         len(local.triangles)))
     geometry = _assemble(parts, names, materials.materials)
     geometry.points = _points(clouds, names, groups, flags, surface, assets)
+    if any(velocity is not None for velocity in velocities):
+        geometry.vertex_velocity = np.concatenate([
+            np.full((len(placed.vertices), 3), np.nan) if velocity is None else velocity
+            for (placed, _), velocity in zip(parts, velocities)])
     if any(piece.geometry.velocity is not None for piece, _, _ in clouds):
-        geometry.point_velocity = np.concatenate([placed_velocity(piece.geometry, matrices)
-                                                  for piece, matrices, _ in clouds])
+        geometry.point_velocity = np.concatenate([
+            placed_velocity(piece.geometry.velocity, len(piece.geometry.radii), matrices)
+            for piece, matrices, _ in clouds])
     geometry.curves = _curves(strands, names, groups, flags, surface, assets)
     geometry.object_names = list(names)
     geometry.object_asset_names = list(assets)
@@ -351,6 +363,7 @@ def _assemble(parts, names, materials) -> ExportedGeometry:
             corner_normals=np.zeros((0, 3, 3), np.float32),
             object_names=[],
             materials=materials or [DEFAULT_MATERIAL],
+            vertex_object=np.zeros(0, np.int32),
         )
     offsets = np.cumsum([0] + [len(placed.vertices) for placed, _ in parts[:-1]])
     if offsets[-1] + len(parts[-1][0].vertices) > np.iinfo(np.int32).max:
@@ -370,4 +383,6 @@ def _assemble(parts, names, materials) -> ExportedGeometry:
         corner_normals=np.concatenate([placed.corner_normals for placed, _ in parts]),
         object_names=list(names),
         materials=materials,
+        vertex_object=np.repeat(np.arange(len(parts), dtype=np.int32),
+                                [len(placed.vertices) for placed, _ in parts]),
     )

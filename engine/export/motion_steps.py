@@ -1,6 +1,6 @@
-"""Values at the shutter's time steps (``export.motion``, ``export.hair_motion``, ``export.point_motion``):
-whether they move, an object's own fewer steps spread over the scene's, and the rows of hair and point clouds
-matched per object from each step's export to the frame's."""
+"""Values at the shutter's time steps (``export.motion``, ``export.hair_motion``, ``export.point_motion``,
+``export.mesh_motion``): whether they move, an object's own fewer steps spread over the scene's, and the rows of
+hair, point clouds and meshes matched per object from each step's export to the frame's."""
 
 from __future__ import annotations
 
@@ -46,14 +46,14 @@ def frame_indices(names, step_names) -> np.ndarray:
     return out
 
 
-def matched_steps(names, steps, table, owner) -> list:
-    """[(``table(step)`` float64 [M, 4], each row's object as an index into the frame's ``names``, -1: none)] for
-    each ``(exported elements or None, object names)`` of ``steps``; ``owner(step)`` gives each row's object in
+def matched_steps(names, steps, table, owner, width: int = 4) -> list:
+    """[(``table(step)`` float64 [M, ``width``], each row's object as an index into the frame's ``names``, -1: none)]
+    for each ``(exported elements or None, object names)`` of ``steps``; ``owner(step)`` gives each row's object in
     its own export's names."""
     matched = []
     for step, step_names in steps:
-        if step is None or not len(step):
-            matched.append((np.zeros((0, 4)), np.zeros(0, np.int64)))
+        if step is None or not len(owner(step)):
+            matched.append((np.zeros((0, width)), np.zeros(0, np.int64)))
         else:
             matched.append((table(step), frame_indices(names, step_names)[owner(step)]))
     return matched
@@ -61,13 +61,15 @@ def matched_steps(names, steps, table, owner) -> list:
 
 @dataclass(frozen=True)
 class StepRows:
-    """One kind of element (hair control points, points of point clouds) to follow through the shutter:
-    ``frame`` float64 [N, 4] (position, world, and radius at the frame), ``owner`` int [N] (each row's object,
-    an index into the frame's ``names``), ``steps`` [(float64 [M, 4], int [M] owner as a frame index, -1: none)]
-    one per time step, and the warnings for an object whose rows change in number (``changing(name)``) and for
-    one moving with Object ▸ Motion Blur ▸ Deformation off (``deforming(name)``); ``unmatched`` float64 [S, N, 4]
-    (or None): the rows at every step for an object whose rows change in number at some step (points moved by their
-    velocity), NaN where there are none."""
+    """One kind of element (hair control points, points of point clouds, mesh vertices, triangles' corner normals)
+    to follow through the shutter: ``frame`` float64 [N, W] (at the frame: position, world, and radius where
+    ``has_radius``), ``owner`` int [N] (each row's object, an index into the frame's ``names``), ``steps``
+    [(float64 [M, W], int [M] owner as a frame index, -1: none)] one per time step, and the warnings for an object
+    whose rows change in number (``changing(name)``) and for one moving with Object ▸ Motion Blur ▸ Deformation off
+    (``deforming(name)``); ``unmatched`` float64 [S, N, W] (or None): the rows at every step of the objects that
+    carry a velocity (moved by it), NaN for the others. They are taken where an object's rows change in number at
+    some step, or, with ``velocity_first``, wherever an object has them, as Cycles takes a mesh's velocity
+    attribute over its steps."""
 
     frame: np.ndarray
     owner: np.ndarray
@@ -75,6 +77,8 @@ class StepRows:
     changing: Callable[[str], str]
     deforming: Callable[[str], str]
     unmatched: np.ndarray | None = None
+    has_radius: bool = True  # the last of 4 columns is a radius, and a radius below 0 at a step renders as none
+    velocity_first: bool = False
 
 
 def _groups(owner: np.ndarray, size: int):
@@ -91,10 +95,11 @@ def _any_per_object(flagged: np.ndarray, owner: np.ndarray, size: int) -> np.nda
 
 
 def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.ndarray | None:
-    """float64 [S, N, 4]: ``rows`` at the shutter's ``count`` time steps, matched per object in order, as Cycles
-    matches curve keys and points: Object ▸ Motion Blur off keeps an object still at the frame; fewer Steps than
-    the scene's are interpolated between its own; an object whose rows change in number, or stop being finite,
-    during the shutter stays still, warned. None where nothing moves. ``settings``: object name → (motion blur on,
+    """float64 [S, N, W]: ``rows`` at the shutter's ``count`` time steps, matched per object in order, as Cycles
+    matches curve keys, points and vertices: Object ▸ Motion Blur off keeps an object still at the frame; fewer
+    Steps than the scene's are interpolated between its own; an object whose rows change in number, or stop being
+    finite, during the shutter stays still, warned, unless it moves by its velocity (``StepRows.unmatched``). None
+    where nothing moves. ``settings``: object name → (motion blur on,
     steps, deformation on). Objects are grouped once, so thousands of instances cost no more than one object of
     as many rows."""
     if not len(rows.frame):
@@ -118,12 +123,14 @@ def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.nd
         values = np.asarray(step_table)[valid][step_order[step_starts[owner[matched]] + rank[matched]]]
         table[s, matched] = values
         broken |= _any_per_object(matched[frame_finite[matched] & ~np.isfinite(values).all(axis=1)], owner, size)
-    moved = (differs & follows)[owner]  # the whole shutter from ``unmatched``, not one step here and one there
+    followed = follows if rows.velocity_first else differs & follows
+    moved = followed[owner]  # the whole shutter from ``unmatched``, not one step here and one there
     if moved.any():
         table[:, moved] = rows.unmatched[:, moved]
     changed = differs & ~follows
-    broken &= ~differs
-    table[..., 3] = np.maximum(table[..., 3], 0.0)  # a radius below 0 at a step renders as none
+    broken &= ~differs & ~followed
+    if rows.has_radius:
+        table[..., 3] = np.maximum(table[..., 3], 0.0)
     for index in np.flatnonzero(counts):
         on = order[starts[index]:starts[index] + counts[index]]
         name = names[int(index)]
@@ -140,7 +147,7 @@ def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.nd
             own = min(motion_step_count(own_steps), count)
             if own < count:
                 table[:, on] = resample(table[:, on], own)
-            if not deform:
+            if not deform and not followed[index]:  # a velocity moves it whatever the switch, as in Cycles
                 said.append(rows.deforming(name))
         warnings.extend(message for message in said if message not in warnings)  # instances share a name
     return None if is_still(table) else table

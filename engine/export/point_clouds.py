@@ -10,7 +10,7 @@ its determinant's magnitude (a sphere stays a sphere, as in Cycles). The attribu
 (Attribute, Color Attribute) are read per point, as the mesh export converts them (``mesh_attributes``), and
 a point reads its own value anywhere on its sphere, as Cycles reads a point-cloud attribute; a cloud without
 the attribute reads 0 (black, alpha 0). A 3D-vector ``velocity`` attribute on the points (m/s, what simulations
-write) is read too: motion blur moves points by it where their number changes during the shutter
+write; ``velocity``) is read too: motion blur moves points by it where their number changes during the shutter
 (``point_motion``).
 """
 
@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .mesh_attributes import domain_rgba
+from .velocity import read_velocity
 
 DEFAULT_RADIUS_M = 0.01
 
@@ -63,17 +64,7 @@ def read_points(obj, request=None) -> LocalPoints | None:
         material_index.data.foreach_get("value", slot)
     return LocalPoints(positions.reshape(-1, 3).astype(np.float64), radii.astype(np.float64), slot,
                        [slot.material for slot in obj.material_slots], _point_colors(cloud, request),
-                       _velocity(cloud, count))
-
-
-def _velocity(cloud, count: int) -> np.ndarray | None:
-    """float64 [count, 3]: the point-domain 3D-vector attribute ``velocity`` of ``cloud``, or None."""
-    attribute = cloud.attributes.get("velocity")
-    if attribute is None or attribute.domain != "POINT" or attribute.data_type != "FLOAT_VECTOR":
-        return None
-    values = np.empty(count * 3, np.float32)
-    attribute.data.foreach_get("vector", values)
-    return values.reshape(-1, 3).astype(np.float64)
+                       read_velocity(cloud, count))
 
 
 def _point_colors(cloud, request) -> dict:
@@ -85,13 +76,6 @@ def _point_colors(cloud, request) -> dict:
         if rgba is not None:
             colors[slot] = rgba
     return colors
-
-
-def placed_velocity(local: LocalPoints, matrices: np.ndarray) -> np.ndarray:
-    """float64 [K*P, 3]: the points' velocity (m/s) turned by each of ``matrices`` [K, 4, 4]; NaN without one."""
-    if local.velocity is None:
-        return np.full((len(matrices) * len(local.radii), 3), np.nan)
-    return np.einsum("kij,pj->kpi", matrices[:, :3, :3], local.velocity).reshape(-1, 3)
 
 
 def place_points(local: LocalPoints, matrices: np.ndarray):

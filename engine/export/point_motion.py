@@ -8,10 +8,10 @@ keeps a cloud still at the frame; fewer Steps than the scene's are interpolated 
 each point's radius too, so points that grow or shrink blur as Cycles blurs them.
 
 A cloud whose number of points changes during the shutter (a simulation emitting or removing particles) cannot be
-matched point by point: where its points carry a ``velocity`` attribute (m/s, as simulations write it), each moves
-in a straight line by it, ``velocity × (step time - frame time)`` (``velocity_steps``), as Cycles blurs points
-by their velocity; without one the cloud stays still at the frame and is named in a warning (Cycles silently
-drops its motion). Cycles moves the points whose index the step's cloud still has to that step's point of the
+matched point by point: where its points carry a ``velocity`` attribute (m/s, as simulations write it), each
+moves in a straight line by it, ``velocity × (step time - frame time)`` (``velocity.velocity_offsets``), as Cycles
+blurs points by their velocity; without one the cloud stays still at the frame and is named in a warning (Cycles
+silently drops its motion). Cycles moves the points whose index the step's cloud still has to that step's point of the
 same index instead, which is another particle once one has died; Prism uses the velocity for all of them.
 """
 
@@ -30,19 +30,11 @@ def _owner(points) -> np.ndarray:
     return np.asarray(points.object, np.int64)
 
 
-def velocity_steps(velocity, seconds) -> np.ndarray | None:
-    """float64 [S, N, 3]: how far each point's ``velocity`` (float64 [N, 3], m/s, world; NaN: none) carries it at
-    each time step, ``seconds`` [S] from the frame; None without velocities."""
-    if velocity is None or seconds is None:
-        return None
-    return np.asarray(seconds, np.float64)[:, None, None] * np.asarray(velocity, np.float64)[None]
-
-
 def point_steps(tracer_scene, steps, settings, count, warnings, drift=None) -> np.ndarray | None:
     """float64 [S, N, 4]: the centres (world) and radii of ``tracer_scene.points`` at the shutter's ``count`` time
     steps, from ``steps`` ((``SpherePoints`` or None, object names) exported at each), per object as the module
-    says, clouds whose number of points changes moved by ``drift`` (``velocity_steps``, NaN where a point has no
-    velocity); None where no point moves. ``settings``: object name → (motion blur on, steps, deformation on)."""
+    says, clouds whose number of points changes moved by ``drift`` (``velocity.velocity_offsets``, NaN where a point
+    has no velocity); None where no point moves. ``settings``: object name → (motion blur on, steps, deformation on)."""
     points = tracer_scene.points
     if points is None or not len(points):
         return None

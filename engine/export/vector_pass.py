@@ -4,8 +4,9 @@ Cycles' Vector pass (its "motion pass") holds how far the surface seen in a pixe
 the previous frame and this one and between this one and the next: the scene is evaluated at frame - 1
 and frame + 1 (Cycles' motion times -1 and +1, not the shutter), every object's transform and deformation
 counted whatever its Object ▸ Motion Blur switch (Cycles reads that switch only for motion blur), and the
-camera's motion included. With Render ▸ Motion Blur on, Cycles writes zeros (the pass is greyed out in its
-panel); Prism does the same by leaving the tables out.
+camera's motion included. Vertices are matched per object (``mesh_motion``); a mesh with a ``velocity`` attribute
+moves by it, one frame's worth each way, as Cycles' pass does. With Render ▸ Motion Blur on, Cycles writes
+zeros (the pass is greyed out in its panel); Prism does the same by leaving the tables out.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from .camera import render_resolution
+from .mesh_motion import MeshWarnings, mesh_steps
 from .motion import motion_blur_on
 
 #: The frames the pass compares the current one with (Cycles' motion times).
@@ -39,10 +41,10 @@ def world_to_raster(camera_object, depsgraph, scene) -> np.ndarray:
     return ndc_to_raster @ projection @ view
 
 
-def export_vector_pass(scene, depsgraph, tracer_scene, frame_set, export_meshes, warnings) -> None:
+def export_vector_pass(scene, depsgraph, tracer_scene, frame_set, export_meshes, warnings, frame_geometry) -> None:
     """Fill ``tracer_scene.data_passes`` for the Vector pass when it is wanted. ``frame_set(frame,
     subframe)`` re-evaluates ``depsgraph``; ``export_meshes(depsgraph)`` exports its meshes (vertices in the
-    same order and frame of reference as ``tracer_scene``'s)."""
+    same order and frame of reference as ``tracer_scene``'s, which was exported as ``frame_geometry``)."""
     view_layer = getattr(depsgraph, "view_layer", None)
     if not vector_pass_wanted(scene, view_layer):
         return
@@ -58,28 +60,31 @@ def export_vector_pass(scene, depsgraph, tracer_scene, frame_set, export_meshes,
                         "lens: where the lens distorts the image, the vectors are off by that distortion.")
     frame, subframe = scene.frame_current, scene.frame_subframe
     now = world_to_raster(camera_object, depsgraph, scene)
-    cameras, shifts, changed = {}, {}, False
+    cameras, steps = {}, []
     try:
         for offset in _FRAME_OFFSETS:
             time = frame + subframe + offset
             whole = int(np.floor(time))
             frame_set(whole, float(time - whole))
             geometry = export_meshes(depsgraph)
+            steps.append((geometry, list(geometry.object_names)))
             cameras[offset] = world_to_raster(camera_object, depsgraph, scene)
-            if geometry.vertices.shape == tracer_scene.vertices.shape and np.array_equal(
-                    geometry.triangles, tracer_scene.triangles):
-                shifts[offset] = np.asarray(geometry.vertices, np.float64) - tracer_scene.vertices
-            else:
-                changed = True
     finally:
         frame_set(frame, subframe)
-    if changed:
-        warnings.append(f"Scene '{scene.name}': Vector pass: a mesh changes its vertices or faces between frames (a "
-                        "modifier that adds or removes geometry over time), so Prism cannot follow its vertices: the "
-                        "pass holds the camera's motion only, as if every object stood still.")
-        shifts = {offset: np.zeros_like(tracer_scene.vertices, np.float64) for offset in _FRAME_OFFSETS}
+    fps = float(scene.render.fps) / float(scene.render.fps_base)
+    every_object = {name: (True, 1, True) for name in tracer_scene.object_names}  # Motion Blur switches: blur only
+    moved, _ = mesh_steps(frame_geometry, steps, every_object, len(_FRAME_OFFSETS), warnings,
+                          np.asarray(_FRAME_OFFSETS) / fps, MeshWarnings(_changing_warning, _changing_warning))
+    frame_vertices = np.asarray(tracer_scene.vertices, np.float64)
+    shifts = np.zeros((len(_FRAME_OFFSETS), *frame_vertices.shape)) if moved is None else moved - frame_vertices
     corners = tracer_scene.triangles
-    motion = np.stack([shifts[offset][corners] for offset in _FRAME_OFFSETS], axis=1)  # [T, 2, 3, 3]
+    motion = np.stack([shifts[k][corners] for k in range(len(_FRAME_OFFSETS))], axis=1)  # [T, 2, 3, 3]
     passes = tracer_scene.data_passes
     passes.triangle_motion = motion.astype(np.float32)
     passes.world_to_raster = np.stack([cameras[-1.0], now, cameras[1.0]])
+
+
+def _changing_warning(name: str) -> str:
+    return (f"Object '{name}': Vector pass: its number of vertices changes between frames (geometry added or removed "
+            "over time) and it has no 'velocity' attribute, so Prism cannot follow its vertices: the pass holds the "
+            "camera's motion only where it is seen, as if it stood still.")

@@ -118,7 +118,8 @@ def test_vector_pass_of_a_real_lens_camera_is_warned(prism_addon, moving_scene):
     moving_scene.camera.data.prism.lens_model = "REAL_LENS"
     warnings: list[str] = []
     vector_pass.export_vector_pass(moving_scene, depsgraph, tracer_scene, lambda f, s: moving_scene.frame_set(
-        f, subframe=s), lambda evaluated: export.export_meshes(evaluated, None), warnings)
+        f, subframe=s), lambda evaluated: export.export_meshes(evaluated, None), warnings,
+        export.export_meshes(depsgraph, None))
     assert any("the Vector pass of camera 'Camera' is projected through Blender's camera (a pinhole of its focal "
                "length), not through its real lens" in w for w in warnings), warnings
     assert tracer_scene.data_passes.triangle_motion is not None
