@@ -84,12 +84,6 @@ def _frame_normals_where_velocity(frame, count) -> np.ndarray | None:
     return np.repeat(rows[None], count, axis=0)
 
 
-def moving_objects(frame, vertices) -> np.ndarray:
-    """int [K]: the objects (indices into ``frame.object_names``) whose vertices move in ``vertices`` [S, V, 3]."""
-    moves = ~(vertices == vertices[:1]).all(axis=(0, 2))
-    return np.unique(_vertex_owner(frame)[moves])
-
-
 def changing_mesh_warning(name: str) -> str:
     """The motion blur warning for a mesh whose number of vertices changes during the shutter, without velocity."""
     return (f"Object '{name}': its number of vertices changes during the shutter (geometry added or removed over "

@@ -19,7 +19,7 @@ import numpy as np
 from ..tracer.motion import Motion, motion_step_count, shutter_times
 from .camera import rigid_matrix
 from .hair_motion import hair_steps
-from .mesh_motion import MeshWarnings, changing_mesh_warning, deforming_mesh_warning, mesh_steps, moving_objects
+from .mesh_motion import MeshWarnings, changing_mesh_warning, deforming_mesh_warning, mesh_steps
 from .point_motion import point_steps
 from .velocity import velocity_offsets
 from .view_layer_filter import layer_filter
@@ -102,38 +102,16 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
                          velocity_offsets(frame_geometry.point_velocity, seconds))
     steps, corner = mesh_steps(frame_geometry, meshes, settings, count, warnings, seconds,
                                MeshWarnings(changing_mesh_warning, deforming_mesh_warning))
-    if steps is not None:
-        warnings.extend(_moving_emitter_warnings(tracer_scene, moving_objects(frame_geometry, steps)))
     if steps is not None or hair is not None or points is not None:  # else still: no time steps in Embree
         tracer_scene.motion = Motion(steps, corner, hair, points)
 
 
-def _moving_emitter_warnings(tracer_scene, moving) -> list[str]:
-    """Warnings for the emitting objects among ``moving`` (indices into ``tracer_scene.object_names``)."""
-    found = []
-    for index in moving:
-        on_triangle = tracer_scene.triangle_object == index
-        emits = [tracer_scene.materials[m].name for m in np.unique(tracer_scene.triangle_material[on_triangle])
-                 if tracer_scene.materials[m].emission_strength > 0.0]
-        message = (f"Object '{tracer_scene.object_names[index]}' emits light ({', '.join(emits)}) and moves during "
-                   "the shutter: it is seen blurred, but the light it casts is sampled where it stands at the frame "
-                   "(Cycles: where it is at each ray's time), so its lighting of other surfaces is not blurred "
-                   "exactly.")
-        if emits and message not in found:
-            found.append(message)
-    return found
-
-
-def motion_setting_warnings(scene, light_tracing: str, view_layer=None) -> list[str]:
-    """Warnings for the motion blur settings Prism does not follow (rolling shutter; light tracing forced on)."""
+def motion_setting_warnings(scene, view_layer=None) -> list[str]:
+    """Warnings for the motion blur settings Prism does not follow (rolling shutter)."""
     if not motion_blur_on(scene, view_layer):
         return []
-    found = []
     cycles = getattr(scene, "cycles", None)
     if cycles is not None and getattr(cycles, "rolling_shutter_type", "NONE") != "NONE":
-        found.append(f"Scene '{scene.name}': Motion Blur ▸ Rolling Shutter is on, but Prism has no rolling shutter: "
-                     "every row of the image is exposed over the same shutter time (a global shutter).")
-    if light_tracing == "ON":
-        found.append(f"Scene '{scene.name}': Light Paths ▸ Caustics ▸ Light Tracing is On, but light paths have no ray "
-                     "time yet: with Motion Blur on, caustics are path traced (light tracing off).")
-    return found
+        return [f"Scene '{scene.name}': Motion Blur ▸ Rolling Shutter is on, but Prism has no rolling shutter: every "
+                "row of the image is exposed over the same shutter time (a global shutter)."]
+    return []

@@ -23,6 +23,5 @@ def unrendered_setting_warnings(scene, view_layer=None) -> list[str]:
     (motion blur's own: ``motion.motion_setting_warnings``)."""
     from .motion import motion_setting_warnings
 
-    prism = getattr(scene, "prism", None)
     return light_path_trick_warnings(scene) + unrendered_pass_warnings(view_layer) + motion_setting_warnings(
-        scene, getattr(prism, "light_tracing", "AUTO"), view_layer)
+        scene, view_layer)

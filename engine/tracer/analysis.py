@@ -180,8 +180,6 @@ def _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes) -> 
     """Why this render cannot trace light paths to the camera ("" if it can): connections reach a
     perspective camera's pinhole or lens only, and see every object as the camera does."""
     layout = pass_layout.kernel
-    if camera.data.shutter_times.shape[0] > 0:
-        return "motion blur"  # light paths and their camera connections have no ray time yet
     if camera.lens is not None:
         return "real lens"
     if camera.data.projection != PERSPECTIVE:

@@ -191,7 +191,7 @@ def _non_degenerate(vertices, triangles, keep):
 
 
 @inlined
-def _corner(geometry, vertex, time):
+def vertex_at(geometry, vertex, time):
     """Vertex ``vertex`` (float64 xyz) at ray time ``time`` (``FRAME_TIME``: at the frame)."""
     m = geometry.motion
     if m.shape[0] == 0 or time < 0.0:
@@ -235,9 +235,9 @@ def surface_at(geometry, triangle, u, v, time):
     a = geometry.triangles[triangle, 0]
     b = geometry.triangles[triangle, 1]
     c = geometry.triangles[triangle, 2]
-    ax, ay, az = _corner(geometry, a, time)
-    bx, by, bz = _corner(geometry, b, time)
-    cx, cy, cz = _corner(geometry, c, time)
+    ax, ay, az = vertex_at(geometry, a, time)
+    bx, by, bz = vertex_at(geometry, b, time)
+    cx, cy, cz = vertex_at(geometry, c, time)
     e1 = (bx - ax, by - ay, bz - az)
     e2 = (cx - ax, cy - ay, cz - az)
     p = (ax + u * e1[0] + v * e2[0], ay + u * e1[1] + v * e2[1], az + u * e1[2] + v * e2[2])

@@ -43,12 +43,25 @@ def _groups(triangles, keys):
     return np.split(triangles[order], cuts)
 
 
+def _at_every_step(still, steps) -> np.ndarray:
+    """float64 [S, N, W]: rows ``still`` [N, W] and, with motion blur, where they are at the shutter's steps
+    (``steps`` [S, N, W]; empty when they do not move), so a sphere around them holds them all shutter long."""
+    still = np.asarray(still, np.float64)
+    steps = np.asarray(steps, np.float64)
+    if not steps.shape[0] or steps.shape[1] != still.shape[0]:
+        return still[None]
+    return np.concatenate([still[None], steps])
+
+
 def build_caustic_targets(geometry, material_flags, delta_flag, triangle_object=None) -> CausticTargets:
     """Spheres around the triangles whose material has ``delta_flag`` in ``material_flags``: one per
     object (``triangle_object`` [T], rows of ``geometry``), else per material; one sphere for them all if
-    that still leaves more than ``MAX_TARGETS``. Empty when no material is purely specular."""
-    vertices = np.asarray(geometry.vertices, np.float64)
-    points = np.concatenate([np.asarray(geometry.spheres, np.float64), np.asarray(geometry.curves, np.float64)])
+    that still leaves more than ``MAX_TARGETS``. Empty when no material is purely specular. With motion blur each
+    sphere holds its triangles at every time step of the shutter."""
+    moving = _at_every_step(geometry.vertices, geometry.motion)
+    vertices = moving.reshape(-1, 3)
+    points = np.concatenate([_at_every_step(geometry.spheres, geometry.sphere_motion).reshape(-1, 4),
+                             _at_every_step(geometry.curves, geometry.curve_motion).reshape(-1, 4)])
     extent = np.concatenate([vertices, points[:, :3] - points[:, 3:], points[:, :3] + points[:, 3:]])
     if len(extent):
         lo, hi = extent.min(axis=0), extent.max(axis=0)
@@ -69,7 +82,7 @@ def build_caustic_targets(geometry, material_flags, delta_flag, triangle_object=
         if len(groups) > MAX_TARGETS:
             groups = [specular]
         triangles = np.asarray(geometry.triangles)
-        spheres = np.array([_bounding_sphere(vertices[triangles[g]].reshape(-1, 3)) for g in groups])
+        spheres = np.array([_bounding_sphere(moving[:, triangles[g]].reshape(-1, 3)) for g in groups])
     spheres = _with_specular_points(geometry, material_flags, delta_flag, spheres)
     return CausticTargets(np.ascontiguousarray(spheres), np.ascontiguousarray(centre, np.float64), radius)
 
@@ -77,11 +90,11 @@ def build_caustic_targets(geometry, material_flags, delta_flag, triangle_object=
 def _with_specular_points(geometry, material_flags, delta_flag, spheres):
     """``spheres`` and one more around the point-cloud spheres (``Geometry.spheres``) whose material is
     purely specular, so light paths aim at glass and mirror points too."""
-    points = np.asarray(geometry.spheres, np.float64)
-    if not len(points):
+    points = _at_every_step(geometry.spheres, geometry.sphere_motion)
+    if not points.shape[1]:
         return spheres
-    materials = np.asarray(geometry.material)[len(geometry.triangles):len(geometry.triangles) + len(points)]
-    specular = points[(np.asarray(material_flags)[materials] & delta_flag) != 0]
+    materials = np.asarray(geometry.material)[len(geometry.triangles):len(geometry.triangles) + points.shape[1]]
+    specular = points[:, (np.asarray(material_flags)[materials] & delta_flag) != 0].reshape(-1, 4)
     if not len(specular):
         return spheres
     lo = (specular[:, :3] - specular[:, 3:]).min(axis=0)

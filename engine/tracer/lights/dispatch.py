@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 
-from ..geometry import FRAME_TIME
 from ..jit import inlined
 from ..materials.emitters import emission_at
 from ..materials.light_path import sampled_distance
@@ -26,9 +25,9 @@ def pick_light(lights, u):
 
 
 @inlined
-def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wavelength_nm, li, rows, regs):
-    """Sample one light for the point ``p``: (wi, distance (inf: distant), pdf including the light's
-    selection probability, delta, light group or -1, emitter: the light's row, or rows + the render
+def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wavelength_nm, li, rows, regs, time):
+    """Sample one light for the point ``p`` at ray time ``time``: (wi, distance (inf: distant), pdf including the
+    light's selection probability, delta, light group or -1, emitter: the light's row, or rows + the render
     triangle sampled on an emissive mesh, for ``light_linking``); ``li[k]`` = incident radiance
     (irradiance for delta lights). ``rows`` and ``regs`` are scratch memory for emissive materials whose emission varies
     over the surface."""
@@ -36,11 +35,11 @@ def sample_light(lights, materials, spectra, geometry, p, u_select, u1, u2, wave
     row = lights.rows[index]
     kind = int(row[L_KIND])
     if kind == MESH:
-        wi, dist, pdf, e, b1, b2 = mesh.sample_point(lights.mesh, p, u_rest, u1, u2)
+        wi, dist, pdf, e, b1, b2 = mesh.sample_point(lights.mesh, geometry, p, u_rest, u1, u2, time)
         material = lights.mesh.material[e]
         if materials.flags[material] & MAT_EMISSION_VARIES:
             sampled_distance(regs, dist)  # the Light Path node's Ray Length, if the emitter reads it
-            emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, FRAME_TIME,
+            emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, time,
                         (-wi[0], -wi[1], -wi[2]), wavelength_nm, rows, regs, li, None)
         else:
             strength = materials.emission_strength[material]
@@ -99,12 +98,12 @@ def light_hit(lights, index, o, d, t):
 
 
 @inlined
-def emitter_pdf(lights, triangle, d, t):
-    """Light-sampling pdf (incl. selection) of an emissive triangle hit along ``d`` at distance ``t`` (0 for
-    a sphere: rows past the triangles are never light-sampled)."""
+def emitter_pdf(lights, geometry, triangle, d, t, time):
+    """Light-sampling pdf (incl. selection) of an emissive triangle hit along ``d`` at distance ``t`` at ray time
+    ``time`` (0 for a sphere: rows past the triangles are never light-sampled)."""
     if lights.mesh_index < 0 or triangle >= lights.mesh.of_triangle.shape[0]:
         return 0.0
-    return mesh.pdf_li(lights.mesh, triangle, d, t) * lights.select_prob[lights.mesh_index]
+    return mesh.pdf_li(lights.mesh, geometry, triangle, d, t, time) * lights.select_prob[lights.mesh_index]
 
 
 @inlined

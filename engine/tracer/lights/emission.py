@@ -11,7 +11,7 @@ path tracing, which never skips escapes.
 
 from __future__ import annotations
 
-from ..geometry import FRAME_TIME, offset_origin
+from ..geometry import offset_origin
 from ..jit import inlined
 from ..materials.emitters import emission_at
 from ..materials.table import MAT_EMISSION_VARIES
@@ -24,8 +24,9 @@ from .row import ENVIRONMENT, L_KIND, L_SPECTRUM, MESH, POINT, SPHERE, SUN, SUN_
 
 @inlined
 def sample_emission(lights, materials, spectra, geometry, targets, u_select, u_position, u_target, u_direction,
-                    wavelength_nm, beta, rows, regs):
-    """(origin, unit direction, light index) of a new light path; ``beta[k]`` = its weight at
+                    wavelength_nm, beta, rows, regs, time):
+    """(origin, unit direction, light index) of a new light path at ray time ``time`` (emitting triangles where
+    they stand then); ``beta[k]`` = its weight at
     ``wavelength_nm[k]`` (0 when the light sends nothing that way). ``u_position`` and ``u_direction``
     are pairs of uniforms; ``rows`` and ``regs`` are scratch memory for emissive materials whose emission
     varies over the surface (their program runs where the path starts)."""
@@ -44,14 +45,16 @@ def sample_emission(lights, materials, spectra, geometry, targets, u_select, u_p
         scale = factor / (select * pdf_direction * pdf_beam) if pdf_beam > 0.0 else 0.0
         sid = int(row[L_SPECTRUM])
     elif kind == MESH:
-        p, ng, pdf_area, material, e, b1, b2 = mesh.sample_position(lights.mesh, u_rest, u_position[0],
-                                                                   u_position[1])
+        p, ng, pdf_area, material, e, b1, b2 = mesh.sample_position(lights.mesh, geometry, u_rest, u_position[0],
+                                                                   u_position[1], time)
         direction, pdf_direction = sample_direction(targets, p, u_target, u_direction[0], u_direction[1])
         cos_l = abs(direction[0] * ng[0] + direction[1] * ng[1] + direction[2] * ng[2])
         origin = offset_origin(p, ng, direction)
+        if not pdf_area > 0.0:  # a triangle degenerate at this time sends nothing
+            pdf_direction = 0.0
         if materials.flags[material] & MAT_EMISSION_VARIES:
             scale = cos_l / (select * pdf_area * pdf_direction) if pdf_direction > 0.0 else 0.0
-            emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, FRAME_TIME, direction,
+            emission_at(materials, spectra, geometry, material, lights.mesh.triangle[e], b1, b2, time, direction,
                         wavelength_nm, rows, regs, beta, None)
             for k in range(beta.shape[0]):
                 beta[k] = scale * beta[k] if scale > 0.0 else 0.0

@@ -2,7 +2,9 @@
 
 Emission is two-sided with radiance strength × spectrum (Cycles' Emission). For light sampling a
 triangle is picked with probability ∝ area × strength and a point uniformly on it; densities are
-converted to solid angle so BSDF-sampled hits on the same triangles are weighted by MIS.
+converted to solid angle so BSDF-sampled hits on the same triangles are weighted by MIS. With motion blur the
+point is drawn on the triangle where it stands at the path's ray time (its area then), and the density of a
+hit is taken there too.
 
 ``MeshEmitters``: ``triangle`` int32 [E] (geometry triangle ids), ``material`` int32 [E], ``geometry`` float64 [E, 13] (v0, e1,
 e2, unit normal, area; camera-relative metres), ``cdf`` / ``probability`` float64 [E], ``of_triangle``
@@ -17,6 +19,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from ..geometry import vertex_at
 from ..jit import inlined
 from ..warps import cdf_index, uniform_triangle
 
@@ -61,50 +64,67 @@ def pick(emitters, u):
 
 
 @inlined
-def sample_li(emitters, p, u0, u1, u2):
-    """(wi, distance, solid-angle pdf, emitter row) of a point on an emissive triangle."""
-    wi, dist, pdf, e, _, _ = sample_point(emitters, p, u0, u1, u2)
-    return wi, dist, pdf, e
+def emitter_at(emitters, geometry, e, time):
+    """(first corner, edge 1, edge 2, unit normal, area) of emitter row ``e`` where its triangle stands at ray time
+    ``time``: the table's (the frame's) when nothing moves, else from ``geometry``'s vertices then, so light
+    sampling finds a moving emitter where the ray that checks its visibility does."""
+    g = emitters.geometry[e]
+    if geometry.motion.shape[0] == 0 or time < 0.0:
+        return (g[0], g[1], g[2]), (g[3], g[4], g[5]), (g[6], g[7], g[8]), (g[9], g[10], g[11]), g[12]
+    t = emitters.triangle[e]
+    a = vertex_at(geometry, geometry.triangles[t, 0], time)
+    b = vertex_at(geometry, geometry.triangles[t, 1], time)
+    c = vertex_at(geometry, geometry.triangles[t, 2], time)
+    e1 = (b[0] - a[0], b[1] - a[1], b[2] - a[2])
+    e2 = (c[0] - a[0], c[1] - a[1], c[2] - a[2])
+    n = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0])
+    double_area = math.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
+    if not double_area > 0.0:  # degenerate at this time: nothing to sample
+        return a, e1, e2, (g[9], g[10], g[11]), 0.0
+    return a, e1, e2, (n[0] / double_area, n[1] / double_area, n[2] / double_area), 0.5 * double_area
 
 
 @inlined
-def sample_point(emitters, p, u0, u1, u2):
-    """``sample_li`` and where the point is on its triangle: (..., barycentrics b1, b2)."""
+def sample_point(emitters, geometry, p, u0, u1, u2, time):
+    """(wi, distance, solid-angle pdf, emitter row, barycentrics b1, b2) of a point on an emissive triangle, seen
+    from ``p`` at ray time ``time``."""
     e = pick(emitters, u0)
-    g = emitters.geometry[e]
+    v0, e1, e2, n, area = emitter_at(emitters, geometry, e, time)
     b1, b2 = uniform_triangle(u1, u2)
-    wx = g[0] + b1 * g[3] + b2 * g[6] - p[0]
-    wy = g[1] + b1 * g[4] + b2 * g[7] - p[1]
-    wz = g[2] + b1 * g[5] + b2 * g[8] - p[2]
+    wx = v0[0] + b1 * e1[0] + b2 * e2[0] - p[0]
+    wy = v0[1] + b1 * e1[1] + b2 * e2[1] - p[1]
+    wz = v0[2] + b1 * e1[2] + b2 * e2[2] - p[2]
     dist = math.sqrt(wx * wx + wy * wy + wz * wz)
     if dist <= 0.0:
         return (0.0, 0.0, 1.0), 0.0, 0.0, e, b1, b2
     wi = (wx / dist, wy / dist, wz / dist)
-    cos_l = abs(wi[0] * g[9] + wi[1] * g[10] + wi[2] * g[11])
-    if cos_l <= 0.0:
+    cos_l = abs(wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2])
+    if cos_l <= 0.0 or not area > 0.0:
         return wi, dist, 0.0, e, b1, b2
-    return wi, dist, emitters.probability[e] / g[12] * dist * dist / cos_l, e, b1, b2
+    return wi, dist, emitters.probability[e] / area * dist * dist / cos_l, e, b1, b2
 
 
 @inlined
-def pdf_li(emitters, triangle, d, t):
-    """Solid-angle density of ``sample_li`` for a ray along ``d`` hitting ``triangle`` at distance ``t``."""
+def pdf_li(emitters, geometry, triangle, d, t, time):
+    """Solid-angle density of ``sample_point`` for a ray along ``d`` hitting ``triangle`` at distance ``t`` at ray
+    time ``time``."""
     e = emitters.of_triangle[triangle]
     if e < 0:
         return 0.0
-    g = emitters.geometry[e]
-    cos_l = abs(d[0] * g[9] + d[1] * g[10] + d[2] * g[11])
-    if cos_l <= 0.0:
+    _, _, _, n, area = emitter_at(emitters, geometry, e, time)
+    cos_l = abs(d[0] * n[0] + d[1] * n[1] + d[2] * n[2])
+    if cos_l <= 0.0 or not area > 0.0:
         return 0.0
-    return emitters.probability[e] / g[12] * t * t / cos_l
+    return emitters.probability[e] / area * t * t / cos_l
 
 
 @inlined
-def sample_position(emitters, u0, u1, u2):
+def sample_position(emitters, geometry, u0, u1, u2, time):
     """(point, unit geometric normal, area density incl. the triangle's choice, material, emitter index,
-    barycentrics b1, b2) of a point on an emissive triangle: where a light path starts."""
+    barycentrics b1, b2) of a point on an emissive triangle at ray time ``time``: where a light path starts."""
     e = pick(emitters, u0)
-    g = emitters.geometry[e]
+    v0, e1, e2, n, area = emitter_at(emitters, geometry, e, time)
     b1, b2 = uniform_triangle(u1, u2)
-    p = (g[0] + b1 * g[3] + b2 * g[6], g[1] + b1 * g[4] + b2 * g[7], g[2] + b1 * g[5] + b2 * g[8])
-    return p, (g[9], g[10], g[11]), emitters.probability[e] / g[12], emitters.material[e], e, b1, b2
+    p = (v0[0] + b1 * e1[0] + b2 * e2[0], v0[1] + b1 * e1[1] + b2 * e2[1], v0[2] + b1 * e1[2] + b2 * e2[2])
+    density = emitters.probability[e] / area if area > 0.0 else 0.0
+    return p, n, density, emitters.material[e], e, b1, b2

@@ -38,7 +38,7 @@ def _light_through_medium(state, i, p, d_in, lights, materials, spectra, geometr
         emission_sample(shading.registers, state, i)
     wi, dist, pdf_light, delta, group, emitter = sample_light(lights, materials, spectra, geometry, p, u_select, u1,
                                                               u2, state.wavelength[i], li, shading.emitter_rows,
-                                                              shading.registers)
+                                                              shading.registers, state.time[i])
     if not pdf_light > 0.0:
         return 0
     shadow_sets = ALL_SETS

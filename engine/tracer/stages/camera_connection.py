@@ -23,6 +23,7 @@ import math
 
 from ..jit import inlined
 from .camera import FILTER_BOX, THIN_LENS, aperture_point
+from .camera_motion import camera_pose, quaternion_rotate
 
 
 @inlined
@@ -65,21 +66,34 @@ def filter_pick(camera, x, count, u):
 
 
 @inlined
-def connect_to_camera(camera, p, u_lens, u_filter):
-    """(pixel or -1, lens point (the render's space), importance W, distance d (m)) of the surface
-    point ``p``: radiance L leaving ``p`` toward the lens point adds L |cos_p| / d² · W per unit area at
-    ``p`` to the pixel (filter weight included). ``u_lens``, ``u_filter``: pairs of uniforms."""
-    lx = ly = 0.0
-    if camera.kind == THIN_LENS:
-        lx, ly = aperture_point(camera, u_lens[0], u_lens[1])
+def _lens_and_view(camera, p, lx, ly, time):
+    """(lens point (the render's space), w = ``p`` - lens point, w in the camera's frame) of lens position (lx, ly),
+    the camera where it stands at ray time ``time`` (``camera_motion.camera_pose`` for a moving one)."""
+    if camera.poses.shape[0] > 0:
+        c, q = camera_pose(camera.poses, time)
+        offset = quaternion_rotate(q, (lx, ly, 0.0))
+        lens = (c[0] + offset[0], c[1] + offset[1], c[2] + offset[2])
+        w = (p[0] - lens[0], p[1] - lens[1], p[2] - lens[2])
+        return lens, w, quaternion_rotate((q[0], -q[1], -q[2], -q[3]), w)  # the inverse rotation
     r = camera.rotation
     c = camera.origin
     lens = (c[0] + r[0, 0] * lx + r[0, 1] * ly, c[1] + r[1, 0] * lx + r[1, 1] * ly, c[2] + r[2, 0] * lx + r[2, 1] * ly)
     w = (p[0] - lens[0], p[1] - lens[1], p[2] - lens[2])
+    return lens, w, (r[0, 0] * w[0] + r[1, 0] * w[1] + r[2, 0] * w[2], r[0, 1] * w[0] + r[1, 1] * w[1]
+                     + r[2, 1] * w[2], r[0, 2] * w[0] + r[1, 2] * w[1] + r[2, 2] * w[2])
+
+
+@inlined
+def connect_to_camera(camera, p, u_lens, u_filter, time):
+    """(pixel or -1, lens point (the render's space), importance W, distance d (m)) of the surface
+    point ``p``: radiance L leaving ``p`` toward the lens point adds L |cos_p| / d² · W per unit area at
+    ``p`` to the pixel (filter weight included). ``u_lens``, ``u_filter``: pairs of uniforms; ``time``: the
+    path's ray time (a moving camera's pose then)."""
+    lx = ly = 0.0
+    if camera.kind == THIN_LENS:
+        lx, ly = aperture_point(camera, u_lens[0], u_lens[1])
+    lens, w, (vx, vy, vz) = _lens_and_view(camera, p, lx, ly, time)
     dist = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
-    vx = r[0, 0] * w[0] + r[1, 0] * w[1] + r[2, 0] * w[2]
-    vy = r[0, 1] * w[0] + r[1, 1] * w[1] + r[2, 1] * w[2]
-    vz = r[0, 2] * w[0] + r[1, 2] * w[1] + r[2, 2] * w[2]
     if not (vz < 0.0 and dist > 0.0):
         return -1, lens, 0.0, dist
     if camera.kind == THIN_LENS:

@@ -174,8 +174,8 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
         if materials.flags[material] & MAT_EMISSIVE and hit_counts(state, i, settings, lights,
                                                                    lights.rows.shape[0] + triangle):
             t_mis = t + (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
-            weight = 1.0 if depth == 0 else emitter_weight(state, i, emitter_pdf(lights, triangle, d, t_mis),
-                                                          settings.use_mis)
+            light_pdf = emitter_pdf(lights, geometry, triangle, d, t_mis, state.time[i])
+            weight = 1.0 if depth == 0 else emitter_weight(state, i, light_pdf, settings.use_mis)
             group, slot = emitter_group(lights, triangle), camera_slot(layout, depth, False)
             if materials.flags[material] & MAT_EMISSION_VARIES:
                 radiance = scratch.li

@@ -26,7 +26,7 @@ def light_loop_kernel(loop, light, arrays, caster, targets, camera, first, count
     settings = arrays.settings
     queued = emit_kernel(state, loop.rays[0], light.light, arrays.lights, arrays.materials, arrays.spectra,
                          arrays.geometry, targets, arrays.wavelengths, settings, first, count, samples_per_pixel,
-                         first_sample, loop.scratch)
+                         first_sample, loop.scratch, camera.shutter_times)
     rays_cast = 0
     for depth in range(settings.max_bounces + 1):
         if queued == 0:

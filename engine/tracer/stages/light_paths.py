@@ -21,6 +21,10 @@ a light reaches (as for camera paths), so it is applied at the first hit.
 Light paths draw from their own stream of uniforms (the sampler seeded with the render's seed salted),
 numbered like camera paths: stream = the pass's path index // samples per pixel, sample = the sample's
 number, so sample chunks of a render trace the same light paths as one render.
+
+With motion blur a light path has a ray time like a camera path (drawn from the shutter curve in a slot of its
+own): its rays meet the geometry where it stands then, it leaves an emitting triangle where that stands then,
+and its connection goes to the camera where it is then.
 """
 
 from __future__ import annotations
@@ -42,6 +46,7 @@ from ..state import COLLAPSED, LIGHT_CONNECTED, LIGHT_SPECULAR
 from ..vec3 import tangents, to_local
 from .camera import draw_wavelengths
 from .camera_connection import connect_to_camera
+from .camera_motion import shutter_time
 from .nee import SHADOW_SHORTEN, consistent
 from .queue import push_ray
 from .roulette import survives
@@ -55,13 +60,16 @@ SLOT_TARGET = SLOT_SELECT + 2  # 1-D: which specular object to aim at
 SLOT_DIRECTION = SLOT_SELECT + 3  # 2-D: direction in its cone (or a sun disc's direction)
 SLOT_CAMERA_LENS = SLOT_SELECT + 4  # 2-D: lens point of the connection
 SLOT_CAMERA_FILTER = SLOT_SELECT + 5  # 2-D: which pixel under the filter
+SLOT_PATH_TIME = SLOT_SELECT + 6  # 1-D: the path's ray time in the shutter (motion blur)
 
 
 @kernel
 def emit_kernel(state, rays, light_of_path, lights, materials, spectra, geometry, targets, ws, settings, first, count,
-                samples_per_pixel, first_sample, scratch):
+                samples_per_pixel, first_sample, scratch, shutter_times):
     """Start light paths ``first .. first + count`` of the pass in rows 0 .. count-1 and queue their rays;
-    returns the number queued (paths whose light sends nothing toward the targets end at once)."""
+    returns the number queued (paths whose light sends nothing toward the targets end at once). With motion blur
+    (``shutter_times``, the camera's, not empty) each path draws its ray time from the shutter as a camera path
+    does: its bounces, its connection and the camera it connects to are where they are then."""
     queued = 0
     k = state.throughput.shape[1]
     for i in range(count):
@@ -73,7 +81,9 @@ def emit_kernel(state, rays, light_of_path, lights, materials, spectra, geometry
         state.seed[i] = ps
         state.flags[i] = 0
         state.medium[i] = -1
-        state.time[i] = 0.5  # light tracing is off with motion blur (analysis): the shutter's middle
+        state.time[i] = 0.5  # a still scene: read by nothing
+        if shutter_times.shape[0] > 0:
+            state.time[i] = shutter_time(shutter_times, sample_1d(settings.sampler, ps, sample, SLOT_PATH_TIME))
         state.prev_pdf[i] = 0.0
         state.radiance[i, :] = 0.0
         draw_wavelengths(state, i, ws, settings.sampler, ps, sample)
@@ -82,7 +92,7 @@ def emit_kernel(state, rays, light_of_path, lights, materials, spectra, geometry
             sample_2d(settings.sampler, ps, sample, SLOT_POSITION),
             sample_1d(settings.sampler, ps, sample, SLOT_TARGET),
             sample_2d(settings.sampler, ps, sample, SLOT_DIRECTION), state.wavelength[i], state.throughput[i],
-            scratch.emitter_rows, scratch.registers)
+            scratch.emitter_rows, scratch.registers, state.time[i])
         light_of_path[i] = light
         largest = 0.0
         for c in range(k):
@@ -123,7 +133,7 @@ def connect(state, i, p, ng, ns, toward_light, mflags, hit, rows, spectral, eta,
     sample = state.sample[i]
     pixel, lens, importance, dist = connect_to_camera(
         camera, p, sample_2d(settings.sampler, ps, sample, SLOT_CAMERA_LENS),
-        sample_2d(settings.sampler, ps, sample, SLOT_CAMERA_FILTER))
+        sample_2d(settings.sampler, ps, sample, SLOT_CAMERA_FILTER), state.time[i])
     if pixel < 0:
         return
     to_camera = ((lens[0] - p[0]) / dist, (lens[1] - p[1]) / dist, (lens[2] - p[2]) / dist)

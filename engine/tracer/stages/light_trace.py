@@ -63,7 +63,7 @@ def _trace_stepwise(renderer, buffers, extra, first, count, samples_per_pixel, f
     current = buffers.rays[0]
     queued = emit_kernel(state, current, extra.light, lights, materials, tables.spectra, tables.geometry,
                          tables.caustic_targets, tables.wavelengths, settings, first, count, samples_per_pixel,
-                         first_sample, buffers.scratch)
+                         first_sample, buffers.scratch, renderer.camera.data.shutter_times)
     rays_cast = 0
     for depth in range(settings.max_bounces + 1):
         if queued == 0:

@@ -49,7 +49,8 @@ def sample_direct(state, i, vertex, bsdf, lights, materials, spectra, geometry, 
     u1, u2 = sample_2d(settings.sampler, ps, sample, bounce_slot(depth, BOUNCE_LIGHT_POINT))
     lam = state.wavelength[i]
     wi, dist, pdf_light, delta, group, emitter = sample_light(lights, materials, spectra, geometry, p, u_select, u1,
-                                                              u2, lam, li, shading.emitter_rows, shading.registers)
+                                                              u2, lam, li, shading.emitter_rows, shading.registers,
+                                                              state.time[i])
     if not pdf_light > 0.0 or excluded_from_catcher(state, i, settings, lights, emitter):
         return 0
     shadow_sets = ALL_SETS

@@ -4,7 +4,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from engine.tracer.geometry import prepare_geometry
+from engine.tracer.geometry import FRAME_TIME, prepare_geometry
 from engine.tracer.jit import kernel
 from engine.tracer.lights.caustic_targets import (beam_pdf, build_caustic_targets, direction_pdf, sample_beam,
                                                   sample_direction)
@@ -18,7 +18,7 @@ from .light_checks import SceneLights
 def _emit_many(lights, materials, spectra, geometry, targets, u, lam, origin, direction, beta, index, rows, registers):
     for i in range(u.shape[0]):
         o, d, light = sample_emission(lights, materials, spectra, geometry, targets, u[i, 0], (u[i, 1], u[i, 2]),
-                                      u[i, 3], (u[i, 4], u[i, 5]), lam[i], beta[i], rows, registers)
+                                      u[i, 3], (u[i, 4], u[i, 5]), lam[i], beta[i], rows, registers, FRAME_TIME)
         origin[i, 0], origin[i, 1], origin[i, 2] = o
         direction[i, 0], direction[i, 1], direction[i, 2] = d
         index[i] = light

@@ -4,7 +4,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from engine.tracer.geometry import prepare_geometry
+from engine.tracer.geometry import FRAME_TIME, prepare_geometry
 from engine.tracer.jit import kernel
 from engine.tracer.lights.dispatch import emitter_pdf, intersect_light, light_hit, sample_light
 from engine.tracer.lights.table import build_lights
@@ -14,10 +14,10 @@ from engine.tracer.state import new_shading_scratch
 
 
 @kernel
-def _sample_many(lights, materials, spectra, geometry, p, u, lam, wi, dist, li, pdf, delta, rows, registers):
+def _sample_many(lights, materials, spectra, geometry, p, u, lam, wi, dist, li, pdf, delta, rows, registers, time):
     for i in range(p.shape[0]):
         w, d, q, is_delta, _, _ = sample_light(lights, materials, spectra, geometry, (p[i, 0], p[i, 1], p[i, 2]),
-                                            u[i, 2], u[i, 0], u[i, 1], lam[i], li[i], rows, registers)
+                                            u[i, 2], u[i, 0], u[i, 1], lam[i], li[i], rows, registers, time)
         wi[i, 0], wi[i, 1], wi[i, 2] = w
         dist[i] = d
         pdf[i] = q
@@ -35,9 +35,9 @@ def _hit_many(lights, o, d, t_max, index, t, factor, pdf):
 
 
 @kernel
-def _emitter_pdf_many(lights, triangle, d, t, pdf):
+def _emitter_pdf_many(lights, geometry, triangle, d, t, pdf, time):
     for i in range(d.shape[0]):
-        pdf[i] = emitter_pdf(lights, triangle[i], (d[i, 0], d[i, 1], d[i, 2]), t[i])
+        pdf[i] = emitter_pdf(lights, geometry, triangle[i], (d[i, 0], d[i, 1], d[i, 2]), t[i], time)
 
 
 class SceneLights:
@@ -59,15 +59,16 @@ class SceneLights:
     def spectrum_at(self, light, wavelength_nm=550.0):
         return spectrum_value(self.spectra, int(self.arrays.rows[light, 1]), wavelength_nm)
 
-    def sample(self, p, u, wavelength_nm=550.0):
-        """Samples toward lights from points ``p`` [n,3] with uniforms ``u`` [n,3] (u[:, 2] picks the light)."""
+    def sample(self, p, u, wavelength_nm=550.0, time=FRAME_TIME):
+        """Samples toward lights from points ``p`` [n,3] with uniforms ``u`` [n,3] (u[:, 2] picks the light) at ray
+        time ``time`` (moving emitters where they are then)."""
         n = len(p)
         lam = np.full((n, 1), wavelength_nm)
         out = SimpleNamespace(wi=np.empty((n, 3)), dist=np.empty(n), li=np.empty((n, 1)), pdf=np.empty(n),
                               delta=np.empty(n, bool))
         _sample_many(self.arrays, self.materials, self.spectra, self.geometry, np.ascontiguousarray(p, dtype=np.float64),
                      np.ascontiguousarray(u, dtype=np.float64), lam, out.wi, out.dist, out.li, out.pdf, out.delta,
-                     self.scratch.emitter_rows, self.scratch.registers)
+                     self.scratch.emitter_rows, self.scratch.registers, float(time))
         out.li = out.li[:, 0]
         return out
 
@@ -80,8 +81,8 @@ class SceneLights:
                   t_max, index, t, factor, pdf)
         return index, t, factor, pdf
 
-    def emitter_pdf(self, triangle, d, t):
+    def emitter_pdf(self, triangle, d, t, time=FRAME_TIME):
         pdf = np.empty(len(d))
-        _emitter_pdf_many(self.arrays, np.asarray(triangle, np.int64), np.ascontiguousarray(d, dtype=np.float64),
-                          np.asarray(t, np.float64), pdf)
+        _emitter_pdf_many(self.arrays, self.geometry, np.asarray(triangle, np.int64),
+                          np.ascontiguousarray(d, dtype=np.float64), np.asarray(t, np.float64), pdf, float(time))
         return pdf
