@@ -11,7 +11,8 @@ The radius is the ``radius`` attribute, or 5 mm where the curves have none (as C
 transform scales it by the cube root of its determinant's magnitude for curves (Cycles'
 ``Hair::apply_transform``), by its mean axis scale for ribbons. Strands are read with ``foreach_get``
 and placed for all strands at once, with the attributes and UV maps their materials read
-(``hair_attributes``; 3D curves only). With motion blur, 3D curves move with their points (``hair_motion``).
+(``hair_attributes``; 3D curves only). With motion blur, 3D curves move with their points, or by their
+``velocity`` attribute where they have one (``hair_motion``).
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ import numpy as np
 from .hair_attributes import point_values, segment_ends
 from .hair_info import strand_info
 from .instancing import WorldTriangles
+from .velocity import placed_velocity, read_velocity
 
 DEFAULT_RADIUS_M = 0.005
 
@@ -45,6 +47,7 @@ class LocalHair:
     attributes: dict = field(default_factory=dict)
     uvs: dict = field(default_factory=dict)
     uncarried: tuple = ()
+    velocity: np.ndarray | None = None  # float64 [P, 3]: the points' ``velocity`` attribute (m/s), or None
 
     @property
     def texture_space(self):
@@ -86,11 +89,12 @@ def read_hair(obj, request=None) -> LocalHair | None:
         slot_materials=[slot.material for slot in obj.material_slots],
         attributes=colors,
         uvs=uvs,
+        velocity=read_velocity(curves, point_count),
     )
 
 
 #: One hair's strands placed at its instances (``placed_strands``).
-PlacedStrands = namedtuple("PlacedStrands", "points radii offsets curve_slot info colors uvs")
+PlacedStrands = namedtuple("PlacedStrands", "points radii offsets curve_slot info colors uvs velocity")
 
 
 def placed_strands(hair: LocalHair, matrices: np.ndarray) -> PlacedStrands:
@@ -99,7 +103,7 @@ def placed_strands(hair: LocalHair, matrices: np.ndarray) -> PlacedStrands:
     transform's determinant's magnitude), ``offsets`` int64 [K*C' + 1], ``curve_slot`` int32 [K*C'], ``info``
     float32 [K*S, 4] (Hair Info per segment: intercept at its two points, the strand's length and random,
     ``hair_info``), ``colors`` {slot: float32 [K*S, 2, 4]} and ``uvs`` {slot: float32 [K*S, 2, 2]} (each
-    segment's ends: ``hair_attributes.segment_ends``)."""
+    segment's ends: ``hair_attributes.segment_ends``), ``velocity`` float64 [K*P, 3] (world; None without one)."""
     counts = np.diff(hair.offsets)
     finite = np.isfinite(hair.points).all(axis=1) & np.isfinite(hair.radii)
     strand_of_point = np.repeat(np.arange(len(counts)), counts)
@@ -125,7 +129,9 @@ def placed_strands(hair: LocalHair, matrices: np.ndarray) -> PlacedStrands:
                          np.tile(hair.curve_slot[keep], len(matrices)).astype(np.int32),
                          np.tile(info, (len(matrices), 1)),
                          segment_ends(hair.attributes, point_kept, starts, len(matrices)),
-                         segment_ends(hair.uvs, point_kept, starts, len(matrices)))
+                         segment_ends(hair.uvs, point_kept, starts, len(matrices)),
+                         None if hair.velocity is None else placed_velocity(hair.velocity[point_kept],
+                                                                            int(point_kept.sum()), matrices))
 
 
 def ribbon_hair_info_warning(name: str, reads: list, strand_random: bool) -> str:

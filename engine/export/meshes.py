@@ -68,6 +68,7 @@ class ExportedGeometry:
     point_velocity: np.ndarray | None = None  # float64 [N, 3]: their velocity attribute (m/s, world; NaN: none)
     vertex_object: np.ndarray | None = None  # int32 [V]: each vertex's object (an index into object_names)
     vertex_velocity: np.ndarray | None = None  # float64 [V, 3]: the velocity attribute of meshes (as points')
+    curve_velocity: np.ndarray | None = None  # float64 [P, 3]: of the curves' control points (as points')
     curves: CurveSegments | None = None  # the strands of hair curves (objects numbered after the points')
     triangle_flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat
     object_asset_names: list[str] = field(default_factory=list)  # per object_names entry (Cryptomatte Asset)
@@ -265,7 +266,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
         geometry.point_velocity = np.concatenate([
             placed_velocity(piece.geometry.velocity, len(piece.geometry.radii), matrices)
             for piece, matrices, _ in clouds])
-    geometry.curves = _curves(strands, names, groups, flags, surface, assets)
+    geometry.curves, geometry.curve_velocity = _curves(strands, names, groups, flags, surface, assets)
     geometry.object_names = list(names)
     geometry.object_asset_names = list(assets)
     geometry.material_names = list(materials.cryptomatte_names)
@@ -314,11 +315,12 @@ def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | Non
                         np.concatenate(random), stacked_slots(colors, len(surface.slots.attribute_names), (4,)))
 
 
-def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | None:
-    """The strands of every hair instance as round curve segments (objects appended to ``names``, ``groups``,
-    ``flags`` and ``assets``), or None without any."""
+def _curves(strands, names, groups, flags, surface, assets):
+    """(the strands of every hair instance as round curve segments (objects appended to ``names``, ``groups``,
+    ``flags`` and ``assets``), or None without any; their control points' velocity attribute, float64 [P, 3],
+    NaN where a hair has none, or None where none has one)."""
     points, radii, offsets, material, objects, instance, pass_index, info = [], [], [], [], [], [], [], []
-    colors, uvs = [], []
+    colors, uvs, velocities = [], [], []
     first = 0
     for piece, matrices, lookup in strands:
         placed = placed_strands(piece.geometry, matrices)
@@ -329,6 +331,7 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
         uvs.append((len(placed.info), placed.uvs))
         segments = np.diff(placed.offsets) - 1  # per strand
         points.append(placed.points)
+        velocities.append(placed.velocity)
         radii.append(placed.radii)
         offsets.append(placed.offsets[1:] + first)
         first += len(placed.points)
@@ -343,14 +346,18 @@ def _curves(strands, names, groups, flags, surface, assets) -> CurveSegments | N
         instance.append(np.repeat(rows, per_instance) if rows is not None else np.full(int(segments.sum()), -1, np.int32))
         pass_index.append(np.repeat(np.asarray([info[1] for info in piece.infos], np.float32), per_instance))
     if not points:
-        return None
-    padded, padded_radii, segments = padded_strands(np.concatenate(points), np.concatenate(radii),
-                                                    np.concatenate([[0], *offsets]))
+        return None, None
+    every, ends = np.concatenate(points), np.concatenate([[0], *offsets])
+    padded, padded_radii, segments = padded_strands(every, np.concatenate(radii), ends)
+    velocity = None  # padded as the points are, so it stays row for row with them
+    if any(v is not None for v in velocities):
+        velocity = padded_strands(np.concatenate([np.full((len(p), 3), np.nan) if v is None else v
+                                                  for p, v in zip(points, velocities)]), np.zeros(len(every)), ends)[0]
     return CurveSegments(padded, padded_radii, segments, np.concatenate(material).astype(np.int32),
                          np.concatenate(objects), np.concatenate(instance).astype(np.int32),
                          np.concatenate(pass_index), np.concatenate(info),
                          stacked_slots(colors, len(surface.slots.attribute_names), (2, 4)),
-                         stacked_slots(uvs, len(surface.slots.uv_names), (2, 2)))
+                         stacked_slots(uvs, len(surface.slots.uv_names), (2, 2))), velocity
 
 
 def _assemble(parts, names, materials) -> ExportedGeometry:

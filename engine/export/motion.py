@@ -95,9 +95,10 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
     cameras = np.asarray(cameras)
     if not np.allclose(cameras, cameras[:1], rtol=0.0, atol=1e-12):
         camera.motion_to_world = cameras
-    hair = hair_steps(tracer_scene, strands, settings, count, warnings)
     fps = float(scene.render.fps) / float(scene.render.fps_base)
     seconds = (frames - (frame + subframe)) / fps  # each step's time from the frame's
+    hair = hair_steps(tracer_scene, strands, settings, count, warnings,
+                      velocity_offsets(frame_geometry.curve_velocity, seconds))
     points = point_steps(tracer_scene, clouds, settings, count, warnings,
                          velocity_offsets(frame_geometry.point_velocity, seconds))
     steps, corner = mesh_steps(frame_geometry, meshes, settings, count, warnings, seconds,
