@@ -126,7 +126,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
         warnings.extend(f"Scene '{scene.name}': {library.sentence()}." for library in missing)
     if camera is None:
         camera = export_camera(scene, depsgraph, warnings)
-    geometry = export_meshes(depsgraph, warnings, camera_position=camera.camera_to_world[:3, 3])
+    geometry = export_meshes(depsgraph, warnings)
     tracer_scene = Scene(
         vertices=geometry.vertices,
         triangles=geometry.triangles,
@@ -150,7 +150,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
     tracer_scene.data_passes = export_data_passes(scene, geometry)
     if motion:
         frame_set = frame_set or (lambda f, s: scene.frame_set(f, subframe=s))
-        meshes_again = lambda evaluated: export_meshes(evaluated, None, camera_position=camera.camera_to_world[:3, 3])  # noqa: E731
+        meshes_again = lambda evaluated: export_meshes(evaluated, None)  # noqa: E731
         export_motion(scene, depsgraph, tracer_scene, frame_set, meshes_again, warnings if warnings is not None else [],
                       geometry)
         export_vector_pass(scene, depsgraph, tracer_scene, frame_set, meshes_again,

@@ -3,7 +3,7 @@
 Blender evaluates Text, Curve, Surface and Metaball objects to meshes and lists
 each such mesh as an instance of its own in ``depsgraph.object_instances``; the
 objects themselves are skipped here (as Cycles does), so their surfaces are not
-exported twice. Hair Curves and particle hair (``particle_hair``) become round curves or ribbons (``hair``);
+exported twice. Hair Curves and particle hair (``particle_hair``) become round curves (``hair``);
 point clouds become spheres (``point_clouds``); Volume objects a null box around a grid medium (``volume_objects``).
 
 The instances of one mesh are gathered while iterating (the only Python work per
@@ -22,7 +22,7 @@ import numpy as np
 from ..tracer.curves import CurveSegments, padded_strands
 from ..tracer.scene import Material
 from ..tracer.spheres import SpherePoints
-from .hair import LocalHair, curve_shape, hair_ribbons, placed_strands, read_hair, ribbon_hair_info_warning
+from .hair import LocalHair, placed_strands, read_hair
 from .instancing import WorldTriangles, instance_triangles
 from .adaptive_subdivision import adaptive_subdivision_warning
 from .bump_space import both_bump_scale_warning
@@ -122,8 +122,6 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             if key not in pieces:
                 request = materials.request(hair_materials(obj, render))
                 hair = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
-                if curve_shape(depsgraph.scene) == "RIBBONS":
-                    _warn_ribbon_hair_info(materials, obj.name, hair, warnings)
                 if hair is not None and hair.uncarried and warnings is not None:
                     warnings.append(uncarried_warning(obj.name, hair.uncarried))
                 pieces[key] = (_Instances(obj.name, hair, light_group=obj.lightgroup,
@@ -150,8 +148,6 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
             request = materials.request([slot.material for slot in obj.material_slots])
             # read now: the object may be temporary
             geometry = read(key, obj, request, lambda message, obj=obj: warn_once(obj, [message]))
-            if kind == "CURVES" and curve_shape(depsgraph.scene) == "RIBBONS":
-                _warn_ribbon_hair_info(materials, obj.name, geometry, warnings)
             flags = object_flags(obj, getattr(depsgraph, "view_layer", None), warnings)
             for message in (adaptive_subdivision_warning(obj, depsgraph.scene),
                             both_bump_scale_warning(obj) if kind == "MESH" else None):
@@ -164,20 +160,6 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
     return [piece for piece in pieces.values() if piece is not None]
 
 
-def _warn_ribbon_hair_info(materials: MaterialRows, name: str, hair, warnings) -> None:
-    """Warn where ribbon hair's materials (the slots its strands use) read Hair Info, which Prism's ribbons,
-    triangles, do not carry (Cycles' ribbons are curves)."""
-    if not isinstance(hair, LocalHair) or warnings is None:
-        return
-    used = [hair.slot_materials[s] for s in np.unique(hair.curve_slot) if 0 <= s < len(hair.slot_materials)]
-    used = [m for m in used if m is not None]
-    materials.slot_lookup(used)  # exports them, which records what they read
-    needs = {need for m in used for need in materials.exporter.needs.get(m.original.name, ())}
-    reads = sorted(field for kind, field in needs if kind == "hair_info")
-    if reads or ("strand_random", "") in needs:
-        warnings.append(ribbon_hair_info_warning(name, reads, ("strand_random", "") in needs))
-
-
 def _place(piece: _Instances | None, instance, obj) -> None:
     """Add ``instance``'s transform and object info to ``piece`` (None: nothing to place)."""
     if piece is None:
@@ -188,14 +170,12 @@ def _place(piece: _Instances | None, instance, obj) -> None:
     piece.infos.append((tuple(obj.color), obj.pass_index, random_id))
 
 
-def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=None,
-                  read=read_geometry) -> ExportedGeometry:
-    """Every visible mesh and hair instance, in world space (metres, float64 vertices).
+def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geometry) -> ExportedGeometry:
+    """Every visible mesh, hair and point cloud instance, in world space (metres, float64 vertices).
 
-    ``camera_position`` [3] (world, m) turns hair ribbons towards the camera (Render ▸ Curves ▸ Shape
-    "Rounded Ribbons"; "3D Curves" become ``tracer.curves.CurveSegments``). ``read(key, obj)``
-    returns a piece's geometry (the viewport passes one that keeps what did not change).
-    Material warnings and geometry Prism skips are appended to ``warnings``.
+    Hair renders as round curves (``tracer.curves.CurveSegments``) whatever Render ▸ Curves ▸ Shape says
+    (``hair``). ``read(key, obj)`` returns a piece's geometry (the viewport passes one that keeps what did not
+    change). Material warnings and geometry Prism skips are appended to ``warnings``.
     """
     materials = MaterialRows(warnings, TextureBudget.for_scene(depsgraph.scene), world_ao_distance(depsgraph.scene))
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
@@ -203,7 +183,6 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     assets: list[str] = []  # parallel to names
     flags: list[int] = []
     groups: list[str] = []
-    camera = np.zeros(3) if camera_position is None else np.asarray(camera_position, dtype=np.float64)
     passes = data_pass_switches(getattr(depsgraph, "view_layer", None))
     if passes.uv:
         materials.uv_pass_slot = materials.exporter.slots.uv("")
@@ -214,29 +193,14 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, camera_position=
     flat: list[np.ndarray] = []  # per triangle: shaded flat (``ExportedGeometry.triangle_flat``)
     clouds, strands = [], []
     velocities: list[np.ndarray | None] = []  # per part: its vertices' velocity attribute (world), or None
-    ribbons = curve_shape(depsgraph.scene) == "RIBBONS"
     for piece in pieces:
         matrices = np.asarray(piece.matrices, dtype=np.float64).reshape(-1, 4, 4)
         lookup = materials.slot_lookup(piece.geometry.slot_materials, owner=id(piece))
         if isinstance(piece.geometry, LocalPoints):
             clouds.append((piece, matrices, lookup))
             continue
-        if isinstance(piece.geometry, LocalHair) and not ribbons:
-            strands.append((piece, matrices, lookup))
-            continue
         if isinstance(piece.geometry, LocalHair):
-            for matrix, info in zip(matrices, piece.infos):  # ribbons face the camera from where each instance stands
-                placed, slots = hair_ribbons(piece.geometry, matrix, camera)
-                parts.append((placed, lookup[np.clip(slots, 0, len(lookup) - 1)]))
-                velocities.append(None)
-                names.append(piece.name)
-                assets.append(piece.asset)
-                groups.append(piece.light_group)
-                surface.add_ribbons(piece.geometry, placed, matrix, info)
-                flags.append(piece.flags)
-                pass_index.append(np.full(len(placed.triangles), piece.infos[0][1] if piece.infos else 0, np.float32))
-                has_uv.append(np.zeros(len(placed.triangles), bool))
-                flat.append(np.zeros(len(placed.triangles), bool))
+            strands.append((piece, matrices, lookup))
             continue
         local = piece.geometry
         placed = instance_triangles(local.vertices, local.triangles, local.corner_normals, matrices)

@@ -88,29 +88,6 @@ class SurfaceCollector:
         self.rows.append(object_rows(matrices, infos, texture_space))
         return np.arange(first, first + len(matrices), dtype=np.int32)
 
-    def add_ribbons(self, hair, placed, matrix, info):
-        """One instance (``matrix`` [4, 4], ``info`` as ``object_rows``'s) of the ribbons ``placed`` of ``hair`` (a
-        ``hair.LocalHair``; ``hair.hair_ribbons`` stands ribbon vertices 2p and 2p + 1 at the strand's point p): each
-        corner reads its point's UV maps and attributes, linear along a segment and constant across, as Cycles
-        interpolates curve keys on its ribbons."""
-        triangles = len(placed.triangles)
-        if not self.active:
-            self.parts.append((triangles, {}, None))
-            return
-        point = np.asarray(placed.triangles) // 2
-        data = {"uvs": {slot: values[point] for slot, values in hair.uvs.items()},
-                "colors": {slot: values[point] for slot, values in hair.attributes.items()}, "tangents": {}}
-        instance = None
-        if self.slots.objects:
-            first = sum(len(r) for r in self.rows)
-            self.rows.append(object_rows(matrix[None], [info], hair.texture_space))
-            instance = np.full(triangles, first, np.int32)
-            with np.errstate(all="ignore"):
-                to_object = np.linalg.pinv(matrix)
-            local = placed.vertices @ to_object[:3, :3].T + to_object[:3, 3]
-            data["positions"] = local[placed.triangles].astype(np.float32)
-        self.parts.append((triangles, data, instance))
-
     def surface(self) -> SurfaceAttributes | None:
         if not self.active:
             return None

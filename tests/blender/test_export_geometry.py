@@ -1,5 +1,5 @@
-"""Evaluated geometry → tracer triangles: every surface once, hair as round curves (or ribbons with
-Render ▸ Curves ▸ Shape "Rounded Ribbons"), instances placed exactly (mirrored ones still facing out),
+"""Evaluated geometry → tracer triangles: every surface once, hair as round curves (whatever Render ▸ Curves ▸
+Shape says), instances placed exactly (mirrored ones still facing out),
 float64 world positions, and a warning for geometry Prism does not render."""
 
 from __future__ import annotations
@@ -97,8 +97,10 @@ def test_instances_are_placed_like_blender_places_them(prism_addon, lit, mirrore
     assert (np.einsum("tcj,tj->tc", shading, geometric) > 0).all()
 
 
-def test_hair_curves_render_as_camera_facing_ribbons(prism_addon, lit, capsys):
-    bpy.context.scene.cycles_curves.shape = "RIBBONS"  # Render ▸ Curves ▸ Shape "Rounded Ribbons"
+def test_rounded_ribbons_render_as_round_curves(prism_addon, lit, capsys):
+    """Render ▸ Curves ▸ Shape "Rounded Ribbons" (a new scene's): the strands are round curves of their radius, as
+    with "3D Curves" (``export.hair``), no triangles; a render runs; without a radius attribute, 5 mm as Cycles."""
+    bpy.context.scene.cycles_curves.shape = "RIBBONS"
     curves = bpy.data.hair_curves.new("Fur")
     curves.add_curves([4, 3])
     positions = [(0, 0, 0), (0, 0, 0.5), (0.1, 0, 1.0), (0.2, 0, 1.5), (1, 0, 0), (1, 0, 0.5), (1, 0.2, 1.0)]
@@ -108,20 +110,13 @@ def test_hair_curves_render_as_camera_facing_ribbons(prism_addon, lit, capsys):
     obj = bpy.data.objects.new("Fur", curves)
     bpy.context.scene.collection.objects.link(obj)
     scene = _export(prism_addon)
-    rows = _triangles_of(scene, "Fur")
-    assert len(rows) == 2 * (3 + 2)  # two triangles per segment
-    corners = scene.vertices[scene.triangles[rows]]
-    widths = np.linalg.norm(scene.vertices[0::2] - scene.vertices[1::2], axis=1)
-    assert np.allclose(widths, 0.04)  # the diameter
-    camera = np.array(bpy.context.scene.camera.matrix_world)[:3, 3]
-    towards_camera = camera - corners.mean(axis=1)
-    assert (np.einsum("tj,tj->t", scene.corner_normals[rows][:, 0], towards_camera) > 0).all()
+    assert len(_triangles_of(scene, "Fur")) == 0 and len(scene.curves) == 3 + 2  # a segment between each two points
+    assert np.allclose(scene.curves.radii, 0.02)
     status, line = run_batch(capsys, "--samples", 1, "--output", bpy.app.tempdir + "fur.png")
     assert (status, line) == (0, f"Saved: '{bpy.app.tempdir}fur.png'")
 
     curves.attributes.remove(curves.attributes["radius"])  # no radius attribute: 5 mm, as Cycles
-    scene = _export(prism_addon)
-    assert np.allclose(np.linalg.norm(scene.vertices[0::2] - scene.vertices[1::2], axis=1), 0.01)
+    assert np.allclose(_export(prism_addon).curves.radii, 0.005)
 
 
 def test_far_from_the_origin_small_objects_keep_their_shape(prism_addon, lit):

@@ -11,7 +11,6 @@ with Cycles' ``bsdf_hair.h`` lobes.
 
 from __future__ import annotations
 
-from ...properties.node_links import is_linked
 from ...tracer.bsdf.closure import (C_HAIR_COAT, C_HAIR_IOR, C_HAIR_MELANIN, C_HAIR_OFFSET, C_HAIR_RADIAL,
                                     C_HAIR_RANDOM, C_HAIR_RANDOM_COLOUR, C_HAIR_RANDOM_ROUGHNESS, C_HAIR_REDNESS,
                                     C_HAIR_ROUGHNESS, HAIR, SIGMA_ABSORPTION, SIGMA_COLOUR, SIGMA_MELANIN)
@@ -33,12 +32,6 @@ def _non_negative(c, node, name, context):
     return c.vector_math("MAXIMUM", c.value(node, name, context, COLOR), c.const(0.0, 0.0, 0.0))
 
 
-def _in_use(node, name) -> bool:
-    """Whether the node's input ``name`` is linked or not 0 (so the strand's random number changes something)."""
-    socket = node.inputs.get(name)
-    return socket is not None and (is_linked(socket) or float(socket.default_value) != 0.0)
-
-
 def principled_hair(c, node, context, weight):
     """Add the node's fibre closure, weighted by ``weight``."""
     if getattr(node, "model", "CHIANG") != "CHIANG":
@@ -51,9 +44,6 @@ def principled_hair(c, node, context, weight):
     # Cycles: an unlinked Random is the strand's random number (its value on the node off strands)
     hair[C_HAIR_RANDOM] = ("random", c.value(node, "Random", context, FLOAT))
     strand_random = c.linked(node, "Random", context) is None
-    randomised = ("Random Roughness", "Random Color") if mode == SIGMA_MELANIN else ("Random Roughness",)
-    if strand_random and any(_in_use(node, name) for name in randomised):
-        c.needs.add(("strand_random", ""))  # what ribbons made of triangles cannot give (``meshes``)
     s0 = s1 = None
     if mode == SIGMA_COLOUR:
         s0 = _non_negative(c, node, "Color", context)  # a reflectance: the table clips it at 1

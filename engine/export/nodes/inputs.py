@@ -140,7 +140,6 @@ def point_info(c, node, context, variant, identifier):
 def hair_info(c, node, context, variant, identifier):
     """Cycles' Hair Info on a strand of round curves (``tracer.materials.hit_inputs.hair_info``); 0 elsewhere."""
     field = {"Is Strand": 0, "Intercept": 1, "Length": 2, "Thickness": 3, "Tangent Normal": 4, "Random": 5}[identifier]
-    c.needs.add(("hair_info", identifier))
     return {identifier: (c.hit(op.HAIR_INFO, variant, mode=field, width=3 if field == 4 else 1),
                          VECTOR if field == 4 else FLOAT)}
 
