@@ -47,7 +47,7 @@ def hair_steps(tracer_scene, steps, settings, count, warnings, drift=None) -> np
         moved = np.repeat(frame[None], len(drift), axis=0)
         moved[..., :3] += drift
     rows = StepRows(frame, _point_objects(curves), matched_steps(names, steps, _table, _point_objects),
-                    changing_hair_warning, _deforming_hair_warning, moved, velocity_first=True)
+                    changing_hair_warning, _deforming_hair_warning, moved)
     return object_steps(rows, names, settings, count, warnings)
 
 

@@ -61,14 +61,14 @@ def mesh_steps(frame, steps, settings, count, warnings, seconds, said: MeshWarni
     moves_by_velocity = None if drift is None else frame.vertices[None] + drift
     vertex_rows = StepRows(_vertices(frame), _vertex_owner(frame), matched_steps(names, steps, _vertices,
                                                                                 _vertex_owner, 3),
-                           said.changing, said.deforming, moves_by_velocity, has_radius=False, velocity_first=True)
+                           said.changing, said.deforming, moves_by_velocity, has_radius=False)
     vertices = object_steps(vertex_rows, names, settings, count, warnings)
     if vertices is None or frame.corner_normals is None or not len(frame.corner_normals):
         return vertices, None
     normal_rows = StepRows(_normals(frame), _triangle_owner(frame), matched_steps(names, steps, _normals,
                                                                                _triangle_owner, 9),
                            said.changing, said.deforming, _frame_normals_where_velocity(frame, count),
-                           has_radius=False, velocity_first=True)
+                           has_radius=False)
     normals = object_steps(normal_rows, names, settings, count, [])  # what it could say, the vertices said
     return vertices, None if normals is None else normals.reshape(count, -1, 3, 3).astype(np.float32)
 

@@ -66,19 +66,18 @@ class StepRows:
     ``has_radius``), ``owner`` int [N] (each row's object, an index into the frame's ``names``), ``steps``
     [(float64 [M, W], int [M] owner as a frame index, -1: none)] one per time step, and the warnings for an object
     whose rows change in number (``changing(name)``) and for one moving with Object ▸ Motion Blur ▸ Deformation off
-    (``deforming(name)``); ``unmatched`` float64 [S, N, W] (or None): the rows at every step of the objects that
-    carry a velocity (moved by it), NaN for the others. They are taken where an object's rows change in number at
-    some step, or, with ``velocity_first``, wherever an object has them, as Cycles takes a mesh's velocity
-    attribute over its steps."""
+    (``deforming(name)``); ``by_velocity`` float64 [S, N, W] (or None): the rows at every step of the objects
+    that carry a velocity attribute (moved by it), NaN for the others, taken over the steps wherever an object has
+    them, as Cycles 4.5 takes the attribute over the steps of meshes, hair and point clouds alike (so also where
+    an object's rows change in number)."""
 
     frame: np.ndarray
     owner: np.ndarray
     steps: list
     changing: Callable[[str], str]
     deforming: Callable[[str], str]
-    unmatched: np.ndarray | None = None
+    by_velocity: np.ndarray | None = None
     has_radius: bool = True  # the last of 4 columns is a radius, and a radius below 0 at a step renders as none
-    velocity_first: bool = False
 
 
 def _groups(owner: np.ndarray, size: int):
@@ -98,8 +97,8 @@ def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.nd
     """float64 [S, N, W]: ``rows`` at the shutter's ``count`` time steps, matched per object in order, as Cycles
     matches curve keys, points and vertices: Object ▸ Motion Blur off keeps an object still at the frame; fewer
     Steps than the scene's are interpolated between its own; an object whose rows change in number, or stop being
-    finite, during the shutter stays still, warned, unless it moves by its velocity (``StepRows.unmatched``). None
-    where nothing moves. ``settings``: object name → (motion blur on,
+    finite, during the shutter stays still, warned; one with a velocity attribute moves by it
+    (``StepRows.by_velocity``). None where nothing moves. ``settings``: object name → (motion blur on,
     steps, deformation on). Objects are grouped once, so thousands of instances cost no more than one object of
     as many rows."""
     if not len(rows.frame):
@@ -110,9 +109,9 @@ def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.nd
     rank = np.empty(len(owner), np.int64)  # each row's place among its object's rows
     rank[order] = np.arange(len(owner)) - np.repeat(starts, counts)
     frame_finite = np.isfinite(rows.frame).all(axis=1)
-    follows = np.zeros(size, bool)  # objects whose rows ``unmatched`` places at every step
-    if rows.unmatched is not None:
-        follows = ~_any_per_object(frame_finite & ~np.isfinite(rows.unmatched).all(axis=(0, 2)), owner, size)
+    follows = np.zeros(size, bool)  # objects whose rows ``by_velocity`` places at every step
+    if rows.by_velocity is not None:
+        follows = ~_any_per_object(frame_finite & ~np.isfinite(rows.by_velocity).all(axis=(0, 2)), owner, size)
     table = np.repeat(rows.frame[None], count, axis=0)
     differs, broken = np.zeros(size, bool), np.zeros(size, bool)
     for s, (step_table, step_owner) in enumerate(rows.steps):
@@ -123,12 +122,11 @@ def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.nd
         values = np.asarray(step_table)[valid][step_order[step_starts[owner[matched]] + rank[matched]]]
         table[s, matched] = values
         broken |= _any_per_object(matched[frame_finite[matched] & ~np.isfinite(values).all(axis=1)], owner, size)
-    followed = follows if rows.velocity_first else differs & follows
-    moved = followed[owner]  # the whole shutter from ``unmatched``, not one step here and one there
+    moved = follows[owner]
     if moved.any():
-        table[:, moved] = rows.unmatched[:, moved]
+        table[:, moved] = rows.by_velocity[:, moved]
     changed = differs & ~follows
-    broken &= ~differs & ~followed
+    broken &= ~differs & ~follows
     if rows.has_radius:
         table[..., 3] = np.maximum(table[..., 3], 0.0)
     for index in np.flatnonzero(counts):
@@ -147,7 +145,7 @@ def object_steps(rows: StepRows, names, settings, count: int, warnings) -> np.nd
             own = min(motion_step_count(own_steps), count)
             if own < count:
                 table[:, on] = resample(table[:, on], own)
-            if not deform and not followed[index]:  # a velocity moves it whatever the switch, as in Cycles
+            if not deform and not follows[index]:  # a velocity moves it whatever the switch, as in Cycles
                 said.append(rows.deforming(name))
         warnings.extend(message for message in said if message not in warnings)  # instances share a name
     return None if is_still(table) else table

@@ -10,8 +10,7 @@ its determinant's magnitude (a sphere stays a sphere, as in Cycles). The attribu
 (Attribute, Color Attribute) are read per point, as the mesh export converts them (``mesh_attributes``), and
 a point reads its own value anywhere on its sphere, as Cycles reads a point-cloud attribute; a cloud without
 the attribute reads 0 (black, alpha 0). A 3D-vector ``velocity`` attribute on the points (m/s, what simulations
-write; ``velocity``) is read too: motion blur moves points by it where their number changes during the shutter
-(``point_motion``).
+write; ``velocity``) is read too: motion blur moves points by it, as Cycles does (``point_motion``).
 """
 
 from __future__ import annotations

@@ -7,12 +7,12 @@ cloud's points (``export_pointcloud_motion``), through ``motion_steps.object_ste
 keeps a cloud still at the frame; fewer Steps than the scene's are interpolated between its own. The steps carry
 each point's radius too, so points that grow or shrink blur as Cycles blurs them.
 
-A cloud whose number of points changes during the shutter (a simulation emitting or removing particles) cannot be
-matched point by point: where its points carry a ``velocity`` attribute (m/s, as simulations write it), each
-moves in a straight line by it, ``velocity × (step time - frame time)`` (``velocity.velocity_offsets``), as Cycles
-blurs points by their velocity; without one the cloud stays still at the frame and is named in a warning (Cycles
-silently drops its motion). Cycles moves the points whose index the step's cloud still has to that step's point of the
-same index instead, which is another particle once one has died; Prism uses the velocity for all of them.
+A cloud whose points carry a ``velocity`` attribute (m/s, as simulations write it) moves by it instead, each
+point in a straight line, ``velocity × (step time - frame time)`` (``velocity.velocity_offsets``), whether or
+not its points could be matched: Cycles 4.5 takes the attribute over the steps (a cloud moving along x whose
+velocity says z blurs along z there). That is also how a cloud whose number of points changes during the shutter
+(a simulation emitting or removing particles) moves; without the attribute such a cloud stays still at the frame
+and is named in a warning (Cycles silently drops its motion).
 """
 
 from __future__ import annotations
@@ -33,19 +33,19 @@ def _owner(points) -> np.ndarray:
 def point_steps(tracer_scene, steps, settings, count, warnings, drift=None) -> np.ndarray | None:
     """float64 [S, N, 4]: the centres (world) and radii of ``tracer_scene.points`` at the shutter's ``count`` time
     steps, from ``steps`` ((``SpherePoints`` or None, object names) exported at each), per object as the module
-    says, clouds whose number of points changes moved by ``drift`` (``velocity.velocity_offsets``, NaN where a point
-    has no velocity); None where no point moves. ``settings``: object name → (motion blur on, steps, deformation on)."""
+    says, clouds with a velocity attribute moved by ``drift`` (``velocity.velocity_offsets``, NaN where a point has
+    none); None where no point moves. ``settings``: object name → (motion blur on, steps, deformation on)."""
     points = tracer_scene.points
     if points is None or not len(points):
         return None
     names = tracer_scene.object_names
     frame = _table(points)
-    unmatched = None
+    moved = None
     if drift is not None:
-        unmatched = np.repeat(frame[None], len(drift), axis=0)
-        unmatched[..., :3] += drift
+        moved = np.repeat(frame[None], len(drift), axis=0)
+        moved[..., :3] += drift
     rows = StepRows(frame, _owner(points), matched_steps(names, steps, _table, _owner), changing_points_warning,
-                    _deforming_points_warning, unmatched)
+                    _deforming_points_warning, moved)
     return object_steps(rows, names, settings, count, warnings)
 
 

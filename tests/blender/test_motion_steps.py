@@ -1,7 +1,7 @@
 """Rows of hair, point clouds and meshes followed through the shutter (``export.motion_steps.object_steps``),
 without Blender: a step's export may list its objects in another order, instances of one object by occurrence; an
-object whose number of rows changes stays still, warned, or follows the rows given for it (moved by their
-velocity; meshes wherever they have one); one whose rows stop being finite stays still, warned."""
+object whose number of rows changes stays still, warned; an object with a velocity attribute follows the rows
+it gives, whether or not its rows could be matched; one whose rows stop being finite stays still, warned."""
 
 from __future__ import annotations
 
@@ -48,10 +48,10 @@ def _steps(changing_size=2, nan_step=None):
     return out
 
 
-def _follow(steps, unmatched=None):
+def _follow(steps, by_velocity=None):
     frame = _export(NAMES, SIZES, 0.0)
     rows = StepRows(frame.table, frame.owner, matched_steps(NAMES, steps, lambda r: r.table, lambda r: r.owner),
-                    lambda name: f"changing {name}", lambda name: f"deforming {name}", unmatched)
+                    lambda name: f"changing {name}", lambda name: f"deforming {name}", by_velocity)
     warnings = []
     settings = {name: (True, 1, True) for name in NAMES}
     return frame, object_steps(rows, NAMES, settings, len(SHIFTS), warnings), warnings
@@ -74,35 +74,35 @@ def test_an_object_whose_rows_change_or_stop_being_finite_stays_still_warned():
                         "step of the shutter, so Prism renders it still where it is at the frame, without motion blur."]
 
 
-def test_an_object_whose_rows_change_follows_the_rows_given_for_it():
+def test_an_object_whose_rows_change_follows_its_velocity_rows():
     frame = _export(NAMES, SIZES, 0.0)
-    unmatched = np.repeat(frame.table[None], 3, axis=0)
-    unmatched[..., 1] += np.array([-1.0, 0.0, 1.0])[:, None]  # these rows move along y instead
-    _, table, warnings = _follow(_steps(changing_size=3), unmatched)
     sparks = frame.owner == NAMES.index("Sparks")
+    by_velocity = np.full((3, len(frame.owner), 4), np.nan)  # only Sparks has a velocity
+    by_velocity[:, sparks] = frame.table[sparks]
+    by_velocity[:, sparks, 1] += np.array([-1.0, 0.0, 1.0])[:, None]  # its rows move along y instead
+    _, table, warnings = _follow(_steps(changing_size=3), by_velocity)
     assert warnings == []
-    np.testing.assert_allclose(table[:, sparks], unmatched[:, sparks])
+    np.testing.assert_allclose(table[:, sparks], by_velocity[:, sparks])
     np.testing.assert_allclose(table[2, ~sparks, 0], frame.table[~sparks, 0] + 0.1)
 
 
-def test_velocity_first_takes_the_given_rows_over_followable_steps_and_skips_the_deformation_warning():
-    """Meshes: Cycles takes a velocity attribute over the steps even where the vertices could be followed, and
-    whatever Object ▸ Motion Blur ▸ Deformation says; rows without a radius keep their negative fourth column."""
+def test_velocity_rows_are_taken_over_followable_steps_and_skip_the_deformation_warning():
+    """Cycles takes a velocity attribute over the steps even where the rows could be followed, and whatever Object ▸
+    Motion Blur ▸ Deformation says; rows without a radius keep their negative fourth column."""
     frame = _export(NAMES, SIZES, 0.0)
     frame.table[:, 3] = -0.5  # a coordinate, not a radius
     steps = _steps()
     for step, _ in steps:
         step.table[:, 3] = -0.5
-    unmatched = np.full((3, len(frame.owner), 4), np.nan)
+    by_velocity = np.full((3, len(frame.owner), 4), np.nan)
     dust = np.isin(frame.owner, [k for k, name in enumerate(NAMES) if name == "Dust"])
-    unmatched[:, dust] = frame.table[dust] + np.array([0.0, 1.0, 0.0, 0.0]) * np.array([-1.0, 0.0, 1.0])[:, None, None]
+    by_velocity[:, dust] = frame.table[dust] + np.array([0.0, 1.0, 0.0, 0.0]) * np.array([-1.0, 0.0, 1.0])[:, None, None]
     rows = StepRows(frame.table, frame.owner, matched_steps(NAMES, steps, lambda r: r.table, lambda r: r.owner),
-                    lambda name: f"changing {name}", lambda name: f"deforming {name}", unmatched, has_radius=False,
-                    velocity_first=True)
+                    lambda name: f"changing {name}", lambda name: f"deforming {name}", by_velocity, has_radius=False)
     warnings = []
     settings = {name: (True, 1, name != "Dust") for name in NAMES}
     table = object_steps(rows, NAMES, settings, len(SHIFTS), warnings)
     assert warnings == []
-    np.testing.assert_allclose(table[:, dust], unmatched[:, dust])  # both Dust instances, by velocity
+    np.testing.assert_allclose(table[:, dust], by_velocity[:, dust])  # both Dust instances, by velocity
     np.testing.assert_allclose(table[2, ~dust, 0], frame.table[~dust, 0] + 0.1)  # the others, by their steps
     np.testing.assert_array_equal(table[..., 3], -0.5)
