@@ -49,11 +49,12 @@ def _triangle_owner(geometry) -> np.ndarray:
     return np.asarray(geometry.triangle_object, np.int64)
 
 
-def mesh_steps(frame, steps, settings, count, warnings, seconds, said: MeshWarnings):
+def mesh_steps(frame, steps, settings, count, warnings, seconds, said: MeshWarnings, with_normals: bool = True):
     """(vertices float64 [S, V, 3] or None where no vertex moves, corner normals float32 [S, T, 3, 3] or None) of
     the meshes of ``frame`` (``meshes.ExportedGeometry`` at the frame) at the ``count`` time steps ``seconds`` [S]
     from the frame, from ``steps`` ((``ExportedGeometry``, its object names) exported at each), per object as the
-    module says. ``settings``: object name → (motion blur on, steps, deformation on)."""
+    module says; the normals only ``with_normals`` (the Vector pass needs none). ``settings``: object name →
+    (motion blur on, steps, deformation on)."""
     names = list(frame.object_names)
     if not len(frame.vertices):
         return None, None
@@ -63,7 +64,7 @@ def mesh_steps(frame, steps, settings, count, warnings, seconds, said: MeshWarni
                                                                                 _vertex_owner, 3),
                            said.changing, said.deforming, moves_by_velocity, has_radius=False)
     vertices = object_steps(vertex_rows, names, settings, count, warnings)
-    if vertices is None or frame.corner_normals is None or not len(frame.corner_normals):
+    if vertices is None or not with_normals or frame.corner_normals is None or not len(frame.corner_normals):
         return vertices, None
     normal_rows = StepRows(_normals(frame), _triangle_owner(frame), matched_steps(names, steps, _normals,
                                                                                _triangle_owner, 9),

@@ -74,7 +74,8 @@ def export_vector_pass(scene, depsgraph, tracer_scene, frame_set, export_meshes,
     fps = float(scene.render.fps) / float(scene.render.fps_base)
     every_object = {name: (True, 1, True) for name in tracer_scene.object_names}  # Motion Blur switches: blur only
     moved, _ = mesh_steps(frame_geometry, steps, every_object, len(_FRAME_OFFSETS), warnings,
-                          np.asarray(_FRAME_OFFSETS) / fps, MeshWarnings(_changing_warning, _changing_warning))
+                          np.asarray(_FRAME_OFFSETS) / fps, MeshWarnings(_changing_warning, _changing_warning),
+                          with_normals=False)
     frame_vertices = np.asarray(tracer_scene.vertices, np.float64)
     shifts = np.zeros((len(_FRAME_OFFSETS), *frame_vertices.shape)) if moved is None else moved - frame_vertices
     corners = tracer_scene.triangles
