@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from .motion_steps import StepRows, matched_steps, object_steps
+from .velocity import moved_positions
 
 
 def _point_objects(curves) -> np.ndarray:
@@ -31,11 +32,12 @@ def _table(curves) -> np.ndarray:
     return np.column_stack([np.asarray(curves.points, np.float64), np.asarray(curves.radii, np.float64)])
 
 
-def hair_steps(tracer_scene, steps, settings, count, warnings, drift=None) -> np.ndarray | None:
+def hair_steps(tracer_scene, steps, settings, count, warnings, drift=None, transforms=None) -> np.ndarray | None:
     """float64 [S, P, 4]: the control points (world) and radii of ``tracer_scene.curves`` at the shutter's ``count``
     time steps, from ``steps`` ((``CurveSegments`` or None, object names) exported at each), matched by object name
     and order, per object as the module says, or moved by ``drift`` (``velocity.velocity_offsets`` of their
-    velocity attribute, NaN where a hair has none); None where no strand moves. ``settings``: object name →
+    velocity attribute, NaN where a hair has none) and their objects' ``transforms`` (``velocity.Transforms``); None
+    where no strand moves. ``settings``: object name →
     (motion blur on, steps, deformation on)."""
     curves = tracer_scene.curves
     if curves is None or not len(curves):
@@ -45,7 +47,7 @@ def hair_steps(tracer_scene, steps, settings, count, warnings, drift=None) -> np
     moved = None
     if drift is not None:  # the radius stays the frame's, as Cycles moves hair by its velocity
         moved = np.repeat(frame[None], len(drift), axis=0)
-        moved[..., :3] += drift
+        moved[..., :3] = moved_positions(frame[:, :3], drift, _point_objects(curves), transforms)
     rows = StepRows(frame, _point_objects(curves), matched_steps(names, steps, _table, _point_objects),
                     changing_hair_warning, _deforming_hair_warning, moved)
     return object_steps(rows, names, settings, count, warnings)

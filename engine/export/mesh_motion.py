@@ -7,10 +7,10 @@ as Cycles matches a mesh's vertices (``sync_mesh_motion``), through ``motion_ste
 changes its number of vertices during the shutter no longer stops the others from moving.
 
 A mesh whose vertices carry a ``velocity`` attribute moves by it instead, at every step, each vertex in a straight
-line (``velocity``), as Cycles takes that attribute over the steps for any mesh that has one (a liquid
-simulation's surface, an Alembic cache, Geometry Nodes). Its corner normals stay the frame's, as in Cycles. A mesh
-that changes its number of vertices without one stays still where it is at the frame, named in a warning; Cycles
-drops its motion too, without a word.
+line carried by the object's own transform motion (``velocity``), as Cycles takes that attribute over the steps
+for any mesh that has one (a liquid simulation's surface, an Alembic cache, Geometry Nodes). Its corner normals
+stay the frame's, as in Cycles. A mesh that changes its number of vertices without one stays still where it is at
+the frame, named in a warning; Cycles drops its motion too, without a word.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from typing import Callable
 import numpy as np
 
 from .motion_steps import StepRows, matched_steps, object_steps
-from .velocity import velocity_offsets
+from .velocity import Transforms, moved_positions, velocity_offsets
 
 
 @dataclass(frozen=True)
@@ -59,7 +59,7 @@ def mesh_steps(frame, steps, settings, count, warnings, seconds, said: MeshWarni
     if not len(frame.vertices):
         return None, None
     drift = velocity_offsets(frame.vertex_velocity, seconds)
-    moves_by_velocity = None if drift is None else frame.vertices[None] + drift
+    moves_by_velocity = moved_positions(frame.vertices, drift, frame.vertex_object, step_transforms(frame, steps))
     vertex_rows = StepRows(_vertices(frame), _vertex_owner(frame), matched_steps(names, steps, _vertices,
                                                                                 _vertex_owner, 3),
                            said.changing, said.deforming, moves_by_velocity, has_radius=False)
@@ -72,6 +72,13 @@ def mesh_steps(frame, steps, settings, count, warnings, seconds, said: MeshWarni
                            has_radius=False)
     normals = object_steps(normal_rows, names, settings, count, [])  # what it could say, the vertices said
     return vertices, None if normals is None else normals.reshape(count, -1, 3, 3).astype(np.float32)
+
+
+def step_transforms(frame, steps) -> Transforms:
+    """``velocity.Transforms`` of the objects of ``frame`` (``meshes.ExportedGeometry``) and of ``steps``
+    ((``ExportedGeometry``, its object names) exported at each time step)."""
+    return Transforms(list(frame.object_names), list(frame.object_matrices),
+                      [(list(geometry.object_matrices), names) for geometry, names in steps])
 
 
 def _frame_normals_where_velocity(frame, count) -> np.ndarray | None:

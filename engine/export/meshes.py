@@ -68,6 +68,7 @@ class ExportedGeometry:
     point_velocity: np.ndarray | None = None  # float64 [N, 3]: their velocity attribute (m/s, world; NaN: none)
     vertex_object: np.ndarray | None = None  # int32 [V]: each vertex's object (an index into object_names)
     vertex_velocity: np.ndarray | None = None  # float64 [V, 3]: the velocity attribute of meshes (as points')
+    object_matrices: list = field(default_factory=list)  # per object: float64 [K, 4, 4], its instances' transforms
     curve_velocity: np.ndarray | None = None  # float64 [P, 3]: of the curves' control points (as points')
     curves: CurveSegments | None = None  # the strands of hair curves (objects numbered after the points')
     triangle_flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat
@@ -86,6 +87,24 @@ class _Instances:
     light_group: str = ""  # Object ▸ Shading ▸ Light Group
     flags: int = 0
     asset: str = ""  # the name of the object's topmost parent (Cryptomatte Asset)
+
+
+@dataclass
+class _Objects:
+    """The exported objects, one row per piece placed, in the order of ``ExportedGeometry.object_names``."""
+
+    names: list = field(default_factory=list)
+    assets: list = field(default_factory=list)
+    groups: list = field(default_factory=list)
+    flags: list = field(default_factory=list)
+    matrices: list = field(default_factory=list)  # float64 [K, 4, 4] per object: its instances' transforms
+
+    def add(self, piece: _Instances, matrices: np.ndarray) -> int:
+        """Add ``piece`` placed at ``matrices``; its object index."""
+        for table, value in ((self.names, piece.name), (self.assets, piece.asset), (self.groups, piece.light_group),
+                             (self.flags, piece.flags), (self.matrices, matrices)):
+            table.append(value)
+        return len(self.names) - 1
 
 
 def read_geometry(key: tuple, obj, request: AttributeRequest | None = None,
@@ -179,10 +198,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
     """
     materials = MaterialRows(warnings, TextureBudget.for_scene(depsgraph.scene), world_ao_distance(depsgraph.scene))
     parts: list[tuple[WorldTriangles, np.ndarray]] = []
-    names: list[str] = []
-    assets: list[str] = []  # parallel to names
-    flags: list[int] = []
-    groups: list[str] = []
+    objects = _Objects()
     passes = data_pass_switches(getattr(depsgraph, "view_layer", None))
     if passes.uv:
         materials.uv_pass_slot = materials.exporter.slots.uv("")
@@ -208,11 +224,8 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
         parts.append((placed, np.tile(slots, len(matrices))))
         velocities.append(None if local.velocity is None else placed_velocity(local.velocity, len(local.vertices),
                                                                                matrices))
-        names.append(piece.name)
-        assets.append(piece.asset)
-        groups.append(piece.light_group)
+        objects.add(piece, matrices)
         surface.add_mesh(local, matrices, piece.infos, np.linalg.det(matrices[:, :3, :3]) < 0)
-        flags.append(piece.flags)
         flat.append(np.tile(local.flat if local.flat is not None else np.zeros(len(local.triangles), bool),
                             len(matrices)))
         if passes.uv:
@@ -220,8 +233,8 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
         if passes.object_index:  # instance by instance, as ``instance_triangles`` places them
             pass_index.append(np.repeat(np.asarray([info[1] for info in piece.infos], np.float32),
                                         len(local.triangles)))
-    geometry = _assemble(parts, names, materials.materials)
-    geometry.points = _points(clouds, names, groups, flags, surface, assets)
+    geometry = _assemble(parts, objects.names, materials.materials)
+    geometry.points = _points(clouds, objects, surface)
     if any(velocity is not None for velocity in velocities):
         geometry.vertex_velocity = np.concatenate([
             np.full((len(placed.vertices), 3), np.nan) if velocity is None else velocity
@@ -230,13 +243,14 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
         geometry.point_velocity = np.concatenate([
             placed_velocity(piece.geometry.velocity, len(piece.geometry.radii), matrices)
             for piece, matrices, _ in clouds])
-    geometry.curves, geometry.curve_velocity = _curves(strands, names, groups, flags, surface, assets)
-    geometry.object_names = list(names)
-    geometry.object_asset_names = list(assets)
+    geometry.curves, geometry.curve_velocity = _curves(strands, objects, surface)
+    geometry.object_names = list(objects.names)
+    geometry.object_asset_names = list(objects.assets)
+    geometry.object_matrices = list(objects.matrices)
     geometry.material_names = list(materials.cryptomatte_names)
-    geometry.object_light_groups = groups
+    geometry.object_light_groups = objects.groups
     geometry.surface = surface.surface()
-    geometry.object_flags = np.asarray(flags, np.uint8)
+    geometry.object_flags = np.asarray(objects.flags, np.uint8)
     geometry.triangle_flat = np.concatenate(flat) if flat else np.zeros(0, bool)
     if passes.object_index:
         geometry.triangle_pass_index = np.concatenate(pass_index) if pass_index else np.zeros(0, np.float32)
@@ -249,12 +263,11 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
     return geometry
 
 
-def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | None:
-    """The points of every point cloud instance (objects appended to ``names``, ``groups``, ``flags`` and
-    ``assets``)."""
+def _points(clouds, objects: _Objects, surface) -> SpherePoints | None:
+    """The points of every point cloud instance (their objects added to ``objects``)."""
     if not clouds:
         return None
-    centres, radii, material, objects, instance, pass_index, random = [], [], [], [], [], [], []
+    centres, radii, material, owner, instance, pass_index, random = [], [], [], [], [], [], []
     colors = []
     for piece, matrices, lookup in clouds:
         local = piece.geometry
@@ -265,25 +278,21 @@ def _points(clouds, names, groups, flags, surface, assets) -> SpherePoints | Non
         centres.append(placed)
         radii.append(scaled)
         material.append(np.tile(lookup[np.clip(local.slot, 0, len(lookup) - 1)], len(matrices)))
-        objects.append(np.full(len(scaled), len(names), np.int32))
-        names.append(piece.name)
-        assets.append(piece.asset)
-        groups.append(piece.light_group)
-        flags.append(piece.flags)
+        owner.append(np.full(len(scaled), objects.add(piece, matrices), np.int32))
         rows = surface.add_points(matrices, piece.infos, local.texture_space)
         instance.append(np.repeat(rows, count) if rows is not None else np.full(len(scaled), -1, np.int32))
         pass_index.append(np.repeat(np.asarray([info[1] for info in piece.infos], np.float32), count))
         random.append(np.tile(point_random(count), len(matrices)))
     return SpherePoints(np.concatenate(centres), np.concatenate(radii), np.concatenate(material).astype(np.int32),
-                        np.concatenate(objects), np.concatenate(instance).astype(np.int32), np.concatenate(pass_index),
+                        np.concatenate(owner), np.concatenate(instance).astype(np.int32), np.concatenate(pass_index),
                         np.concatenate(random), stacked_slots(colors, len(surface.slots.attribute_names), (4,)))
 
 
-def _curves(strands, names, groups, flags, surface, assets):
-    """(the strands of every hair instance as round curve segments (objects appended to ``names``, ``groups``,
-    ``flags`` and ``assets``), or None without any; their control points' velocity attribute, float64 [P, 3],
-    NaN where a hair has none, or None where none has one)."""
-    points, radii, offsets, material, objects, instance, pass_index, info = [], [], [], [], [], [], [], []
+def _curves(strands, objects: _Objects, surface):
+    """(the strands of every hair instance as round curve segments (their objects added to ``objects``), or None
+    without any; their control points' velocity attribute, float64 [P, 3], NaN where a hair has none, or None
+    where none has one)."""
+    points, radii, offsets, material, owner, instance, pass_index, info = [], [], [], [], [], [], [], []
     colors, uvs, velocities = [], [], []
     first = 0
     for piece, matrices, lookup in strands:
@@ -300,11 +309,7 @@ def _curves(strands, names, groups, flags, surface, assets):
         offsets.append(placed.offsets[1:] + first)
         first += len(placed.points)
         material.append(np.repeat(lookup[np.clip(placed.curve_slot, 0, len(lookup) - 1)], segments))
-        objects.append(np.full(int(segments.sum()), len(names), np.int32))
-        names.append(piece.name)
-        assets.append(piece.asset)
-        groups.append(piece.light_group)
-        flags.append(piece.flags)
+        owner.append(np.full(int(segments.sum()), objects.add(piece, matrices), np.int32))
         per_instance = int(segments.sum()) // len(matrices)
         rows = surface.add_points(matrices, piece.infos, piece.geometry.texture_space)
         instance.append(np.repeat(rows, per_instance) if rows is not None else np.full(int(segments.sum()), -1, np.int32))
@@ -318,7 +323,7 @@ def _curves(strands, names, groups, flags, surface, assets):
         velocity = padded_strands(np.concatenate([np.full((len(p), 3), np.nan) if v is None else v
                                                   for p, v in zip(points, velocities)]), np.zeros(len(every)), ends)[0]
     return CurveSegments(padded, padded_radii, segments, np.concatenate(material).astype(np.int32),
-                         np.concatenate(objects), np.concatenate(instance).astype(np.int32),
+                         np.concatenate(owner), np.concatenate(instance).astype(np.int32),
                          np.concatenate(pass_index), np.concatenate(info),
                          stacked_slots(colors, len(surface.slots.attribute_names), (2, 4)),
                          stacked_slots(uvs, len(surface.slots.uv_names), (2, 2))), velocity

@@ -19,7 +19,7 @@ import numpy as np
 from ..tracer.motion import Motion, motion_step_count, shutter_times
 from .camera import rigid_matrix
 from .hair_motion import hair_steps
-from .mesh_motion import MeshWarnings, changing_mesh_warning, deforming_mesh_warning, mesh_steps
+from .mesh_motion import MeshWarnings, changing_mesh_warning, deforming_mesh_warning, mesh_steps, step_transforms
 from .point_motion import point_steps
 from .velocity import velocity_offsets
 from .view_layer_filter import layer_filter
@@ -97,10 +97,11 @@ def export_motion(scene, depsgraph, tracer_scene, frame_set, export_meshes, warn
         camera.motion_to_world = cameras
     fps = float(scene.render.fps) / float(scene.render.fps_base)
     seconds = (frames - (frame + subframe)) / fps  # each step's time from the frame's
+    transforms = step_transforms(frame_geometry, meshes)  # for what moves by its velocity attribute
     hair = hair_steps(tracer_scene, strands, settings, count, warnings,
-                      velocity_offsets(frame_geometry.curve_velocity, seconds))
+                      velocity_offsets(frame_geometry.curve_velocity, seconds), transforms)
     points = point_steps(tracer_scene, clouds, settings, count, warnings,
-                         velocity_offsets(frame_geometry.point_velocity, seconds))
+                         velocity_offsets(frame_geometry.point_velocity, seconds), transforms)
     steps, corner = mesh_steps(frame_geometry, meshes, settings, count, warnings, seconds,
                                MeshWarnings(changing_mesh_warning, deforming_mesh_warning))
     if steps is not None or hair is not None or points is not None:  # else still: no time steps in Embree

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from .motion_steps import StepRows, matched_steps, object_steps
+from .velocity import moved_positions
 
 
 def _table(points) -> np.ndarray:
@@ -30,11 +31,12 @@ def _owner(points) -> np.ndarray:
     return np.asarray(points.object, np.int64)
 
 
-def point_steps(tracer_scene, steps, settings, count, warnings, drift=None) -> np.ndarray | None:
+def point_steps(tracer_scene, steps, settings, count, warnings, drift=None, transforms=None) -> np.ndarray | None:
     """float64 [S, N, 4]: the centres (world) and radii of ``tracer_scene.points`` at the shutter's ``count`` time
     steps, from ``steps`` ((``SpherePoints`` or None, object names) exported at each), per object as the module
     says, clouds with a velocity attribute moved by ``drift`` (``velocity.velocity_offsets``, NaN where a point has
-    none); None where no point moves. ``settings``: object name → (motion blur on, steps, deformation on)."""
+    none) and their objects' ``transforms`` (``velocity.Transforms``); None where no point moves. ``settings``:
+    object name → (motion blur on, steps, deformation on)."""
     points = tracer_scene.points
     if points is None or not len(points):
         return None
@@ -43,7 +45,7 @@ def point_steps(tracer_scene, steps, settings, count, warnings, drift=None) -> n
     moved = None
     if drift is not None:
         moved = np.repeat(frame[None], len(drift), axis=0)
-        moved[..., :3] += drift
+        moved[..., :3] = moved_positions(frame[:, :3], drift, _owner(points), transforms)
     rows = StepRows(frame, _owner(points), matched_steps(names, steps, _table, _owner), changing_points_warning,
                     _deforming_points_warning, moved)
     return object_steps(rows, names, settings, count, warnings)

@@ -106,3 +106,34 @@ def test_velocity_rows_are_taken_over_followable_steps_and_skip_the_deformation_
     np.testing.assert_allclose(table[:, dust], by_velocity[:, dust])  # both Dust instances, by velocity
     np.testing.assert_allclose(table[2, ~dust, 0], frame.table[~dust, 0] + 0.1)  # the others, by their steps
     np.testing.assert_array_equal(table[..., 3], -0.5)
+
+
+def test_velocity_moved_positions_follow_each_instances_own_transform_motion():
+    """Two instances of one object (rows in blocks, instance by instance) moved by a velocity, whose transforms
+    at the last step turn the first a quarter turn about z and slide the second 1 m along y: each block is the
+    frame's point plus its drift, carried by its own instance's motion; a step whose export lost an instance, and
+    an object without velocity, are left as the drift alone and as NaN."""
+    from engine.export.velocity import Transforms, moved_positions
+
+    def translate(x, y, z):
+        m = np.eye(4)
+        m[:3, 3] = (x, y, z)
+        return m
+
+    turn = np.array([[0.0, -1.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
+    frame = [np.stack([np.eye(4), translate(5.0, 0.0, 0.0)]), np.eye(4)[None]]
+    last = [np.stack([turn, translate(5.0, 1.0, 0.0)]), np.eye(4)[None]]
+    transforms = Transforms(["Spray", "Still"], frame, [(frame, ["Spray", "Still"]),
+                                                        ([last[1], last[0]], ["Still", "Spray"]),  # another order
+                                                        ([frame[0][:1]], ["Spray"])])
+    positions = np.array([[1.0, 0.0, 0.0], [6.0, 0.0, 0.0], [0.0, 0.0, 9.0]])
+    owner = np.array([0, 0, 1])
+    drift = np.zeros((3, 3, 3))
+    drift[:, :2, 2] = [[0.0], [0.5], [1.0]]  # Spray rises by its velocity; Still has none
+    drift[:, 2] = np.nan
+    moved = moved_positions(positions, drift, owner, transforms)
+    np.testing.assert_allclose(moved[0, :2], positions[:2])
+    np.testing.assert_allclose(moved[1, 0], [0.0, 1.0, 0.5])  # (1, 0, 0.5) turned a quarter about z
+    np.testing.assert_allclose(moved[1, 1], [6.0, 1.0, 0.5])  # slid 1 m along y
+    np.testing.assert_allclose(moved[2, :2], positions[:2] + [0.0, 0.0, 1.0])  # one instance lost: drift alone
+    assert np.isnan(moved[:, 2]).all()
