@@ -1,7 +1,8 @@
 """Meshes that change their number of vertices over time, under motion blur and in the Vector pass.
 
-A liquid's surface or Geometry Nodes that add geometry change a mesh's vertices from one time to the next. The card of ``test_motion_blur`` is made by Geometry Nodes here: a 1 m
-grid with 2 + 4 × frame columns of vertices (5, 6 and 7 at the shutter's three steps), flying 2 m a frame along x.
+A liquid's surface or Geometry Nodes that add geometry change a mesh's vertices from one time to the next. The
+card of ``test_motion_blur`` is made by Geometry Nodes here: a 1 m grid with 2 + 4 × frame columns of vertices (5,
+6 and 7 at the shutter's three steps), flying 2 m a frame along x.
 With a ``velocity`` attribute saying so (48 m/s at 24 fps) it blurs by it, as Cycles blurs it: the smear's profile
 is the closed form's, and its energy Cycles'. Without one it stays still, named in a warning, and only it: a mesh
 beside it still blurs. A mesh with a velocity attribute moves by it even where its vertices could be followed, as
@@ -162,8 +163,8 @@ def test_a_mesh_moved_by_its_velocity_is_carried_by_its_moving_transform_as_cycl
     cycles = render_cycles_rgba(fresh_scene, 64, seed=1, max_bounces=1)[..., 1].astype(np.float64)
     energy = prism.sum() / cycles.sum()
     rows, columns = (float(np.abs(prism.mean(axis=a) - cycles.mean(axis=a)).max()) for a in (1, 0))
-    print(f"MEASURED a velocity card on a moving object: Prism / Cycles energy {energy:.4f}, profiles: rows {rows:.4f}, "
-          f"columns {columns:.4f}")
+    print(f"MEASURED a velocity card on a moving object: Prism / Cycles energy {energy:.4f}, profiles: rows "
+          f"{rows:.4f}, columns {columns:.4f}")
     assert energy == pytest.approx(1.0, abs=0.02)
     assert rows < 0.05 and columns < 0.05
     outside = np.r_[cycles[:4], cycles[-4:]].sum() / cycles.sum()  # rows beyond the card's own 1 m at the frame

@@ -96,7 +96,8 @@ def test_velocity_rows_are_taken_over_followable_steps_and_skip_the_deformation_
         step.table[:, 3] = -0.5
     by_velocity = np.full((3, len(frame.owner), 4), np.nan)
     dust = np.isin(frame.owner, [k for k, name in enumerate(NAMES) if name == "Dust"])
-    by_velocity[:, dust] = frame.table[dust] + np.array([0.0, 1.0, 0.0, 0.0]) * np.array([-1.0, 0.0, 1.0])[:, None, None]
+    along_y = np.array([0.0, 1.0, 0.0, 0.0]) * np.array([-1.0, 0.0, 1.0])[:, None, None]
+    by_velocity[:, dust] = frame.table[dust] + along_y
     rows = StepRows(frame.table, frame.owner, matched_steps(NAMES, steps, lambda r: r.table, lambda r: r.owner),
                     lambda name: f"changing {name}", lambda name: f"deforming {name}", by_velocity, has_radius=False)
     warnings = []
