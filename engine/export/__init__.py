@@ -157,9 +157,9 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
                            warnings if warnings is not None else [], geometry)
     tracer_scene.validate()
     if warnings is not None:
-        from .camera_in_medium import camera_in_medium_warnings
+        from .nested_media import nested_media_warnings
 
-        warnings.extend(camera_in_medium_warnings(tracer_scene))
+        warnings.extend(nested_media_warnings(tracer_scene))
     filtered_by = depsgraph.view_layer.name if scene.world is not None and not depsgraph.view_layer.use_sky else ""
     world_notes = [w for w in warnings or () if scene.world is not None and w.startswith(f"World '{scene.world.name}'")]
     _check_something_to_see(scene.name, tracer_scene, missing, filtered_by, world_notes,

@@ -214,8 +214,8 @@ class World:
     # What camera rays see instead, when the Surface picks a shader by Light Path ▸ Is Camera Ray (a backplate:
     # one background lights the scene, another is seen); None: camera rays see this world too.
     camera_background: "World | None" = None
-    # The World Output's Volume (a ``media.spec.MediumSpec``): fog everywhere outside the meshes that hold a
-    # medium, the camera included; None: vacuum.
+    # The World Output's Volume (a ``media.spec.MediumSpec``): fog everywhere, the camera included, added to the
+    # media of meshes inside them (``media.nesting``); None: vacuum.
     medium: object = None
 
     def is_black(self) -> bool:

@@ -29,6 +29,7 @@ from .data_passes import first_hit_tables
 from .materials.light_path import reads_light_path
 from .media.enclosure import enclosing_media
 from .media.equiangular import has_positional_lights
+from .media.nesting import scene_overlaps
 from .errors import PrismInputError
 from .geometry import prepare_geometry
 from .materials.displacement import displace, displaces
@@ -155,7 +156,7 @@ class SceneTables:
             raise PrismInputError("Scene triangles reference a material index that does not exist: re-export the scene.")
         spectra = SpectrumTable()
         self.material_table = build_materials(scene.materials, set(used), spectra, scene.world.medium, camera.origin,
-                                              geometry=self.geometry)
+                                              geometry=self.geometry, overlaps=scene_overlaps(scene))
         materials = self.material_table.arrays
         groups = tuple(settings.passes.light_groups)
         triangles = len(self.geometry.triangles)  # spheres and curves follow them in ``material``; none is light-sampled
@@ -199,13 +200,13 @@ class SceneTables:
         self.describe(scene, settings, camera)
 
     def _camera_medium(self, scene, camera) -> int:
-        """The ``media`` row camera rays start in: the medium whose mesh encloses the camera (the first, if
-        several: the export warns), else the World's Volume, else -1."""
+        """The ``media`` row camera rays start in: that of the media whose meshes enclose the camera, with the
+        World's Volume (``media.nesting``; past what nests, the first alone: the export warns), else -1."""
         inside = enclosing_media(camera.position, scene.vertices, scene.triangles, scene.triangle_material,
                                  scene.materials)
-        rows = [int(self.material_table.arrays.medium[m]) for m in inside]
-        rows = [row for row in rows if row >= 0]
-        return rows[0] if rows else int(self.material_table.outside_medium)
+        rows = self.material_table.nested_rows
+        inside = [m for m in inside if frozenset((m,)) in rows]
+        return int(rows.get(frozenset(inside), rows[frozenset(inside[:1])]))
 
     def describe(self, scene, settings, camera) -> None:
         """What the scene needs seen from ``camera``: ``analysis``, light tracing on or off (with its

@@ -134,18 +134,3 @@ def test_a_camera_inside_a_volume_starts_in_it_as_cycles(prism_addon, fresh_scen
     assert not [w for w in warnings if "camera is inside" in w], warnings
     ratio = _compare(fresh_scene, 256, (slice(None), slice(None)), "camera inside a smoke cube")
     assert ratio == pytest.approx(1.0, abs=0.03)
-
-
-def test_a_camera_inside_two_volumes_is_told_which_it_starts_in(prism_addon, fresh_scene):
-    export = importlib.import_module(f"{prism_addon.__name__}.engine.export")
-    _white_world(1.0)
-    _cube("Smoke", _principled_volume(), size=4.0, location=(0.0, 0.0, 0.0))
-    haze = _principled_volume()
-    haze.name = "Haze"
-    _cube("Inner", haze, size=2.0, location=(0.0, 0.0, 0.0))
-    camera((0.2, -0.3, 0.1), (0.0, 4.0, 0.0))
-    warnings = []
-    export.export_scene(bpy.context.evaluated_depsgraph_get(), warnings)
-    assert [w for w in warnings if "camera is inside" in w] == [
-        "Material 'Smoke': the camera is inside the volumes of materials 'Smoke', 'Haze'; Prism does not nest "
-        "media, so camera rays start in 'Smoke' alone. Move the camera out of all but one of these meshes."]

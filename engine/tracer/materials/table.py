@@ -99,6 +99,9 @@ class MaterialTable:
     features: list = field(default_factory=list)  # e.g. "smooth dielectric", for the render stats
     register_count: int = 1  # registers a program needs at most (the scratch size)
     outside_medium: int = -1  # the ``media`` row of the World's Volume (fog outside every mesh medium), or -1
+    # {frozenset of material indices: ``media`` row}: the row of each set of media a path can be inside at once
+    # (``media.nesting``), the empty set's the World's Volume (or -1)
+    nested_rows: dict = field(default_factory=dict)
     # int32 [materials]: each program's register of its displacement vector (``shader.ShaderProgram.
     # displacement``), -1 for a material whose vertices stay (``materials.displacement`` reads it)
     displacement: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int32))
@@ -209,12 +212,14 @@ def _is_delta(spec):
     return spec.kind in (CONDUCTOR, DIELECTRIC) and spec.alpha < SMOOTH_ALPHA
 
 
-def build_materials(materials, used, spectra, outside_medium=None, origin=None, geometry=None) -> MaterialTable:
+def build_materials(materials, used, spectra, outside_medium=None, origin=None, geometry=None,
+                    overlaps=()) -> MaterialTable:
     """Tables for ``materials`` (``scene.Material``); only indices in ``used`` get closures.
     ``spectra`` is the render's ``SpectrumTable``; ``outside_medium`` the World's Volume (a ``MediumSpec``) or
     None; ``origin`` (m) the point the kernels' positions are relative to (density grids of media);
     ``geometry`` (a ``geometry.Geometry`` relative to ``origin``) where varying volume densities are baked
-    over the meshes that hold them (``media.baked_density``; None: not baked)."""
+    over the meshes that hold them (``media.baked_density``; None: not baked); ``overlaps`` the sets of materials
+    whose media a path can be inside at once (``media.nesting.overlapping_sets``)."""
     from ..spectra.rgb_lut import empty_lut, load_lut
     from ..media.table import build_media
     from ..media.voxel_inputs import program_sources
@@ -356,7 +361,7 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
         no_media = build_media([], set(), spectra)
         baked = bake_fields(geometry, arrays_with(no_media[0], no_media[1]), volume_density, volume_emission,
                             register_count, materials, origin)
-    medium, media, outside = build_media(materials, used, spectra, outside_medium, origin, baked)
+    medium, media, outside, nested = build_media(materials, used, spectra, outside_medium, origin, baked, overlaps)
     if baked:
         features.add("baked volume density or emission")
     flags[medium >= 0] |= MAT_MEDIUM
@@ -368,5 +373,7 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
         features.add("grid media (delta tracking)")
     if outside >= 0:
         features.add("world fog")
-    return MaterialTable(arrays_with(medium, media), glasses, sorted(features), register_count, outside, displacement,
-                         volume_density, volume_emission)
+    if any(len(members) > 1 for members in nested):
+        features.add("nested media")
+    return MaterialTable(arrays_with(medium, media), glasses, sorted(features), register_count, outside, nested,
+                         displacement, volume_density, volume_emission)

@@ -15,10 +15,12 @@ point by a voxel grid of density (a grid medium: Blender's Volume objects, and a
 - ``grid_lookup.py``: a ray against a grid's bounds, trilinear density in compiled code;
 - ``delta_tracking.py``: a ray segment inside a grid medium (delta tracking with spectral MIS);
 - ``ratio_tracking.py``, ``transmittance.py``: a shadow ray's transmittance (ratio tracking in a grid medium,
-  Beer-Lambert in a homogeneous one).
+  Beer-Lambert in a homogeneous one);
+- ``nesting.py``, ``boundary.py``: media inside media and the World's fog, added as Cycles adds the volumes on
+  its stack; the row a ray crossing a medium's surface travels in.
 
-A path carries the medium it is in (``PathState.medium``, -1 outside every medium): it enters a medium by
-crossing a surface whose material has one against its geometric normal (inward), and leaves it by
-crossing such a surface along the normal. Media do not nest (leaving any medium puts the path outside
-all of them). Scenes without media skip all of this (``KernelSettings.has_media``).
+A path carries the row of the media it is in (``PathState.medium``, -1 outside every medium): it enters a
+medium by crossing a surface whose material has one against its geometric normal (inward), and leaves it by
+crossing such a surface along the normal; inside several at once it travels in their sum (``nesting``).
+Scenes without media skip all of this (``KernelSettings.has_media``).
 """

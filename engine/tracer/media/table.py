@@ -11,7 +11,9 @@ strength 1; a grid medium's emission varies with the value of its ``emission_gri
 ``emission_step`` [M] of the grid's value (``temperature_emission``). ``emission_rate`` [M] (per metre) is
 added to an emitting grid medium's majorant so that delta tracking gathers its emission where nothing
 scatters (``grid_emission``). ``phase_row`` [M] is the row of ``phase_cdf`` [R, BINS + 1] holding a medium's
-tabulated phase function (``tabulated_phase``; -1: Henyey-Greenstein of its ``anisotropy``).
+tabulated phase function (``tabulated_phase``; -1: Henyey-Greenstein of its ``anisotropy``). ``next_medium``
+[R + 1, M, 2]: the row a path in row r (index r + 1, 0: none) travels in after crossing the surface of the
+medium of row j < M out of it (0) or into it (1) (``nesting``: media nest, and the World's fog is everywhere).
 """
 
 from __future__ import annotations
@@ -23,13 +25,15 @@ import numpy as np
 
 from ..errors import PrismInputError
 from .density_grid import DensityGrid, build_grids, check_grid
+from .nesting import combined_spec, transitions
 from .phase_functions import phase_table
 from .tabulated_phase import BINS
 from .temperature_emission import emission_key, emission_rows
 from ..spectra.wavelengths import VISIBLE_MIN_NM, VISIBLE_NM_GRID
 
 MediaArrays = namedtuple("MediaArrays", "scattering absorption emission emission_strength anisotropy grid grids "
-                                         "emission_grid emission_rows emission_step emission_rate phase_row phase_cdf")
+                                         "emission_grid emission_rows emission_step emission_rate phase_row phase_cdf "
+                                         "next_medium")
 
 #: Tentative collisions per voxel (of the finest grid's smallest edge) that an emitting grid medium's walk
 #: takes at least, to gather its emission as Cycles 4.5 gathers it once per ray-marching step of a voxel.
@@ -164,48 +168,77 @@ def _with_baked(spec, fields):
     return replace(spec, density_grid=density if density is not None else spec.density_grid, strength_grid=strength)
 
 
-def build_media(materials, used, spectra, outside=None, origin=None, baked=None):
-    """(medium index int32 [len(materials)] (-1: none), ``MediaArrays``, the row of ``outside`` or -1) for the
-    ``scene.Material`` list, whose indices in ``used`` get a medium, and ``outside`` (a ``MediumSpec``: the
-    World's Volume, the medium everywhere outside meshes that hold one; None: vacuum). ``spectra``: the
-    render's ``SpectrumTable``; ``origin`` (m) the point the kernels' positions are relative to (grids);
+def build_media(materials, used, spectra, outside=None, origin=None, baked=None, overlaps=()):
+    """(medium index int32 [len(materials)] (-1: none), ``MediaArrays``, the row of ``outside`` or -1, the rows
+    of nested media) for the ``scene.Material`` list, whose indices in ``used`` get a medium, and ``outside`` (a
+    ``MediumSpec``: the World's Volume, the medium everywhere, inside meshes too; None: vacuum). ``spectra``:
+    the render's ``SpectrumTable``; ``origin`` (m) the point the kernels' positions are relative to (grids);
     ``baked``: material index → the ``BakedFields`` its varying density and emission were baked to
-    (``baked_density``)."""
+    (``baked_density``); ``overlaps``: sets of material indices whose media a path can be inside at once
+    (``nesting.overlapping_sets``). The rows of nested media: {frozenset of material indices: row} for the
+    empty set (the World's fog or -1), every medium alone and every set of ``overlaps`` (``nesting``)."""
     index = np.full(len(materials), -1, np.int32)
-    scattering, absorption, emission, strength, anisotropy, grid, grids = [], [], [], [], [], [], []
-    emitting_grid, rows, steps, rate, made = [], [], [], [], {}
-    phase_row, phase_tables = [], {}  # lobes → (row, CDF)
-    specs = [(m, _with_baked(getattr(material, "medium", None), (baked or {}).get(m)))
-             for m, material in enumerate(materials) if m in used]
-    for m, spec in specs + [(-1, outside)]:
-        if spec is None:
-            continue
+    columns = {name: [] for name in MediaArrays._fields if name not in ("grids", "phase_cdf", "next_medium")}
+    grids, made, phase_tables = [], {}, {}  # phase: lobes → (row, CDF)
+    specs = {m: _with_baked(getattr(material, "medium", None), (baked or {}).get(m))
+             for m, material in enumerate(materials) if m in used}
+    specs = {m: spec for m, spec in specs.items() if spec is not None}
+
+    def add_row(spec, key):
         _check(spec)
-        sigma_s, sigma_a = coefficient_spectra(spec)
-        if m >= 0:
-            index[m] = len(scattering)
-        key = ("medium", m, spec.name)
-        scattering.append(spectra.tabulated(key + ("sigma_s",), float(VISIBLE_MIN_NM), 1.0, sigma_s))
-        absorption.append(spectra.tabulated(key + ("sigma_a",), float(VISIBLE_MIN_NM), 1.0, sigma_a))
-        anisotropy.append(float(np.clip(spec.anisotropy, -MAX_ANISOTROPY, MAX_ANISOTROPY)))
-        density_grid = getattr(spec, "density_grid", None)
-        grid.append(len(grids) if density_grid is not None else -1)
-        if density_grid is not None:
-            grids.append(density_grid)
-        emitting_grid.append(len(grids) if spec.emitting_grid is not None else -1)
-        if spec.emitting_grid is not None:
-            grids.append(spec.emitting_grid)
-        first, count, step = _emission(spec, spectra, key, made)
-        emission.append(first)
-        strength.append(1.0 if first >= 0 else 0.0)
-        rows.append(count)
-        steps.append(step)
-        rate.append(_emission_rate(spec) if first >= 0 and density_grid is not None else 0.0)
-        phase_row.append(_phase_row(spec, phase_tables))
-    arrays = MediaArrays(np.array(scattering or [0], np.int32), np.array(absorption or [0], np.int32),
-                         np.array(emission or [-1], np.int32), np.array(strength or [0.0]),
-                         np.array(anisotropy or [0.0]), np.array(grid or [-1], np.int32),
-                         build_grids(grids, origin), np.array(emitting_grid or [-1], np.int32),
-                         np.array(rows or [1], np.int32), np.array(steps or [1.0]), np.array(rate or [0.0]),
-                         np.array(phase_row or [-1], np.int32), _phase_cdf(phase_tables))
-    return index, arrays, (len(scattering) - 1 if outside is not None else -1)
+        _append_row(columns, grids, made, phase_tables, spec, spectra, key)
+        return len(columns["scattering"]) - 1
+
+    def copy_row(row):
+        for values in columns.values():
+            values.append(values[row])
+        return len(columns["scattering"]) - 1
+
+    for m, spec in specs.items():
+        index[m] = add_row(spec, ("medium", m, spec.name))
+    states = {frozenset(): add_row(outside, ("medium", -1, outside.name)) if outside is not None else -1}
+    for members in [(m,) for m in specs] + [s for s in overlaps if all(m in specs for m in s)]:
+        parts = [specs[m] for m in members] + ([outside] if outside is not None else [])
+        gridded = [m for m in members if specs[m].density_grid is not None]
+        if len(parts) == 1:
+            states[frozenset(members)] = int(index[members[0]])
+        elif gridded:  # a grid medium and others: the grid's alone (``nesting``)
+            states[frozenset(members)] = copy_row(int(index[gridded[0]]))
+        else:
+            states[frozenset(members)] = add_row(combined_spec(parts), ("nested medium", members))
+    rows = len(columns["scattering"])
+    member_of = {m: int(index[m]) for m in specs}
+    arrays = MediaArrays(
+        **{name: np.array(values or [_EMPTY[name]], _DTYPES.get(name, np.float64)) for name, values in columns.items()},
+        grids=build_grids(grids, origin), phase_cdf=_phase_cdf(phase_tables),
+        next_medium=transitions(states, member_of, rows))
+    return index, arrays, states[frozenset()], states
+
+
+#: A medium table without media holds one row of these (the kernels' arrays are never empty).
+_EMPTY = dict(scattering=0, absorption=0, emission=-1, emission_strength=0.0, anisotropy=0.0, grid=-1, emission_grid=-1,
+              emission_rows=1, emission_step=1.0, emission_rate=0.0, phase_row=-1)
+_DTYPES = dict(scattering=np.int32, absorption=np.int32, emission=np.int32, grid=np.int32, emission_grid=np.int32,
+               emission_rows=np.int32, phase_row=np.int32)
+
+
+def _append_row(columns, grids, made, phase_tables, spec, spectra, key):
+    """Append ``spec``'s row to ``columns`` (lists by ``MediaArrays`` field), its grids to ``grids``."""
+    sigma_s, sigma_a = coefficient_spectra(spec)
+    columns["scattering"].append(spectra.tabulated(key + ("sigma_s",), float(VISIBLE_MIN_NM), 1.0, sigma_s))
+    columns["absorption"].append(spectra.tabulated(key + ("sigma_a",), float(VISIBLE_MIN_NM), 1.0, sigma_a))
+    columns["anisotropy"].append(float(np.clip(spec.anisotropy, -MAX_ANISOTROPY, MAX_ANISOTROPY)))
+    density_grid = getattr(spec, "density_grid", None)
+    columns["grid"].append(len(grids) if density_grid is not None else -1)
+    if density_grid is not None:
+        grids.append(density_grid)
+    columns["emission_grid"].append(len(grids) if spec.emitting_grid is not None else -1)
+    if spec.emitting_grid is not None:
+        grids.append(spec.emitting_grid)
+    first, count, step = _emission(spec, spectra, key, made)
+    columns["emission"].append(first)
+    columns["emission_strength"].append(1.0 if first >= 0 else 0.0)
+    columns["emission_rows"].append(count)
+    columns["emission_step"].append(step)
+    columns["emission_rate"].append(_emission_rate(spec) if first >= 0 and density_grid is not None else 0.0)
+    columns["phase_row"].append(_phase_row(spec, phase_tables))

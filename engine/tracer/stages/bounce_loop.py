@@ -55,7 +55,7 @@ def _trace_shadows(loop, arrays, caster, passes, layout, count, see_through):
             rays += count
             count = film_layer_kernel(loop.state, shadows, count, hits.triangle, hits.t, hits.u, hits.v,
                                       arrays.geometry, arrays.materials, passes, layout, arrays.spectra, loop.scratch,
-                                      arrays.lights, layer, arrays.settings)
+                                      arrays.lights, layer)
     if count:
         occlusion(caster, shadows.rays, count, loop.occluded)
         rays += count

@@ -15,8 +15,8 @@ from collections import namedtuple
 #: render's ``WavelengthSampling`` (a clamp measures a contribution in Rec.709); ``has_media``: some material
 #: has a volume inside (``media``) or the World has one: paths track their medium, and scenes without media skip
 #: that code; ``outside_medium``: the ``media`` row of the World's Volume, the medium outside every mesh medium
-#: (-1: vacuum); ``camera_medium``: the row camera rays start in (the mesh medium around the camera, else
-#: ``outside_medium``); ``equiangular``: media and a light with a position, so collisions
+#: (-1: vacuum); ``camera_medium``: the row camera rays start in (the mesh media around the camera with the
+#: World's, ``media.nesting``, else ``outside_medium``); ``equiangular``: media and a light with a position, so collisions
 #: in media are also sampled toward lights (``media.equiangular``);
 #: ``filter_glossy``: 1 / Cycles' Filter Glossy, 0 when off (``stages.filter_glossy``);
 #: ``light_linking`` / ``shadow_linking``: some emitter lights only some objects / has its shadows cast by

@@ -26,6 +26,7 @@ from ..materials.closure_normals import orient_closures
 from ..materials.surface import shade_surface
 from ..materials.table import (MAT_CLOSURE_NORMALS, MAT_DELTA, MAT_DISPERSIVE, MAT_HAIR, MAT_MEDIUM, MAT_NULL,
                                MAT_ONE_SIDED)
+from ..media.boundary import side_medium
 from ..media.scatter import scatter_in_medium
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
 from ..state import (CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA,
@@ -51,15 +52,6 @@ def collapse_to_hero(state, i):
     for c in range(k):
         state.throughput[i, c] = state.throughput[i, c] * k if c == hero else 0.0
     state.flags[i] |= COLLAPSED
-
-
-@inlined
-def side_medium(materials, material, direction, ng, outside):
-    """The medium a ray leaving a surface of ``material`` (which holds a medium) along ``direction`` travels
-    in: the material's inward (against the geometric normal ``ng``), ``outside`` outward (the World's Volume or
-    -1: mesh media do not nest)."""
-    inward = direction[0] * ng[0] + direction[1] * ng[1] + direction[2] * ng[2] < 0.0
-    return materials.medium[material] if inward else outside
 
 
 @inlined
@@ -161,7 +153,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                                 layout, scratch)
             if lit and has_media and mflags & MAT_MEDIUM:
                 shadows.medium[shadowed] = side_medium(materials, material, shadows.direction[shadowed], ng,
-                                                       settings.outside_medium)
+                                                       state.medium[i])
             shadowed += lit
         wi_l, wi, pdf, sampled, eta_scale, largest, chosen = sample_scattering(state, i, depth, settings, rows,
                                                                                spectral, eta, closures, wo_l, frame,
@@ -223,7 +215,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             if settings.light_linking or settings.shadow_linking:  # the receiver of what this ray finds
                 state.receiver[i] = lights.links.receiver_set[triangle]
         if has_media and mflags & MAT_MEDIUM:
-            state.medium[i] = side_medium(materials, material, wi, ng, settings.outside_medium)
+            state.medium[i] = side_medium(materials, material, wi, ng, state.medium[i])
         origin, _ = leave_surface(geometry, triangle, state.hit_u[i], p, ng, wi, state.time[i])
         pushed = push_ray(state, next_rays, queued, i, origin, wi)
         queued += pushed

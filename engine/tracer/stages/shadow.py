@@ -24,6 +24,7 @@ from ..light_linking import blocks
 from ..materials.light_path import shadow_ray
 from ..materials.surface import surface_transparency
 from ..materials.table import MAT_MEDIUM, MAT_NULL, MAT_TRANSPARENT
+from ..media.boundary import side_medium
 from ..media.transmittance import transmit
 from .pass_writes import deposit
 
@@ -56,14 +57,13 @@ def shadow_kernel(state, shadows, count, occluded, passes, layout):
 
 @kernel
 def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, geometry, materials, passes, layout,
-                      spectra, scratch, lights, layer, settings):
+                      spectra, scratch, lights, layer):
     """One layer of closest hits (before each ray's ``tmax``): rays that hit nothing deliver their
     contribution; rays that hit a film or a cut-out are attenuated, moved past it and kept (compacted to
     the front), as are rays that hit an object which does not block their light (shadow linking); others
     are blocked. Returns the number kept. ``passes`` / ``layout``: see ``stages.pass_writes``; ``scratch``
     is a ``state.ShadingScratch``; ``lights`` the ``LightArrays`` (their ``links``); ``layer`` how many layers
-    the rays crossed before (the Light Path node's Transparent Depth of a shadow ray); ``settings`` the
-    ``KernelSettings`` (the medium outside meshes)."""
+    the rays crossed before (the Light Path node's Transparent Depth of a shadow ray)."""
     kept = 0
     for j in range(count):
         i = shadows.rays.path[j]
@@ -90,8 +90,7 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
         u, v = float(hit_u[j]), float(hit_v[j])
         p, ng, ns = surface_at(geometry, triangle, u, v, state.time[i])
         if mflags & MAT_MEDIUM:  # a volume's boundary: the ray enters (against ng) or leaves its medium
-            inward = d[0] * ng[0] + d[1] * ng[1] + d[2] * ng[2] < 0.0
-            medium = materials.medium[material] if inward else settings.outside_medium
+            medium = side_medium(materials, material, d, ng, medium)
         if not blocker:  # shadow linking: this object casts no shadow from the ray's light
             for k in range(state.radiance.shape[1]):
                 shadows.contribution[kept, k] = shadows.contribution[j, k]

@@ -59,8 +59,7 @@ def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
             hit = accel.intersect_before(shadows.rays, count, *paths)
             rays += count
             count = film_layer_kernel(state, shadows, count, *hit, tables.geometry, tables.material_table.arrays,
-                                      passes, layout, tables.spectra, scratch, tables.light_table.arrays, layer,
-                                      tables.kernel_settings)
+                                      passes, layout, tables.spectra, scratch, tables.light_table.arrays, layer)
     if count:
         occluded = accel.occluded(shadows.rays, count, *paths)
         rays += count

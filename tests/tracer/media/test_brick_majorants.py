@@ -77,7 +77,7 @@ def _media(values, brick_voxels=None):
     grid = DensityGrid(np.asarray(values, np.float32), np.diag([VOXEL_M, VOXEL_M, VOXEL_M, 1.0]))
     spec = MediumSpec("plume", scatter=SCATTER, absorb=ABSORB, density_grid=grid)
     spectra = SpectrumTable()
-    _, media, _ = build_media([Material("plume", kind="null", medium=spec)], {0}, spectra)
+    _, media, _, _ = build_media([Material("plume", kind="null", medium=spec)], {0}, spectra)
     if brick_voxels is not None:
         media = media._replace(grids=build_grids([grid], brick_voxels=brick_voxels))
     sigma_s, sigma_a = coefficient_spectra(spec)

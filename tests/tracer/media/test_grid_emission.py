@@ -55,7 +55,7 @@ def _grid(values):
 def _gathered(spec, n, sampler=INDEPENDENT, hero=-1):
     """(mean radiance [K], its standard error [K]) of ``n`` walks along the test ray through ``spec``."""
     spectra = SpectrumTable()
-    _, media, _ = build_media([Material("m", kind="null", medium=spec)], {0}, spectra)
+    _, media, _, _ = build_media([Material("m", kind="null", medium=spec)], {0}, spectra)
     k = len(WAVELENGTHS)
     state = new_path_state(n, k)
     state.medium[:], state.wavelength[:], state.hero[:] = 0, WAVELENGTHS, max(hero, 0)
@@ -134,8 +134,8 @@ def test_a_strength_grid_glows_in_proportion_to_it_point_by_point():
 
 def test_grid_media_that_do_not_emit_take_no_emission_rate():
     spec = MediumSpec("smoke", scatter=SCATTER, density_grid=_grid(np.ones((4, 4, 4))))
-    _, media, _ = build_media([Material("m", kind="null", medium=spec)], {0}, SpectrumTable())
+    _, media, _, _ = build_media([Material("m", kind="null", medium=spec)], {0}, SpectrumTable())
     assert media.emission.tolist() == [-1] and media.emission_rate.tolist() == [0.0]
     glowing = MediumSpec("glow", emission=GLOW, density_grid=_grid(np.ones((4, 4, 4))))
-    _, media, _ = build_media([Material("m", kind="null", medium=glowing)], {0}, SpectrumTable())
+    _, media, _, _ = build_media([Material("m", kind="null", medium=glowing)], {0}, SpectrumTable())
     assert media.emission_rate.tolist() == [pytest.approx(1.0 / VOXEL_M)]

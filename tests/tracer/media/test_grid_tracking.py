@@ -40,7 +40,7 @@ def _media(values):
     grid = DensityGrid(np.asarray(values, np.float32), np.diag([VOXEL_M, VOXEL_M, VOXEL_M, 1.0]))
     spec = MediumSpec("grid", scatter=SCATTER, absorb=ABSORB, density_grid=grid)
     spectra = SpectrumTable()
-    _, media, _ = build_media([Material("grid", kind="null", medium=spec)], {0}, spectra)
+    _, media, _, _ = build_media([Material("grid", kind="null", medium=spec)], {0}, spectra)
     sigma_s, sigma_a = coefficient_spectra(spec)
     at = np.searchsorted(np.asarray(VISIBLE_NM_GRID, float), WAVELENGTHS)
     return media, spectra.arrays(), sigma_s[at], sigma_s[at] + sigma_a[at]
@@ -115,7 +115,7 @@ def test_a_white_scatterer_weighs_every_path_exactly_one():
     spec_scatter = [(2.0, (1.0, 1.0, 1.0))]
     grid = DensityGrid(np.random.default_rng(3).random((8, 8, 8)).astype(np.float32), np.diag([0.2, 0.2, 0.2, 1.0]))
     spectra = SpectrumTable()
-    _, media, _ = build_media([Material("w", kind="null", medium=MediumSpec("w", scatter=spec_scatter,
+    _, media, _, _ = build_media([Material("w", kind="null", medium=MediumSpec("w", scatter=spec_scatter,
                                                                               density_grid=grid))], {0}, spectra)
     k, n = len(WAVELENGTHS), 2000
     state = new_path_state(n, k)
@@ -151,6 +151,6 @@ def test_an_absurdly_dense_grid_ends_every_walk_within_the_bound():
 
 
 def test_homogeneous_media_have_no_grid():
-    _, media, _ = build_media([Material("fog", kind="null", medium=MediumSpec("fog", scatter=SCATTER))], {0},
+    _, media, _, _ = build_media([Material("fog", kind="null", medium=MediumSpec("fog", scatter=SCATTER))], {0},
                               SpectrumTable())
     assert media.grid.tolist() == [-1]

@@ -48,7 +48,7 @@ def _cross(state, media, spectra, settings, lights, collisions, sigma_t, sigma_s
 def _segments(n, sampler, hero):
     spec = MediumSpec("haze", scatter=[(0.4, (0.9, 0.5, 0.2))], absorb=[(0.3, (0.3, 0.6, 0.9))])
     spectra = SpectrumTable()
-    _, media, _ = build_media([Material("haze", kind="null", medium=spec)], {0}, spectra)
+    _, media, _, _ = build_media([Material("haze", kind="null", medium=spec)], {0}, spectra)
     sigma_s, sigma_a = coefficient_spectra(spec)
     at = np.searchsorted(np.asarray(VISIBLE_NM_GRID, float), WAVELENGTHS)
     k = len(WAVELENGTHS)
