@@ -9,7 +9,7 @@ with T threads alternate, ``rounds`` times per T. Reported per T: Prism's paths 
 over T = 1, embreex's speed-up on the same rays, and the share of Embree's scaling Prism keeps
 (Prism's speed-up / embreex's). The thread counts are 1, 2, 4, ... up to the machine's cores, the core
 count itself, and 8 and 16 where the machine has fewer cores (oversubscribed: no slower than T = 2 is
-the target there).
+the target there; Prism runs one worker thread per core for them, ``chunk_pool.worker_threads``).
 
 The GIL share: for T = 1 and 2, the process CPU time of a pass against the CPU time its threads spend
 inside the compiled chunk calls (``stages.trace`` and ``stages.light_trace``'s kernels, which release
@@ -187,7 +187,8 @@ def scaling_table(result: dict) -> str:
         lines.append("| | Prism / embreex scaling | " + " | ".join(f"{rows[t]['kept']:.0%}" for t in counts) + " |")
     shares = [f"{c['scene']} {c['label']}: " + ", ".join(f"T={t} {s:.1%}" for t, s in c["gil_share"].items())
               for c in result["cases"]]
-    lines += ["", f"\\* more threads than the machine's {result['cores']} cores.", "",
+    lines += ["", f"\\* more threads than the machine's {result['cores']} cores: Prism runs one worker per core "
+              "(`chunk_pool.worker_threads`), embreex's replay all T.", "",
               "Share of a pass's CPU time outside the compiled chunk calls (GIL held or awaited): " + "; ".join(shares)
               + "."]
     return "\n".join(lines)

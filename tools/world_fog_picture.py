@@ -17,16 +17,10 @@ OUTPUT = ROOT / "docs" / "images" / "world_fog.png"
 
 def _scene(bpy):
     from helpers.bpy_scenes import add_camera, add_plane, add_point_light
+    from helpers.fog_scenes import fog_world
 
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
-    world = bpy.data.worlds.new("Fog")
-    world.use_nodes = True
-    nodes, links = world.node_tree.nodes, world.node_tree.links
-    nodes["Background"].inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-    fog = nodes.new("ShaderNodeVolumeScatter")
-    fog.inputs["Density"].default_value = 0.12
-    links.new(fog.outputs[0], nodes["World Output"].inputs["Volume"])
-    bpy.context.scene.world = world
+    fog_world("ShaderNodeVolumeScatter", Density=0.12)
     add_plane("Floor", 30.0, color=(0.5, 0.5, 0.5), specular=0.0)
     for x in (-2.0, 0.0, 2.0):
         bpy.ops.mesh.primitive_cylinder_add(radius=0.25, depth=3.0, location=(x, 2.0, 1.5))

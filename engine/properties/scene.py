@@ -173,7 +173,7 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
     )
     threads: IntProperty(
         name="Threads",
-        description="Number of CPU threads to render with (0 = all cores)",
+        description="Number of CPU threads to render with (0 = all cores; more than the cores run one per core)",
         default=0,
         min=0,
         max=1024,

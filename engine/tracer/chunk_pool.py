@@ -32,9 +32,22 @@ def chunk_size(path_count: int, threads: int, samples_per_pixel: int = 1) -> int
     return int(max(samples_per_pixel, size - size % samples_per_pixel))
 
 
+def available_cores() -> int:
+    """The CPUs this process may run on (its affinity mask, which containers and ``taskset`` narrow), else
+    every CPU the machine has."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):  # macOS and Windows have no affinity mask in Python
+        return max(1, os.cpu_count() or 1)
+
+
 def worker_threads(requested: int) -> int:
-    """Threads for ``requested`` (0 or less: one per CPU)."""
-    return max(1, int(requested) if requested and requested > 0 else (os.cpu_count() or 1))
+    """Threads for ``requested`` (0 or less: one per available core), at most one per available core: a
+    chunk is compiled work that never waits on I/O, so threads beyond the cores only take turns on them, and
+    each brings its own chunk's state into the caches they share (a 384 x 384 pass ran at 0.71x the paths per
+    second of 2 threads with 16 on 2 cores). Images do not depend on the thread count (``film``)."""
+    cores = available_cores()
+    return min(cores, int(requested)) if requested and requested > 0 else cores
 
 
 class ChunkPool:
