@@ -5,7 +5,7 @@ nest keeps only the first."""
 from __future__ import annotations
 
 from ..tracer.media.enclosure import enclosing_media
-from ..tracer.media.nesting import MAX_NESTED, material_bounds, overlapping_sets
+from ..tracer.media.nesting import MAX_NESTED, overlapping_sets, scene_bounds
 
 
 def _listed(names) -> str:
@@ -20,20 +20,19 @@ def nested_media_warnings(tracer_scene) -> list[str]:
     """One warning per grid medium whose mesh overlaps other media or lies in the World's fog, and one when the
     camera is inside more than ``MAX_NESTED`` media."""
     materials, fog = tracer_scene.materials, tracer_scene.world.medium
-    warnings = []
-    motion = tracer_scene.motion
-    bounds = material_bounds(tracer_scene.vertices, tracer_scene.triangles, tracer_scene.triangle_material, materials,
-                             None if motion is None else motion.vertices)
+    warnings, warned = [], set()
+    bounds = scene_bounds(tracer_scene)
     overlaps = overlapping_sets(bounds)
-    for m in sorted(bounds):  # the media of meshes in the scene
+    for m in sorted(bounds):  # the media of meshes in the scene (the export may list a material twice)
         material = materials[m]
-        if not _is_grid(material.medium):
+        if not _is_grid(material.medium) or material.name in warned:
             continue
         others = sorted({n for s in overlaps if m in s for n in s if n != m})
         named = [f"material '{materials[n].name}''s volume" for n in others]
         if fog is not None:
             named.append("the World's fog")
-        if named and not any(w.startswith(f"Material '{material.name}': its volume varies") for w in warnings):
+        if named:
+            warned.add(material.name)
             warnings.append(
                 f"Material '{material.name}': its volume varies point by point (a Volume object's grid or a density "
                 f"driven by nodes) and shares space with {_listed(named)}; Cycles adds them there, Prism renders "

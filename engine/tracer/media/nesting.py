@@ -127,8 +127,13 @@ def transitions(states: dict, member_of: dict, rows: int) -> np.ndarray:
     return table
 
 
+def scene_bounds(scene) -> dict:
+    """``material_bounds`` of a ``scene.Scene``'s media, over the shutter's time steps."""
+    motion = getattr(scene, "motion", None)
+    return material_bounds(scene.vertices, scene.triangles, scene.triangle_material, scene.materials,
+                           None if motion is None else motion.vertices)
+
+
 def scene_overlaps(scene) -> list[tuple[int, ...]]:
     """``overlapping_sets`` of the media of a ``scene.Scene``'s meshes, over the shutter's time steps."""
-    motion = getattr(scene, "motion", None)
-    return overlapping_sets(material_bounds(scene.vertices, scene.triangles, scene.triangle_material, scene.materials,
-                                            None if motion is None else motion.vertices))
+    return overlapping_sets(scene_bounds(scene))
