@@ -65,10 +65,14 @@ def _startup_table(st):
             ("import_seconds", "import the tracer (numba, kernel modules)"),
             ("setup_seconds", "Renderer construction (spectral tables, BVH)"),
             ("first_pass_seconds", "first pass (compile, or load the kernels from disk)"),
-            ("second_pass_seconds", "second pass")]
+            ("second_pass_seconds", "second pass"),
+            ("compile_seconds", "compiling, in the phases above (numba's front end and LLVM)"),
+            ("llvm_seconds", "of it LLVM (optimisation, machine code)")]
     rows = ["| phase | cold cache (s) | warm cache (s) |", "|---|---:|---:|"]
     for key, label in keys:
         rows.append(f"| {label} | {st['cold'].get(key, float('nan')):.3f} | {st['warm'].get(key, float('nan')):.3f} |")
+    rows.append("| numba functions compiled | " + " | ".join(
+        str(st[side].get("functions_compiled", "-")) for side in ("cold", "warm")) + " |")
     rows.append("| imported colour-science | " + " | ".join(
         "yes" if st[side].get("colour_imported", True) else "no" for side in ("cold", "warm")) + " |")
     return "\n".join(rows)

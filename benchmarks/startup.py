@@ -7,7 +7,8 @@ kernels now on disk. Each child reports its phases (import of the tracer, scene 
 second pass), whether ``jit.cache_is_warm()`` said so (the flag behind "Compiling Prism kernels (first render
 only)") and whether the render imported colour-science (it should not: half a second, and its tables
 ship with Prism, ``spectra.colorimetry_tables``; matplotlib is hidden as in Blender, which lacks it);
-the parent adds the whole process's wall time (interpreter start-up included).
+the parent adds the whole process's wall time (interpreter start-up included). A cold child also splits
+its compile (``compile_events``): seconds in numba's front end and in LLVM, and how many functions compiled.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import sys
 import tempfile
 import time
 
+from .compile_events import CompileRecorder
 from .references import REPO_ROOT
 
 SCENE = "cornell_glass"  # diffuse + dielectric, area light: the kernels of most renders
@@ -36,6 +38,7 @@ def _child() -> int:
     from engine.tracer.settings import RenderSettings
 
     imported = time.perf_counter()
+    compiles = CompileRecorder().install()
     warm = jit.cache_is_warm()
     from benchmarks import scenes
 
@@ -51,7 +54,7 @@ def _child() -> int:
     print(json.dumps(dict(import_seconds=imported - start, scene_seconds=built - imported,
                           setup_seconds=constructed - built, first_pass_seconds=first - constructed,
                           second_pass_seconds=second - first, render_seconds=second - start,
-                          cache_was_warm=warm,
+                          cache_was_warm=warm, **compiles.summary(),
                           colour_imported=any(name.split(".")[0] == "colour" for name in sys.modules))))
     return 0
 

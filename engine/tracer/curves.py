@@ -177,7 +177,7 @@ def control_point(strands, k, time):
     return row_at(strands.curves, strands.curve_motion, k, time)
 
 
-@inlined
+@kernel
 def curve_at(strands, c, u, time):
     """(centre (x, y, z), radius, d centre / du, d radius / du) of segment ``c`` at parameter ``u``, ray time
     ``time``."""
@@ -197,7 +197,7 @@ def curve_at(strands, c, u, time):
     return (x, y, z), r, (dx, dy, dz), dr
 
 
-@inlined
+@kernel
 def _frame(strands, c, tangent, time):
     """(unit tangent, s, t, |tangent|): a right-handed frame around the curve's tangent at a point of segment
     ``c``. s is a vector fixed for the whole segment (across its chord, the control points 2 to 3), made
@@ -238,7 +238,7 @@ def hit_code(strands, c, u, nx, ny, nz, time):
     return math.atan2(nx * t[0] + ny * t[1] + nz * t[2], nx * s[0] + ny * s[1] + nz * s[2])
 
 
-@inlined
+@kernel
 def curve_surface(strands, c, u, angle, time):
     """(point, unit outward normal, the same as shading normal) of segment ``c`` where the hit code (u, ``angle``)
     points: the point is the curve's centre at ``u`` plus its radius across the tangent at ``angle`` around it;
@@ -267,7 +267,7 @@ EXIT_MARGIN = 1e-3  # a ray crossing a strand starts this fraction of the radius
 EXIT_STEPS = 3  # Newton steps that find the curve parameter of the far wall's point
 
 
-@inlined
+@kernel
 def _radial(strands, c, u, x, time):
     """(centre, radius, unit tangent, |C'|, the part of x - centre across the tangent) at ``u``."""
     centre, r, du, _ = curve_at(strands, c, u, time)
@@ -278,7 +278,7 @@ def _radial(strands, c, u, x, time):
     return centre, r, a, size, (ex - along * a[0], ey - along * a[1], ez - along * a[2]), along
 
 
-@inlined
+@kernel
 def leave_tube(strands, c, u, p, d, time):
     """(origin, distance travelled) of a ray from ``p`` (on segment ``c``'s surface at ``u``) along unit ``d`` that
     points into the tube: it starts just outside the tube's far wall; distance 0 where ``d`` points outward.

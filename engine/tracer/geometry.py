@@ -190,7 +190,7 @@ def _non_degenerate(vertices, triangles, keep):
         keep[t] = math.isfinite(area2) and area2 > 0.0
 
 
-@inlined
+@kernel
 def vertex_at(geometry, vertex, time):
     """Vertex ``vertex`` (float64 xyz) at ray time ``time`` (``FRAME_TIME``: at the frame)."""
     m = geometry.motion
@@ -205,7 +205,7 @@ def vertex_at(geometry, vertex, time):
             (1.0 - f) * float(m[s, vertex, 2]) + f * float(m[s + 1, vertex, 2]))
 
 
-@inlined
+@kernel
 def _corner_normal(geometry, triangle, corner, time):
     """Corner ``corner``'s shading normal (not unit) at ray time ``time``."""
     m = geometry.motion_normals

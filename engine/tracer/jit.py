@@ -85,14 +85,17 @@ def _use_cache_directory():
 
 
 def kernel(function):
-    """Decorator for kernels and the small per-path functions they call (compiled on first use, cached)."""
+    """Decorator for kernels and the per-path functions they call (compiled on first use, once per signature,
+    cached). A kernel called from a kernel is linked into it, and LLVM inlines it there when it is small."""
     _use_cache_directory()
     return _njit(function)
 
 
 def inlined(function):
-    """Decorator for per-path functions that take the scene's tables (named tuples of arrays): inlined
-    where they are called, so the tables are not passed as hundreds of flattened arguments per call."""
+    """Decorator for large per-path functions that take the scene's tables (named tuples of arrays): inlined
+    where they are called, so the tables are not passed as hundreds of flattened arguments per call. numba
+    copies and types the body again at every call site, which costs compile time there: a function called
+    from many places that takes arrays or small tables is better a ``kernel`` (docs/tracer_core.md)."""
     _use_cache_directory()
     return _njit_inline(function)
 

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .catcher_lights import excluded_from_catcher
-from .jit import inlined
+from .jit import inlined, kernel
 from .state import PREV_DELTA
 
 ALL_SETS = -1  # int64 mask with every bit set: an emitter without linking
@@ -108,7 +108,7 @@ def in_sets(mask, member):
     return (mask >> member) & 1 != 0
 
 
-@inlined
+@kernel
 def emitter_sets(lights, emitter):
     """(light sets, shadow sets) of ``emitter``: a light row (< rows), or rows + an emissive triangle."""
     links = lights.links

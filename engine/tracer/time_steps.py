@@ -3,10 +3,10 @@ ray's time the way Embree reads its vertex buffers: linear between the two steps
 
 from __future__ import annotations
 
-from .jit import inlined
+from .jit import kernel
 
 
-@inlined
+@kernel
 def row_at(frame, steps, k, time):
     """(x, y, z, radius) of row ``k`` at ray time ``time`` (0..1 over the shutter) of ``steps`` [S, N, 4]; of
     ``frame`` [N, 4] where there are no steps (nothing moves) or ``time`` < 0 (``geometry.FRAME_TIME``)."""

@@ -115,7 +115,7 @@ def _sky_footprint(env, t):
     return r0, min(r0 + 1, rows - 1), c0, min(c0 + 1, columns - 1), y - r0, x - c0, ground_fade(z)
 
 
-@inlined
+@kernel
 def _texel_value(env, r, c, wavelength_nm):
     texel = env.texels[r, c]
     return texel[3] * texel_reflectance(texel[0], texel[1], texel[2], wavelength_nm)
@@ -134,7 +134,7 @@ def footprint(env, d):
     return 0, 0, 0, 0, 0.0, 0.0, 1.0
 
 
-@inlined
+@kernel
 def value(env, spectra, fp, wavelength_nm):
     """The background's spectral radiance at ``wavelength_nm`` along the direction of footprint ``fp``."""
     if env.kind == ENV_CONSTANT:

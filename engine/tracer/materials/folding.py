@@ -32,7 +32,7 @@ def fold_evaluator():
         # The argument types of the render kernels' calls without rays (emission, transparency), so both share
         # one compiled specialisation.
         run_program(np.ascontiguousarray(instructions, dtype=np.int32), np.int32(0), np.int32(len(instructions)),
-                    registers, rows, tables, textures, geometry, np.int32(0), 0.25, 0.25, (0.25, 0.25, 0.0), up, up,
+                    registers, rows, tables, textures, geometry, np.int64(0), 0.25, 0.25, (0.25, 0.25, 0.0), up, up,
                     up, False, None)
 
     return evaluate

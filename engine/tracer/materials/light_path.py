@@ -20,7 +20,7 @@ materials read the node (``KernelSettings.light_path``).
 from __future__ import annotations
 
 from ..bsdf.closure import SAMPLED_DELTA, SAMPLED_DIFFUSE, SAMPLED_TRANSMISSION
-from ..jit import inlined
+from ..jit import inlined, kernel
 
 #: The node's outputs, in Blender's order (``ShaderNodeLightPath.outputs``): the instruction's mode.
 OUTPUTS = ("Is Camera Ray", "Is Shadow Ray", "Is Diffuse Ray", "Is Glossy Ray", "Is Singular Ray",
@@ -89,7 +89,7 @@ def after_volume_scatter(state, i):
     state.ray_travelled[i] = 0.0
 
 
-@inlined
+@kernel
 def _write(regs, visibility, bounce, diffuse, glossy, transparent, transmission, ray_length):
     b = regs.shape[0] - FIELDS
     regs[b + IS_CAMERA] = 1.0 if visibility & CAMERA else 0.0

@@ -31,7 +31,7 @@ def copy_rows(materials, material, rows):
     return count
 
 
-@inlined
+@kernel
 def _fill(materials, spectra, source, wavelength_nm, regs, bounded, out):
     if source >= 0.0:
         spectrum_values(spectra, int(source), wavelength_nm, out)

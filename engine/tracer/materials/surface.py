@@ -15,6 +15,8 @@ sampling and light paths, are evaluated without them, as Cycles evaluates them.
 
 from __future__ import annotations
 
+import numpy as np
+
 from ..bsdf.closure import C_KIND, C_MIRROR, C_TINT, C_TINT_SCALE, DIELECTRIC, TRANSPARENT
 from ..bsdf.closure_frame import view_cosine
 from ..jit import inlined
@@ -38,8 +40,11 @@ def run_material(materials, geometry, material, triangle, u, v, p, ng, n, wo, ba
     first = programs.const_start[material]
     for r in range(programs.const_count[material]):
         regs[r] = programs.constants[first + r]
+    # One signature whether the hit comes from Embree (int32, float32) or from the path state (int64,
+    # float64): each combination would compile the whole interpreter again.
     run_program(programs.instructions, programs.start[material], programs.count[material], regs, rows,
-                programs.tables, materials.textures, geometry, triangle, u, v, p, ng, n, wo, backfacing, rays)
+                programs.tables, materials.textures, geometry, np.int64(triangle), np.float64(u), np.float64(v), p,
+                ng, n, wo, backfacing, rays)
 
 
 @inlined

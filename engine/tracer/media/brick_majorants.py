@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from ..jit import inlined
+from ..jit import inlined, kernel
 
 #: Voxels per block edge. 8 keeps the block table 1/512 of the grid and its walk a few dozen steps across a
 #: 256³ grid, while a plume's edge or a thin wisp still gets a bound of its own.
@@ -58,7 +58,7 @@ def brick_maxima(values: np.ndarray, brick_voxels: int = BRICK_VOXELS) -> np.nda
     return np.ascontiguousarray(reduced, np.float32)
 
 
-@inlined
+@kernel
 def _axis_entry(grids, g, axis, x, direction):
     """(block, distance to its next boundary, distance between boundaries, step) along one axis from index
     coordinate ``x`` moving at ``direction`` index units per metre."""

@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import math
 
-from ..jit import inlined
+from ..jit import inlined, kernel
 
 
-@inlined
+@kernel
 def index_ray(grids, g, o, d):
     """(o', d'): the ray ``o`` + s ``d`` in grid ``g``'s index coordinates (same parameter s)."""
     m = grids.world_to_index[g]
@@ -54,7 +54,7 @@ def _voxel(grids, g, x, y, z):
     return float(grids.values[grids.offset[g] + (x * ny + y) * nz + z])
 
 
-@inlined
+@kernel
 def grid_density(grids, g, p):
     """The trilinear density of grid ``g`` at index-space point ``p`` (0 outside its voxels)."""
     fx, fy, fz = math.floor(p[0]), math.floor(p[1]), math.floor(p[2])

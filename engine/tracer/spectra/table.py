@@ -124,7 +124,7 @@ def _tabulate(kind, params, data, dense):
             dense[sid, i] = exact_spectrum_value(kind, params, data, sid, DENSE_START_NM + i)
 
 
-@inlined
+@kernel
 def spectrum_value(spectra, sid, wavelength_nm):
     """Value of spectrum row ``sid`` of ``spectra`` (a ``SpectrumArrays``) at ``wavelength_nm``
     (360-830 nm: the wavelengths paths carry)."""

@@ -98,7 +98,7 @@ def inverse_normal_cdf(p):
     return -value if q < 0.0 else value
 
 
-@inlined
+@kernel
 def gaussian_pdf(ws, channel, wavelength_nm):
     """Density (1/nm) of channel ``channel``'s truncated normal; 0 outside 360-830 nm."""
     if wavelength_nm < VISIBLE_MIN_NM or wavelength_nm > VISIBLE_MAX_NM:
@@ -143,7 +143,7 @@ def sample_wavelengths(ws, u0, u1, u2, wavelength_nm, pdf):
             wavelength_nm[j], pdf[j] = sample_visible(u)
 
 
-@inlined
+@kernel
 def _cmf(ws, wavelength_nm, channel):
     x = wavelength_nm - VISIBLE_MIN_NM
     if not (0.0 <= x <= VISIBLE_MAX_NM - VISIBLE_MIN_NM):
@@ -153,7 +153,7 @@ def _cmf(ws, wavelength_nm, channel):
     return ws.cmf[i, channel] + f * (ws.cmf[i + 1, channel] - ws.cmf[i, channel])
 
 
-@inlined
+@kernel
 def radiance_to_rgb(ws, radiance, wavelength_nm, pdf):
     """Scene-linear Rec.709 (r, g, b) of one path's spectral radiance samples."""
     count = radiance.shape[0]

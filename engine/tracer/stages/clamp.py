@@ -4,11 +4,11 @@ to it. Called only where ``settings.clamping`` is set, so renders without clamps
 
 from __future__ import annotations
 
-from ..jit import inlined
+from ..jit import kernel
 from ..spectra.wavelength_sampling import radiance_to_rgb
 
 
-@inlined
+@kernel
 def clamp_factor(settings, state, i, values, indirect):
     """The factor (≤ 1) that brings path ``i``'s contribution ``values`` [K] (per carried wavelength)
     within Clamp Indirect when ``indirect``, else Clamp Direct."""

@@ -93,7 +93,7 @@ def reset_kernel(passes, layout, count):
     passes.ao_count[0] = 0
 
 
-@inlined
+@kernel
 def deposit(passes, layout, i, k, value, group, slot, albedo):
     """Light ``value`` of wavelength column ``k`` reached path ``i``: to light group ``group`` and slot
     ``slot`` (-1: neither), and to the denoising albedo when ``albedo`` and no surface wrote it yet."""
@@ -142,7 +142,7 @@ def _mist(passes, p):
     return 1.0 - mist
 
 
-@inlined
+@kernel
 def _raster(passes, frame, x, y, z):
     """Pixel position (x, y) of the world point (x, y, z) in the camera of ``frame`` (0 previous, 1 now, 2 next)."""
     m = passes.world_to_raster[frame]

@@ -94,7 +94,7 @@ def _srgb_to_linear(v):
     return v / 12.92 if v <= 0.04045 else ((v + 0.055) / 1.055) ** 2.4
 
 
-@inlined
+@kernel
 def _texel(textures, decode, offset, width, x, y, out_weight, acc):
     """Add ``out_weight`` × texel (x, y) to ``acc`` (a 4-tuple); texels at -1 are transparent black."""
     if x < 0 or y < 0 or out_weight == 0.0:
