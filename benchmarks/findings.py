@@ -15,6 +15,14 @@ from .findings_tables import (_ceiling_table, _demo_profile, _demo_section, _exp
 from .findings_values import _embree_share, _glass_ceiling, _largest_stage, _pct, _peer_ratio, _stage_rows, _status
 from .scaling import scaling_table, target_row
 
+
+def _compile_split(cold: dict) -> str:
+    """The cold compile's functions and LLVM seconds (``benchmarks.compile_events``), where the run recorded them."""
+    if "llvm_seconds" not in cold:
+        return ""
+    return f", {cold['functions_compiled']} functions, {cold['llvm_seconds']:.0f} s of it in LLVM"
+
+
 def _targets(results):
     lines = ["| target (issue 11) | measured in this run | status |", "|---|---|---|"]
     ceil = _glass_ceiling(results)
@@ -130,7 +138,7 @@ def _reading(results):
         out.append(
             f"- **Start-up.** A fresh process rendering {st['scene']} at {st['resolution']} x {st['resolution']}: "
             f"with an empty kernel cache {c['process_seconds']:.1f} s (its first pass, which compiles the kernels, "
-            f"{c['first_pass_seconds']:.1f} s); with the cache filled {w['process_seconds']:.1f} s (first pass, "
+            f"{c['first_pass_seconds']:.1f} s{_compile_split(c)}); with the cache filled {w['process_seconds']:.1f} s (first pass, "
             f"loading the kernels from disk, {w['first_pass_seconds']:.2f} s; importing the tracer "
             f"{w['import_seconds']:.2f} s; colour-science imported: "
             f"{'yes' if w.get('colour_imported', True) else 'no'}). `cache_is_warm()` said {c['cache_was_warm']} then "

@@ -67,7 +67,7 @@ def _startup_table(st):
             ("first_pass_seconds", "first pass (compile, or load the kernels from disk)"),
             ("second_pass_seconds", "second pass"),
             ("compile_seconds", "compiling, in the phases above (numba's front end and LLVM)"),
-            ("llvm_seconds", "of it LLVM (optimisation, machine code)")]
+            ("llvm_seconds", "of it in LLVM (optimising, machine code; warm: loading it)")]
     rows = ["| phase | cold cache (s) | warm cache (s) |", "|---|---:|---:|"]
     for key, label in keys:
         rows.append(f"| {label} | {st['cold'].get(key, float('nan')):.3f} | {st['warm'].get(key, float('nan')):.3f} |")
