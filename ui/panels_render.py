@@ -69,6 +69,7 @@ class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):
         column = layout.column(align=True)
         column.prop(settings, "max_bounces", text="Max Bounces")
         column.prop(settings, "preview_max_bounces", text="Viewport")
+        column.prop(settings, "transparent_max_bounces", text="Transparent")
         column = layout.column()
         column.prop(settings, "russian_roulette_depth")
         column.prop(settings, "use_mis")

@@ -47,6 +47,7 @@ def export_settings(
         samples=int(samples),
         samples_per_pass=int(prism.samples_per_pass),
         max_bounces=int(prism.preview_max_bounces if preview else prism.max_bounces),
+        transparent_max_bounces=int(prism.transparent_max_bounces),
         seed=int(prism.seed if seed is None else seed),
         wavelength_mode=_MODES[prism.wavelength_mode],
         wavelengths_per_path=int(prism.wavelengths_per_path),

@@ -102,6 +102,15 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
         max=1024,
         soft_max=64,
     )
+    transparent_max_bounces: IntProperty(
+        name="Transparent Max Bounces",
+        description="Maximum number of cut-outs (Transparent BSDF, alpha) and films a path goes straight through; "
+        "they do not use up Max Bounces, and volumes' boundaries count as neither (as in Cycles)",
+        default=8,
+        min=0,
+        max=1024,
+        soft_max=64,
+    )
     seed: IntProperty(
         name="Seed",
         description="Seed of the random numbers: the same seed renders the same image",

@@ -184,6 +184,7 @@ class SceneTables:
         has_media = bool((materials.medium >= 0).any()) or self.material_table.outside_medium >= 0
         self.kernel_settings = KernelSettings(
             max_bounces=int(settings.max_bounces), roulette_depth=int(settings.russian_roulette_depth),
+            transparent_max_bounces=int(settings.transparent_max_bounces),
             use_mis=bool(settings.use_mis), sampler=SAMPLERS[settings.sampler], seed=int(settings.seed) & 0xFFFFFFFF,
             light_tracing=False,  # the analysis decides (``describe``)
             film_transparent=bool(settings.film_transparent),

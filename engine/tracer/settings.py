@@ -30,6 +30,8 @@ class RenderSettings:
     samples: int = 16
     samples_per_pass: int = 1
     max_bounces: int = 8
+    # Cut-outs and films a path may go straight through (Cycles' Transparent Max Bounces), apart from max_bounces.
+    transparent_max_bounces: int = 8
     seed: int = 0
     wavelength_mode: str = "cie"
     wavelengths_per_path: int = 4
@@ -99,6 +101,8 @@ class RenderSettings:
             raise PrismInputError(f"Samples per pass must be at least 1 (got {self.samples_per_pass}).")
         if self.max_bounces < 0:
             raise PrismInputError(f"Max bounces cannot be negative (got {self.max_bounces}).")
+        if self.transparent_max_bounces < 0:
+            raise PrismInputError(f"Transparent max bounces cannot be negative (got {self.transparent_max_bounces}).")
         if not 1 <= self.wavelengths_per_path <= 16:
             raise PrismInputError(
                 f"Wavelengths per path must be between 1 and 16 (got {self.wavelengths_per_path})."

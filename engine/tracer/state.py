@@ -39,7 +39,9 @@ deterministic). Embree reads the queues' float32 rays directly.
 - ``light_path`` int32 [n, 6] (``materials.light_path``: the kind of ray the path travels on and its bounce
   counts, for Blender's Light Path node) and ``ray_travelled`` float64 (how far the ray came before the
   cut-outs and films it went straight through: its Ray Length counts from where it started, as Cycles'
-  does); kept only in scenes whose materials read the node.
+  does); kept only in scenes whose materials read the node;
+- ``crossings`` int32 [n, 2] (``stages.bounces``): the rays the path began by going straight through a surface
+  (cut-outs, films, volume boundaries) rather than scattering, and of them its transparent bounces.
 """
 
 from __future__ import annotations
@@ -72,7 +74,7 @@ _PATH_FIELDS = (
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
     ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
     ("transparency", np.float64, ()), ("time", np.float64, ()), ("receiver", np.int64, ()),
-    ("light_path", np.int32, (6,)), ("ray_travelled", np.float64, ()),
+    ("light_path", np.int32, (6,)), ("ray_travelled", np.float64, ()), ("crossings", np.int32, (2,)),
 )
 PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
 

@@ -2,9 +2,10 @@
 
 embreex has no per-ray filters, so a scene where some object hides from some rays gets one Embree
 scene per distinct set of visible triangles (most scenes: one or two), with the render's triangle id
-of each of its triangles. A queue's rays are grouped by kind — camera rays at the first bounce, then
-by what the path's last scattering was (``state.LAST_DIFFUSE``, ``LAST_TRANSMISSION``, else glossy) —
-and each group is traced against its scene. Shadow rays see the shadow-visible triangles.
+of each of its triangles. A queue's rays are grouped by kind — camera rays until the path first scatters (through
+cut-outs and films a camera ray stays one, as in Cycles: ``stages.bounces``), then by what the path's last
+scattering was (``state.LAST_DIFFUSE``, ``LAST_TRANSMISSION``, else glossy) — and each group is traced against
+its scene. Shadow rays see the shadow-visible triangles.
 
 With a shadow catcher, the copies of camera paths that shade it for its pass (``state.CATCHER_PASS``,
 ``stages.shadow_catcher``) see only shadow catchers, each kind of ray the catchers visible to it, as Cycles
@@ -17,6 +18,7 @@ import numpy as np
 
 from .accel import Accel
 from .geometry import Geometry
+from .stages.bounces import STEPS
 from .state import CATCHER_PASS, LAST_DIFFUSE, LAST_TRANSMISSION
 from .visibility import ALL_RAYS, RAY_CAMERA, RAY_DIFFUSE, RAY_GLOSSY, RAY_SHADOW, RAY_TRANSMISSION, SHADOW_CATCHER
 
@@ -95,13 +97,15 @@ class RayClassAccel:
         """Closest hits of the first ``count`` rays, each against what its kind of ray sees."""
         if depth == 0:  # camera rays: no path has met a shadow catcher yet
             return self._query(RAY_CAMERA, rays, count, "closest")
-        flags = state.flags[rays.path[:count]]
-        kinds = np.where(flags & LAST_TRANSMISSION, RAY_TRANSMISSION, np.where(flags & LAST_DIFFUSE, RAY_DIFFUSE,
-                                                                                 RAY_GLOSSY))
+        paths = rays.path[:count]
+        flags = state.flags[paths]
+        scattered = np.where(flags & LAST_TRANSMISSION, RAY_TRANSMISSION,
+                             np.where(flags & LAST_DIFFUSE, RAY_DIFFUSE, RAY_GLOSSY))
+        kinds = np.where(depth == state.crossings[paths, STEPS], RAY_CAMERA, scattered)
         pass_paths = (flags & CATCHER_PASS) != 0
         triangle = np.empty(count, np.int32)
         t, u, v = (np.empty(count, np.float32) for _ in range(3))
-        for ray in (RAY_DIFFUSE, RAY_GLOSSY, RAY_TRANSMISSION):
+        for ray in (RAY_CAMERA, RAY_DIFFUSE, RAY_GLOSSY, RAY_TRANSMISSION):
             for pass_path in ((False, True) if self.catchers else (False,)):
                 chosen = np.flatnonzero((kinds == ray) & (pass_paths == pass_path))
                 if chosen.size == 0:

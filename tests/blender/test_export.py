@@ -219,6 +219,7 @@ def test_scene_settings_become_render_settings(prism_addon, fresh_scene):
     prism = fresh_scene.prism
     prism.samples, prism.preview_max_bounces, prism.samples_per_pass = 32, 3, 2
     prism.max_bounces, prism.seed, prism.threads = 5, 9, 1
+    prism.transparent_max_bounces = 3
     prism.wavelength_mode, prism.wavelengths_per_path = "GAUSSIAN_RGB", 2
     prism.mean_r_nm, prism.sigma_b_nm = 610.0, 12.0
     prism.use_mis, prism.russian_roulette_depth = False, 4
@@ -232,6 +233,7 @@ def test_scene_settings_become_render_settings(prism_addon, fresh_scene):
     assert (exported.use_mis, exported.russian_roulette_depth, exported.border) == (False, 4, (1, 2, 3, 4))
     assert (exported.pixel_filter, exported.filter_width_px) == ("gaussian", pytest.approx(2.0))
     assert exported.light_tracing == "on"
+    assert exported.transparent_max_bounces == 3
     preview = settings_module.export_settings(fresh_scene, preview=True)  # a material or light preview
     assert (preview.samples, preview.max_bounces) == (settings_module.PREVIEW_SAMPLES, 3)
     overridden = settings_module.export_settings(fresh_scene, samples=7, seed=1, threads=2)

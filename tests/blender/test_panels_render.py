@@ -66,6 +66,7 @@ def test_render_panels_draw_in_both_wavelength_modes(prism_addon, fresh_scene):
         for name in ("samples", "max_bounces", "seed", "wavelength_mode", "wavelengths_per_path", "threads",
                      "mean_r_nm", "sigma_r_nm", "mean_g_nm", "sigma_g_nm", "mean_b_nm", "sigma_b_nm",
                      "use_pass_variance", "use_pass_sample_count", "preview_samples", "preview_max_bounces", "use_mis",
+                     "transparent_max_bounces",
                      "pixel_filter", "filter_width_px", "light_tracing"):
             assert name in drawn
     log = _draw(prism_addon.ui.panels_render.PRISM_PT_wavelengths, _context(fresh_scene))

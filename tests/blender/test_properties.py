@@ -11,6 +11,7 @@ EXPECTED_DEFAULTS = {
         "samples": 64,
         "samples_per_pass": 1,
         "max_bounces": 8,
+        "transparent_max_bounces": 8,
         "seed": 0,
         "wavelength_mode": "CIE",
         "wavelengths_per_path": 4,

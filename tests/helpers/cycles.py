@@ -32,11 +32,15 @@ def _render_to_rgba(scene) -> np.ndarray:
         return read_exr_rgba(path)
 
 
-def render_cycles_rgba(scene, samples: int, seed: int = 0, max_bounces: int = 8, filter_glossy: float = 0.0) -> np.ndarray:
+def render_cycles_rgba(scene, samples: int, seed: int = 0, max_bounces: int = 8, filter_glossy: float = 0.0,
+                       transparent_max_bounces: int | None = None) -> np.ndarray:
     """Cycles' scene-linear RGBA [H, W, 4] of ``scene`` (row 0 on top), unbiased (no clamps, caustics on) unless
-    ``filter_glossy`` is given (Light Paths ▸ Filter Glossy; it stays set on the scene, so Prism reads it too)."""
+    ``filter_glossy`` is given (Light Paths ▸ Filter Glossy; it stays set on the scene, so Prism reads it too).
+    Transparent Max Bounces is ``max_bounces`` unless ``transparent_max_bounces`` is given."""
     engine = scene.render.engine
     configure_cycles(scene, samples, seed, max_bounces, filter_glossy)
+    if transparent_max_bounces is not None:
+        scene.cycles.transparent_max_bounces = transparent_max_bounces
     try:
         return _render_to_rgba(scene)
     finally:

@@ -59,10 +59,13 @@ def test_each_scattering_sets_the_ray_kind_and_counts_as_cycles(state):
 
 def test_a_transparent_crossing_keeps_the_kind_and_the_length_goes_on(state):
     state.hit_t[0] = 3.0
-    lp.after_transparent(state, 0)
+    lp.after_transparent(state, 0, True)
     seen = _seen(state, 1.5)
     assert seen["Is Camera Ray"] == 1.0 and seen["Transparent Depth"] == 1 and seen["Ray Depth"] == 0
     assert seen["Ray Length"] == 4.5
+    lp.after_transparent(state, 0, False)  # a volume's boundary: no bounce of any kind, the length goes on
+    seen = _seen(state, 1.5)
+    assert seen["Transparent Depth"] == 1 and seen["Ray Length"] == 7.5
     lp.after_scattering(state, 0, SAMPLED_DIFFUSE)
     assert _seen(state, 1.5)["Ray Length"] == 1.5  # a new ray after a scattering
 

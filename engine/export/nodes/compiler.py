@@ -313,6 +313,7 @@ class MaterialCompiler:
 
             self.medium = compile_volume(self, volume)
         one = Weight(self.const(1.0), self.const(1.0, 1.0, 1.0))
+        self.surface_missing = volume_only
         if volume_only:  # Cycles: a volume's missing surface lets light through unchanged
             self.add_closure(PendingClosure(TRANSPARENT, one, out))
         else:

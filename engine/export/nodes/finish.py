@@ -210,6 +210,7 @@ def finish(c) -> ShaderProgram:
     program.volume_density = c.volume_density.register if c.volume_density is not None else -1
     program.volume_emission = c.volume_emission.register if c.volume_emission is not None else -1
     program.bump_map_correction = bump_map_correction(c)
+    program.surface_missing = getattr(c, "surface_missing", False)
     program.aov_registers, program.aov_constants = aov_results(c, c.aov_outputs)
     program.instructions = c.builder.instructions(live=_read_registers(program))
     program.constants = c.builder.initial_registers()

@@ -80,7 +80,7 @@ def legacy_shader(material) -> ShaderProgram:
             f"Material '{material.name}': unknown kind '{kind}'; use diffuse, conductor, dielectric, thin_film or "
             "null."
         )
-    shader = ShaderProgram([closure])
+    shader = ShaderProgram([closure], surface_missing=kind == "null")
     if is_emissive(material):
         shader.emission = Colour(spectrum=material.emission or SpectrumSpec())
         shader.emission_strength = float(material.emission_strength)

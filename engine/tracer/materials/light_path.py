@@ -73,10 +73,11 @@ def after_scattering(state, i, sampled):
 
 
 @inlined
-def after_transparent(state, i):
-    """The path went straight through a cut-out or a film: same kind of ray, one transparent bounce more, and
-    the length so far carried on."""
-    state.light_path[i, TRANSPARENT] += 1
+def after_transparent(state, i, counted):
+    """The path went straight through a cut-out or a film (``counted``: one transparent bounce more) or a volume's
+    boundary (no bounce at all, as in Cycles): same kind of ray, and the length so far carried on."""
+    if counted:
+        state.light_path[i, TRANSPARENT] += 1
     state.ray_travelled[i] += state.hit_t[i]
 
 

@@ -141,6 +141,9 @@ class ShaderProgram:
     # Material ▸ Settings ▸ Bump Map Correction (Cycles' default on): microfacet normals raised where their
     # reflection would leave below the surface, diffuse light softened near a bumped horizon (``closure_normals``)
     bump_map_correction: bool = True
+    # the Material Output has a Volume and no Surface: the one Transparent closure is the medium's boundary, which
+    # paths cross without a bounce, as Cycles' volume-only shaders (``stages.bounces``)
+    surface_missing: bool = False
 
     @property
     def has_program(self) -> bool:

@@ -27,6 +27,8 @@ the kernels decide without looking at kinds:
   ``media.table.MediaArrays``): paths crossing the surface inward enter it, outward leave it.
 - ``MAT_SHEEN``: a closure is Blender's microfiber sheen, fitted per hit to the view direction
   (``sheen_setup.set_up_sheen``): its tint and the closures' selection weights are computed per hit.
+- ``MAT_BOUNDARY``: the material has a Volume and no Surface: its surface is only the medium's boundary, which
+  paths cross as no bounce at all (Cycles' ``SD_HAS_ONLY_VOLUME``; ``stages.bounces``);
 - ``MAT_HAIR``: a closure is a fibre's (``HAIR``), set up per hit from the curve's tangent and the view
   (``hair_setup``) and turned into the shading frame with the closures' normals (``closure_normals``).
 - ``MAT_CLOSURE_NORMALS``: the closures' normals are set up per hit (``closure_normals``): a closure has a
@@ -79,6 +81,7 @@ MAT_OWN_NORMALS = 8192
 MAT_BUMP_CORRECTION = 16384
 MAT_SUBSURFACE = 32768
 MAT_HAIR = 65536
+MAT_BOUNDARY = 131072
 
 MaterialArrays = namedtuple(
     "MaterialArrays",
@@ -284,6 +287,8 @@ def build_materials(materials, used, spectra, outside_medium=None, origin=None, 
                 flags[m] |= MAT_CLOSURE_NORMALS
             needs_lut = needs_lut or any(c is not None and c.varies
                                          for c in (spec.tint, spec.s0, spec.s1, spec.multiscatter_colour))
+        if shader.surface_missing:
+            flags[m] |= MAT_BOUNDARY
         if shader.normal >= 0:
             flags[m] |= MAT_CLOSURE_NORMALS
         if shader.bump_map_correction:

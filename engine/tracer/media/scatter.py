@@ -15,6 +15,7 @@ from ..lights.dispatch import sample_light
 from ..materials.light_path import after_volume_scatter, emission_sample
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA
+from ..stages.bounces import path_bounce
 from ..stages.nee import FAR, SHADOW_SHORTEN
 from ..stages.queue import push_ray, queue_shadow
 from ..stages.roulette import survives
@@ -79,7 +80,8 @@ def scatter_in_medium(state, i, lights, materials, spectra, geometry, settings, 
     state.flags[i] &= ~(CAMERA_PATH | PREV_DELTA | LAST_DIFFUSE | LAST_TRANSMISSION)
     if settings.light_path:
         after_volume_scatter(state, i)
-    if not (pdf > 0.0 and survives(state, i, depth, settings, state.flags[i] & COLLAPSED != 0)):
+    if not (pdf > 0.0 and survives(state, i, depth, path_bounce(state, i, depth), settings,
+                                            state.flags[i] & COLLAPSED != 0)):
         return 0, lit
     state.prev_pdf[i] = pdf
     state.min_pdf[i] = min(state.min_pdf[i], pdf)  # a phase sample counts for Filter Glossy, as in Cycles

@@ -25,6 +25,7 @@ from ..camera_clip import clip_far_hits_kernel
 from ..embree.queries import closest_hits, occlusion
 from ..jit import inlined, kernel
 from ..state import LoopBuffers  # noqa: F401  (the loop's record, declared with the buffers)
+from .bounces import step_limit
 from .emission import emission_kernel
 from .film import film_kernel
 from .pass_writes import ao_kernel, convert_kernel, route_kernel
@@ -75,7 +76,7 @@ def bounce_loop_kernel(loop, arrays, caster, camera, passes, layout, count, queu
     settings = arrays.settings
     routed = ROUTE_FIRST_SHADOWS if route_light else ROUTE_END + 1
     rays_cast = 0
-    for depth in range(settings.max_bounces + 2):
+    for depth in range(step_limit(settings.max_bounces, settings.transparent_max_bounces)):
         if queued == 0:
             break
         current = loop.rays[depth % 2]

@@ -29,6 +29,7 @@ from ..spectra.wavelength_sampling import MODE_GAUSSIAN_RGB, inverse_normal_cdf,
 from ..state import CAMERA_PATH, PREV_DELTA
 from ..vec3 import tangents
 from ..warps import concentric_disk, regular_polygon
+from .bounces import start_counts
 from .camera_motion import camera_pose, quaternion_rotate, shutter_time
 from .panorama import EQUIRECTANGULAR, FISHEYE_EQUIDISTANT, FISHEYE_EQUISOLID, panorama_direction
 from .queue import push_ray
@@ -139,6 +140,7 @@ def start_path(state, i, pixel, sample, seed, medium):
     state.time[i] = 0.5
     state.receiver[i] = -1  # camera rays see every emitter (``light_linking``)
     start_camera_ray(state, i)
+    start_counts(state, i)
     return ps
 
 

@@ -6,7 +6,8 @@ triangle, or an escape (the world's background, sun discs) adds its radiance × 
 weight. Light pdfs are measured from the path's ``mis_origin`` (the last vertex before any
 free-standing film it crossed; films do not bend rays). Lights are transparent, as in Cycles: a ray
 that meets one adds its light and goes on to whatever lies behind it. A path that hits a surface is
-listed for shading unless it has used its last bounce.
+listed for shading unless it has used its last bounce (past Max Bounces only a cut-out or a film is shaded,
+which the path may still go through; past Transparent Max Bounces none is: ``stages.bounces``).
 
 Film transparency (Cycles'): a camera path (``CAMERA_PATH``: no scattering yet but transparent glass)
 that escapes into a transparent film's background, or meets a holdout, becomes see-through by its
@@ -29,10 +30,11 @@ from ..materials.emitters import emission_at
 from ..materials.light_path import path_ray
 from ..materials.shader_rays import ShaderRays
 from ..media.segment import cross_medium
-from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE
+from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE, MAT_NULL, MAT_TRANSPARENT
 from ..spectra.table import spectrum_value
 from ..state import CAMERA_PATH, MEDIUM_VERTEX, PREV_DELTA, SUBSURFACE_EXIT
 from ..visibility import HOLDOUT
+from .bounces import ends_at_next_surface, path_bounce
 from .clamp import clamp_factor
 from .mis import emitter_weight
 from .pass_writes import camera_slot, deposit, features_done
@@ -40,14 +42,14 @@ from .shadow_catcher import background_seen, share_emission, split_at_catcher, s
 
 
 @inlined
-def _add(state, i, factor, sid, spectra, weight, passes, layout, group, slot, albedo, settings, depth, tmp):
+def _add(state, i, factor, sid, spectra, weight, passes, layout, group, slot, albedo, settings, bounce, tmp):
     scale = factor * weight
     if scale == 0.0:
         return
     if settings.clamping:
         for k in range(state.radiance.shape[1]):
             tmp[k] = state.throughput[i, k] * scale * spectrum_value(spectra, sid, state.wavelength[i, k])
-        scale *= clamp_factor(settings, state, i, tmp, depth > 1)
+        scale *= clamp_factor(settings, state, i, tmp, bounce > 1)
     for k in range(state.radiance.shape[1]):
         value = state.throughput[i, k] * scale * spectrum_value(spectra, sid, state.wavelength[i, k])
         state.radiance[i, k] += value
@@ -56,19 +58,20 @@ def _add(state, i, factor, sid, spectra, weight, passes, layout, group, slot, al
 
 
 @inlined
-def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout, tmp):
-    """Every hittable light between the ray's origin and distance ``t`` adds its emission."""
+def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, bounce, passes, layout, tmp):
+    """Every hittable light between the ray's origin and distance ``t`` adds its emission (step ``depth``, the
+    path's ``bounce``: ``stages.bounces``)."""
     offset = (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
     for h in range(lights.hittable.shape[0]):
         index = lights.hittable[h]
-        if depth == 0 and not seen_by_camera(lights, index):
+        if bounce == 0 and not seen_by_camera(lights, index):
             continue
         t_light = light_distance(lights, index, o, d)
         if t_light < t and hit_counts(state, i, settings, lights, index):
             factor, pdf = light_hit(lights, index, mis_origin, d, t_light + offset)
             _add(state, i, factor, light_spectrum(lights, index), spectra,
                  emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index],
-                 camera_slot(layout, depth, False), True, settings, depth, tmp)
+                 camera_slot(layout, depth, False), True, settings, bounce, tmp)
 
 
 @inlined
@@ -82,7 +85,7 @@ def _see_through(state, i):
 
 
 @inlined
-def _add_background(state, i, d, lights, spectra, settings, depth, passes, layout, tmp):
+def _add_background(state, i, d, lights, spectra, settings, depth, bounce, passes, layout, tmp):
     """The world's background and the sun discs seen by an escaping ray."""
     if settings.film_transparent and state.flags[i] & CAMERA_PATH:
         _see_through(state, i)
@@ -100,7 +103,7 @@ def _add_background(state, i, d, lights, spectra, settings, depth, passes, layou
                 for k in range(state.radiance.shape[1]):
                     tmp[k] = state.throughput[i, k] * weight * environment.value(env, spectra, fp,
                                                                                  state.wavelength[i, k])
-                weight *= clamp_factor(settings, state, i, tmp, depth > 1)
+                weight *= clamp_factor(settings, state, i, tmp, bounce > 1)
             for k in range(state.radiance.shape[1]):
                 value = state.throughput[i, k] * weight * environment.value(env, spectra, fp, state.wavelength[i, k])
                 state.radiance[i, k] += value
@@ -108,13 +111,13 @@ def _add_background(state, i, d, lights, spectra, settings, depth, passes, layou
                 if layout.columns > 0:
                     deposit(passes, layout, i, k, value, lights.world_group, slot, True)
     for index in range(lights.rows.shape[0] if lights.select_prob.shape[0] > 0 else 0):
-        if (is_distant(lights, index) and (depth > 0 or seen_by_camera(lights, index))
+        if (is_distant(lights, index) and (bounce > 0 or seen_by_camera(lights, index))
                 and hit_counts(state, i, settings, lights, index)):
             factor, pdf = distant_hit(lights, index, d)
             if factor > 0.0:
                 _add(state, i, factor, light_spectrum(lights, index), spectra,
                      emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index], slot,
-                     True, settings, depth, tmp)
+                     True, settings, bounce, tmp)
 
 
 @kernel
@@ -123,12 +126,13 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
     """Add emission for the first ``count`` rays of ``rays``; list the paths that hit a surface in
     ``surface.path`` and return how many. ``passes`` / ``layout``: see ``stages.pass_writes``; ``scratch``
     (``state.ShadingScratch``) serves materials whose emission varies over the surface."""
-    shade_next = depth <= settings.max_bounces
     listed = 0
     for j in range(count):
         i = rays.path[j]
+        bounce = path_bounce(state, i, depth)
+        scatters = bounce <= settings.max_bounces  # the path may scatter at its next vertex
         if state.flags[i] & SUBSURFACE_EXIT:  # the hit is a random walk's exit, stored already (``subsurface``)
-            if shade_next:
+            if scatters:
                 surface.path[listed] = i
                 listed += 1
             else:
@@ -144,21 +148,21 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
                                      scratch.mix[1], lights, scratch.f, scratch.li)
             if collision < t:  # the path scatters in its medium: a vertex for the shading stage
                 if lights.hittable.shape[0] > 0:
-                    _add_lights_along(state, i, o, d, collision, mis_origin, lights, spectra, settings, depth, passes,
-                                      layout, scratch.weight)
+                    _add_lights_along(state, i, o, d, collision, mis_origin, lights, spectra, settings, depth, bounce,
+                                      passes, layout, scratch.weight)
                 if layout.columns > 0:
                     features_done(passes, layout, i)
-                if shade_next:
+                if scatters:
                     state.flags[i] |= MEDIUM_VERTEX
                     state.hit_t[i] = collision
                     surface.path[listed] = i
                     listed += 1
                 continue
         if lights.hittable.shape[0] > 0:
-            _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, passes, layout,
-                              scratch.weight)
+            _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, depth, bounce, passes,
+                              layout, scratch.weight)
         if triangle < 0:
-            _add_background(state, i, d, lights, spectra, settings, depth, passes, layout, scratch.weight)
+            _add_background(state, i, d, lights, spectra, settings, depth, bounce, passes, layout, scratch.weight)
             if layout.columns > 0:
                 features_done(passes, layout, i)
             continue
@@ -167,15 +171,18 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
             if layout.columns > 0:
                 features_done(passes, layout, i)
             continue
+        material = geometry.material[triangle]
+        # past Max Bounces a path still goes through cut-outs and films; past Transparent Max Bounces it ends here
+        shade_next = (not ends_at_next_surface(state, i, settings)
+                      and (scatters or materials.flags[material] & (MAT_TRANSPARENT | MAT_NULL) != 0))
         copy = -1  # a shadow catcher's copy of the path (``stages.shadow_catcher``)
         if settings.shadow_catcher and shade_next and splits_here(state, i, geometry, triangle):
             copy = split_at_catcher(state, i, triangle, hit_u[j], hit_v[j], t, lights, spectra, passes, layout, d)
-        material = geometry.material[triangle]
         if materials.flags[material] & MAT_EMISSIVE and hit_counts(state, i, settings, lights,
                                                                    lights.rows.shape[0] + triangle):
             t_mis = t + (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
             light_pdf = emitter_pdf(lights, geometry, triangle, d, t_mis, state.time[i])
-            weight = 1.0 if depth == 0 else emitter_weight(state, i, light_pdf, settings.use_mis)
+            weight = 1.0 if bounce == 0 else emitter_weight(state, i, light_pdf, settings.use_mis)
             group, slot = emitter_group(lights, triangle), camera_slot(layout, depth, False)
             if materials.flags[material] & MAT_EMISSION_VARIES:
                 radiance = scratch.li
@@ -189,7 +196,7 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
                 if settings.clamping:
                     for k in range(state.radiance.shape[1]):
                         scratch.weight[k] = state.throughput[i, k] * weight * radiance[k]
-                    weight *= clamp_factor(settings, state, i, scratch.weight, depth > 1)
+                    weight *= clamp_factor(settings, state, i, scratch.weight, bounce > 1)
                 for k in range(state.radiance.shape[1]):
                     value = state.throughput[i, k] * weight * radiance[k]
                     state.radiance[i, k] += value
@@ -197,7 +204,7 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
                         deposit(passes, layout, i, k, value, group, slot, False)
             else:
                 _add(state, i, materials.emission_strength[material], materials.emission_spectrum[material],
-                     spectra, weight, passes, layout, group, slot, False, settings, depth, scratch.weight)
+                     spectra, weight, passes, layout, group, slot, False, settings, bounce, scratch.weight)
         if shade_next:
             state.hit_triangle[i] = triangle
             state.hit_u[i] = hit_u[j]

@@ -223,7 +223,7 @@ def light_bounce_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, l
         adjoint = eta_scale * abs(wo_l[2]) * abs(cos_out_g) / (abs(cos_in_g) * abs(wi_l[2]))
         for c in range(k):
             state.throughput[i, c] *= weight[c] * adjoint
-        if not survives(state, i, depth, settings, collapsed):
+        if not survives(state, i, depth, depth, settings, collapsed):
             continue
         if not ((mflags & MAT_NULL) != 0 and wo_l[2] * wi_l[2] < 0.0):
             state.flags[i] |= LIGHT_SPECULAR

@@ -19,6 +19,7 @@ from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..vec3 import to_local
 from ..warps import power_heuristic
+from .bounces import path_bounce
 from .clamp import clamp_factor
 from .pass_writes import lobe_shares
 from .queue import queue_shadow
@@ -72,7 +73,7 @@ def sample_direct(state, i, vertex, bsdf, lights, materials, spectra, geometry, 
     if not any_light:
         return 0
     if settings.clamping:
-        factor = clamp_factor(settings, state, i, contribution, depth > 0)
+        factor = clamp_factor(settings, state, i, contribution, path_bounce(state, i, depth) > 0)
         for k in range(li.shape[0]):
             contribution[k] *= factor
     origin, skipped = leave_surface(geometry, state.hit_triangle[i], state.hit_u[i], p, ng, wi, state.time[i])

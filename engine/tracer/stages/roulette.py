@@ -20,9 +20,10 @@ def continuation_probability(throughput):
 
 
 @inlined
-def survives(state, i, depth, settings, collapsed):
-    """Play roulette for path ``i`` after its vertex at ``depth``: True if it goes on (throughput rescaled)."""
-    if depth + 1 < settings.roulette_depth:
+def survives(state, i, depth, bounce, settings, collapsed):
+    """Play roulette for path ``i`` after its vertex at step ``depth`` (its uniform's slot), its ``bounce``-th
+    scattering or transparent bounce (counted from 0): True if it goes on (throughput rescaled)."""
+    if bounce + 1 < settings.roulette_depth:
         return True
     k = state.throughput.shape[1]
     largest = 0.0

@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections import namedtuple
 
 #: max_bounces, roulette_depth (first vertex depth where roulette may end a path, minus one),
+#: transparent_max_bounces (Cycles' Transparent Max Bounces: cut-outs and films a path goes straight through,
+#: counted apart from its bounces: ``stages.bounces``),
 #: use_mis, sampler (``sampler.SOBOL`` / ``INDEPENDENT``), seed; light_tracing (caustic paths come from
 #: light tracing and path tracing skips them: ``stages.caustic_split``); film_transparent (the background
 #: seen by camera paths is see-through), transparent_glass (camera paths stay camera paths through
@@ -31,6 +33,6 @@ KernelSettings = namedtuple(
     "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha "
     "clamping clamp_direct clamp_indirect caustics_filtered caustics_reflective caustics_refractive wavelengths "
     "has_media outside_medium camera_medium equiangular filter_glossy light_linking shadow_linking light_path "
-    "shaded_normals shadow_catcher",
-    defaults=(False, False),
+    "shaded_normals shadow_catcher transparent_max_bounces",
+    defaults=(False, False, 8),
 )

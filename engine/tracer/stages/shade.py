@@ -24,14 +24,15 @@ from ..materials.light_path import after_scattering, after_transparent, emission
 from ..materials.shader_rays import ShaderRays
 from ..materials.closure_normals import orient_closures
 from ..materials.surface import shade_surface
-from ..materials.table import (MAT_CLOSURE_NORMALS, MAT_DELTA, MAT_DISPERSIVE, MAT_HAIR, MAT_MEDIUM, MAT_NULL,
-                               MAT_ONE_SIDED)
+from ..materials.table import (MAT_BOUNDARY, MAT_CLOSURE_NORMALS, MAT_DELTA, MAT_DISPERSIVE, MAT_HAIR, MAT_MEDIUM,
+                               MAT_NULL, MAT_ONE_SIDED)
 from ..media.boundary import side_medium
 from ..media.scatter import scatter_in_medium
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
 from ..state import (CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA,
                      SUBSURFACE_EXIT)
 from ..vec3 import tangents, to_local, to_world
+from .bounces import TRANSPARENT, count_crossing, path_bounce
 from .caustic_split import classify_vertex
 from .caustics_toggles import filter_caustic_closures
 from .filter_glossy import blur_alpha, blur_glossy_closures
@@ -102,6 +103,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             queued += pushed
             shadowed += lit
             continue  # a camera path is no longer one after a medium vertex: Cryptomatte attributes it to nothing
+        bounce = path_bounce(state, i, depth)
+        final = bounce > settings.max_bounces  # only going through a cut-out or a film is left (``stages.bounces``)
         triangle = state.hit_triangle[i]
         p, ng, ns = surface_at(geometry, triangle, state.hit_u[i], state.hit_v[i], state.time[i])
         material = geometry.material[triangle]
@@ -144,7 +147,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         wo_l = to_local(wo, tangent, bitangent, n)
         if depth == 0 and layout.columns > 0:
             first_hit(state, passes, layout, settings, i, p, facing_ng, seen_n, material, triangle, registers)
-        if has_lights and (not mflags & MAT_DELTA or blurred):
+        if has_lights and not final and (not mflags & MAT_DELTA or blurred):
             if settings.light_path:
                 emission_sample(registers, state, i)
             vertex = SurfaceVertex(p, ng, frame, wo_l)
@@ -158,6 +161,12 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         wi_l, wi, pdf, sampled, eta_scale, largest, chosen = sample_scattering(state, i, depth, settings, rows,
                                                                                spectral, eta, closures, wo_l, frame,
                                                                                collapsed, weight, mix)
+        # A film crossed straight through, or a cut-out (Transparent BSDF, alpha): a null event for MIS. Light
+        # paths end at cut-outs (they are not specular), so for the caustic split only films are null.
+        film_crossing = (mflags & MAT_NULL) != 0 and wo_l[2] * wi_l[2] < 0.0
+        null_crossing = film_crossing or (sampled & SAMPLED_NULL) != 0
+        if final and not null_crossing:
+            continue
         cos_ig = wi[0] * ng[0] + wi[1] * ng[1] + wi[2] * ng[2]
         transmitted = sampled & SAMPLED_TRANSMISSION != 0
         valid = largest > 0.0 and pdf > 0.0 and on_its_geometric_side(cos_og, cos_ig, transmitted)
@@ -178,7 +187,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             state.throughput[i, c] *= weight[c]
         if sampled & SAMPLED_SUBSURFACE:  # under the surface: walk now, shade the exit at the next bounce
             state.flags[i] &= ~(CAMERA_PATH | LAST_DIFFUSE | LAST_TRANSMISSION)
-            if survives(state, i, depth, settings, collapsed):
+            if survives(state, i, depth, bounce, settings, collapsed):
                 pushed = walk_under_surface(state, i, rays, geometry, triangle, rows[chosen], spectral[chosen], p,
                                             facing_ng, wi, next_rays, queued, (li, f, mix[0]))
                 queued += pushed
@@ -190,15 +199,17 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             state.flags[i] = (state.flags[i] & ~(LAST_DIFFUSE | LAST_TRANSMISSION)) | (
                 LAST_TRANSMISSION if sampled & SAMPLED_TRANSMISSION
                 else (LAST_DIFFUSE if sampled & SAMPLED_DIFFUSE else 0))
-        if not exiting and not survives(state, i, depth, settings, collapsed):  # the exit played at its entry
+        # Roulette counts scatterings and transparent bounces apart; a volume's boundary is no bounce and plays none
+        # (Cycles). A random walk's exit played at its entry.
+        boundary = null_crossing and mflags & MAT_BOUNDARY != 0
+        played = state.crossings[i, TRANSPARENT] if null_crossing else bounce
+        if not (exiting or boundary) and not survives(state, i, depth, played, settings, collapsed):
             continue
-        # A film crossed straight through, or a cut-out (Transparent BSDF, alpha): a null event for MIS. Light
-        # paths end at cut-outs (they are not specular), so for the caustic split only films are null.
-        film_crossing = (mflags & MAT_NULL) != 0 and wo_l[2] * wi_l[2] < 0.0
-        null_crossing = film_crossing or (sampled & SAMPLED_NULL) != 0
+        if null_crossing:
+            count_crossing(state, i, not boundary)
         if settings.light_path:
             if null_crossing:
-                after_transparent(state, i)
+                after_transparent(state, i, not boundary)
             else:
                 after_scattering(state, i, sampled)
         if settings.light_tracing:

@@ -60,6 +60,8 @@ def copy_path(state, i, j):
         state.mis_origin[j, c] = state.mis_origin[i, c]
     for c in range(state.light_path.shape[1]):
         state.light_path[j, c] = state.light_path[i, c]
+    for c in range(state.crossings.shape[1]):
+        state.crossings[j, c] = state.crossings[i, c]
 
 
 @inlined

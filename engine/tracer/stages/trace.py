@@ -21,6 +21,7 @@ from . import real_lens as _real_lens
 from . import shade as _shade
 from . import shadow as _shadow
 from . import shadow_catcher as _shadow_catcher
+from .bounces import step_limit
 from .shadow import MAX_FILM_LAYERS
 
 # Called per bounce of every chunk: launched without the dispatcher's per-call typing (``jit.Launch``).
@@ -107,7 +108,7 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
         return rays_cast, int(rejected[0])
     routed = 0 if layout.light >= 0 else _ROUTE_END + 1
     rays_cast = 0
-    for depth in range(settings.max_bounces + 2):
+    for depth in range(step_limit(settings.max_bounces, settings.transparent_max_bounces)):
         if queued == 0:
             break
         if tables.ray_classes is None:

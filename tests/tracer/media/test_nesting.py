@@ -66,11 +66,11 @@ def test_media_add_their_coefficients_and_mix_their_phase_by_scattering():
 
 
 def _render(parts, materials, cam, lights, fog):
-    # Crossing a volume's null surface counts as a bounce: no roulette over the four crossings, whose survivors
-    # would add noise to a ratio that is otherwise exact.
+    # A volume's boundary is no bounce of any kind, as in Cycles: the camera ray crosses four of them at Max Bounces
+    # 0 and Transparent Max Bounces 0, and plays no roulette there (which would add noise to an exact ratio).
     scene = make_scene(parts, materials, cam, lights, World(color=(0.0, 0.0, 0.0), strength=0.0, medium=fog))
-    with Renderer(scene, settings(samples=32, samples_per_pass=32, spectral_band_nm=10.0, max_bounces=8,
-                                      russian_roulette_depth=8)) as r:
+    with Renderer(scene, settings(samples=32, samples_per_pass=32, spectral_band_nm=10.0, max_bounces=0,
+                                  transparent_max_bounces=0, russian_roulette_depth=1)) as r:
         r.render_pass()
         return r.spectral_film.mean().astype(np.float64).mean((0, 1)), r.spectral_film.centres_nm
 

@@ -1,0 +1,69 @@
+"""A path's bounces apart from the wavefront's depth, counted as Cycles counts them (``path_state_next``).
+
+The bounce loop steps every path of a chunk together: at step ``depth`` each live path has travelled
+``depth`` rays. Not every ray starts at a scattering, though:
+
+- a **transparent bounce** goes straight through a cut-out (Transparent BSDF, alpha) or a free-standing film.
+  Cycles counts these apart (Light Paths ▸ Max Bounces ▸ Transparent), not in Max Bounces;
+- a **volume boundary** (a mesh whose material has a Volume but no Surface) is no bounce at all in Cycles: the
+  ray goes on into or out of the medium, counted only against a sanity limit (``VOLUME_BOUNDS_MAX``).
+
+``PathState.crossings`` int32 [n, 2] keeps, per path, the steps that were not scatterings (``STEPS``: both
+kinds) and the transparent bounces (``TRANSPARENT``). The path's bounce count is then ``depth`` minus its
+steps. The sampler's dimensions stay per step (``sampler.bounce_slot(depth, ...)``), as Cycles advances its
+``rng_offset`` at transparent bounces and volume boundaries too; so does the split of the render passes into
+direct and indirect light (``pass_writes.camera_slot``), which is decided per step for the whole chunk.
+
+A path whose bounces are used up (more than Max Bounces) still goes through cut-outs and films, as Cycles'
+``PATH_RAY_TERMINATE_AFTER_TRANSPARENT``: the surface is shaded without light sampling, and the path ends
+unless the sampled lobe went straight through (unbiased: the straight lobe is picked with its weight's share).
+After Transparent Max Bounces transparent bounces, the next surface ends the path after its emission
+(``PATH_RAY_TERMINATE_ON_NEXT_SURFACE``).
+"""
+
+from __future__ import annotations
+
+from ..jit import inlined, kernel
+
+#: ``PathState.crossings`` columns: steps that were not scatterings; of them, transparent bounces.
+STEPS, TRANSPARENT = 0, 1
+CROSSINGS = 2
+
+#: Volume boundaries a path may cross (Cycles' ``VOLUME_BOUNDS_MAX``): a guard against a ray stuck on a surface.
+VOLUME_BOUNDS_MAX = 1024
+
+
+@kernel
+def step_limit(max_bounces, transparent_max_bounces):
+    """Steps of the bounce loop: every bounce, every transparent bounce and the volume boundaries a path may take,
+    the camera ray, and the ray that only finds the emission past the last bounce."""
+    return max_bounces + max(transparent_max_bounces, 1) + VOLUME_BOUNDS_MAX + 2
+
+
+@inlined
+def start_counts(state, i):
+    """A new camera path: no steps skipped, no transparent bounce."""
+    state.crossings[i, STEPS] = 0
+    state.crossings[i, TRANSPARENT] = 0
+
+
+@inlined
+def path_bounce(state, i, depth):
+    """The scatterings path ``i`` has made before the vertex it meets at step ``depth``."""
+    return depth - state.crossings[i, STEPS]
+
+
+@inlined
+def ends_at_next_surface(state, i, settings):
+    """Cycles' PATH_RAY_TERMINATE_ON_NEXT_SURFACE: the path has made its last transparent bounce (Transparent Max
+    Bounces, taken as at least one, as Cycles sets the flag only after a crossing)."""
+    return state.crossings[i, TRANSPARENT] >= max(settings.transparent_max_bounces, 1)
+
+
+@inlined
+def count_crossing(state, i, transparent):
+    """Path ``i`` went straight through a surface: a transparent bounce, or (``transparent`` False) a volume's
+    boundary."""
+    state.crossings[i, STEPS] += 1
+    if transparent:
+        state.crossings[i, TRANSPARENT] += 1

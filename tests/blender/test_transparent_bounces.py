@@ -1,0 +1,53 @@
+"""Transparent bounces as Cycles 4.5 counts them, both engines rendering one .blend in the test: five planes with
+a Transparent BSDF (Color 0.8) over an emitter of strength 1, seen from above at Max Bounces 0. Each crossing is
+a transparent bounce, not a bounce: the emitter shows 0.8^5 of its radiance in both. With Transparent Max Bounces
+4 the fifth plane ends the path in both: black."""
+
+from __future__ import annotations
+
+import bpy
+import numpy as np
+import pytest
+
+from helpers.cycles import render_cycles_rgba, render_prism_rgba
+from helpers.node_scenes import black_world, camera, material, node, plane
+
+TINT, LAYERS = 0.8, 5
+
+
+def _stack():
+    black_world()
+    lamp, nodes, link = material("Lamp")
+    link(node(nodes, "ShaderNodeEmission", Strength=1.0).outputs[0], nodes["Output"].inputs["Surface"])
+    plane("Emitter", 10.0, mat=lamp)
+    cut_out, nodes, link = material("Cut-out")
+    link(node(nodes, "ShaderNodeBsdfTransparent", Color=(TINT,) * 3).outputs[0], nodes["Output"].inputs["Surface"])
+    for z in range(1, LAYERS + 1):
+        plane(f"Layer {z}", 10.0, location=(0.0, 0.0, float(z)), mat=cut_out)
+    camera((0.0, 0.0, 10.0), (0.0, 0.0, 0.0), lens_mm=50.0, resolution=(8, 8))
+
+
+def _both(scene, transparent_max_bounces):
+    scene.prism.max_bounces, scene.prism.transparent_max_bounces = 0, transparent_max_bounces
+    scene.prism.russian_roulette_depth = 64  # exact: no roulette at the crossings (Cycles' starts later)
+    cycles = render_cycles_rgba(scene, 4, max_bounces=0, transparent_max_bounces=transparent_max_bounces)
+    prism = render_prism_rgba(scene, 4)
+    return prism[..., :3].astype(np.float64), cycles[..., :3].astype(np.float64)
+
+
+def test_cut_outs_are_transparent_bounces_as_in_cycles(prism_addon, fresh_scene):
+    _stack()
+    prism, cycles = _both(fresh_scene, 8)
+    print(f"MEASURED five cut-outs at Max Bounces 0: Prism {prism.mean():.5f}, Cycles {cycles.mean():.5f}, "
+          f"closed form {TINT ** LAYERS:.5f}")
+    assert cycles.mean() == pytest.approx(TINT ** LAYERS, rel=0.01)
+    assert prism.mean(axis=(0, 1)) == pytest.approx(np.full(3, TINT ** LAYERS), rel=0.02)
+    assert prism.mean() / cycles.mean() == pytest.approx(1.0, abs=0.02)
+
+
+def test_the_last_transparent_bounce_ends_the_path_at_the_next_surface_as_in_cycles(prism_addon, fresh_scene):
+    _stack()
+    prism, cycles = _both(fresh_scene, LAYERS - 1)
+    print(f"MEASURED five cut-outs, Transparent Max Bounces 4: Prism {prism.mean():.5f}, Cycles {cycles.mean():.5f}")
+    assert cycles.max() < 1e-6
+    assert np.all(prism == 0.0)

@@ -1,0 +1,95 @@
+"""Transparent bounces counted as Cycles counts them (``stages.bounces``): cut-outs (a Transparent BSDF) use up
+Transparent Max Bounces, not Max Bounces; past its last bounce a path still goes through them; after its last
+transparent bounce the next surface ends it. Closed forms: a stack of grey cut-outs in front of an emitter
+passes τ^N of its light, and a floor lit by a uniform sky through a cut-out shines ρ τ L."""
+
+import numpy as np
+import pytest
+
+from engine.tracer.bsdf.closure import TRANSPARENT
+from engine.tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
+from engine.tracer.renderer import Renderer
+from engine.tracer.scene import Camera, Material, SpectrumSpec, World
+
+from .tracer_scenes import look_at, make_scene, quad, settings
+
+TINT = 0.8
+LAYERS = 5
+
+
+def _cut_out(name="cut-out", tint=TINT):
+    return Material(name, shader=ShaderProgram([ClosureSpec(TRANSPARENT, tint=Colour(rgb=(tint,) * 3))]))
+
+
+def _render(scene, **kw):
+    with Renderer(scene, settings(**kw)) as r:
+        r.render_pass()
+        return r.image_rgb().astype(np.float64)
+
+
+def _stack(layers):
+    """An emitter at z = 0 seen from z = 10 through ``layers`` cut-outs at z = 1 .. layers."""
+    cam = Camera("cam", look_at((0, 0, 10.0), (0, 0, 0), up=(0, 1, 0)), (8, 8), film_width_mm=6.0,
+                 film_height_mm=6.0)
+    lamp = Material("lamp", base_color=(0.0, 0.0, 0.0), emission=SpectrumSpec(), emission_strength=1.0)
+    parts = [(*quad((0, 0, 0), (5, 0, 0), (0, 5, 0)), 0)]
+    parts += [(*quad((0, 0, z), (5, 0, 0), (0, 5, 0)), 1) for z in range(1, layers + 1)]
+    return make_scene(parts, [lamp, _cut_out()], cam, [], World(color=(0.0, 0.0, 0.0), strength=0.0))
+
+
+@pytest.mark.parametrize("max_bounces", [0, 2])
+def test_cut_outs_take_transparent_bounces_not_max_bounces(max_bounces):
+    """Through five cut-outs of tint 0.8 the emitter keeps 0.8^5 of its light, even at Max Bounces 0 (each crossing
+    is a transparent bounce). Exact: the only lobe goes straight through, with no roulette to play."""
+    kw = dict(samples=1, samples_per_pass=1, max_bounces=max_bounces, russian_roulette_depth=64)
+    bare = _render(_stack(0), **kw)
+    through = _render(_stack(LAYERS), **kw)
+    assert bare.mean() > 0.8 and bare.min() > 0.0  # one wavelength sample per pixel: colour noise, no black
+    assert through / bare == pytest.approx(np.full_like(bare, TINT ** LAYERS), rel=1e-6)
+
+
+def test_after_its_last_transparent_bounce_a_path_ends_at_the_next_surface():
+    """Cycles' PATH_RAY_TERMINATE_ON_NEXT_SURFACE: with Transparent Max Bounces 5 the path crosses the five cut-outs
+    and still sees the emitter's light (a surface's emission counts before it ends the path); with 4 the fifth
+    cut-out ends it, black."""
+    kw = dict(samples=1, samples_per_pass=1, max_bounces=0, russian_roulette_depth=64)
+    bare = _render(_stack(0), **kw)
+    five = _render(_stack(LAYERS), transparent_max_bounces=LAYERS, **kw)
+    four = _render(_stack(LAYERS), transparent_max_bounces=LAYERS - 1, **kw)
+    assert five / bare == pytest.approx(np.full_like(bare, TINT ** LAYERS), rel=1e-6)
+    assert np.all(four == 0.0)
+
+
+def test_roulette_at_transparent_bounces_is_unbiased():
+    """From the third transparent bounce on (Russian Roulette Depth 3) paths may end at a cut-out; the survivors
+    carry the rest: the mean stays 0.8^5."""
+    kw = dict(samples=64, samples_per_pass=64, max_bounces=0, russian_roulette_depth=3)
+    ratio = _render(_stack(LAYERS), **kw).mean() / _render(_stack(0), **kw).mean()
+    print("MEASURED transmittance through 5 cut-outs with roulette:", ratio, "closed form", TINT ** LAYERS)
+    assert ratio == pytest.approx(TINT ** LAYERS, rel=0.02)
+
+
+def _floor_under_sky(cut_out):
+    """A grey floor (albedo 0.5) seen from above under a uniform white sky of radiance 1, through a cut-out 1 m
+    above it that covers all but 1e-4 of the floor's sky (200 m wide)."""
+    cam = Camera("cam", look_at((0, 0, 0.5), (0, 0, 0), up=(0, 1, 0)), (16, 16), film_width_mm=10.0,
+                 film_height_mm=10.0)
+    floor = Material("floor", base_color=(0.5, 0.5, 0.5))
+    parts = [(*quad((0, 0, 0), (0.5, 0, 0), (0, 0.5, 0)), 0)]
+    if cut_out:
+        parts.append((*quad((0, 0, 1.0), (100, 0, 0), (0, 100, 0)), 1))
+    return make_scene(parts, [floor, _cut_out()], cam, [], World(color=(1.0, 1.0, 1.0), strength=1.0))
+
+
+def test_past_max_bounces_a_path_still_goes_through_cut_outs():
+    """Cycles' PATH_RAY_TERMINATE_AFTER_TRANSPARENT. At Max Bounces 0 the floor's light comes from its one vertex:
+    light sampling (shadow rays cross the cut-out) and the BSDF ray, which meets the cut-out after the path's last
+    bounce and must still reach the sky for its share of MIS. Radiance ρ τ L = 0.5 × 0.8 × 1; the camera sits
+    under the cut-out, so it sees the floor directly."""
+    kw = dict(samples=32, samples_per_pass=32, max_bounces=0)
+    bare = _render(_floor_under_sky(False), **kw)
+    through = _render(_floor_under_sky(True), **kw)
+    ratio = through.mean() / bare.mean()
+    print("MEASURED floor under a cut-out / bare:", ratio, "absolute:", through.mean(axis=(0, 1)))
+    assert ratio == pytest.approx(TINT, rel=0.01)
+    assert through.mean(axis=(0, 1)) == pytest.approx(np.full(3, 0.5 * TINT), rel=0.02)
