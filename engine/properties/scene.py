@@ -104,8 +104,8 @@ class PrismSceneSettings(bpy.types.PropertyGroup):
     )
     transparent_max_bounces: IntProperty(
         name="Transparent Max Bounces",
-        description="Maximum number of cut-outs (Transparent BSDF, alpha) and films a path goes straight through; "
-        "they do not use up Max Bounces, and volumes' boundaries count as neither (as in Cycles)",
+        description="Maximum number of cut-outs (Transparent BSDF, alpha) and films a path goes straight through "
+        "(one more, as Cycles counts them); they do not use up Max Bounces, and volumes' boundaries count as neither",
         default=8,
         min=0,
         max=1024,

@@ -1,7 +1,8 @@
 """Transparent bounces counted as Cycles counts them (``stages.bounces``): cut-outs (a Transparent BSDF) use up
 Transparent Max Bounces, not Max Bounces; past its last bounce a path still goes through them; after its last
-transparent bounce the next surface ends it. Closed forms: a stack of grey cut-outs in front of an emitter
-passes τ^N of its light, and a floor lit by a uniform sky through a cut-out shines ρ τ L."""
+transparent bounce the next surface ends it; shadow rays cross as many. Closed forms: a stack of grey cut-outs in
+front of an emitter or a point light passes τ^N of its light, and a floor lit by a uniform sky through a cut-out
+shines ρ τ L."""
 
 import numpy as np
 import pytest
@@ -9,7 +10,7 @@ import pytest
 from engine.tracer.bsdf.closure import TRANSPARENT
 from engine.tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
 from engine.tracer.renderer import Renderer
-from engine.tracer.scene import Camera, Material, SpectrumSpec, World
+from engine.tracer.scene import Camera, Light, Material, SpectrumSpec, World
 
 from .tracer_scenes import look_at, make_scene, quad, settings
 
@@ -49,13 +50,14 @@ def test_cut_outs_take_transparent_bounces_not_max_bounces(max_bounces):
 
 
 def test_after_its_last_transparent_bounce_a_path_ends_at_the_next_surface():
-    """Cycles' PATH_RAY_TERMINATE_ON_NEXT_SURFACE: with Transparent Max Bounces 5 the path crosses the five cut-outs
-    and still sees the emitter's light (a surface's emission counts before it ends the path); with 4 the fifth
-    cut-out ends it, black."""
+    """Cycles' PATH_RAY_TERMINATE_ON_NEXT_SURFACE, counted as Cycles 4.5 counts it (Transparent Max Bounces + 1
+    crossings, as Max Bounces N allows N + 1 scatterings): with Transparent Max Bounces 4 the path crosses the five
+    cut-outs and still sees the emitter's light (a surface's emission counts before it ends the path); with 3 the
+    fifth cut-out ends it, black. Cycles 4.5 renders the same: tests/blender/test_transparent_bounces.py."""
     kw = dict(samples=1, samples_per_pass=1, max_bounces=0, russian_roulette_depth=64)
     bare = _render(_stack(0), **kw)
-    five = _render(_stack(LAYERS), transparent_max_bounces=LAYERS, **kw)
-    four = _render(_stack(LAYERS), transparent_max_bounces=LAYERS - 1, **kw)
+    five = _render(_stack(LAYERS), transparent_max_bounces=LAYERS - 1, **kw)
+    four = _render(_stack(LAYERS), transparent_max_bounces=LAYERS - 2, **kw)
     assert five / bare == pytest.approx(np.full_like(bare, TINT ** LAYERS), rel=1e-6)
     assert np.all(four == 0.0)
 
@@ -93,3 +95,27 @@ def test_past_max_bounces_a_path_still_goes_through_cut_outs():
     print("MEASURED floor under a cut-out / bare:", ratio, "absolute:", through.mean(axis=(0, 1)))
     assert ratio == pytest.approx(TINT, rel=0.01)
     assert through.mean(axis=(0, 1)) == pytest.approx(np.full(3, 0.5 * TINT), rel=0.02)
+
+
+def _floor_under_layers(layers):
+    """A grey floor seen from 0.5 m above, under ``layers`` cut-outs at z = 1 .. layers and a point light at 12 m."""
+    cam = Camera("cam", look_at((0, 0, 0.5), (0, 0, 0), up=(0, 1, 0)), (8, 8), film_width_mm=10.0,
+                 film_height_mm=10.0)
+    parts = [(*quad((0, 0, 0), (0.5, 0, 0), (0, 0.5, 0)), 0)]
+    parts += [(*quad((0, 0, z), (5, 0, 0), (0, 5, 0)), 1) for z in range(1, layers + 1)]
+    lamp = Light("lamp", "point", np.array([0.0, 0.0, 12.0]), power_w=1000.0)
+    return make_scene(parts, [Material("floor", base_color=(0.5, 0.5, 0.5)), _cut_out()], cam, [lamp],
+                      World(color=(0.0, 0.0, 0.0), strength=0.0))
+
+
+def test_shadow_rays_cross_as_many_cut_outs_as_transparent_max_bounces():
+    """Shadow rays take Transparent Max Bounces layers (never fewer than 8), as Cycles' do: ten cut-outs pass
+    0.8^10 of the light with Transparent Max Bounces 10, and block it with the default 8. Exact: light sampling
+    of a point light is the floor's only light at Max Bounces 0."""
+    kw = dict(samples=1, samples_per_pass=1, max_bounces=0)
+    bare = _render(_floor_under_layers(0), **kw)
+    ten = _render(_floor_under_layers(10), transparent_max_bounces=10, **kw)
+    eight = _render(_floor_under_layers(10), **kw)
+    assert bare.mean() > 0.05
+    assert ten / bare == pytest.approx(np.full_like(bare, TINT ** 10), rel=1e-6)
+    assert np.all(eight == 0.0)

@@ -30,7 +30,7 @@ from .emission import emission_kernel
 from .film import film_kernel
 from .pass_writes import ao_kernel, convert_kernel, route_kernel
 from .shade import shade_kernel
-from .shadow import MAX_FILM_LAYERS, film_layer_kernel, shadow_kernel
+from .shadow import film_layer_kernel, shadow_kernel, shadow_layers
 
 #: The render's tables the loop reads (``scene_tables.SceneTables.arrays``).
 SceneArrays = namedtuple("SceneArrays", "geometry materials lights spectra settings wavelengths")
@@ -49,7 +49,7 @@ def _trace_shadows(loop, arrays, caster, passes, layout, count, see_through):
     hits = loop.hits
     rays = 0
     if see_through:
-        for layer in range(MAX_FILM_LAYERS):
+        for layer in range(shadow_layers(arrays.settings.transparent_max_bounces)):
             if count == 0:
                 return rays
             closest_hits(caster, shadows.rays, count, True, hits)

@@ -17,8 +17,8 @@ direct and indirect light (``pass_writes.camera_slot``), which is decided per st
 A path whose bounces are used up (more than Max Bounces) still goes through cut-outs and films, as Cycles'
 ``PATH_RAY_TERMINATE_AFTER_TRANSPARENT``: the surface is shaded without light sampling, and the path ends
 unless the sampled lobe went straight through (unbiased: the straight lobe is picked with its weight's share).
-After Transparent Max Bounces transparent bounces, the next surface ends the path after its emission
-(``PATH_RAY_TERMINATE_ON_NEXT_SURFACE``).
+After Transparent Max Bounces + 1 transparent bounces (Cycles 4.5's count), the next surface ends the path after its
+emission (``PATH_RAY_TERMINATE_ON_NEXT_SURFACE``).
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ VOLUME_BOUNDS_MAX = 1024
 def step_limit(max_bounces, transparent_max_bounces):
     """Steps of the bounce loop: every bounce, every transparent bounce and the volume boundaries a path may take,
     the camera ray, and the ray that only finds the emission past the last bounce."""
-    return max_bounces + max(transparent_max_bounces, 1) + VOLUME_BOUNDS_MAX + 2
+    return max_bounces + transparent_max_bounces + VOLUME_BOUNDS_MAX + 3
 
 
 @inlined
@@ -55,9 +55,10 @@ def path_bounce(state, i, depth):
 
 @inlined
 def ends_at_next_surface(state, i, settings):
-    """Cycles' PATH_RAY_TERMINATE_ON_NEXT_SURFACE: the path has made its last transparent bounce (Transparent Max
-    Bounces, taken as at least one, as Cycles sets the flag only after a crossing)."""
-    return state.crossings[i, TRANSPARENT] >= max(settings.transparent_max_bounces, 1)
+    """Cycles' PATH_RAY_TERMINATE_ON_NEXT_SURFACE: the path has made its last transparent bounce. Cycles 4.5 sets the
+    flag once a path has made Transparent Max Bounces + 1 of them (its kernel limit is the setting + 1, as Max
+    Bounces' is), measured: five stacked cut-outs pass light at Transparent Max Bounces 4, none at 3."""
+    return state.crossings[i, TRANSPARENT] > settings.transparent_max_bounces
 
 
 @inlined

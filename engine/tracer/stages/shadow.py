@@ -4,7 +4,7 @@ Free-standing films (``MAT_NULL``) transmit undeviated, so light behind them rea
 straight shadow ray, attenuated by T = 1 - R(λ, θ) per wavelength; cut-outs (``MAT_TRANSPARENT``: alpha,
 Transparent BSDF) let it through by their transparency at the point crossed. In scenes with either,
 shadow rays are traced as closest-hit queries layer by layer (``film_layer_kernel`` keeps the rays that
-crossed such a surface, attenuated and moved past it; anything else blocks), up to ``MAX_FILM_LAYERS``;
+crossed such a surface, attenuated and moved past it; anything else blocks), up to ``shadow_layers``;
 one occlusion query settles the rest. With media (``KernelSettings.has_media``) shadow rays are always
 traced layer by layer: each stretch inside a medium attenuates them by its transmittance exp(-σ_t(λ) d)
 (analytic in a homogeneous medium, estimated by ratio tracking in a grid medium: ``media.transmittance``),
@@ -28,7 +28,14 @@ from ..media.boundary import side_medium
 from ..media.transmittance import transmit
 from .pass_writes import deposit
 
-MAX_FILM_LAYERS = 8
+MAX_FILM_LAYERS = 8  # at least this many layers, whatever Transparent Max Bounces says: media boundaries count too
+
+
+@kernel
+def shadow_layers(transparent_max_bounces):
+    """Layers a shadow ray is traced through before one occlusion query settles it: Transparent Max Bounces, as
+    Cycles' shadow rays take, and never fewer than ``MAX_FILM_LAYERS`` (volume boundaries are layers here)."""
+    return max(MAX_FILM_LAYERS, transparent_max_bounces)
 
 
 @inlined

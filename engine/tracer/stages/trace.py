@@ -22,7 +22,7 @@ from . import shade as _shade
 from . import shadow as _shadow
 from . import shadow_catcher as _shadow_catcher
 from .bounces import step_limit
-from .shadow import MAX_FILM_LAYERS
+from .shadow import shadow_layers
 
 # Called per bounce of every chunk: launched without the dispatcher's per-call typing (``jit.Launch``).
 camera_kernel = Launch(_camera.camera_kernel)
@@ -54,7 +54,7 @@ def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
     paths = (state,) if tables.ray_classes is not None else ()
     if (tables.analysis.see_through_films or tables.analysis.see_through_cutouts
             or tables.kernel_settings.has_media or tables.kernel_settings.shadow_linking):
-        for layer in range(MAX_FILM_LAYERS):
+        for layer in range(shadow_layers(tables.kernel_settings.transparent_max_bounces)):
             if count == 0:
                 return rays
             hit = accel.intersect_before(shadows.rays, count, *paths)
