@@ -28,7 +28,7 @@ def bounce_limit_warnings(scene, max_bounces: int) -> list[str]:
             continue
         limit = int(getattr(cycles, name))
         if limit < max_bounces:
-            out.append(f"Scene '{scene.name}': Light Paths ▸ Max Bounces ▸ {label} is {limit}, but Prism has no limit "
-                       f"per kind of bounce: {what} go on up to Max Bounces ({max_bounces}), so the image can be "
-                       "brighter than Cycles' where light takes more of them.")
+            out.append(f"Scene '{scene.name}': Light Paths ▸ Max Bounces ▸ {label} is {limit}, but Prism has no "
+                       f"limit per kind of bounce: {what} go on up to Max Bounces ({max_bounces}), so the image can "
+                       "be brighter than Cycles' where light takes more of them.")
     return out
