@@ -50,6 +50,8 @@ from collections import namedtuple
 
 import numpy as np
 
+from .stages.bounces import CROSSINGS
+
 COLLAPSED = 1
 PREV_DELTA = 2
 SEEN_DIFFUSE = 4
@@ -74,7 +76,7 @@ _PATH_FIELDS = (
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
     ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
     ("transparency", np.float64, ()), ("time", np.float64, ()), ("receiver", np.int64, ()),
-    ("light_path", np.int32, (6,)), ("ray_travelled", np.float64, ()), ("crossings", np.int32, (2,)),
+    ("light_path", np.int32, (6,)), ("ray_travelled", np.float64, ()), ("crossings", np.int32, (CROSSINGS,)),
 )
 PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
 

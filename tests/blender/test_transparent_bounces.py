@@ -51,6 +51,7 @@ def test_the_last_transparent_bounce_ends_the_path_at_the_next_surface_as_in_cyc
     prism, cycles = _both(fresh_scene, LAYERS - 1)
     print(f"MEASURED five cut-outs, Transparent Max Bounces 4: Prism {prism.mean():.5f}, Cycles {cycles.mean():.5f}")
     assert cycles.mean() == pytest.approx(TINT ** LAYERS, rel=0.005)
+    assert prism.mean(axis=(0, 1)) == pytest.approx(np.full(3, TINT ** LAYERS), rel=0.02)
     assert prism.mean() / cycles.mean() == pytest.approx(1.0, abs=0.02)
     prism, cycles = _both(fresh_scene, LAYERS - 2)
     print(f"MEASURED five cut-outs, Transparent Max Bounces 3: Prism {prism.mean():.5f}, Cycles {cycles.mean():.5f}")

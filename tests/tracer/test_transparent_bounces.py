@@ -47,6 +47,8 @@ def test_cut_outs_take_transparent_bounces_not_max_bounces(max_bounces):
     through = _render(_stack(LAYERS), **kw)
     assert bare.mean() > 0.8 and bare.min() > 0.0  # one wavelength sample per pixel: colour noise, no black
     assert through / bare == pytest.approx(np.full_like(bare, TINT ** LAYERS), rel=1e-6)
+    # absolute: an emitter of radiance 1 (white) behind the stack, averaged over the 64 pixels' wavelengths
+    assert through.mean() == pytest.approx(TINT ** LAYERS, rel=0.03)
 
 
 def test_after_its_last_transparent_bounce_a_path_ends_at_the_next_surface():
@@ -66,9 +68,12 @@ def test_roulette_at_transparent_bounces_is_unbiased():
     """From the third transparent bounce on (Russian Roulette Depth 3) paths may end at a cut-out; the survivors
     carry the rest: the mean stays 0.8^5."""
     kw = dict(samples=64, samples_per_pass=64, max_bounces=0, russian_roulette_depth=3)
-    ratio = _render(_stack(LAYERS), **kw).mean() / _render(_stack(0), **kw).mean()
-    print("MEASURED transmittance through 5 cut-outs with roulette:", ratio, "closed form", TINT ** LAYERS)
+    through = _render(_stack(LAYERS), **kw).mean()
+    ratio = through / _render(_stack(0), **kw).mean()
+    print("MEASURED transmittance through 5 cut-outs with roulette:", ratio, "closed form", TINT ** LAYERS,
+          "absolute:", through)
     assert ratio == pytest.approx(TINT ** LAYERS, rel=0.02)
+    assert through == pytest.approx(TINT ** LAYERS, rel=0.03)  # absolute: the emitter's radiance is 1
 
 
 def _floor_under_sky(cut_out):
@@ -118,4 +123,6 @@ def test_shadow_rays_cross_as_many_cut_outs_as_transparent_max_bounces():
     eight = _render(_floor_under_layers(10), **kw)
     assert bare.mean() > 0.05
     assert ten / bare == pytest.approx(np.full_like(bare, TINT ** 10), rel=1e-6)
+    # absolute: ρ/π · I / h² with I = 1000 W / 4π, h = 12 m, times 0.8^10
+    assert ten.mean() == pytest.approx(0.5 / np.pi * 1000.0 / (4 * np.pi) / 12.0 ** 2 * TINT ** 10, rel=0.03)
     assert np.all(eight == 0.0)
