@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import bpy
 
+from ..engine.properties.light import uses_blender_temperature
 from ..engine.properties.spectrum_sources import TEMPERATURE_RANGE_K
 from ._panel_base import PrismPanel, error_label
 from .spectrum_display import draw_spectrum
@@ -31,6 +32,12 @@ class PRISM_PT_light(PrismPanel, bpy.types.Panel):
         column.prop(settings, "color_source")
         if settings.color_source == "RGB":
             column.prop(light, "color")
+            if hasattr(light, "use_temperature"):  # Blender 4.4+: Color × a blackbody, as in Cycles
+                row = column.row(heading="Temperature")
+                row.prop(light, "use_temperature", text="")
+                value = row.row()
+                value.active = light.use_temperature
+                value.prop(light, "temperature", text="")
         elif settings.color_source == "BLACKBODY":
             column.prop(settings, "temperature_k")
             low, high = TEMPERATURE_RANGE_K
@@ -43,7 +50,7 @@ class PRISM_PT_light(PrismPanel, bpy.types.Panel):
             column.prop(settings, "illuminant")
         else:
             column.prop(settings, "spectrum_file")
-        if settings.color_source != "RGB":
+        if settings.color_source != "RGB" or uses_blender_temperature(light):
             column.prop(settings, "preview_color", text="Resulting Colour")
 
         layout.separator()

@@ -1,11 +1,11 @@
 """Blender lights → ``tracer.scene.Light`` (power in Blender's watts, as Cycles).
 
-The spectrum comes from ``Light.prism`` (``export.spectra``): the light's RGB colour, a
-blackbody at a colour temperature, a monochromatic line, a standard illuminant or a
-spectrum file. Strength is Blender's own energy. Spread, sun angle, spot size and blend and
-the Camera ray visibility are Cycles'; portals emit nothing (as in Cycles, where they only
-guide the world's sampling); settings Prism does not model get one warning per light
-(``light_settings``).
+The spectrum comes from ``Light.prism`` (``export.spectra``): the light's RGB colour (times a
+blackbody where Blender's own Temperature is on, as Cycles multiplies them), a blackbody at a
+colour temperature, a monochromatic line, a standard illuminant or a spectrum file. Strength is
+Blender's own energy. Spread, sun angle, spot size and blend and the Camera ray visibility are
+Cycles'; portals emit nothing (as in Cycles, where they only guide the world's sampling); settings
+Prism does not model get one warning per light (``light_settings``).
 """
 
 from __future__ import annotations
@@ -19,7 +19,8 @@ from .float_range import check_light_value
 from ..tracer.scene import Light, SpectrumSpec
 from .animated import settings_source
 from .light_settings import is_portal, light_warnings
-from .spectra import light_emission_source
+from ..properties.light import COLOR_SOURCE_ITEMS
+from .spectra import light_emission_source, shown_temperature
 
 _AREA_SHAPES = {"SQUARE": "rectangle", "RECTANGLE": "rectangle", "DISK": "disk", "ELLIPSE": "disk"}
 
@@ -82,6 +83,25 @@ def _export_light(name: str, light_data, matrix_world) -> Light:
     return light
 
 
+def temperature_warning(name: str, light_data) -> str | None:
+    """Blender 4.4+'s light Temperature, where Prism renders something else than Cycles' Color × its colour:
+    a Colour Source other than RGB (which sets the spectrum), or a temperature below Prism's blackbody range."""
+    if not getattr(light_data, "use_temperature", False):
+        return None
+    temperature = float(light_data.temperature)
+    source = light_data.prism.color_source
+    if source != "RGB":
+        label = next(item[1] for item in COLOR_SOURCE_ITEMS if item[0] == source)
+        return (f"Light '{name}': Blender's Temperature ({temperature:g} K) is not used: Light ▸ Prism ▸ Colour "
+                f"Source {label} sets the spectrum (Cycles renders the Color × the temperature's colour); set "
+                "Colour Source to RGB to render the temperature.")
+    shown = shown_temperature(temperature)
+    if shown != temperature:
+        return (f"Light '{name}': Temperature {temperature:g} K is below Prism's blackbody range; rendered at "
+                f"{shown:g} K (the same brightness, a less deep red).")
+    return None
+
+
 def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
     """Every visible light instance of the evaluated depsgraph (lights of power 0 are skipped)."""
     lights = []
@@ -92,12 +112,10 @@ def export_lights(depsgraph, warnings: list[str] | None = None) -> list[Light]:
         if obj.type != "LIGHT":
             continue
         data = obj.data.original
-        if getattr(data, "use_temperature", False) and warnings is not None and data.name not in warned:
-            warned.add(data.name)  # Blender 4.4+ has its own light temperature; Prism's is physical
-            warnings.append(
-                f"Light '{obj.name}': Blender's Temperature checkbox is ignored; for a blackbody spectrum "
-                "set Light ▸ Colour Source to Blackbody."
-            )
+        warning = temperature_warning(obj.name, data)
+        if warning and warnings is not None and data.name not in warned:
+            warned.add(data.name)
+            warnings.append(warning)
         if is_portal(obj.data.original):
             continue
         if warnings is not None and obj.original.name not in warned_objects:

@@ -17,8 +17,10 @@ from ..tracer.scene import ReflectanceSpec, SpectrumSpec
 from ..tracer.spectra.wavelengths import VISIBLE_RANGE_NM
 
 
+#: A light's Colour Source RGB with Blender's own Temperature checkbox on: its colour × the blackbody.
+BLENDER_TEMPERATURE = "BLENDER_TEMPERATURE"
 _EMISSION_FIELDS = {"BLACKBODY": ("temperature_k",), "MONOCHROMATIC": ("wavelength_nm", "width_nm"),
-                    "ILLUMINANT": ("illuminant",), "FILE": ("path",)}
+                    "ILLUMINANT": ("illuminant",), "FILE": ("path",), BLENDER_TEMPERATURE: ("temperature_k", "rgb")}
 _REFLECTANCE_FIELDS = {"MEASURED": ("name",), "FILE": ("path",)}
 
 
@@ -44,8 +46,8 @@ def _check_spectrum_scale(table, what: str) -> None:
 class EmissionSource:
     """What a light's or emissive material's spectrum is made of. ``owner`` names it in messages
     ("Light 'Lamp'"), ``panel`` where its settings are ("Light ▸ Prism"); ``source`` is the
-    Colour Source enum (``RGB``/``COLOR``, ``BLACKBODY``, ``MONOCHROMATIC``, ``ILLUMINANT``, ``FILE``);
-    ``path`` is absolute."""
+    Colour Source enum (``RGB``/``COLOR``, ``BLACKBODY``, ``MONOCHROMATIC``, ``ILLUMINANT``, ``FILE``) or
+    ``BLENDER_TEMPERATURE`` (a light's RGB colour × Blender's Temperature); ``path`` is absolute."""
 
     owner: str
     panel: str
@@ -60,6 +62,10 @@ class EmissionSource:
     def spec(self) -> SpectrumSpec:
         """The tracer's spectrum; ``PrismInputError`` naming the owner, setting and fix."""
         where = f"{self.owner} ({self.panel})"
+        if self.source == BLENDER_TEMPERATURE:  # Cycles: Color × the temperature's colour; Prism: a filtered Planck
+            self._check_rgb()
+            return SpectrumSpec(kind="blackbody", temperature_k=shown_temperature(self.temperature_k),
+                                rgb=tuple(float(c) for c in self.rgb))
         if self.source == "BLACKBODY":
             low, high = TEMPERATURE_RANGE_K
             if not low <= self.temperature_k <= high:
@@ -92,11 +98,21 @@ class EmissionSource:
             table = read_spectrum_file(self.path, f"{where}: spectrum file")
             _check_spectrum_scale(table, f"{where}: spectrum file '{self.path}'")
             return SpectrumSpec(kind="tabulated", table=table)
+        self._check_rgb()
+        return SpectrumSpec(kind="rgb", rgb=tuple(float(c) for c in self.rgb))
+
+    def _check_rgb(self) -> None:
         if not all(math.isfinite(c) and c >= 0 for c in self.rgb):
             raise PrismInputError(
                 f"{self.owner}: its colour {self.rgb} has negative or non-finite values; pick a colour again."
             )
-        return SpectrumSpec(kind="rgb", rgb=tuple(float(c) for c in self.rgb))
+
+
+def shown_temperature(temperature_k: float) -> float:
+    """Blender's light Temperature (800-20000 K) within Prism's blackbody range (1000-40000 K): 800-1000 K
+    renders at 1000 K, warned by ``lights.temperature_warning``."""
+    low, high = TEMPERATURE_RANGE_K
+    return min(max(float(temperature_k), low), high)
 
 
 @dataclass(frozen=True)
@@ -146,6 +162,9 @@ def light_emission_source(name: str, light_data) -> EmissionSource:
         values.update(temperature_k=float(settings.temperature_k), wavelength_nm=float(settings.wavelength_nm),
                       width_nm=float(settings.line_width_nm), illuminant=settings.illuminant,
                       path=absolute_path(settings.spectrum_file, light_data))
+    if source == "RGB" and getattr(light_data, "use_temperature", False):  # Blender 4.4+'s own light temperature
+        values["temperature_k"] = float(light_data.temperature)
+        return _only_used(EmissionSource, _EMISSION_FIELDS, f"Light '{name}'", "Light", BLENDER_TEMPERATURE, values)
     return _only_used(EmissionSource, _EMISSION_FIELDS, f"Light '{name}'", "Light ▸ Prism", source, values)
 
 

@@ -19,12 +19,17 @@ COLOR_SOURCE_ITEMS = [
 ]
 
 
+def uses_blender_temperature(light) -> bool:
+    """Colour Source RGB with Blender 4.4+'s own Temperature on: the light is its Color × a blackbody."""
+    return light.prism.color_source == "RGB" and bool(getattr(light, "use_temperature", False))
+
+
 def _preview_color(self):
     if self.color_source == "BLACKBODY":
         return blackbody_display_rgb(self.temperature_k)
     if self.color_source == "MONOCHROMATIC":
         return line_display_rgb(self.wavelength_nm, self.line_width_nm)
-    if self.color_source in ("ILLUMINANT", "FILE"):
+    if self.color_source in ("ILLUMINANT", "FILE") or uses_blender_temperature(self.id_data):
         from ..export.spectra import light_emission_source
         from ..output.spectrum_preview import emission_preview
 

@@ -21,13 +21,15 @@ class SpectrumSpec:
     """How an emitter's spectrum is defined.
 
     kind: ``"rgb"`` (linear Rec.709 triple, upsampled against D65),
-    ``"blackbody"`` (``temperature_k``, 1000-40000 K), ``"monochromatic"``
+    ``"blackbody"`` (``temperature_k``, 1000-40000 K; ``rgb`` other than white filters it as Blender's
+    light Temperature × Color does: ``spectra.tinted_blackbody``), ``"monochromatic"``
     (a narrow line at ``wavelength_nm`` with full width ``width_nm``),
     ``"illuminant"`` (``illuminant``: a key of colour-science's ``SDS_ILLUMINANTS``,
     e.g. ``"FL2"``, ``"LED-B3"``, ``"HP1"``) or ``"tabulated"`` (``table``, a
     ``SampledSpectrum``, e.g. from a spectrum file).
     The spectrum is normalised so its luminance is that of the RGB white of the
-    same strength; strength/power lives on the light, not here.
+    same strength (a tinted blackbody: that of the white blackbody through the tint);
+    strength/power lives on the light, not here.
     """
 
     kind: str = "rgb"

@@ -29,6 +29,7 @@ from .nesting import combined_spec, transitions
 from .phase_functions import phase_table
 from .tabulated_phase import BINS
 from .temperature_emission import emission_key, emission_rows
+from ..spectra.tinted_blackbody import reflectance_on_grid, tinted_blackbody
 from ..spectra.wavelengths import VISIBLE_MIN_NM, VISIBLE_NM_GRID
 
 MediaArrays = namedtuple("MediaArrays", "scattering absorption emission emission_strength anisotropy grid grids "
@@ -41,20 +42,6 @@ EMISSION_SAMPLES_PER_VOXEL = 1.0
 
 #: g is kept inside (-1, 1): at |g| = 1 the phase function is a delta and its density infinite.
 MAX_ANISOTROPY = 0.999
-
-
-def reflectance_on_grid(rgb) -> np.ndarray:
-    """The reflectance spectrum Prism upsamples from linear Rec.709 ``rgb`` (values clamped to 0-1), on
-    the 1 nm grid of ``spectra.wavelengths.VISIBLE_NM_GRID``: the spectrum surfaces of that colour reflect."""
-    from ..spectra.rgb_to_spectrum import reflectance_coefficients
-
-    rgb = np.clip(np.asarray(rgb, dtype=np.float64), 0.0, 1.0)
-    if rgb[0] == rgb[1] == rgb[2] and rgb[0] in (0.0, 1.0):
-        return np.full(len(VISIBLE_NM_GRID), float(rgb[0]))
-    c0, c1, c2 = reflectance_coefficients(rgb)
-    lam = np.asarray(VISIBLE_NM_GRID, dtype=np.float64)
-    u = np.clip((c0 * lam + c1) * lam + c2, -1e10, 1e10)
-    return 0.5 + 0.5 * u / np.sqrt(1.0 + u * u)
 
 
 def coefficient_spectra(spec):
@@ -75,7 +62,7 @@ def coefficient_spectra(spec):
 
 def emission_on_grid(spec):
     """Emitted radiance per metre on the 1 nm grid for a ``MediumSpec`` (zeros if it emits nothing)."""
-    from ..spectra.emission_spectrum import BlackbodyEmissionSpectrum, RGBEmissionSpectrum
+    from ..spectra.emission_spectrum import RGBEmissionSpectrum
 
     lam = np.asarray(VISIBLE_NM_GRID, dtype=np.float64)
     total = np.zeros(len(lam))
@@ -87,9 +74,7 @@ def emission_on_grid(spec):
             scale = float(rgb.max())
             total += strength * scale * np.asarray(RGBEmissionSpectrum(tuple(rgb / scale)).evaluate(lam))
         else:  # the tint filters the blackbody as a reflectance of its colour would
-            scale = max(float(rgb.max()), 1.0)
-            total += (strength * scale * reflectance_on_grid(rgb / scale)
-                      * np.asarray(BlackbodyEmissionSpectrum(temperature_k).evaluate(lam)))
+            total += strength * tinted_blackbody(temperature_k, rgb)[0]
     return total
 
 

@@ -19,8 +19,7 @@ import math
 
 import numpy as np
 
-from ..spectra.blackbody import MAX_TEMPERATURE_K, MIN_TEMPERATURE_K, blackbody_luminance, planck_spectral_radiance
-from ..spectra.wavelengths import VISIBLE_NM_GRID
+from ..spectra.tinted_blackbody import tinted_blackbody
 
 STEFAN_BOLTZMANN = 5.670373e-8  # W m⁻² K⁻⁴, the value Cycles' Principled Volume uses
 
@@ -32,19 +31,6 @@ def blackbody_intensity(temperature_k, blend):
     """Cycles' blackbody scale of a Principled Volume, σ_SB 10⁻⁶ / π × mix(1, T⁴, ``blend``) (any shape)."""
     t = np.maximum(np.asarray(temperature_k, dtype=np.float64), 0.0)
     return STEFAN_BOLTZMANN * 1e-6 / math.pi * (1.0 + blend * (t ** 4 - 1.0))
-
-
-def tinted_blackbody(temperature_k, tint) -> np.ndarray:
-    """[len(T), len(VISIBLE_NM_GRID)]: the luminance-1 Planck spectrum at each temperature (clamped to
-    1000-40000 K) filtered by ``tint`` as a reflectance of that colour would (a tint above 1 scales it)."""
-    from .table import reflectance_on_grid
-
-    rgb = np.maximum(np.asarray(tint, dtype=np.float64), 0.0)
-    scale = max(float(rgb.max()), 1.0)
-    shown = np.clip(np.atleast_1d(np.asarray(temperature_k, dtype=np.float64)), MIN_TEMPERATURE_K, MAX_TEMPERATURE_K)
-    lam = np.asarray(VISIBLE_NM_GRID, dtype=np.float64)
-    planck = planck_spectral_radiance(lam[None, :], shown[:, None]) / blackbody_luminance(shown)[:, None]
-    return scale * reflectance_on_grid(rgb / scale)[None, :] * planck
 
 
 def emission_rows(spec) -> tuple[np.ndarray, float]:

@@ -25,6 +25,7 @@ from .blackbody import blackbody_luminance, check_temperature, planck_spectral_r
 from ..errors import PrismInputError
 from .rgb_to_spectrum import RGBEmission
 from .sampled import check_sampled, resample_1nm
+from .tinted_blackbody import WHITE, TintedBlackbodyEmissionSpectrum
 from .trapezoid import trapezoid
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
@@ -166,6 +167,9 @@ def emission_spectrum(spec):
     kind = getattr(spec, "kind", None)
     if kind == "rgb":
         return RGBEmissionSpectrum(spec.rgb)
+    if kind == "blackbody" and tuple(spec.rgb) != WHITE:
+        check_temperature(spec.temperature_k)
+        return TintedBlackbodyEmissionSpectrum(spec.temperature_k, spec.rgb)
     if kind == "blackbody":
         return BlackbodyEmissionSpectrum(spec.temperature_k)
     if kind == "monochromatic":

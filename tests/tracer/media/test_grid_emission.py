@@ -25,7 +25,8 @@ from engine.tracer.media.delta_tracking import track_grid_medium
 from engine.tracer.media.density_grid import DensityGrid
 from engine.tracer.media.spec import MediumSpec
 from engine.tracer.media.table import build_media, coefficient_spectra, emission_on_grid
-from engine.tracer.media.temperature_emission import blackbody_intensity, tinted_blackbody
+from engine.tracer.media.temperature_emission import blackbody_intensity
+from engine.tracer.spectra.tinted_blackbody import tinted_blackbody
 from engine.tracer.sampler import INDEPENDENT, SOBOL, pixel_seed
 from engine.tracer.scene import Material
 from engine.tracer.spectra.table import SpectrumTable
