@@ -25,13 +25,18 @@ FINDINGS: dict[str, str] = {
 - Everything else matches Cycles to well within the tolerance (|ratio − 1| ≤ 0.5 %, within each scene's
   noise), including the settings issue 32 found silent before: clip range, Environment filter, soft
   falloff, linked libraries, materials without an output.
-- Not exercised: the Volumes filter (Prism renders no Volume objects yet, and says so); Cycles' light
+- Not exercised: the Volumes filter (this comparison was made before Prism rendered Volume objects); Cycles' light
   tree and Prism's light sampling are compared only through mean luminance.
 """,
     "soft_falloff": """\
 This scene is the noisiest (a point light whose sphere the floor cuts: each engine's sampling of the
 lit disc under it is noisy): at 16 samples the ratio's seed-to-seed σ was 1.1 %, too close to the 2 %
 tolerance, so it renders 256 samples (σ ≈ 0.2 %, "Noise").""",
+    "light_temperature": """\
+Mean luminance alone would not see the temperature: a blackbody of luminance 1 lights a grey scene as brightly
+as white light, and before Prism read the checkbox (it warned and rendered white) this scene's ratio was 1.0028
+(measured on 469ef8b); relMSE, which sees the colour, was 0.83 then. `tests/blender/test_light_temperature.py` holds the colour per channel against Cycles (white
+lights, within 1 %) and against the filtered spectrum's closed form (a coloured light).""",
     "motion_blur": """\
 Both engines blur the ball over the half-frame shutter (`docs/motion_blur.md`); blurring moves light and
 adds none, so the ratio alone would not see a sharp ball: relMSE does, and `tests/blender/test_motion_blur.py`

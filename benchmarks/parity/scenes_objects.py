@@ -1,6 +1,6 @@
 """Parity scenes about what is in the scene and how it is seen: camera clipping, view-layer filters, soft
-light falloff, instancing, linked libraries, materials without an output, holdouts, ray visibility and
-motion blur. Each builder fills the emptied current file (see ``building.empty_file``)."""
+light falloff, light temperature, instancing, linked libraries, materials without an output, holdouts, ray
+visibility and motion blur. Each builder fills the emptied current file (see ``building.empty_file``)."""
 
 from __future__ import annotations
 
@@ -69,6 +69,19 @@ def soft_falloff():
     kit.light("Spot", "SPOT", 200.0, (1.0, 0.0, 1.0), radius_m=0.3, soft_falloff=True, spot_size=kit.degrees(40.0),
               spot_blend=0.0).visible_camera = False
     kit.camera((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), lens_mm=50.0)
+
+
+def light_temperature():
+    """Light ▸ Temperature (Blender 4.4+) on both lights, seen from above over a grey floor with a white ball:
+    a 2700 K area light in white and a 9000 K point light whose Color (0.9, 0.95, 1.0) tints it; Cycles
+    multiplies the Color by the temperature's colour, Prism filters Planck's spectrum by the Color."""
+    kit.world(0.0)
+    kit.plane("Floor", 8.0, material=kit.diffuse("Floor grey"))
+    kit.sphere("Ball", 0.5, (0.0, 0.0, 0.5), material=kit.diffuse("Ball white", (0.8, 0.8, 0.8)))
+    kit.light("Warm", "AREA", 150.0, (-1.2, 0.0, 2.0), size=1.0, use_temperature=True, temperature=2700.0)
+    kit.light("Cool", "POINT", 300.0, (1.5, -0.5, 1.5), use_temperature=True, temperature=9000.0,
+              color=(0.9, 0.95, 1.0))
+    kit.camera((0.0, -3.0, 4.0), (0.0, 0.0, 0.3), lens_mm=35.0)
 
 
 def instancing():
@@ -185,6 +198,7 @@ SCENES = [
     ParityScene("surfaces_filter", "View Layer ▸ Filter ▸ Surfaces off", surfaces_filter),
     ParityScene("curves_filter", "View Layer ▸ Filter ▸ Curves off", curves_filter),
     ParityScene("soft_falloff", "Light ▸ Soft Falloff (point, spot)", soft_falloff, samples=256, bounces=1),
+    ParityScene("light_temperature", "Light ▸ Temperature (Blender 4.4+)", light_temperature, bounces=2),
     ParityScene("instancing", "Collection instances, Instancing ▸ Vertices", instancing),
     ParityScene("linked_library", "Linked library (object and collection)", linked_library),
     ParityScene("material_without_output", "Material without Material Output", material_without_output),
