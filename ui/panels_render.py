@@ -55,6 +55,21 @@ class PRISM_PT_denoise(ToggledScenePanel, bpy.types.Panel):
     settings = ("denoising_prefilter", "denoising_quality")
 
 
+#: Cycles' per-kind bounce limits Prism renders where the scene sets them (``export.light_path_tricks``).
+_KIND_LIMITS = ("diffuse_bounces", "glossy_bounces", "transmission_bounces", "volume_bounces")
+
+
+def _draw_kind_limits(layout, scene):
+    """The per-kind limits the scene sets in Cycles' Light Paths (only those: Cycles' defaults are not applied)."""
+    cycles = getattr(scene, "cycles", None)
+    shown = [name for name in _KIND_LIMITS if cycles is not None and cycles.is_property_set(name)]
+    if not shown:
+        return
+    column = layout.column(align=True, heading="Cycles' Limits")
+    for name in shown:
+        column.prop(cycles, name)
+
+
 class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):
     """Bounces, Russian roulette, MIS, caustics by light tracing."""
 
@@ -70,6 +85,7 @@ class PRISM_PT_light_paths(PrismPanel, bpy.types.Panel):
         column.prop(settings, "max_bounces", text="Max Bounces")
         column.prop(settings, "preview_max_bounces", text="Viewport")
         column.prop(settings, "transparent_max_bounces", text="Transparent")
+        _draw_kind_limits(layout, context.scene)
         column = layout.column()
         column.prop(settings, "russian_roulette_depth")
         column.prop(settings, "use_mis")

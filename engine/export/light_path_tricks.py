@@ -1,10 +1,11 @@
 """Cycles' Light Paths tricks a scene sets (``scene.cycles``: Clamp Direct / Indirect, Filter Glossy,
-Reflective / Refractive Caustics) as ``tracer.path_tricks.LightPathTricks``, and the warnings for what Prism
-renders differently.
+Reflective / Refractive Caustics, Max Bounces ▸ Diffuse / Glossy / Transmission / Volume) as
+``tracer.path_tricks.LightPathTricks``, and the warnings for what Prism renders differently.
 
 Only values the scene has set are read (``is_property_set``: changed in Cycles' Light Paths panel, or by a
-script): Cycles' own defaults (Clamp Indirect 10, Filter Glossy 1) bias every image, and Prism's default is
-the unbiased one. A scene converted from Cycles with these settings changed renders with them.
+script): Cycles' own defaults (Clamp Indirect 10, Filter Glossy 1, Diffuse and Glossy 4, Volume 0) bias or
+darken every image, and Prism's default is the unbiased one limited by Max Bounces alone. A scene converted
+from Cycles with these settings changed renders with them.
 """
 
 from __future__ import annotations
@@ -13,7 +14,9 @@ from ..tracer.path_tricks import LightPathTricks
 
 _FIELDS = (("sample_clamp_direct", "clamp_direct", float), ("sample_clamp_indirect", "clamp_indirect", float),
            ("blur_glossy", "filter_glossy", float), ("caustics_reflective", "caustics_reflective", bool),
-           ("caustics_refractive", "caustics_refractive", bool))
+           ("caustics_refractive", "caustics_refractive", bool), ("diffuse_bounces", "diffuse_bounces", int),
+           ("glossy_bounces", "glossy_bounces", int), ("transmission_bounces", "transmission_bounces", int),
+           ("volume_bounces", "volume_bounces", int))
 
 
 def light_path_tricks(scene) -> LightPathTricks:

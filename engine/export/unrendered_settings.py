@@ -3,7 +3,6 @@ instead, never a silently different image."""
 
 from __future__ import annotations
 
-from .bounce_limits import bounce_limit_warnings
 from .light_path_tricks import light_path_trick_warnings
 
 
@@ -24,7 +23,5 @@ def unrendered_setting_warnings(scene, view_layer=None) -> list[str]:
     (motion blur's own: ``motion.motion_setting_warnings``)."""
     from .motion import motion_setting_warnings
 
-    prism = getattr(scene, "prism", None)
-    limits = bounce_limit_warnings(scene, int(prism.max_bounces)) if prism is not None else []
-    return (light_path_trick_warnings(scene) + limits + unrendered_pass_warnings(view_layer)
+    return (light_path_trick_warnings(scene) + unrendered_pass_warnings(view_layer)
             + motion_setting_warnings(scene, view_layer))

@@ -190,6 +190,8 @@ def _path_tracing_only(settings, camera, geometry, pass_layout, ray_classes) -> 
         return "light passes"
     if settings.light_path_tricks.biased:
         return "clamps or caustics toggles"
+    if settings.light_path_tricks.limits_kinds(settings.max_bounces):
+        return "bounce limits per kind"  # light paths would have to count them from the camera's end
     if (geometry.flags & SHADOW_CATCHER).any():
         return "shadow catcher"  # light paths would have to split at it too (``stages.shadow_catcher``)
     if ray_classes is not None or (geometry.flags & HOLDOUT).any():

@@ -11,6 +11,10 @@ Reflective / Refractive caustics toggles (``scene.cycles.sample_clamp_direct``, 
   whose reflection and refraction are both off is left out whole (Cycles' ``svm/closure.h``).
 - **Filter Glossy** (0 = off): a microfacet lobe reached after unlikely bounces is shaded rougher, by
   Cycles' rule (``stages.filter_glossy``).
+- **Max Bounces per kind** (``diffuse_bounces``, ``glossy_bounces``, ``transmission_bounces``,
+  ``volume_bounces``; None = no limit of its own): a path that has made more diffuse reflections, glossy
+  reflections, transmissions or volume scatterings than its limit scatters no more, as it does past Max
+  Bounces (``stages.bounces.bounces_left``; Cycles' ``path_state_next``).
 
 Prism's default is none of them: each biases the image, and Prism's images are meant to converge to the
 physical answer unless a scene asks otherwise.
@@ -23,6 +27,9 @@ from dataclasses import dataclass
 
 from .errors import PrismInputError
 
+#: The per-kind limits, as Cycles' Light Paths panel names them.
+BOUNCE_KINDS = ("Diffuse", "Glossy", "Transmission", "Volume")
+
 
 @dataclass
 class LightPathTricks:
@@ -31,6 +38,10 @@ class LightPathTricks:
     caustics_reflective: bool = True
     caustics_refractive: bool = True
     filter_glossy: float = 0.0  # Cycles' blur_glossy (0: off)
+    diffuse_bounces: int | None = None  # Cycles' Max Bounces ▸ Diffuse (None: only Max Bounces limits them)
+    glossy_bounces: int | None = None
+    transmission_bounces: int | None = None
+    volume_bounces: int | None = None
 
     def validate(self) -> None:
         for name, value in (("Clamp Direct", self.clamp_direct), ("Clamp Indirect", self.clamp_indirect),
@@ -38,6 +49,22 @@ class LightPathTricks:
             if not (value >= 0.0 and math.isfinite(value)):
                 raise PrismInputError(f"Light Paths ▸ {name} {value} is not a finite value ≥ 0: set 0 (off) or "
                                       "a positive limit.")
+        for name, value in zip(BOUNCE_KINDS, self._kind_limits()):
+            if value is not None and value < 0:
+                raise PrismInputError(f"Light Paths ▸ Max Bounces ▸ {name} {value} is negative: set 0 or more.")
+
+    def _kind_limits(self):
+        return self.diffuse_bounces, self.glossy_bounces, self.transmission_bounces, self.volume_bounces
+
+    def bounce_limits(self, max_bounces: int) -> tuple[int, int, int, int]:
+        """(diffuse, glossy, transmission, volume) bounces a path may make: each kind's limit where set, else
+        ``max_bounces`` (which no count can pass anyway)."""
+        return tuple(int(max_bounces) if value is None else min(int(value), int(max_bounces))
+                     for value in self._kind_limits())
+
+    def limits_kinds(self, max_bounces: int) -> bool:
+        """Some kind's limit is below Max Bounces, so paths must count their bounces by kind."""
+        return min(self.bounce_limits(max_bounces)) < max_bounces
 
     @property
     def clamping(self) -> bool:

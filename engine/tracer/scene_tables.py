@@ -97,10 +97,11 @@ def _row_objects(scene, original):
     return np.concatenate(parts).astype(kept.dtype)
 
 
-def _trick_settings(tricks) -> dict:
+def _trick_settings(tricks, max_bounces) -> dict:
     """The ``KernelSettings`` fields of Cycles' Light Paths tricks (``path_tricks``)."""
     direct, indirect = tricks.kernel_limits()
     return dict(clamping=tricks.clamping, clamp_direct=direct, clamp_indirect=indirect,
+                kind_limits=tricks.limits_kinds(max_bounces), bounce_limits=tricks.bounce_limits(max_bounces),
                 caustics_filtered=tricks.caustics_filtered, caustics_reflective=bool(tricks.caustics_reflective),
                 caustics_refractive=bool(tricks.caustics_refractive),
                 filter_glossy=1.0 / tricks.filter_glossy if tricks.filter_glossy > 0.0 else 0.0)
@@ -190,7 +191,7 @@ class SceneTables:
             film_transparent=bool(settings.film_transparent),
             transparent_glass=bool(settings.film_transparent and settings.transparent_glass),
             transparent_alpha=float(settings.transparent_roughness) ** 2,
-            **_trick_settings(settings.light_path_tricks), wavelengths=self.wavelengths,
+            **_trick_settings(settings.light_path_tricks, settings.max_bounces), wavelengths=self.wavelengths,
             has_media=has_media, outside_medium=int(self.material_table.outside_medium),
             camera_medium=self._camera_medium(scene, camera) if has_media else -1,
             equiangular=has_media and has_positional_lights(self.light_table.arrays),

@@ -36,10 +36,10 @@ deterministic). Embree reads the queues' float32 rays directly.
   camera ray, bounces, shadow rays — sees the scene at this one instant; 0.5 without motion blur);
 - ``receiver`` int64 (``light_linking``: the receiver light set of the path's last scattering vertex, -1 on
   camera rays; scattering vertices write it only in scenes with light or shadow linking);
-- ``light_path`` int32 [n, 6] (``materials.light_path``: the kind of ray the path travels on and its bounce
-  counts, for Blender's Light Path node) and ``ray_travelled`` float64 (how far the ray came before the
-  cut-outs and films it went straight through: its Ray Length counts from where it started, as Cycles'
-  does); kept only in scenes whose materials read the node;
+- ``light_path`` int32 [n, RECORD] (``materials.light_path``: the kind of ray the path travels on and its bounce
+  counts, for Blender's Light Path node and Cycles' per-kind bounce limits) and ``ray_travelled`` float64 (how
+  far the ray came before the cut-outs and films it went straight through: its Ray Length counts from where it
+  started, as Cycles' does); kept only in scenes whose materials read the node or that limit bounces by kind;
 - ``crossings`` int32 [n, 2] (``stages.bounces``): the rays the path began by going straight through a surface
   (cut-outs, films, volume boundaries) rather than scattering, and of them its transparent bounces.
 """
@@ -50,6 +50,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from .materials.light_path import RECORD
 from .stages.bounces import CROSSINGS
 
 COLLAPSED = 1
@@ -76,7 +77,7 @@ _PATH_FIELDS = (
     ("origin", np.float64, (3,)), ("direction", np.float64, (3,)), ("mis_origin", np.float64, (3,)),
     ("hit_triangle", np.int32, ()), ("hit_u", np.float64, ()), ("hit_v", np.float64, ()), ("hit_t", np.float64, ()),
     ("transparency", np.float64, ()), ("time", np.float64, ()), ("receiver", np.int64, ()),
-    ("light_path", np.int32, (6,)), ("ray_travelled", np.float64, ()), ("crossings", np.int32, (CROSSINGS,)),
+    ("light_path", np.int32, (RECORD,)), ("ray_travelled", np.float64, ()), ("crossings", np.int32, (CROSSINGS,)),
 )
 PathState = namedtuple("PathState", [name for name, _, _ in _PATH_FIELDS])
 

@@ -38,22 +38,3 @@ def test_reflective_only_is_warned_and_filter_glossy_is_rendered(prism_addon, fr
     assert any("Reflective is off" in m and "reflection of glass" in m for m in messages)
     read = settings.export_settings(fresh_scene).light_path_tricks
     assert read.filter_glossy == 1.0 and read.biased
-
-
-def test_per_kind_bounce_limits_below_max_bounces_are_warned_truly(prism_addon, fresh_scene):
-    """Prism has one Max Bounces; Cycles' Diffuse, Glossy, Transmission and Volume limits are warned where the scene
-    sets one below it (its defaults, never set, and limits at or above Max Bounces are not)."""
-    limits = import_module(f"{prism_addon.__name__}.engine.export.bounce_limits")
-    unrendered = import_module(f"{prism_addon.__name__}.engine.export.unrendered_settings")
-    fresh_scene.prism.max_bounces = 8
-    assert fresh_scene.cycles.diffuse_bounces < 8  # Cycles' default (4), not the scene's choice: not warned
-    assert limits.bounce_limit_warnings(fresh_scene, 8) == []
-    fresh_scene.cycles.diffuse_bounces = 2
-    fresh_scene.cycles.glossy_bounces = 8
-    fresh_scene.cycles.volume_bounces = 0
-    messages = unrendered.unrendered_setting_warnings(fresh_scene)
-    ours = [m for m in messages if "per kind of bounce" in m]
-    assert len(ours) == 2
-    assert any("▸ Diffuse is 2" in m and "diffuse reflections go on up to Max Bounces (8)" in m for m in ours)
-    assert any("▸ Volume is 0" in m and "brighter" in m for m in ours)
-    assert limits.bounce_limit_warnings(fresh_scene, 0) == []  # Max Bounces 0: no limit is below it

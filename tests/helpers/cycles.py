@@ -33,14 +33,17 @@ def _render_to_rgba(scene) -> np.ndarray:
 
 
 def render_cycles_rgba(scene, samples: int, seed: int = 0, max_bounces: int = 8, filter_glossy: float = 0.0,
-                       transparent_max_bounces: int | None = None) -> np.ndarray:
+                       transparent_max_bounces: int | None = None, **kind_limits: int) -> np.ndarray:
     """Cycles' scene-linear RGBA [H, W, 4] of ``scene`` (row 0 on top), unbiased (no clamps, caustics on) unless
     ``filter_glossy`` is given (Light Paths ▸ Filter Glossy; it stays set on the scene, so Prism reads it too).
-    Transparent Max Bounces is ``max_bounces`` unless ``transparent_max_bounces`` is given."""
+    Transparent Max Bounces is ``max_bounces`` unless ``transparent_max_bounces`` is given; so are the per-kind
+    limits unless given by name (``diffuse_bounces=1``, ...; they stay set, so Prism reads them too)."""
     engine = scene.render.engine
     configure_cycles(scene, samples, seed, max_bounces, filter_glossy)
     if transparent_max_bounces is not None:
         scene.cycles.transparent_max_bounces = transparent_max_bounces
+    for name, limit in kind_limits.items():
+        setattr(scene.cycles, name, limit)
     try:
         return _render_to_rgba(scene)
     finally:

@@ -4,7 +4,8 @@ defines it (``svm_node_light_path`` and ``path_state_next``).
 A path keeps its record in ``PathState.light_path`` int32 [n, RECORD]: the *visibility* bits of the ray it
 travels on (one of camera, diffuse, glossy (singular lobes count as glossy), volume scatter; transmit
 with diffuse or glossy when it passed through the surface; reflect and singular as Cycles' path flags) and
-its bounce counts (all, diffuse reflections, glossy reflections, transmissions, transparent crossings).
+its bounce counts (all, diffuse reflections, glossy reflections, transmissions, transparent crossings, volume
+scatterings).
 A scattering (``after_scattering``) sets them as Cycles' ``path_state_next``; a transparent crossing (a
 cut-out, a film) counts one transparent bounce and keeps the ray's kind, as in Cycles, and the ray's
 length goes on from where it started (``PathState.ray_travelled``).
@@ -14,7 +15,8 @@ of the register file (``regs``; ``state.new_shading_scratch`` reserves them): th
 ray that hit the surface, the shadow ray's (only Is Shadow Ray, one bounce further) for a shadow ray
 crossing a cut-out, and the emission's (no kind, one bounce further) for a point light sampling picked on
 an emitter. The ``LIGHT_PATH`` instruction copies one of them. Everything here runs only in scenes whose
-materials read the node (``KernelSettings.light_path``).
+materials read the node (``KernelSettings.light_path``) or that limit bounces by kind (``kind_limits``: the
+counts alone, ``stages.bounces.bounces_left``).
 """
 
 from __future__ import annotations
@@ -30,9 +32,10 @@ OUTPUTS = ("Is Camera Ray", "Is Shadow Ray", "Is Diffuse Ray", "Is Glossy Ray", 
  RAY_LENGTH, RAY_DEPTH, DIFFUSE_DEPTH, GLOSSY_DEPTH, TRANSPARENT_DEPTH, TRANSMISSION_DEPTH) = range(len(OUTPUTS))
 FIELDS = len(OUTPUTS)  # registers reserved at the end of the register file
 
-#: ``PathState.light_path`` columns.
-VISIBILITY, BOUNCE, DIFFUSE, GLOSSY, TRANSMISSION, TRANSPARENT = range(6)
-RECORD = 6
+#: ``PathState.light_path`` columns (VOLUME: scatterings in media, which the node does not show; Cycles' Max
+#: Bounces ▸ Volume limits them).
+VISIBILITY, BOUNCE, DIFFUSE, GLOSSY, TRANSMISSION, TRANSPARENT, VOLUME = range(7)
+RECORD = 7
 
 #: Visibility bits (Cycles' PATH_RAY_VISIBILITY_* and the REFLECT / SINGULAR path flags).
 CAMERA, DIFFUSE_RAY, GLOSSY_RAY, TRANSMIT, VOLUME_SCATTER, REFLECT, SINGULAR, SHADOW = 1, 2, 4, 8, 16, 32, 64, 128
@@ -86,6 +89,7 @@ def after_volume_scatter(state, i):
     """The path scattered in a medium."""
     record = state.light_path[i]
     record[BOUNCE] += 1
+    record[VOLUME] += 1
     record[VISIBILITY] = VOLUME_SCATTER
     state.ray_travelled[i] = 0.0
 

@@ -78,7 +78,7 @@ def scatter_in_medium(state, i, lights, materials, spectra, geometry, settings, 
     u1, u2 = sample_2d(settings.sampler, state.seed[i], state.sample[i], bounce_slot(depth, BOUNCE_DIRECTION))
     d_out, pdf = medium_phase_sample(materials.media, state.medium[i], d_in, u1, u2)
     state.flags[i] &= ~(CAMERA_PATH | PREV_DELTA | LAST_DIFFUSE | LAST_TRANSMISSION)
-    if settings.light_path:
+    if settings.light_path or settings.kind_limits:
         after_volume_scatter(state, i)
     if not (pdf > 0.0 and survives(state, i, depth, path_bounce(state, i, depth), settings,
                                             state.flags[i] & COLLAPSED != 0)):

@@ -19,11 +19,17 @@ A path whose bounces are used up (more than Max Bounces) still goes through cut-
 unless the sampled lobe went straight through (unbiased: the straight lobe is picked with its weight's share).
 After Transparent Max Bounces + 1 transparent bounces (Cycles 4.5's count), the next surface ends the path after its
 emission (``PATH_RAY_TERMINATE_ON_NEXT_SURFACE``).
+
+Cycles' per-kind limits (Max Bounces ▸ Diffuse, Glossy, Transmission, Volume, where the scene sets one below Max
+Bounces: ``KernelSettings.kind_limits``) use up a path's bounces the same way, counted as ``path_state_next`` counts
+them in ``PathState.light_path``: a reflection off a diffuse lobe, off any other lobe (glossy), any transmission, a
+scattering in a medium. Like Max Bounces, Cycles' kernel limit is the setting + 1 (``bounces_left``).
 """
 
 from __future__ import annotations
 
 from ..jit import inlined, kernel
+from ..materials.light_path import DIFFUSE, GLOSSY, TRANSMISSION, VOLUME
 
 #: ``PathState.crossings`` columns: steps that were not scatterings; of them, transparent bounces.
 STEPS, TRANSPARENT = 0, 1
@@ -68,3 +74,18 @@ def count_crossing(state, i, transparent):
     state.crossings[i, STEPS] += 1
     if transparent:
         state.crossings[i, TRANSPARENT] += 1
+
+
+@inlined
+def bounces_left(state, i, bounce, settings):
+    """Whether path ``i``, having made ``bounce`` scatterings, may scatter again at its next vertex: within Max
+    Bounces and within each per-kind limit (a count may equal its setting: Cycles ends a path once a count reaches
+    the setting + 1)."""
+    if bounce > settings.max_bounces:
+        return False
+    if not settings.kind_limits:
+        return True
+    record = state.light_path[i]
+    diffuse, glossy, transmission, volume = settings.bounce_limits
+    return (record[DIFFUSE] <= diffuse and record[GLOSSY] <= glossy and record[TRANSMISSION] <= transmission
+            and record[VOLUME] <= volume)

@@ -34,7 +34,7 @@ from ..materials.table import MAT_EMISSION_VARIES, MAT_EMISSIVE, MAT_NULL, MAT_T
 from ..spectra.table import spectrum_value
 from ..state import CAMERA_PATH, MEDIUM_VERTEX, PREV_DELTA, SUBSURFACE_EXIT
 from ..visibility import HOLDOUT
-from .bounces import ends_at_next_surface, path_bounce
+from .bounces import bounces_left, ends_at_next_surface, path_bounce
 from .clamp import clamp_factor
 from .mis import emitter_weight
 from .pass_writes import camera_slot, deposit, features_done
@@ -130,7 +130,7 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
     for j in range(count):
         i = rays.path[j]
         bounce = path_bounce(state, i, depth)
-        scatters = bounce <= settings.max_bounces  # the path may scatter at its next vertex
+        scatters = bounces_left(state, i, bounce, settings)  # the path may scatter at its next vertex
         if state.flags[i] & SUBSURFACE_EXIT:  # the hit is a random walk's exit, stored already (``subsurface``)
             if scatters:
                 surface.path[listed] = i

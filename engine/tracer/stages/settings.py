@@ -27,12 +27,15 @@ from collections import namedtuple
 #: ``shaded_normals``: the first surface's Normal and AO passes take its shading normal (Bump, Normal Map)
 #: instead of the interpolated one, as Cycles bakes them (a bake sets it: ``Renderer.set_bake_rays``;
 #: renders keep False); ``shadow_catcher``: some object is a shadow catcher: camera paths split where they
-#: meet one (``stages.shadow_catcher``); scenes without one skip that code.
+#: meet one (``stages.shadow_catcher``); scenes without one skip that code; ``kind_limits``: some Cycles per-kind
+#: limit (Max Bounces ▸ Diffuse, Glossy, Transmission, Volume) is below Max Bounces: paths count their bounces by
+#: kind (``materials.light_path``) and ``bounce_limits`` (diffuse, glossy, transmission, volume) bound them
+#: (``stages.bounces.bounces_left``).
 KernelSettings = namedtuple(
     "KernelSettings",
     "max_bounces roulette_depth use_mis sampler seed light_tracing film_transparent transparent_glass transparent_alpha "
     "clamping clamp_direct clamp_indirect caustics_filtered caustics_reflective caustics_refractive wavelengths "
     "has_media outside_medium camera_medium equiangular filter_glossy light_linking shadow_linking light_path "
-    "shaded_normals shadow_catcher transparent_max_bounces",
-    defaults=(False, False, 8),
+    "shaded_normals shadow_catcher transparent_max_bounces kind_limits bounce_limits",
+    defaults=(False, False, 8, False, (8, 8, 8, 8)),
 )

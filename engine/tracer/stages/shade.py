@@ -32,7 +32,7 @@ from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sam
 from ..state import (CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA,
                      SUBSURFACE_EXIT)
 from ..vec3 import tangents, to_local, to_world
-from .bounces import TRANSPARENT, count_crossing, path_bounce
+from .bounces import TRANSPARENT, bounces_left, count_crossing, path_bounce
 from .caustic_split import classify_vertex
 from .caustics_toggles import filter_caustic_closures
 from .filter_glossy import blur_alpha, blur_glossy_closures
@@ -104,7 +104,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             shadowed += lit
             continue  # a camera path is no longer one after a medium vertex: Cryptomatte attributes it to nothing
         bounce = path_bounce(state, i, depth)
-        final = bounce > settings.max_bounces  # only going through a cut-out or a film is left (``stages.bounces``)
+        final = not bounces_left(state, i, bounce, settings)  # only going through a cut-out or a film is left
         triangle = state.hit_triangle[i]
         p, ng, ns = surface_at(geometry, triangle, state.hit_u[i], state.hit_v[i], state.time[i])
         material = geometry.material[triangle]
@@ -207,7 +207,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             continue
         if null_crossing:
             count_crossing(state, i, not boundary)
-        if settings.light_path:
+        if settings.light_path or settings.kind_limits:
             if null_crossing:
                 after_transparent(state, i, not boundary)
             else:

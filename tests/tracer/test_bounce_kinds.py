@@ -1,0 +1,67 @@
+"""Cycles' per-kind bounce limits (Light Paths ▸ Max Bounces ▸ Diffuse, Glossy, Transmission, Volume;
+``path_tricks.LightPathTricks``, ``stages.bounces.bounces_left``), against a closed form: inside a closed sphere
+whose wall emits L_e and reflects diffusely with albedo ρ, a path that may make D diffuse reflections sees
+L_e (1 + ρ + ... + ρ^(D+1)): the last reflection's light comes from the vertex after it (Cycles' kernel limit is
+the setting + 1, as Max Bounces' is). Limits of the other kinds leave such a sphere alone."""
+
+import numpy as np
+import pytest
+
+from engine.tracer.path_tricks import LightPathTricks
+from engine.tracer.renderer import Renderer
+from engine.tracer.scene import Camera, Material, SpectrumSpec, World
+
+from .tracer_scenes import look_at, make_scene, settings, uv_sphere
+
+ALBEDO = 0.5
+MAX_BOUNCES = 12
+
+
+def _glowing_sphere():
+    """The camera at the centre of a closed sphere (radius 2 m) of emitting, diffusely reflecting wall."""
+    cam = Camera("cam", look_at((0, 0, 0.0), (0, 1.0, 0), up=(0, 0, 1)), (8, 8), film_width_mm=36.0,
+                 film_height_mm=36.0)
+    wall = Material("wall", base_color=(ALBEDO,) * 3, emission=SpectrumSpec(), emission_strength=1.0)
+    return make_scene([(*uv_sphere((0, 0, 0), 2.0, inward=True), 0)], [wall], cam, [],
+                      World(color=(0.0, 0.0, 0.0), strength=0.0))
+
+
+def _mean(tricks, samples=16):
+    kw = dict(samples=samples, samples_per_pass=samples, max_bounces=MAX_BOUNCES, russian_roulette_depth=64,
+              light_path_tricks=tricks)
+    with Renderer(_glowing_sphere(), settings(**kw)) as r:
+        r.render_pass()
+        return float(r.image_rgb().astype(np.float64).mean())
+
+
+def _series(reflections):
+    return sum(ALBEDO ** k for k in range(reflections + 2))
+
+
+@pytest.mark.parametrize("diffuse", [0, 1, 3])
+def test_a_diffuse_limit_keeps_that_many_reflections(diffuse):
+    measured = _mean(LightPathTricks(diffuse_bounces=diffuse))
+    print(f"MEASURED Diffuse {diffuse}: {measured:.5f}, closed form {_series(diffuse):.5f}")
+    assert measured == pytest.approx(_series(diffuse), rel=0.01)
+
+
+def test_limits_of_other_kinds_leave_diffuse_light_alone():
+    """Glossy, Transmission and Volume 0 count no diffuse reflection: the sphere renders as with Max Bounces
+    alone, L_e (1 + ρ + ... + ρ^(12+1)); the same sphere with Diffuse 0 gives 1 + ρ, so the two are told apart."""
+    others = _mean(LightPathTricks(glossy_bounces=0, transmission_bounces=0, volume_bounces=0))
+    print(f"MEASURED Glossy/Transmission/Volume 0: {others:.5f}, closed form {_series(MAX_BOUNCES):.5f}")
+    assert others == pytest.approx(_series(MAX_BOUNCES), rel=0.01)
+
+
+def test_limits_at_or_above_max_bounces_change_nothing():
+    tricks = LightPathTricks(diffuse_bounces=MAX_BOUNCES, glossy_bounces=64)
+    assert not tricks.limits_kinds(MAX_BOUNCES)
+    assert tricks.bounce_limits(MAX_BOUNCES) == (MAX_BOUNCES,) * 4
+    assert LightPathTricks(volume_bounces=0).limits_kinds(MAX_BOUNCES)
+
+
+def test_a_negative_limit_is_refused():
+    from engine.tracer.errors import PrismInputError
+
+    with pytest.raises(PrismInputError, match="Max Bounces ▸ Glossy -1 is negative"):
+        LightPathTricks(glossy_bounces=-1).validate()
