@@ -49,8 +49,11 @@ def _grid(name, size, subdivisions, material, smooth=False):
 
 
 def _black_world(scene):
+    """A black world, and Max Bounces 1 as the Cycles renders here have (whose per-kind limits, 1 too, stay set on
+    the scene once Cycles has rendered it, and Prism reads them)."""
     scene.world = bpy.data.worlds.new("Black")
     scene.world.color = (0.0, 0.0, 0.0)
+    scene.prism.max_bounces = 1
 
 
 def test_a_uniform_displacement_lifts_the_plane_to_its_closed_form(prism_addon, fresh_scene):

@@ -65,3 +65,19 @@ def test_a_negative_limit_is_refused():
 
     with pytest.raises(PrismInputError, match="Max Bounces ▸ Glossy -1 is negative"):
         LightPathTricks(glossy_bounces=-1).validate()
+
+
+def test_light_tracing_stays_off_while_a_limit_binds():
+    """Light paths would have to count a camera path's bounces from its far end: path tracing renders the caustics
+    (and says why); a limit at Max Bounces lets light tracing back on."""
+    from benchmarks.scenes import build
+    from engine.tracer.scene import Light
+
+    scene = build("cornell_glass", (8, 8))
+    scene.lights = [Light("bulb", "point", np.array([0.0, 0.0, 1.9]), power_w=20.0)]  # small: light-traced
+    assert Renderer(scene, settings()).tables.analysis.light_tracing
+    limited = Renderer(scene, settings(light_path_tricks=LightPathTricks(transmission_bounces=2)))
+    assert not limited.tables.analysis.light_tracing
+    assert "caustics by path tracing (bounce limits per kind)" in limited.strategy
+    at_max = settings(light_path_tricks=LightPathTricks(transmission_bounces=8), max_bounces=8)
+    assert Renderer(scene, at_max).tables.analysis.light_tracing
