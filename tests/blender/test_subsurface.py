@@ -53,3 +53,16 @@ def test_subsurface_spheres_render_as_in_cycles(prism_addon, fresh_scene):
     print("prism/cycles sphere luminance (principled random walk, skin node):", ratio.round(4), "image R, G, B:",
           np.round(channels, 4))
     assert np.all(np.abs(ratio - 1.0) < 0.02), ratio
+
+
+def test_at_max_bounces_0_the_walk_takes_no_bounce_as_in_cycles(prism_addon, fresh_scene):
+    """Cycles counts no bounce for a random walk: at Max Bounces 0 the exit is still lit by the sun (and the world).
+    Prism rendered both spheres black here before the walk stopped using a bounce (0.017 and 0.000 against
+    Cycles' 0.328 and 0.355)."""
+    scene = skin_spheres_in_sun()
+    cycles = sphere_means(render_cycles_rgba(scene, 64, 0, 0))
+    scene.prism.max_bounces = 0
+    prism = sphere_means(render_prism_rgba(scene, 64, 0))
+    print("MEASURED Max Bounces 0, prism/cycles sphere luminance:", (prism / cycles).round(4), "Prism",
+          prism.round(4), "Cycles", cycles.round(4))
+    assert np.all(np.abs(prism / cycles - 1.0) < 0.02), (prism, cycles)

@@ -9,27 +9,17 @@ import pytest
 
 from engine.tracer.path_tricks import LightPathTricks
 from engine.tracer.renderer import Renderer
-from engine.tracer.scene import Camera, Material, SpectrumSpec, World
 
-from .tracer_scenes import look_at, make_scene, settings, uv_sphere
+from .tracer_scenes import inside_glowing_sphere, settings
 
 ALBEDO = 0.5
 MAX_BOUNCES = 12
 
 
-def _glowing_sphere():
-    """The camera at the centre of a closed sphere (radius 2 m) of emitting, diffusely reflecting wall."""
-    cam = Camera("cam", look_at((0, 0, 0.0), (0, 1.0, 0), up=(0, 0, 1)), (8, 8), film_width_mm=36.0,
-                 film_height_mm=36.0)
-    wall = Material("wall", base_color=(ALBEDO,) * 3, emission=SpectrumSpec(), emission_strength=1.0)
-    return make_scene([(*uv_sphere((0, 0, 0), 2.0, inward=True), 0)], [wall], cam, [],
-                      World(color=(0.0, 0.0, 0.0), strength=0.0))
-
-
 def _mean(tricks, samples=16):
     kw = dict(samples=samples, samples_per_pass=samples, max_bounces=MAX_BOUNCES, russian_roulette_depth=64,
               light_path_tricks=tricks)
-    with Renderer(_glowing_sphere(), settings(**kw)) as r:
+    with Renderer(inside_glowing_sphere(size=8, albedo=ALBEDO), settings(**kw)) as r:
         r.render_pass()
         return float(r.image_rgb().astype(np.float64).mean())
 

@@ -156,6 +156,23 @@ def _subsurface_sphere(albedo, radius_m):
     return scene
 
 
+def test_a_white_walk_at_max_bounces_0_returns_everything():
+    """The walk is no bounce (Cycles counts none): at Max Bounces 0 the exit still sees the sky, so a lossless
+    sphere in a white furnace renders as the sky. (Before, the exit had no bounce left: skin spheres at Max
+    Bounces 0 rendered black, tests/blender/test_subsurface.py.)"""
+    from engine.tracer.renderer import Renderer
+
+    from .tracer_scenes import settings
+
+    s = settings(samples=16, samples_per_pass=16, max_bounces=0)
+    with Renderer(_subsurface_sphere(1.0, 0.3), s) as r:
+        r.render_pass()
+        image = r.image_rgb().astype(np.float64)
+    centre = image[4:8, 4:8].mean((0, 1))  # the sphere's middle in the 12 x 12 frame
+    print("MEASURED white walk at Max Bounces 0, centre / sky:", centre)
+    assert np.all(np.abs(centre - 1.0) < 0.02), centre
+
+
 def test_a_white_walk_in_a_furnace_returns_everything_and_turns_light_tracing_off():
     from engine.tracer.renderer import Renderer
 

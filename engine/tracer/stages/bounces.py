@@ -6,10 +6,12 @@ The bounce loop steps every path of a chunk together: at step ``depth`` each liv
 - a **transparent bounce** goes straight through a cut-out (Transparent BSDF, alpha) or a free-standing film.
   Cycles counts these apart (Light Paths ▸ Max Bounces ▸ Transparent), not in Max Bounces;
 - a **volume boundary** (a mesh whose material has a Volume but no Surface) is no bounce at all in Cycles: the
-  ray goes on into or out of the medium, counted only against a sanity limit (``VOLUME_BOUNDS_MAX``).
+  ray goes on into or out of the medium, counted only against a sanity limit (``VOLUME_BOUNDS_MAX``);
+- a **subsurface random walk** takes the step from its entry to its exit, and Cycles counts no bounce for it
+  (its exit's reflection is the bounce).
 
-``PathState.crossings`` int32 [n, 2] keeps, per path, the steps that were not scatterings (``STEPS``: both
-kinds) and the transparent bounces (``TRANSPARENT``). The path's bounce count is then ``depth`` minus its
+``PathState.crossings`` int32 [n, 2] keeps, per path, the steps that were not scatterings (``STEPS``: all
+three kinds) and the transparent bounces (``TRANSPARENT``). The path's bounce count is then ``depth`` minus its
 steps. The sampler's dimensions stay per step (``sampler.bounce_slot(depth, ...)``), as Cycles advances its
 ``rng_offset`` at transparent bounces and volume boundaries too; so does the split of the render passes into
 direct and indirect light (``pass_writes.camera_slot``), which is decided per step for the whole chunk.
@@ -69,8 +71,8 @@ def ends_at_next_surface(state, i, settings):
 
 @inlined
 def count_crossing(state, i, transparent):
-    """Path ``i`` went straight through a surface: a transparent bounce, or (``transparent`` False) a volume's
-    boundary."""
+    """Path ``i`` took a step that is no scattering: straight through a surface (a transparent bounce), or
+    (``transparent`` False) through a volume's boundary or under a surface (a subsurface random walk)."""
     state.crossings[i, STEPS] += 1
     if transparent:
         state.crossings[i, TRANSPARENT] += 1

@@ -190,6 +190,8 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             if survives(state, i, depth, bounce, settings, collapsed):
                 pushed = walk_under_surface(state, i, rays, geometry, triangle, rows[chosen], spectral[chosen], p,
                                             facing_ng, wi, next_rays, queued, (li, f, mix[0]))
+                if pushed:  # the walk is no bounce: Cycles counts the exit's reflection alone
+                    count_crossing(state, i, False)
                 queued += pushed
             continue
         state.eta_scale[i] *= eta_scale

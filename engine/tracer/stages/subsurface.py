@@ -8,9 +8,10 @@ At the exit the shading stage replaces the material by a Lambertian reflection o
 smooth normal on the side the walk left through (Cycles' ``subsurface_shader_data_setup``): light sampling,
 a diffuse bounce, no roulette (the path played it at the entry).
 
-Not as in Cycles: the walk's exit vertex is one bounce of Prism's loop, so a path that went under a surface
-has one bounce fewer left (Cycles counts none for the walk); the exit shades with the smooth normal, where
-Cycles takes a bumped subsurface normal evaluated there.
+The walk's exit vertex is one step of Prism's loop but no bounce (``stages.bounces.count_crossing``): as in
+Cycles, which counts nothing for the walk, the exit is shaded at the entry's bounce, so Max Bounces 0 still lights
+skin through its exit. Not as in Cycles: the exit shades with the smooth normal, where Cycles takes a bumped
+subsurface normal evaluated there.
 """
 
 from __future__ import annotations
