@@ -49,15 +49,21 @@ def _corner():
     bpy.context.scene.world = black_world()
 
 
+def _limited_and_not(scene, samples, **limits):
+    """Mean luminance at Max Bounces 8 with ``limits`` set on the scene: (Prism, Cycles), and Prism's once every
+    kind is back at 8 (no limit below Max Bounces, as Prism rendered every scene before)."""
+    scene.prism.max_bounces = 8
+    cycles = luminance(render_cycles_rgba(scene, samples, 0, max_bounces=8, **limits)).mean()
+    prism = luminance(render_prism_rgba(scene, samples, 0)).mean()
+    render_cycles_rgba(scene, 1, 0, max_bounces=8)  # sets every kind to 8
+    return prism, cycles, luminance(render_prism_rgba(scene, samples, 0)).mean()
+
+
 def test_diffuse_glossy_and_transmission_limits_as_cycles(prism_addon, fresh_scene):
     """Max Bounces 8 with Diffuse 1, Glossy 1 and Transmission 2 (Cycles' "Fast Global Illumination" kind of
     preset): Prism within 2 % of Cycles in mean luminance, and darker than without the limits."""
     _corner()
-    fresh_scene.prism.max_bounces = 8
-    cycles = luminance(render_cycles_rgba(fresh_scene, 128, 0, max_bounces=8, **LIMITS)).mean()
-    prism = luminance(render_prism_rgba(fresh_scene, 128, 0)).mean()
-    render_cycles_rgba(fresh_scene, 1, 0, max_bounces=8)  # every kind back to 8: no limit below Max Bounces
-    unlimited = luminance(render_prism_rgba(fresh_scene, 128, 0)).mean()
+    prism, cycles, unlimited = _limited_and_not(fresh_scene, 128, **LIMITS)
     print(f"MEASURED corner, Diffuse 1 / Glossy 1 / Transmission 2: Prism {prism:.5f}, Cycles {cycles:.5f} "
           f"(ratio {prism / cycles:.4f}); Prism without the limits {unlimited:.5f} ({unlimited / cycles:.4f})")
     assert prism == pytest.approx(cycles, rel=0.02)
@@ -68,11 +74,7 @@ def test_volume_bounces_zero_scatters_once_in_fog_as_cycles(prism_addon, fresh_s
     """Volume 0 (Cycles' default, here set on the scene): light scatters once in the fog, then the path ends;
     Prism within 2 % of Cycles, and darker than with multiple scattering."""
     point_light_in_fog()
-    fresh_scene.prism.max_bounces = 8
-    cycles = luminance(render_cycles_rgba(fresh_scene, 256, 0, max_bounces=8, volume_bounces=0)).mean()
-    prism = luminance(render_prism_rgba(fresh_scene, 256, 0)).mean()
-    render_cycles_rgba(fresh_scene, 1, 0, max_bounces=8)
-    multiple = luminance(render_prism_rgba(fresh_scene, 256, 0)).mean()
+    prism, cycles, multiple = _limited_and_not(fresh_scene, 256, volume_bounces=0)
     print(f"MEASURED fog, Volume 0: Prism {prism:.5f}, Cycles {cycles:.5f} (ratio {prism / cycles:.4f}); "
           f"Prism with Volume 8 {multiple:.5f}")
     assert prism == pytest.approx(cycles, rel=0.02)
