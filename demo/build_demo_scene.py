@@ -102,7 +102,7 @@ def build(path: Path) -> None:
     glass = principled("Flint glass", (1, 1, 1), Roughness=0.0, **{"Transmission Weight": 1.0, "IOR": 1.7847})
     glass.prism.glass_source, glass.prism.glass_name = "CATALOGUE", "N-SF11"
     # 1 mm above the floor: a face lying in the floor's plane is ill-posed (which of the two a ray meets is
-    # up to each ray tracer), and Cycles then renders the prism's light 1.6 % darker than with a gap.
+    # up to each ray tracer), and Cycles then renders the prism's light 1.7 % darker than with a gap.
     add_mesh_object("Glass prism", prism_mesh(), glass, location=(0.45, -0.6, 0.001),
                     rotation=(0, 0, math.radians(10)))
 

@@ -25,7 +25,7 @@ from .blackbody import blackbody_luminance, check_temperature, planck_spectral_r
 from ..errors import PrismInputError
 from .rgb_to_spectrum import RGBEmission
 from .sampled import check_sampled, resample_1nm
-from .tinted_blackbody import WHITE, TintedBlackbodyEmissionSpectrum
+from .tinted_blackbody import WHITE, tinted_blackbody
 from .trapezoid import trapezoid
 from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM
 
@@ -160,6 +160,20 @@ class TabulatedEmissionSpectrum:
         grid = self.first_nm + np.arange(len(self.values))
         inside = (wavelength_nm >= self.support_nm[0]) & (wavelength_nm <= self.support_nm[1])
         return np.where(inside, self._scale * np.interp(wavelength_nm, grid, self.values), 0.0)
+
+
+class TintedBlackbodyEmissionSpectrum(TabulatedEmissionSpectrum):
+    """A blackbody at ``temperature_k`` filtered by the tint ``rgb`` (not white: ``tinted_blackbody``), at every
+    nanometre of 360-830 nm. Unlike a measured spectrum it is not scaled to Y = 1: a tint darkens the light as the
+    colour darkens Cycles' light. The table comes ready, so nothing is resampled."""
+
+    def __init__(self, temperature_k, rgb):  # not super().__init__: that resamples and scales to Y = 1
+        self.kind = "blackbody"
+        self.temperature_k = float(temperature_k)
+        self.first_nm = VISIBLE_MIN_NM
+        self.values = tinted_blackbody(self.temperature_k, rgb)[0]
+        self.support_nm = (VISIBLE_MIN_NM, VISIBLE_MAX_NM)
+        self._scale = 1.0
 
 
 def emission_spectrum(spec):

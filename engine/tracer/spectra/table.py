@@ -220,7 +220,7 @@ class SpectrumTable:
 
     def emission(self, spec) -> int:
         """A luminance-normalised emission spectrum for a ``scene.SpectrumSpec`` (radiance per unit strength)."""
-        from .emission_spectrum import BlackbodyEmissionSpectrum, emission_spectrum
+        from .emission_spectrum import BlackbodyEmissionSpectrum, TabulatedEmissionSpectrum, emission_spectrum
 
         key = ("emission", spec)
         if key in self._rows:
@@ -235,7 +235,7 @@ class SpectrumTable:
                              [c[0], c[1], c[2], emission.scale / emission._d65_norm, self.d65()])
         if isinstance(source, BlackbodyEmissionSpectrum):  # Planck's law evaluated in the kernels
             return self._row(key, BLACKBODY, [source.temperature_k, source._scale])
-        if spec.kind in ("illuminant", "tabulated", "blackbody"):  # every nanometre (a tinted blackbody too)
+        if isinstance(source, TabulatedEmissionSpectrum):  # every nanometre (illuminants, files, tinted blackbodies)
             sid = self.tabulated(key, source.first_nm, 1.0, source.values, source._scale, source.support_nm)
             self._rows[key] = sid
             return sid

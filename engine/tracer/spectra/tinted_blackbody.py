@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from .blackbody import MAX_TEMPERATURE_K, MIN_TEMPERATURE_K, blackbody_luminance, planck_spectral_radiance
-from .wavelengths import VISIBLE_MAX_NM, VISIBLE_MIN_NM, VISIBLE_NM_GRID
+from .wavelengths import VISIBLE_NM_GRID
 
 WHITE = (1.0, 1.0, 1.0)
 
@@ -45,25 +45,3 @@ def tinted_blackbody(temperature_k, tint) -> np.ndarray:
     lam = np.asarray(VISIBLE_NM_GRID, dtype=np.float64)
     planck = planck_spectral_radiance(lam[None, :], shown[:, None]) / blackbody_luminance(shown)[:, None]
     return tint_on_grid(tint)[None, :] * planck
-
-
-class TintedBlackbodyEmissionSpectrum:
-    """An emitter's blackbody at ``temperature_k`` filtered by the tint ``rgb`` (not white), tabulated at every
-    nanometre of 360-830 nm. Its luminance is the filtered spectrum's own, not 1: a tint darkens the light as
-    the colour darkens Cycles' light."""
-
-    kind = "blackbody"
-
-    def __init__(self, temperature_k, rgb):
-        self.temperature_k = float(temperature_k)
-        self.first_nm = VISIBLE_MIN_NM
-        self.values = tinted_blackbody(self.temperature_k, rgb)[0]
-        self.support_nm = (VISIBLE_MIN_NM, VISIBLE_MAX_NM)
-        self._scale = 1.0
-
-    def evaluate(self, wavelength_nm):
-        """Relative spectral radiance at ``wavelength_nm`` (any shape); 0 outside 360-830 nm."""
-        wavelength_nm = np.asarray(wavelength_nm, dtype=np.float64)
-        grid = self.first_nm + np.arange(len(self.values))
-        inside = (wavelength_nm >= self.support_nm[0]) & (wavelength_nm <= self.support_nm[1])
-        return np.where(inside, np.interp(wavelength_nm, grid, self.values), 0.0)
