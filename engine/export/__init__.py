@@ -136,6 +136,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
         object_light_groups=geometry.object_light_groups,
         corner_normals=geometry.corner_normals,
         triangle_flat=geometry.triangle_flat,
+        triangle_terminator=geometry.triangle_terminator,
         surface=geometry.surface,
         points=geometry.points,
         curves=geometry.curves,

@@ -40,6 +40,7 @@ from .unrendered import unrendered_type_warning
 from .velocity import placed_velocity
 from .volume_objects import VolumeReader
 from .view_layer_filter import layer_filter
+from .shadow_terminator import geometry_offset
 from .visibility import object_flags
 
 #: Types whose evaluated mesh arrives as a separate MESH instance.
@@ -72,6 +73,7 @@ class ExportedGeometry:
     curve_velocity: np.ndarray | None = None  # float64 [P, 3]: of the curves' control points (as points')
     curves: CurveSegments | None = None  # the strands of hair curves (objects numbered after the points')
     triangle_flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat
+    triangle_terminator: np.ndarray | None = None  # float32 [T]: its object's Geometry Offset, 0 where shaded flat
     object_asset_names: list[str] = field(default_factory=list)  # per object_names entry (Cryptomatte Asset)
     material_names: list[str] = field(default_factory=list)  # per material, Cycles' name (Cryptomatte Material)
 
@@ -87,6 +89,7 @@ class _Instances:
     light_group: str = ""  # Object ▸ Shading ▸ Light Group
     flags: int = 0
     asset: str = ""  # the name of the object's topmost parent (Cryptomatte Asset)
+    terminator: float = 0.0  # Object ▸ Shading ▸ Shadow Terminator ▸ Geometry Offset (``shadow_terminator``)
 
 
 @dataclass
@@ -173,7 +176,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
                 if message is not None and warnings is not None:
                     warnings.append(message)
             pieces[key] = (_Instances(obj.name, geometry, light_group=obj.lightgroup, flags=flags,
-                                      asset=asset_name(obj))
+                                      asset=asset_name(obj), terminator=geometry_offset(obj, warnings))
                            if geometry is not None else None)
         _place(pieces[key], instance, obj)
     return [piece for piece in pieces.values() if piece is not None]
@@ -207,6 +210,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
     pass_index: list[np.ndarray] = []
     has_uv: list[np.ndarray] = []  # per triangle: its mesh has the render UV map (the UV pass's A)
     flat: list[np.ndarray] = []  # per triangle: shaded flat (``ExportedGeometry.triangle_flat``)
+    terminator: list[np.ndarray] = []  # per triangle: ``ExportedGeometry.triangle_terminator``
     clouds, strands = [], []
     velocities: list[np.ndarray | None] = []  # per part: its vertices' velocity attribute (world), or None
     for piece in pieces:
@@ -228,6 +232,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
         surface.add_mesh(local, matrices, piece.infos, np.linalg.det(matrices[:, :3, :3]) < 0)
         flat.append(np.tile(local.flat if local.flat is not None else np.zeros(len(local.triangles), bool),
                             len(matrices)))
+        terminator.append(np.where(flat[-1], 0.0, piece.terminator).astype(np.float32))
         if passes.uv:
             has_uv.append(np.full(len(local.triangles) * len(matrices), materials.uv_pass_slot in local.uvs))
         if passes.object_index:  # instance by instance, as ``instance_triangles`` places them
@@ -252,6 +257,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
     geometry.surface = surface.surface()
     geometry.object_flags = np.asarray(objects.flags, np.uint8)
     geometry.triangle_flat = np.concatenate(flat) if flat else np.zeros(0, bool)
+    geometry.triangle_terminator = np.concatenate(terminator) if terminator else np.zeros(0, np.float32)
     if passes.object_index:
         geometry.triangle_pass_index = np.concatenate(pass_index) if pass_index else np.zeros(0, np.float32)
     if passes.uv and geometry.surface is not None:

@@ -24,7 +24,8 @@ _LABELS = {"name", "object_names", "triangle_object", "asset_names", "material_n
 #: (absent: the hashes of scenes without them): per-object ray visibility and holdouts, flat shading, the UV maps,
 #: colour attributes and object data node materials read, light groups, the data passes' inputs, and the
 #: geometry at the shutter's time steps (motion blur).
-_GEOMETRY_EXTRAS = ("object_flags", "triangle_flat", "surface", "object_light_groups", "data_passes", "motion")
+_GEOMETRY_EXTRAS = ("object_flags", "triangle_flat", "surface", "object_light_groups", "data_passes", "motion",
+                    "triangle_terminator")
 #: Settings fields a chunk carries itself or that do not change the image.
 _PER_CHUNK_SETTINGS = {"samples", "threads", "seed"}
 PARTS = ("frame", "geometry", "materials", "lights", "camera", "world", "settings")

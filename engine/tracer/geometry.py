@@ -25,6 +25,8 @@ rows T + S .. T + S + C - 1. So ``material``, ``flags`` (and ``attributes.instan
 hold T + S + C entries; the per-corner tables hold T, but for the colour attributes and UV maps, which hold
 rows for the spheres (each point's colours at all three corners) and the segments (``curves.corner_rows``)
 where these carry any (``_with_primitive_rows``).
+``terminator`` float32 [T]: each triangle's shadow terminator Geometry Offset (``terminator``; 0 where shaded
+flat), or [0] when no triangle has one (or the mesh has no corner normals).
 """
 
 from __future__ import annotations
@@ -41,9 +43,9 @@ from .spheres import (camera_relative, camera_relative_steps, no_sphere_motion, 
                       sphere_surface)
 
 Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags motion motion_normals spheres "
-                      "sphere_random curves curve_segments curve_info curve_motion sphere_motion",
+                      "sphere_random curves curve_segments curve_info curve_motion sphere_motion terminator",
                       defaults=(no_spheres(), np.zeros(0, np.float32), *hair.no_curves(), np.zeros((0, 4), np.float32),
-                                hair.no_curve_motion(), no_sphere_motion()))
+                                hair.no_curve_motion(), no_sphere_motion(), np.zeros(0, np.float32)))
 
 #: A ``surface_at`` time that reads the positions at the frame (``Geometry.vertices``), where the light
 #: table's emitters stand, instead of those at a ray time of the shutter.
@@ -108,8 +110,19 @@ def prepare_geometry(scene, offset):
                         *_motion_arrays(scene, original, offset, len(normals)), camera_relative(points, rows, offset),
                         point_random(points, rows), *hair.camera_relative(strands, offset), hair.curve_info(strands),
                         hair.camera_relative_motion(strands, getattr(motion, "curves", None), offset),
-                        camera_relative_steps(points, rows, getattr(motion, "points", None), offset))
+                        camera_relative_steps(points, rows, getattr(motion, "points", None), offset),
+                        _terminator_offsets(scene, original, len(normals)))
     return geometry, original, int(len(triangles) - len(original))
+
+
+def _terminator_offsets(scene, original, smooth):
+    """``Geometry.terminator`` of the render's triangles ``original`` (``smooth``: whether they carry corner
+    normals)."""
+    offsets = getattr(scene, "triangle_terminator", None)
+    if not smooth or offsets is None or len(offsets) != scene.triangle_count:
+        return np.zeros(0, np.float32)
+    offsets = np.asarray(offsets, np.float32)[original]
+    return np.ascontiguousarray(offsets) if (offsets > 0.0).any() else np.zeros(0, np.float32)
 
 
 def _with_primitive_rows(attributes, points, rows, strands):
@@ -206,7 +219,7 @@ def vertex_at(geometry, vertex, time):
 
 
 @kernel
-def _corner_normal(geometry, triangle, corner, time):
+def corner_normal(geometry, triangle, corner, time):
     """Corner ``corner``'s shading normal (not unit) at ray time ``time``."""
     m = geometry.motion_normals
     if m.shape[0] == 0 or time < 0.0:
@@ -249,9 +262,9 @@ def surface_at(geometry, triangle, u, v, time):
     if geometry.normals.shape[0] == 0:
         return p, ng, ng
     w = 1.0 - u - v
-    n0 = _corner_normal(geometry, triangle, 0, time)
-    n1 = _corner_normal(geometry, triangle, 1, time)
-    n2 = _corner_normal(geometry, triangle, 2, time)
+    n0 = corner_normal(geometry, triangle, 0, time)
+    n1 = corner_normal(geometry, triangle, 1, time)
+    n2 = corner_normal(geometry, triangle, 2, time)
     sx = w * n0[0] + u * n1[0] + v * n2[0]
     sy = w * n0[1] + u * n1[1] + v * n2[1]
     sz = w * n0[2] + u * n1[2] + v * n2[2]

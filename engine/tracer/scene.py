@@ -291,6 +291,8 @@ class Scene:
     points: SpherePoints | None = None
     curves: CurveSegments | None = None
     triangle_flat: np.ndarray | None = None  # bool [T]: shaded flat (displacement recomputes the others' normals)
+    # float32 [T]: the shadow terminator Geometry Offset of each triangle's object, 0 where shaded flat (``terminator``)
+    triangle_terminator: np.ndarray | None = None
 
     @property
     def triangle_count(self) -> int:

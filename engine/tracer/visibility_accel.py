@@ -51,7 +51,8 @@ class _Subset:
                        geometry.curves, np.ascontiguousarray(geometry.curve_segments[segments]),
                        geometry.curve_info[segments] if len(geometry.curve_info) else geometry.curve_info,
                        geometry.curve_motion,
-                       geometry.sphere_motion[:, spheres] if len(geometry.sphere_motion) else geometry.sphere_motion)
+                       geometry.sphere_motion[:, spheres] if len(geometry.sphere_motion) else geometry.sphere_motion,
+                       geometry.terminator[:0])
         self.accel = Accel(sub)
 
     def _map(self, hit):

@@ -103,9 +103,9 @@ def _model_the_ridges(grid, material):
 def test_a_textured_displacement_is_the_mesh_it_models(prism_addon, fresh_scene, smooth):
     """A fine grid displaced by a Wave texture (ridges 0.15 m high) under a low sun, seen at a slant, against the
     same ridges modelled as vertices, in Prism and in Cycles: Prism's displaced image is its modelled one (mean
-    within 0.5 %, pixel by pixel within 2 % of the mean), and Prism / Cycles is the same with displacement as
-    without (within 1 %; the ridges themselves render brighter in Prism than in Cycles, displaced or modelled:
-    a finding outside displacement, see docs/displacement.md). Bump Only on the flat grid is far from both.
+    within 0.5 %, pixel by pixel within 2 % of the mean), Prism / Cycles is the same with displacement as
+    without (within 1 %), and within 1.5 % of 1 (smooth-shaded, Cycles' shadow terminator Geometry Offset counts:
+    measured 0.9925, 0.905 before Prism honoured it). Bump Only on the flat grid is far from both.
     ("Both": ``test_both_also_bends_the_normal_between_the_vertices_as_cycles``)."""
     _black_world(fresh_scene)
     method = "DISPLACEMENT"
@@ -131,6 +131,7 @@ def test_a_textured_displacement_is_the_mesh_it_models(prism_addon, fresh_scene,
     assert difference < 0.02
     assert (displaced.mean() / displaced_cycles.mean()) == pytest.approx(modelled.mean() / modelled_cycles.mean(),
                                                                           rel=0.01)
+    assert displaced.mean() / displaced_cycles.mean() == pytest.approx(1.0, abs=0.015)
     assert np.abs(flat_grid - modelled).mean() / modelled.mean() > 10 * difference
 
 

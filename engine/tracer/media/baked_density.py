@@ -99,7 +99,7 @@ def _probe(geometry, points, material, row, colours):
         motion_normals=empty(geometry.motion_normals, (0, 1)), spheres=empty(geometry.spheres),
         sphere_random=empty(geometry.sphere_random), curves=empty(geometry.curves),
         curve_segments=empty(geometry.curve_segments), curve_info=empty(geometry.curve_info),
-        sphere_motion=empty(geometry.sphere_motion, (0, 1)))
+        sphere_motion=empty(geometry.sphere_motion, (0, 1)), terminator=empty(geometry.terminator))
 
 
 def _evaluate(geometry, arrays, registers, register_count, material, row, points, colours=None):

@@ -17,6 +17,7 @@ from ..jit import inlined, kernel
 from ..light_linking import ALL_SETS, emitter_sets, in_sets
 from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
+from ..terminator import lifted_ray, terminator_lift
 from ..vec3 import to_local
 from ..warps import power_heuristic
 from .bounces import path_bounce
@@ -76,10 +77,16 @@ def sample_direct(state, i, vertex, bsdf, lights, materials, spectra, geometry, 
         factor = clamp_factor(settings, state, i, contribution, path_bounce(state, i, depth) > 0)
         for k in range(li.shape[0]):
             contribution[k] *= factor
-    origin, skipped = leave_surface(geometry, state.hit_triangle[i], state.hit_u[i], p, ng, wi, state.time[i])
+    triangle = state.hit_triangle[i]
+    facing_ng = ng if ng[0] * vertex.ns[0] + ng[1] * vertex.ns[1] + ng[2] * vertex.ns[2] >= 0.0 else (
+        -ng[0], -ng[1], -ng[2])
+    # Cycles' shadow terminator Geometry Offset: smooth triangles start the ray on their smooth surface
+    lift = terminator_lift(geometry, triangle, state.hit_u[i], state.hit_v[i], facing_ng, vertex.ns, wi, state.time[i])
+    start, toward, dist = lifted_ray(p, lift, wi, dist)
+    origin, skipped = leave_surface(geometry, triangle, state.hit_u[i], start, ng, toward, state.time[i])
     distance = (dist - skipped) * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
     # the medium: the path's; the shading stage corrects it where the surface bounds a medium
-    if not queue_shadow(shadows, slot, i, origin, wi, distance, group, state.medium[i], shadow_sets):
+    if not queue_shadow(shadows, slot, i, origin, toward, distance, group, state.medium[i], shadow_sets):
         return 0
     if depth == 0 and layout.light >= 0:
         lobe_shares(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, scratch[0],

@@ -150,7 +150,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         if has_lights and not final and (not mflags & MAT_DELTA or blurred):
             if settings.light_path:
                 emission_sample(registers, state, i)
-            vertex = SurfaceVertex(p, ng, frame, wo_l)
+            vertex = SurfaceVertex(p, ng, frame, wo_l, facing_ns)
             lit = sample_direct(state, i, vertex, ResolvedBsdf(rows, spectral, eta, closures, collapsed), lights,
                                 materials, spectra, geometry, settings, depth, shadows, shadowed, li, f, mix, passes,
                                 layout, scratch)

@@ -15,8 +15,9 @@ from collections import namedtuple
 from ..jit import kernel
 
 # ``p``, ``ng``: the point and geometric normal (world); ``frame``: (tangent, bitangent, n), the material's
-# shading frame; ``wo_l``: the view direction in it.
-SurfaceVertex = namedtuple("SurfaceVertex", "p ng frame wo_l")
+# shading frame; ``wo_l``: the view direction in it; ``ns``: the smooth shading normal (before any bump), on the
+# view's side (what the shadow terminator offset reads: ``terminator``).
+SurfaceVertex = namedtuple("SurfaceVertex", "p ng frame wo_l ns")
 # The material resolved at the vertex: closure ``rows``, their ``spectral`` values and glass ``eta``, how many
 # (``count``), and whether the path carries its hero wavelength alone (``collapsed``).
 ResolvedBsdf = namedtuple("ResolvedBsdf", "rows spectral eta count collapsed")
