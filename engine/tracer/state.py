@@ -91,7 +91,8 @@ RayQueue = namedtuple("RayQueue", "path origin direction tmax time")
 #: ``group`` int32 [n] the light group of the light sampled (for its pass); ``medium`` int32 [n] the medium
 #: the shadow ray starts in (-1: none).
 #: ``blockers`` int64 [n]: the blocker sets of the light sampled (``light_linking``; -1: every object blocks).
-ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance group medium blockers")
+#: ``crossable`` int32 [n]: the cut-outs and films the ray may still cross (``stages.bounces.shadow_crossings``).
+ShadowQueue = namedtuple("ShadowQueue", "rays contribution origin direction distance group medium blockers crossable")
 
 #: Embree's answer for each queued ray: ``triangle`` int32 [n] (-1: a miss), ``t``, ``u``, ``v`` float32 [n].
 HitRecord = namedtuple("HitRecord", "triangle t u v")
@@ -131,7 +132,8 @@ def new_ray_queue(n: int, time=None) -> RayQueue:
 
 def new_shadow_queue(n: int, k: int, time=None) -> ShadowQueue:
     return ShadowQueue(new_ray_queue(n, time), np.empty((n, k)), np.empty((n, 3)), np.empty((n, 3)), np.empty(n),
-                       np.empty(n, np.int32), np.full(n, -1, np.int32), np.full(n, -1, np.int64))
+                       np.empty(n, np.int32), np.full(n, -1, np.int32), np.full(n, -1, np.int64),
+                       np.zeros(n, np.int32))
 
 
 def new_shading_scratch(k: int, registers: int = 1) -> ShadingScratch:

@@ -57,3 +57,46 @@ def test_the_last_transparent_bounce_ends_the_path_at_the_next_surface_as_in_cyc
     print(f"MEASURED five cut-outs, Transparent Max Bounces 3: Prism {prism.mean():.5f}, Cycles {cycles.mean():.5f}")
     assert cycles.max() < 1e-6
     assert np.all(prism == 0.0)
+
+
+def _floor_behind_cut_outs(seen_through, shadow_through):
+    """A grey floor seen from 1 m through ``seen_through`` small cut-outs 0.3 m and more under the camera (beyond its
+    Clip Start), lit by a point
+    light 45° off the camera's axis through ``shadow_through`` large cut-outs on the way to it (camera rays never
+    meet these, nor shadow rays the camera's)."""
+    black_world()
+    floor, nodes, link = material("Floor")
+    link(node(nodes, "ShaderNodeBsdfDiffuse", Color=(0.5, 0.5, 0.5, 1.0)).outputs[0], nodes["Output"].inputs["Surface"])
+    plane("Floor", 1.0, mat=floor)
+    cut_out, nodes, link = material("Cut-out")
+    link(node(nodes, "ShaderNodeBsdfTransparent", Color=(TINT,) * 3).outputs[0], nodes["Output"].inputs["Surface"])
+    for k in range(seen_through):
+        plane(f"Near {k}", 0.1, location=(0.0, 0.0, 0.7 - 0.1 * k), mat=cut_out)
+    for z in range(2, 2 + shadow_through):
+        plane(f"Far {z}", 2.0, location=(float(z), 0.0, float(z)), mat=cut_out)
+    lamp = bpy.data.objects.new("Lamp", bpy.data.lights.new("Lamp", "POINT"))
+    lamp.data.energy, lamp.data.shadow_soft_size = 1000.0, 0.0
+    lamp.location = (12.0, 0.0, 12.0)
+    bpy.context.scene.collection.objects.link(lamp)
+    camera((0.0, 0.0, 1.0), (0.0, 0.0, 0.0), lens_mm=50.0, resolution=(8, 8), sensor_mm=10.0)
+
+
+@pytest.mark.parametrize("shadow_through", [2, 3])
+def test_a_shadow_ray_crosses_what_its_path_left_as_in_cycles(prism_addon, fresh_scene, shadow_through):
+    """At Transparent Max Bounces 4, a floor seen through 2 cut-outs: its shadow rays may cross 4 − 2 more (Cycles'
+    ``integrate_shadow_max_transparent_hits``). Through 2 it is lit at 0.8⁴ of the bare floor in both engines;
+    behind 3 it is black in both (before 2026-12-07, Prism lit it through up to 8)."""
+    _floor_behind_cut_outs(0, 0)
+    bare, bare_cycles = _both(fresh_scene, 4)
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    _floor_behind_cut_outs(2, shadow_through)
+    prism, cycles = _both(bpy.context.scene, 4)
+    print(f"MEASURED floor through 2 cut-outs, shadow rays through {shadow_through}: Prism {prism.mean():.5f}, "
+          f"Cycles {cycles.mean():.5f}; bare floor Prism {bare.mean():.5f}, Cycles {bare_cycles.mean():.5f}")
+    assert bare.mean() > 0.01 and bare.mean() / bare_cycles.mean() == pytest.approx(1.0, abs=0.02)
+    if shadow_through == 2:
+        assert cycles.mean() / bare_cycles.mean() == pytest.approx(TINT ** 4, rel=0.01)
+        assert prism.mean() / bare.mean() == pytest.approx(TINT ** 4, rel=1e-4)
+    else:
+        assert cycles.max() < 1e-6
+        assert np.all(prism == 0.0)

@@ -114,7 +114,7 @@ def _floor_under_layers(layers):
 
 
 def test_shadow_rays_cross_as_many_cut_outs_as_transparent_max_bounces():
-    """Shadow rays take Transparent Max Bounces layers (never fewer than 8), as Cycles' do: ten cut-outs pass
+    """Shadow rays cross Transparent Max Bounces cut-outs, as Cycles' do: ten cut-outs pass
     0.8^10 of the light with Transparent Max Bounces 10, and block it with the default 8. Exact: light sampling
     of a point light is the floor's only light at Max Bounces 0."""
     kw = dict(samples=1, samples_per_pass=1, max_bounces=0)
@@ -126,3 +126,33 @@ def test_shadow_rays_cross_as_many_cut_outs_as_transparent_max_bounces():
     # absolute: ρ/π · I / h² with I = 1000 W / 4π, h = 12 m, times 0.8^10
     assert ten.mean() == pytest.approx(0.5 / np.pi * 1000.0 / (4 * np.pi) / 12.0 ** 2 * TINT ** 10, rel=0.03)
     assert np.all(eight == 0.0)
+
+
+def _floor_behind_cut_outs(seen_through, shadow_through):
+    """A grey floor seen from 1 m through ``seen_through`` small cut-outs 0.3 m and more under the camera, lit by a
+    point light 45° off its axis through ``shadow_through`` large cut-outs on the way to the light (which the
+    camera's rays never meet, nor the shadow rays the camera's cut-outs). As ``tests/blender``'s scene."""
+    cam = Camera("cam", look_at((0, 0, 1.0), (0, 0, 0), up=(0, 1, 0)), (8, 8), film_width_mm=10.0,
+                 film_height_mm=10.0)
+    parts = [(*quad((0, 0, 0), (0.5, 0, 0), (0, 0.5, 0)), 0)]
+    parts += [(*quad((0, 0, 0.7 - 0.1 * k), (0.05, 0, 0), (0, 0.05, 0)), 1) for k in range(seen_through)]
+    parts += [(*quad((z, 0, z), (1, 0, 0), (0, 1, 0)), 1) for z in range(2, 2 + shadow_through)]
+    lamp = Light("lamp", "point", np.array([12.0, 0.0, 12.0]), power_w=1000.0)
+    return make_scene(parts, [Material("floor", base_color=(0.5, 0.5, 0.5)), _cut_out()], cam, [lamp],
+                      World(color=(0.0, 0.0, 0.0), strength=0.0))
+
+
+def test_a_shadow_ray_crosses_what_its_path_left_of_transparent_max_bounces():
+    """As Cycles (``integrate_shadow_max_transparent_hits``): a shadow ray from a vertex the path reached through k
+    cut-outs crosses at most Transparent Max Bounces − k more, and the next blocks it. At Transparent Max Bounces
+    4, the floor seen through 2 cut-outs is lit through 2 more at exactly 0.8² × 0.8² of the bare floor, and black
+    behind 3; seen directly it is lit through 4. (Before, every shadow ray crossed 8 whatever the path had.)"""
+    kw = dict(samples=1, samples_per_pass=1, max_bounces=0, transparent_max_bounces=4)
+    bare = _render(_floor_behind_cut_outs(0, 0), **kw)
+    assert bare.mean() > 0.01
+    assert _render(_floor_behind_cut_outs(2, 2), **kw) / bare == pytest.approx(np.full_like(bare, TINT ** 4),
+                                                                                rel=1e-6)
+    assert np.all(_render(_floor_behind_cut_outs(2, 3), **kw) == 0.0)
+    assert _render(_floor_behind_cut_outs(0, 4), **kw) / bare == pytest.approx(np.full_like(bare, TINT ** 4),
+                                                                                rel=1e-6)
+    assert np.all(_render(_floor_behind_cut_outs(0, 5), **kw) == 0.0)

@@ -15,7 +15,7 @@ from ..lights.dispatch import sample_light
 from ..materials.light_path import after_volume_scatter, emission_sample
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
 from ..state import CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA
-from ..stages.bounces import path_bounce
+from ..stages.bounces import path_bounce, shadow_crossings
 from ..stages.nee import FAR, SHADOW_SHORTEN
 from ..stages.queue import push_ray, queue_shadow
 from ..stages.roulette import survives
@@ -59,7 +59,8 @@ def _light_through_medium(state, i, p, d_in, lights, materials, spectra, geometr
     distance = dist * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
     if not any_light:
         return 0
-    return queue_shadow(shadows, slot, i, p, wi, distance, group, state.medium[i], shadow_sets)
+    return queue_shadow(shadows, slot, i, p, wi, distance, group, state.medium[i], shadow_sets,
+                        shadow_crossings(state, i, settings))
 
 
 @inlined

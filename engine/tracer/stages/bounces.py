@@ -79,6 +79,14 @@ def count_crossing(state, i, transparent):
 
 
 @inlined
+def shadow_crossings(state, i, settings):
+    """The cut-outs and films a shadow ray from path ``i``'s vertex may cross: Transparent Max Bounces less the
+    transparent bounces the path made (Cycles' ``integrate_shadow_max_transparent_hits``; volume boundaries do not
+    count). One more blocks the ray."""
+    return max(settings.transparent_max_bounces - state.crossings[i, TRANSPARENT], 0)
+
+
+@inlined
 def bounces_left(state, i, bounce, settings):
     """Whether path ``i``, having made ``bounce`` scatterings, may scatter again at its next vertex: within Max
     Bounces and within each per-kind limit (a count may equal its setting: Cycles ends a path once a count reaches

@@ -20,7 +20,7 @@ from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, 
 from ..terminator import lifted_ray, terminator_lift
 from ..vec3 import to_local
 from ..warps import power_heuristic
-from .bounces import path_bounce
+from .bounces import path_bounce, shadow_crossings
 from .clamp import clamp_factor
 from .pass_writes import lobe_shares
 from .queue import queue_shadow
@@ -86,7 +86,8 @@ def sample_direct(state, i, vertex, bsdf, lights, materials, spectra, geometry, 
     origin, skipped = leave_surface(geometry, triangle, state.hit_u[i], start, ng, toward, state.time[i])
     distance = (dist - skipped) * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
     # the medium: the path's; the shading stage corrects it where the surface bounds a medium
-    if not queue_shadow(shadows, slot, i, origin, toward, distance, group, state.medium[i], shadow_sets):
+    if not queue_shadow(shadows, slot, i, origin, toward, distance, group, state.medium[i], shadow_sets,
+                        shadow_crossings(state, i, settings)):
         return 0
     if depth == 0 and layout.light >= 0:
         lobe_shares(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, scratch[0],

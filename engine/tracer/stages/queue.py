@@ -30,11 +30,12 @@ def push_ray(state, rays, slot, i, origin, direction):
 
 
 @inlined
-def queue_shadow(shadows, slot, i, origin, direction, distance, group, medium, blockers):
+def queue_shadow(shadows, slot, i, origin, direction, distance, group, medium, blockers, crossable):
     """Queue path ``i``'s shadow ray from ``origin`` along ``direction`` over ``distance`` toward light group
     ``group`` at ``slot`` of ``shadows``, in ``medium`` (-1: none), blocked by the objects of the blocker
-    sets ``blockers`` (``light_linking.ALL_SETS``: by everything); returns 1, or 0 (nothing queued) when the
-    ray is not finite or has no length. Its contribution is written by the caller."""
+    sets ``blockers`` (``light_linking.ALL_SETS``: by everything) and by any cut-out or film past the first
+    ``crossable``; returns 1, or 0 (nothing queued) when the ray is not finite or has no length. Its contribution
+    is written by the caller."""
     if not (_finite(origin, direction) and distance > 0.0):
         return 0
     rays = shadows.rays
@@ -48,5 +49,6 @@ def queue_shadow(shadows, slot, i, origin, direction, distance, group, medium, b
     shadows.group[slot] = group
     shadows.medium[slot] = medium
     shadows.blockers[slot] = blockers
+    shadows.crossable[slot] = crossable
     rays.path[slot] = i
     return 1

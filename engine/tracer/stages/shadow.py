@@ -5,7 +5,8 @@ straight shadow ray, attenuated by T = 1 - R(λ, θ) per wavelength; cut-outs (`
 Transparent BSDF) let it through by their transparency at the point crossed. In scenes with either,
 shadow rays are traced as closest-hit queries layer by layer (``film_layer_kernel`` keeps the rays that
 crossed such a surface, attenuated and moved past it; anything else blocks), up to ``shadow_layers``;
-one occlusion query settles the rest. With media (``KernelSettings.has_media``) shadow rays are always
+one occlusion query settles the rest. As in Cycles, a shadow ray crosses at most Transparent Max Bounces less
+the transparent bounces its path made (``ShadowQueue.crossable``): the next cut-out or film blocks it. With media (``KernelSettings.has_media``) shadow rays are always
 traced layer by layer: each stretch inside a medium attenuates them by its transmittance exp(-σ_t(λ) d)
 (analytic in a homogeneous medium, estimated by ratio tracking in a grid medium: ``media.transmittance``),
 and crossing a volume's null boundary changes their medium.
@@ -23,19 +24,20 @@ from ..jit import inlined, kernel
 from ..light_linking import blocks
 from ..materials.light_path import shadow_ray
 from ..materials.surface import surface_transparency
-from ..materials.table import MAT_MEDIUM, MAT_NULL, MAT_TRANSPARENT
+from ..materials.table import MAT_BOUNDARY, MAT_MEDIUM, MAT_NULL, MAT_TRANSPARENT
 from ..media.boundary import side_medium
 from ..media.transmittance import transmit
 from .pass_writes import deposit
 
-MAX_FILM_LAYERS = 8  # at least this many layers, whatever Transparent Max Bounces says: media boundaries count too
+OTHER_LAYERS = 8  # layers beyond the cut-outs and films: volume boundaries, objects a light's shadow links pass
 
 
 @kernel
 def shadow_layers(transparent_max_bounces):
-    """Layers a shadow ray is traced through before one occlusion query settles it: Transparent Max Bounces, as
-    Cycles' shadow rays take, and never fewer than ``MAX_FILM_LAYERS`` (volume boundaries are layers here)."""
-    return max(MAX_FILM_LAYERS, transparent_max_bounces)
+    """Layers a shadow ray is traced through before one occlusion query settles it: the Transparent Max Bounces
+    cut-outs and films Cycles' shadow rays may cross, and ``OTHER_LAYERS`` more for what is no transparent bounce
+    (volume boundaries, which Cycles does not count; objects outside the light's blocker sets)."""
+    return transparent_max_bounces + OTHER_LAYERS
 
 
 @inlined
@@ -93,6 +95,11 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
         blocker = blocks(lights, shadows.blockers[j], triangle)
         if blocker and not mflags & (MAT_NULL | MAT_TRANSPARENT):
             continue
+        crossable = shadows.crossable[j]
+        if blocker and not mflags & MAT_BOUNDARY:  # a transparent bounce: one more than allowed blocks the ray
+            if crossable <= 0:
+                continue
+            crossable -= 1
         d = (shadows.direction[j, 0], shadows.direction[j, 1], shadows.direction[j, 2])
         u, v = float(hit_u[j]), float(hit_v[j])
         p, ng, ns = surface_at(geometry, triangle, u, v, state.time[i])
@@ -136,5 +143,6 @@ def film_layer_kernel(state, shadows, count, hit_triangle, hit_t, hit_u, hit_v, 
         shadows.group[kept] = shadows.group[j]
         shadows.medium[kept] = medium
         shadows.blockers[kept] = shadows.blockers[j]
+        shadows.crossable[kept] = crossable
         kept += 1
     return kept
