@@ -11,7 +11,6 @@ Prism at Blender's default 0.1, and Cycles 4.5 at 0.1. Prints each panel's mean 
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import sys
 from pathlib import Path
@@ -23,30 +22,6 @@ OUTPUT = ROOT / "docs" / "images" / "shadow_terminator.png"
 SIZE = 192
 
 
-def _scene(bpy):
-    from helpers.bpy_scenes import add_camera
-    from helpers.node_scenes import black_world
-
-    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
-    bpy.ops.mesh.primitive_uv_sphere_add(segments=12, ring_count=6, radius=1.0)
-    sphere = bpy.context.active_object
-    bpy.ops.object.shade_smooth()
-    material = bpy.data.materials.new("White")
-    material.use_nodes = True
-    principled = material.node_tree.nodes["Principled BSDF"]
-    principled.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    principled.inputs["Roughness"].default_value = 1.0
-    principled.inputs["Specular IOR Level"].default_value = 0.0
-    sphere.data.materials.append(material)
-    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
-    sun.data.energy, sun.data.angle = 3.0, 0.0
-    sun.rotation_euler = (math.radians(90.0), 0.0, math.radians(80.0))
-    bpy.context.scene.collection.objects.link(sun)
-    add_camera((0.0, -4.0, 0.0), (math.radians(90.0), 0.0, 0.0), resolution=(SIZE, SIZE))
-    bpy.context.scene.world = black_world()
-    return sphere
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--samples", type=int, default=64)
@@ -55,12 +30,14 @@ def main() -> None:
     import bpy
     from PIL import Image, ImageDraw
 
+    from helpers.bpy_scenes import coarse_sphere_under_low_sun
     from helpers.cycles import configure_cycles, luminance, render_cycles_rgba, render_prism_rgba
     from render import load_addon_package
     from side_by_side import _display
 
     load_addon_package().register()
-    sphere = _scene(bpy)
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    sphere = coarse_sphere_under_low_sun(resolution=(SIZE, SIZE))
     scene = bpy.context.scene
     scene.prism.max_bounces = 0
     configure_cycles(scene, arguments.samples, max_bounces=0)

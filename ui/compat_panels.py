@@ -1,5 +1,5 @@
 """Show Blender's own Properties panels that apply to Prism (format, output, colour management,
-camera lens, light and material slots) by adding ``"PRISM"`` to their ``COMPAT_ENGINES``."""
+camera lens, object shading, light and material slots) by adding ``"PRISM"`` to their ``COMPAT_ENGINES``."""
 
 from __future__ import annotations
 
@@ -42,6 +42,9 @@ COMPATIBLE_PANELS = frozenset(
         "DATA_PT_camera_safe_areas_center_cut",
         "DATA_PT_camera_background_image",
         "DATA_PT_custom_props_camera",
+        # Object ▸ Shading: Light Linking and Shadow Terminator (Geometry Offset; Shading Offset warned), as Cycles
+        "OBJECT_PT_shading",
+        "OBJECT_PT_shadow_terminator",
         # Light data (type, energy and shape are drawn by Prism's light panel)
         "DATA_PT_context_light",
         "DATA_PT_custom_props_light",

@@ -20,6 +20,7 @@ from .lights import export_lights
 from .meshes import export_meshes
 from .missing_libraries import missing_libraries
 from .motion import export_motion
+from .simplify_settings import simplify_warnings
 from .unrendered_settings import unrendered_setting_warnings
 from .vector_pass import export_vector_pass
 from .view_layer_filter import LayerFilter, layer_filter
@@ -123,6 +124,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
     missing = missing_libraries(scene)
     if warnings is not None:
         warnings.extend(unrendered_setting_warnings(scene, depsgraph.view_layer))
+        warnings.extend(simplify_warnings(scene, depsgraph))
         warnings.extend(f"Scene '{scene.name}': {library.sentence()}." for library in missing)
     if camera is None:
         camera = export_camera(scene, depsgraph, warnings)

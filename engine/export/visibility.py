@@ -23,6 +23,9 @@ def object_flags(obj, view_layer, warnings) -> int:
             pass
     if holdout:
         flags |= HOLDOUT
+    if not getattr(obj, "visible_volume_scatter", True) and warnings is not None:
+        warnings.append(f"Object '{obj.name}': Ray Visibility ▸ Volume Scatter is off, but Prism has no ray kind for "
+                        "rays scattered in a volume: they see it (Cycles' do not).")
     if getattr(obj, "is_shadow_catcher", False):
         flags |= SHADOW_CATCHER  # Object ▸ Visibility ▸ Mask ▸ Shadow Catcher (``tracer.stages.shadow_catcher``)
     return flags

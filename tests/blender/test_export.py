@@ -266,3 +266,14 @@ def test_constant_principled_materials_run_no_program_per_hit(prism_addon, basic
     tree.links.new(noise.outputs["Fac"], node.inputs["Roughness"])
     shader = _material(_export(prism_addon)).shader
     assert op.LAYER_ALBEDO in shader.instructions[:, op.OP] and op.NOISE in shader.instructions[:, op.OP]
+
+
+def test_ray_visibility_prism_does_not_have_is_named(prism_addon, basic):
+    """Object ▸ Visibility ▸ Ray Visibility ▸ Volume Scatter off: Prism has no such ray kind, and says so, naming the
+    object; on (the default) nothing is said."""
+    warnings = []
+    _export(prism_addon, warnings)
+    assert not any("Volume Scatter" in w for w in warnings), warnings
+    basic.visible_volume_scatter = False
+    _export(prism_addon, warnings)
+    assert any("Object 'Thing': Ray Visibility ▸ Volume Scatter is off" in w for w in warnings), warnings

@@ -10,37 +10,19 @@ over), 0.9991 at 0.
 from __future__ import annotations
 
 import importlib
-import math
 
 import bpy
 import pytest
 
-from helpers.bpy_scenes import add_camera
+from helpers.bpy_scenes import coarse_sphere_under_low_sun
 from helpers.cycles import luminance, render_cycles_rgba, render_prism_rgba
-from helpers.node_scenes import black_world
 
 SAMPLES = 16
 
 
 def _coarse_sphere_under_low_sun():
-    """A white smooth-shaded UV sphere of 12 segments and 6 rings, lit by a sun 80° off the camera's axis (from its
-    right): the terminator runs down the middle of the frame. Max Bounces 0: direct light only."""
-    bpy.ops.mesh.primitive_uv_sphere_add(segments=12, ring_count=6, radius=1.0)
-    sphere = bpy.context.active_object
-    bpy.ops.object.shade_smooth()
-    material = bpy.data.materials.new("White")
-    material.use_nodes = True
-    principled = material.node_tree.nodes["Principled BSDF"]
-    principled.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    principled.inputs["Roughness"].default_value = 1.0
-    principled.inputs["Specular IOR Level"].default_value = 0.0
-    sphere.data.materials.append(material)
-    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
-    sun.data.energy, sun.data.angle = 3.0, 0.0
-    sun.rotation_euler = (math.radians(90.0), 0.0, math.radians(80.0))  # light from +x, 10° toward the camera
-    bpy.context.scene.collection.objects.link(sun)
-    add_camera((0.0, -4.0, 0.0), (math.radians(90.0), 0.0, 0.0), resolution=(32, 32))
-    bpy.context.scene.world = black_world()
+    """``coarse_sphere_under_low_sun`` at 32 × 32, Max Bounces 0: direct light only."""
+    sphere = coarse_sphere_under_low_sun()
     bpy.context.scene.prism.max_bounces = 0
     return sphere
 
@@ -70,3 +52,11 @@ def test_the_shading_offset_is_named_with_what_cycles_does(prism_addon, fresh_sc
     export.export_scene(bpy.context.evaluated_depsgraph_get(), warnings)
     assert any(f"Object '{sphere.name}'" in w and "Shading Offset 0.2 is not modelled" in w and "21 % darker" in w
                for w in warnings), warnings
+
+
+def test_the_shadow_terminator_panel_is_shown_for_prism(prism_addon, fresh_scene):
+    """Blender's Object ▸ Shading ▸ Shadow Terminator panel (and its parent, which also holds Light Linking) list
+    Prism among their engines, so the offsets can be set; for an engine other than EEVEE the panel draws the
+    Geometry and Shading Offsets, as for Cycles."""
+    assert "PRISM" in bpy.types.OBJECT_PT_shading.COMPAT_ENGINES
+    assert "PRISM" in bpy.types.OBJECT_PT_shadow_terminator.COMPAT_ENGINES

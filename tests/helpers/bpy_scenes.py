@@ -61,6 +61,33 @@ def add_camera(location, rotation_euler, lens_mm: float = 50.0, resolution=(32, 
     return camera
 
 
+def coarse_sphere_under_low_sun(resolution=(32, 32)):
+    """A white smooth-shaded UV sphere of 12 segments and 6 rings (Principled, Roughness 1, no specular), lit by a
+    sun 80° off the camera's axis (from its right, 10° toward it), in a black world: the shadow terminator runs
+    down the middle of the frame. Returns the sphere."""
+    import math
+
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=12, ring_count=6, radius=1.0)
+    sphere = bpy.context.active_object
+    bpy.ops.object.shade_smooth()
+    material = bpy.data.materials.new("White")
+    material.use_nodes = True
+    principled = material.node_tree.nodes["Principled BSDF"]
+    principled.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
+    principled.inputs["Roughness"].default_value = 1.0
+    principled.inputs["Specular IOR Level"].default_value = 0.0
+    sphere.data.materials.append(material)
+    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    sun.data.energy, sun.data.angle = 3.0, 0.0
+    sun.rotation_euler = (math.radians(90.0), 0.0, math.radians(80.0))
+    bpy.context.scene.collection.objects.link(sun)
+    add_camera((0.0, -4.0, 0.0), (math.radians(90.0), 0.0, 0.0), resolution=resolution)
+    world = bpy.data.worlds.new("Black")
+    world.color = (0.0, 0.0, 0.0)
+    bpy.context.scene.world = world
+    return sphere
+
+
 def image_pixels(path) -> np.ndarray:
     """The pixels of the image file at ``path`` as Blender loads them: float32 [H, W, 4], bottom row first."""
     image = bpy.data.images.load(str(path))
