@@ -6,10 +6,10 @@ Transparent BSDF) let it through by their transparency at the point crossed. In 
 shadow rays are traced as closest-hit queries layer by layer (``film_layer_kernel`` keeps the rays that
 crossed such a surface, attenuated and moved past it; anything else blocks), up to ``shadow_layers``;
 one occlusion query settles the rest. As in Cycles, a shadow ray crosses at most Transparent Max Bounces less
-the transparent bounces its path made (``ShadowQueue.crossable``): the next cut-out or film blocks it. With media (``KernelSettings.has_media``) shadow rays are always
-traced layer by layer: each stretch inside a medium attenuates them by its transmittance exp(-σ_t(λ) d)
-(analytic in a homogeneous medium, estimated by ratio tracking in a grid medium: ``media.transmittance``),
-and crossing a volume's null boundary changes their medium.
+the transparent bounces its path made (``ShadowQueue.crossable``): the next cut-out or film blocks it.
+With media (``KernelSettings.has_media``) shadow rays are always traced layer by layer: each stretch inside a
+medium attenuates them by its transmittance exp(-σ_t(λ) d) (analytic in a homogeneous medium, estimated by ratio
+tracking in a grid medium: ``media.transmittance``), and crossing a volume's null boundary changes their medium.
 With shadow linking (``light_linking``) they are traced layer by layer too: an object outside the blocker
 sets of the ray's light (``ShadowQueue.blockers``) is passed through untouched, as Cycles skips it.
 """
