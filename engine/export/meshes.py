@@ -40,7 +40,7 @@ from .unrendered import unrendered_type_warning
 from .velocity import placed_velocity
 from .volume_objects import VolumeReader
 from .view_layer_filter import layer_filter
-from .shadow_terminator import geometry_offset
+from .shadow_terminator import terminator_offsets
 from .visibility import object_flags
 
 #: Types whose evaluated mesh arrives as a separate MESH instance.
@@ -73,7 +73,8 @@ class ExportedGeometry:
     curve_velocity: np.ndarray | None = None  # float64 [P, 3]: of the curves' control points (as points')
     curves: CurveSegments | None = None  # the strands of hair curves (objects numbered after the points')
     triangle_flat: np.ndarray | None = None  # bool [T]: the triangle's face is shaded flat
-    triangle_terminator: np.ndarray | None = None  # float32 [T]: its object's Geometry Offset, 0 where shaded flat
+    # float32 [T, 2]: its object's Geometry Offset (0 where shaded flat) and Shading Offset multiplier (0: none)
+    triangle_terminator: np.ndarray | None = None
     object_asset_names: list[str] = field(default_factory=list)  # per object_names entry (Cryptomatte Asset)
     material_names: list[str] = field(default_factory=list)  # per material, Cycles' name (Cryptomatte Material)
 
@@ -89,7 +90,7 @@ class _Instances:
     light_group: str = ""  # Object ▸ Shading ▸ Light Group
     flags: int = 0
     asset: str = ""  # the name of the object's topmost parent (Cryptomatte Asset)
-    terminator: float = 0.0  # Object ▸ Shading ▸ Shadow Terminator ▸ Geometry Offset (``shadow_terminator``)
+    terminator: tuple = (0.0, 0.0)  # Object ▸ Shading ▸ Shadow Terminator's offsets (``shadow_terminator``)
 
 
 @dataclass
@@ -148,7 +149,8 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
                     warnings.append(uncarried_warning(obj.name, hair.uncarried))
                 pieces[key] = (_Instances(obj.name, hair, light_group=obj.lightgroup,
                                           flags=object_flags(obj, getattr(depsgraph, "view_layer", None), warnings),
-                                          asset=asset_name(obj)) if hair is not None else None)
+                                          asset=asset_name(obj), terminator=terminator_offsets(obj, "HAIR", warnings))
+                               if hair is not None else None)
             _place(pieces[key], instance, obj)
         if not instance.show_self or kind in _EVALUATED_AS_MESH_INSTANCE or not included.renders(kind):
             continue
@@ -176,7 +178,7 @@ def _gather(depsgraph, warnings, read, materials) -> list[_Instances]:
                 if message is not None and warnings is not None:
                     warnings.append(message)
             pieces[key] = (_Instances(obj.name, geometry, light_group=obj.lightgroup, flags=flags,
-                                      asset=asset_name(obj), terminator=geometry_offset(obj, warnings))
+                                      asset=asset_name(obj), terminator=terminator_offsets(obj, kind, warnings))
                            if geometry is not None else None)
         _place(pieces[key], instance, obj)
     return [piece for piece in pieces.values() if piece is not None]
@@ -232,7 +234,8 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
         surface.add_mesh(local, matrices, piece.infos, np.linalg.det(matrices[:, :3, :3]) < 0)
         flat.append(np.tile(local.flat if local.flat is not None else np.zeros(len(local.triangles), bool),
                             len(matrices)))
-        terminator.append(np.where(flat[-1], 0.0, piece.terminator).astype(np.float32))
+        terminator.append(np.stack([np.where(flat[-1], 0.0, piece.terminator[0]),
+                                    np.full(len(flat[-1]), piece.terminator[1])], axis=-1).astype(np.float32))
         if passes.uv:
             has_uv.append(np.full(len(local.triangles) * len(matrices), materials.uv_pass_slot in local.uvs))
         if passes.object_index:  # instance by instance, as ``instance_triangles`` places them
@@ -257,7 +260,7 @@ def export_meshes(depsgraph, warnings: list[str] | None = None, read=read_geomet
     geometry.surface = surface.surface()
     geometry.object_flags = np.asarray(objects.flags, np.uint8)
     geometry.triangle_flat = np.concatenate(flat) if flat else np.zeros(0, bool)
-    geometry.triangle_terminator = np.concatenate(terminator) if terminator else np.zeros(0, np.float32)
+    geometry.triangle_terminator = np.concatenate(terminator) if terminator else np.zeros((0, 2), np.float32)
     if passes.object_index:
         geometry.triangle_pass_index = np.concatenate(pass_index) if pass_index else np.zeros(0, np.float32)
     if passes.uv and geometry.surface is not None:

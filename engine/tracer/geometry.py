@@ -25,8 +25,8 @@ rows T + S .. T + S + C - 1. So ``material``, ``flags`` (and ``attributes.instan
 hold T + S + C entries; the per-corner tables hold T, but for the colour attributes and UV maps, which hold
 rows for the spheres (each point's colours at all three corners) and the segments (``curves.corner_rows``)
 where these carry any (``_with_primitive_rows``).
-``terminator`` float32 [T]: each triangle's shadow terminator Geometry Offset (``terminator``; 0 where shaded
-flat), or [0] when no triangle has one (or the mesh has no corner normals).
+``terminator`` float32 [T, 2]: each triangle's shadow terminator Geometry Offset (0 where shaded flat or without
+corner normals) and Shading Offset multiplier (0: none) (``terminator``), or [0, 2] when no triangle has either.
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ from .spheres import (camera_relative, camera_relative_steps, no_sphere_motion, 
 Geometry = namedtuple("Geometry", "vertices triangles material normals attributes flags motion motion_normals spheres "
                       "sphere_random curves curve_segments curve_info curve_motion sphere_motion terminator",
                       defaults=(no_spheres(), np.zeros(0, np.float32), *hair.no_curves(), np.zeros((0, 4), np.float32),
-                                hair.no_curve_motion(), no_sphere_motion(), np.zeros(0, np.float32)))
+                                hair.no_curve_motion(), no_sphere_motion(), np.zeros((0, 2), np.float32)))
 
 #: A ``surface_at`` time that reads the positions at the frame (``Geometry.vertices``), where the light
 #: table's emitters stand, instead of those at a ray time of the shutter.
@@ -117,12 +117,16 @@ def prepare_geometry(scene, offset):
 
 def _terminator_offsets(scene, original, smooth):
     """``Geometry.terminator`` of the render's triangles ``original`` (``smooth``: whether they carry corner
-    normals)."""
+    normals, which the Geometry Offset needs)."""
     offsets = getattr(scene, "triangle_terminator", None)
-    if not smooth or offsets is None or len(offsets) != scene.triangle_count:
-        return np.zeros(0, np.float32)
-    offsets = np.asarray(offsets, np.float32)[original]
-    return np.ascontiguousarray(offsets) if (offsets > 0.0).any() else np.zeros(0, np.float32)
+    if offsets is None or len(offsets) != scene.triangle_count:
+        return np.zeros((0, 2), np.float32)
+    offsets = np.array(np.asarray(offsets, np.float32).reshape(-1, 2)[original])
+    if not smooth:
+        offsets[:, 0] = 0.0
+    if not ((offsets[:, 0] > 0.0).any() or (offsets[:, 1] > 1.0).any()):
+        return np.zeros((0, 2), np.float32)
+    return np.ascontiguousarray(offsets)
 
 
 def _with_primitive_rows(attributes, points, rows, strands):

@@ -291,7 +291,8 @@ class Scene:
     points: SpherePoints | None = None
     curves: CurveSegments | None = None
     triangle_flat: np.ndarray | None = None  # bool [T]: shaded flat (displacement recomputes the others' normals)
-    # float32 [T]: the shadow terminator Geometry Offset of each triangle's object, 0 where shaded flat (``terminator``)
+    # float32 [T, 2]: each triangle's object's shadow terminator Geometry Offset (0 where shaded flat) and Cycles'
+    # Shading Offset multiplier 1 / (1 - offset / 2) (0: none) (``terminator``)
     triangle_terminator: np.ndarray | None = None
 
     @property

@@ -11,14 +11,18 @@ lift fades in as the light's cosine to the shading or geometric normal falls bel
 The formulas are those of Cycles 4.5 ``kernel/light/sample.h`` (``shadow_ray_offset``,
 ``shadow_ray_smooth_surface_offset``); Cycles applies them to light sampling's shadow rays and the AO pass's rays.
 
-``Geometry.terminator`` float32 [T] holds each triangle's offset (0 for flat-shaded faces and meshes without
-corner normals), or is empty when no triangle has one.
+The Shading Offset (0 by default) softens the light each closure receives toward its normal's horizon
+(``bsdf.closure_frame.terminator_softening``); ``soften_closures`` hands a hit's closures the multiplier.
+
+``Geometry.terminator`` float32 [T, 2] holds each triangle's Geometry Offset (0 for flat-shaded faces and meshes
+without corner normals) and Shading Offset multiplier (0: none), or is empty when no triangle has either.
 """
 
 from __future__ import annotations
 
 import math
 
+from .bsdf.closure import C_TERMINATOR
 from .geometry import corner_normal, vertex_at
 from .jit import inlined, kernel
 from .vec3 import dot, sub
@@ -77,7 +81,7 @@ def terminator_lift(geometry, triangle, u, v, ng, ns, toward, time):
     terminator."""
     if geometry.terminator.shape[0] == 0 or triangle >= geometry.triangles.shape[0]:
         return ZERO_LIFT
-    cutoff = float(geometry.terminator[triangle])
+    cutoff = float(geometry.terminator[triangle, 0])
     if not cutoff > 0.0:
         return ZERO_LIFT
     nl = dot(ns, toward)
@@ -111,3 +115,15 @@ def lifted_ray(p, lift, toward, distance):
     if not length > 0.0:
         return start, toward, distance
     return start, (d[0] / length, d[1] / length, d[2] / length), length
+
+
+@inlined
+def soften_closures(geometry, triangle, rows, count):
+    """Give the ``count`` closures in ``rows`` of a hit on ``triangle`` its object's Shading Offset multiplier (the
+    rows come from the material, which holds none)."""
+    if geometry.terminator.shape[0] == 0 or triangle >= geometry.triangles.shape[0]:
+        return
+    multiplier = geometry.terminator[triangle, 1]
+    if multiplier > 1.0:
+        for c in range(count):
+            rows[c, C_TERMINATOR] = multiplier

@@ -14,7 +14,7 @@ from engine.tracer.scene import Camera, Light, Material, World
 from engine.tracer.terminator import lifted_ray, smooth_surface_offset, terminator_lift
 from engine.tracer.visibility import ALL_RAYS, RAY_SHADOW
 
-from .tracer_scenes import look_at, make_scene, settings, uv_sphere
+from .tracer_scenes import look_at, make_scene, quad, settings, uv_sphere
 
 
 def _on_sphere(theta, phi):
@@ -22,11 +22,12 @@ def _on_sphere(theta, phi):
 
 
 def _triangle(corners, normals, offset=0.1):
-    """The render geometry of one triangle with ``corners`` and corner ``normals``, Geometry Offset ``offset``."""
+    """The render geometry of one triangle with ``corners`` and corner ``normals``, Geometry Offset ``offset`` (no
+    Shading Offset)."""
     scene = make_scene([(np.asarray(corners, float), np.array([[0, 1, 2]]), 0)], [Material("m")],
                        Camera("cam", look_at((0, 0, 5), (0, 0, 0)), (4, 4)))
     scene.corner_normals = np.asarray([normals], np.float32)
-    scene.triangle_terminator = np.array([offset], np.float32)
+    scene.triangle_terminator = np.array([[offset, 0.0]], np.float32)
     return prepare_geometry(scene, (0.0, 0.0, 0.0))[0]
 
 
@@ -120,7 +121,7 @@ def _coarse_sphere_under_low_sun(offset, casts_shadow=True):
                        World(color=(0.0, 0.0, 0.0)))
     corners = vertices[triangles]
     scene.corner_normals = (corners / np.linalg.norm(corners, axis=-1, keepdims=True)).astype(np.float32)
-    scene.triangle_terminator = np.full(len(triangles), offset, np.float32)
+    scene.triangle_terminator = np.tile(np.array([offset, 0.0], np.float32), (len(triangles), 1))
     scene.triangle_object = np.zeros(len(triangles), np.int32)
     scene.object_names = ["Sphere"]
     scene.object_flags = np.array([ALL_RAYS if casts_shadow else ALL_RAYS & ~RAY_SHADOW], np.uint8)
@@ -147,3 +148,32 @@ def test_a_coarse_smooth_sphere_keeps_the_light_its_shading_normals_receive():
     assert lost > 0.02
     assert lost_lifted > -0.002
     assert lost_lifted < lost / 3.0
+
+
+def _floor_under_sun(elevation_deg, multiplier):
+    """A white Lambertian floor (flat-shaded) seen from above, under a sun ``elevation_deg`` above the horizon;
+    ``multiplier``: its Shading Offset's (0: none)."""
+    camera = Camera("cam", look_at((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), up=(0.0, 1.0, 0.0)), (8, 8),
+                    film_width_mm=6.0, film_height_mm=6.0)
+    sun = Light("sun", "sun", np.zeros(3), direction=np.array([-math.cos(math.radians(elevation_deg)), 0.0,
+                                                                -math.sin(math.radians(elevation_deg))]),
+                irradiance_w_m2=3.0)
+    floor = quad((0.0, 0.0, 0.0), (5.0, 0.0, 0.0), (0.0, 5.0, 0.0))
+    scene = make_scene([(*floor, 0)], [Material("white", base_color=(0.8, 0.8, 0.8))], camera, [sun],
+                       World(color=(0.0, 0.0, 0.0)))
+    scene.triangle_terminator = np.tile(np.array([0.0, multiplier], np.float32), (2, 1))
+    return scene
+
+
+@pytest.mark.parametrize("shading_offset", [0.2, 0.5])
+def test_the_shading_offset_stretches_the_light_s_angle_as_cycles(shading_offset):
+    """Cycles' Shading Offset s weights light arriving at θ from the normal by cos(m θ) / cos θ, m = 1 / (1 - s / 2)
+    (``shift_cos_in``): a Lambertian floor under a sun 30° above the horizon (θ = 60°) shines ρ/π E cos(m θ), every
+    pixel exactly (Max Bounces 0). Without the offset, ρ/π E cos θ."""
+    m = 1.0 / (1.0 - 0.5 * shading_offset)
+    plain = _mean(_floor_under_sun(30.0, 0.0))
+    softened = _mean(_floor_under_sun(30.0, m))
+    theta = math.radians(60.0)
+    assert softened / plain == pytest.approx(math.cos(m * theta) / math.cos(theta), rel=1e-6)
+    print(f"MEASURED Shading Offset {shading_offset}: {softened / plain:.5f} of the plain floor "
+          f"(closed form {math.cos(m * theta) / math.cos(theta):.5f})")

@@ -62,6 +62,9 @@ material's program (``register_source``).
   from the view; ``C_HAIR_TX/TY/TZ`` the unit curve tangent (world, then in the material's shading frame once
   ``closure_normals.orient_closures`` ran). ``C_HAIR_TANGENT``: the register of the Hair BSDF's linked Tangent
   (world; it replaces the curve's tangent, as in Cycles), -1 where the curve's own is used.
+- ``C_TERMINATOR``: set per hit on the closures of a triangle whose object has a shadow terminator Shading Offset
+  (0 in the constant rows): Cycles' frequency multiplier 1 / (1 - offset / 2), which stretches the angle of the
+  light to the closure's normal (``closure_frame.terminator_softening``).
 """
 
 from __future__ import annotations
@@ -134,7 +137,8 @@ C_HAIR_TZ = 51
 C_HAIR_MODEL = 52
 C_HAIR_STRAND_RANDOM = 53
 C_HAIR_TANGENT = 54
-CLOSURE_ROW = 55
+C_TERMINATOR = 55
+CLOSURE_ROW = 56
 
 # How a ``HAIR`` closure's absorption is given (``C_HAIR_SIGMA_MODE``), Principled Hair's parametrizations.
 SIGMA_COLOUR = 0  # Direct Coloring: the colour in ``C_SPECTRUM``

@@ -13,6 +13,10 @@ side of its normal from the other side of the smooth normal ``C_SMOOTH_X/Y/Z`` i
 for any closure; when sampling, for diffuse-like ones: diffuse, sheen, translucent), and with Bump Map
 Correction diffuse-like closures are softened towards that horizon by a GGX shadowing term whose roughness
 grows with the bump's tilt.
+
+``terminator_softening`` is Cycles' shadow terminator Shading Offset (``closure/bsdf.h``, ``shift_cos_in``, from
+Appleseed): light arriving at angle θ from the closure's normal is weighted by cos(m θ) / cos θ (0 past
+90° / m), m = ``C_TERMINATOR``, so shading falls to 0 before the geometric terminator.
 """
 
 from __future__ import annotations
@@ -22,7 +26,7 @@ import math
 from ..jit import kernel
 from ..vec3 import tangents, to_local, to_world
 from .closure import (C_BUMPED, C_FRAME_X, C_FRAME_Y, C_FRAME_Z, C_FRAMED, C_KIND, C_SMOOTH_X, C_SMOOTH_Y,
-                      C_SMOOTH_Z, C_VIEW_COS, DIFFUSE, SHEEN, TRANSLUCENT)
+                      C_SMOOTH_Z, C_TERMINATOR, C_VIEW_COS, DIFFUSE, SHEEN, TRANSLUCENT)
 
 BUMP_SOFTENED = 2.0  # ``C_BUMPED`` value where Bump Map Correction softens diffuse light (1: only the test)
 
@@ -91,3 +95,20 @@ def bump_shadowing(row, wi, evaluating):
         return 0.0
     alpha2 = min(max(0.125 * (1.0 / (cos_d * cos_d) - 1.0), 0.0), 1.0)
     return _ggx_g1(alpha2, cos_i)
+
+
+@kernel
+def terminator_softening(row, wi, evaluating):
+    """Factor on the closure's light from ``wi`` (material frame); 1 unless ``C_TERMINATOR`` > 1. Cycles applies it
+    when evaluating toward the closure's side of its normal, and when sampling a reflection (the callers' test)."""
+    m = row[C_TERMINATOR]
+    if not m > 1.0:
+        return 1.0
+    n = closure_normal(row)
+    cos_in = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2]
+    if evaluating and cos_in < 0.0:
+        return 1.0
+    cos_in = min(cos_in, 1.0)
+    if not cos_in > 0.0:
+        return 0.0
+    return max(math.cos(math.acos(cos_in) * m), 0.0) / cos_in

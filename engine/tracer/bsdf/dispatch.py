@@ -13,9 +13,11 @@ import math
 
 from ..jit import kernel
 from . import conductor, dielectric, diffuse, hair, sheen, subsurface_entry, thin_film, translucent, transparent
-from .closure_frame import bump_shadowing, has_own_frame, into_closure_frame, out_of_closure_frame
+from .closure_frame import (bump_shadowing, has_own_frame, into_closure_frame, out_of_closure_frame,
+                            terminator_softening)
 from .closure import (C_ALPHA, C_KIND, C_MIRROR, C_WEIGHT, CONDUCTOR, DIELECTRIC, DIFFUSE, HAIR, SAMPLED_DELTA,
-                      SAMPLED_DIFFUSE, SHEEN, SMOOTH_ALPHA, SUBSURFACE, THIN_FILM, TRANSLUCENT, TRANSPARENT)
+                      SAMPLED_DIFFUSE, SAMPLED_NULL, SAMPLED_TRANSMISSION, SHEEN, SMOOTH_ALPHA, SUBSURFACE, THIN_FILM,
+                      TRANSLUCENT, TRANSPARENT)
 
 
 @kernel
@@ -72,6 +74,8 @@ def closure_sample(row, spectral, eta, wo, wavelength_nm, hero, collapsed, u0, u
     if framed:
         wi = out_of_closure_frame(row, wi)
     shadowing = bump_shadowing(row, wi, False)
+    if not flags & (SAMPLED_TRANSMISSION | SAMPLED_NULL):  # Cycles softens reflections only when sampling
+        shadowing *= terminator_softening(row, wi, False)
     if shadowing != 1.0:
         for k in range(weight.shape[0]):
             weight[k] *= shadowing
@@ -108,7 +112,8 @@ def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed,
     """``f[k]`` of one closure (without its tint) for directions in the material's frame; returns its pdf.
     A closure with a frame of its own gets its cosine there, as Cycles evaluates each closure about its own
     normal: f is scaled by |cos_closure| / |cos_material| so that the callers' |cos_material| gives it; and
-    Cycles' bump shadowing term (``closure_frame.bump_shadowing``) where a bump turned its normal."""
+    Cycles' bump shadowing term (``closure_frame.bump_shadowing``) where a bump turned its normal, and its shadow
+    terminator Shading Offset (``closure_frame.terminator_softening``)."""
     if has_own_frame(row):
         wo_c = into_closure_frame(row, wo)
         wi_c = into_closure_frame(row, wi)
@@ -117,7 +122,7 @@ def closure_evaluate(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed,
     else:
         pdf = _evaluate_lobe(row, spectral, eta, wo, wi, wavelength_nm, hero, collapsed, f)
         scale = 1.0
-    scale *= bump_shadowing(row, wi, True)
+    scale *= bump_shadowing(row, wi, True) * terminator_softening(row, wi, True)
     if scale != 1.0:
         for k in range(f.shape[0]):
             f[k] *= scale

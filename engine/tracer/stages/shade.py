@@ -31,6 +31,7 @@ from ..media.scatter import scatter_in_medium
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
 from ..state import (CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA,
                      SUBSURFACE_EXIT)
+from ..terminator import soften_closures
 from ..vec3 import tangents, to_local, to_world
 from .bounces import TRANSPARENT, bounces_left, count_crossing, path_bounce
 from .caustic_split import classify_vertex
@@ -131,6 +132,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
             closures, n = shade_surface(materials, spectra, geometry, material, triangle, state.hit_u[i],
                                         state.hit_v[i], p, facing_ng, facing_ns, wo, backfacing, lam, hero, rows,
                                         spectral, eta, registers, glass_clamps, rays)
+        soften_closures(geometry, triangle, rows, closures)  # Cycles' shadow terminator Shading Offset
         if settings.caustics_filtered and depth > 0 and state.flags[i] & LAST_DIFFUSE:
             filter_caustic_closures(settings, rows, spectral, closures)
         blurred = False
