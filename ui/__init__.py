@@ -17,6 +17,7 @@ register, unregister = bpy.utils.register_submodule_factory(
         "panels_light",
         "panels_material",
         "panels_lightgroup",
+        "panels_object_visibility",
         "lens_overlay_draw",
         "lens_overlay_panel",
         "viewport_header",

@@ -42,7 +42,7 @@ COMPATIBLE_PANELS = frozenset(
         "DATA_PT_camera_safe_areas_center_cut",
         "DATA_PT_camera_background_image",
         "DATA_PT_custom_props_camera",
-        # Object ▸ Shading: Light Linking and Shadow Terminator (Geometry Offset; Shading Offset warned), as Cycles
+        # Object ▸ Shading: Light Linking and Shadow Terminator, as Cycles
         "OBJECT_PT_shading",
         "OBJECT_PT_shadow_terminator",
         # Light data (type, energy and shape are drawn by Prism's light panel)

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import math
 
-_RAY_FLAGS = (("visible_diffuse", "Diffuse"), ("visible_glossy", "Glossy"), ("visible_transmission", "Transmission"))
+_RAY_FLAGS = (("visible_diffuse", "Diffuse"), ("visible_glossy", "Glossy"), ("visible_transmission", "Transmission"),
+              ("visible_volume_scatter", "Volume Scatter"))
 _DEFAULT_MAX_BOUNCES = 1024
 
 

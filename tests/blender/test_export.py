@@ -270,10 +270,13 @@ def test_constant_principled_materials_run_no_program_per_hit(prism_addon, basic
 
 def test_ray_visibility_prism_does_not_have_is_named(prism_addon, basic):
     """Object ▸ Visibility ▸ Ray Visibility ▸ Volume Scatter off: Prism has no such ray kind, and says so, naming the
-    object; on (the default) nothing is said."""
+    object or light; on (the default) nothing is said."""
     warnings = []
     _export(prism_addon, warnings)
     assert not any("Volume Scatter" in w for w in warnings), warnings
     basic.visible_volume_scatter = False
     _export(prism_addon, warnings)
     assert any("Object 'Thing': Ray Visibility ▸ Volume Scatter is off" in w for w in warnings), warnings
+    bpy.data.objects["Bulb"].visible_volume_scatter = False
+    _export(prism_addon, warnings)
+    assert any("Light 'Bulb': Ray Visibility Volume Scatter off is ignored" in w for w in warnings), warnings
