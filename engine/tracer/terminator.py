@@ -76,18 +76,18 @@ def smooth_surface_offset(geometry, triangle, u, v, ng, time):
 @inlined
 def terminator_lift(geometry, triangle, u, v, ng, ns, toward, time):
     """What Cycles adds to the origin of a shadow ray leaving barycentrics (u, v) of ``triangle`` toward unit
-    ``toward``; ``ng`` / ``ns``: the geometric and the smooth shading normal, both on the side the path arrived
-    from. ``ZERO_LIFT`` for flat faces, other primitives, objects whose offset is 0, and lights well above the
-    terminator."""
+    ``toward``; ``ng``: the geometric normal (either side), ``ns``: the smooth shading normal on the side the path
+    arrived from. ``ZERO_LIFT`` for flat faces, other primitives, objects whose offset is 0, and lights well above
+    the terminator."""
     if geometry.terminator.shape[0] == 0 or triangle >= geometry.triangles.shape[0]:
         return ZERO_LIFT
     cutoff = float(geometry.terminator[triangle, 0])
     if not cutoff > 0.0:
         return ZERO_LIFT
     nl = dot(ns, toward)
-    if nl < 0.0:  # toward a light behind: the side the ray leaves from is the other one
-        nl = -nl
-        ng = (-ng[0], -ng[1], -ng[2])
+    if (nl < 0.0) != (dot(ng, ns) < 0.0):  # ng onto the side the ray leaves from: the view's, or behind for
+        ng = (-ng[0], -ng[1], -ng[2])      # a light behind
+    nl = abs(nl)
     ngl = dot(ng, toward)
     if nl < cutoff:
         amount = min(max(2.0 - (ngl + nl) / cutoff, 0.0), 1.0)

@@ -174,6 +174,8 @@ def test_the_shading_offset_stretches_the_light_s_angle_as_cycles(shading_offset
     plain = _mean(_floor_under_sun(30.0, 0.0))
     softened = _mean(_floor_under_sun(30.0, m))
     theta = math.radians(60.0)
+    # absolute: the plain floor is ρ/π E cos θ, ρ = 0.8, E = 3 W/m²
+    assert plain == pytest.approx(0.8 / math.pi * 3.0 * math.cos(theta), rel=0.02)
     assert softened / plain == pytest.approx(math.cos(m * theta) / math.cos(theta), rel=1e-6)
     print(f"MEASURED Shading Offset {shading_offset}: {softened / plain:.5f} of the plain floor "
           f"(closed form {math.cos(m * theta) / math.cos(theta):.5f})")

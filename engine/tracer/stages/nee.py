@@ -78,10 +78,8 @@ def sample_direct(state, i, vertex, bsdf, lights, materials, spectra, geometry, 
         for k in range(li.shape[0]):
             contribution[k] *= factor
     triangle = state.hit_triangle[i]
-    facing_ng = ng if ng[0] * vertex.ns[0] + ng[1] * vertex.ns[1] + ng[2] * vertex.ns[2] >= 0.0 else (
-        -ng[0], -ng[1], -ng[2])
     # Cycles' shadow terminator Geometry Offset: smooth triangles start the ray on their smooth surface
-    lift = terminator_lift(geometry, triangle, state.hit_u[i], state.hit_v[i], facing_ng, vertex.ns, wi, state.time[i])
+    lift = terminator_lift(geometry, triangle, state.hit_u[i], state.hit_v[i], ng, vertex.ns, wi, state.time[i])
     start, toward, dist = lifted_ray(p, lift, wi, dist)
     origin, skipped = leave_surface(geometry, triangle, state.hit_u[i], start, ng, toward, state.time[i])
     distance = (dist - skipped) * (1.0 - SHADOW_SHORTEN) if math.isfinite(dist) else FAR
