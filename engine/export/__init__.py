@@ -150,7 +150,7 @@ def export_scene(depsgraph, warnings: list[str] | None = None, frame_set=None, c
     )
     tracer_scene.world.light_group = scene.world.lightgroup if scene.world is not None else ""
     tracer_scene.light_links = export_light_links(depsgraph, geometry.object_names, warnings)
-    tracer_scene.data_passes = export_data_passes(scene, geometry)
+    tracer_scene.data_passes = export_data_passes(scene, geometry, depsgraph.view_layer)
     if motion:
         frame_set = frame_set or (lambda f, s: scene.frame_set(f, subframe=s))
         meshes_again = lambda evaluated: export_meshes(evaluated, None)  # noqa: E731

@@ -1,11 +1,12 @@
 """What the data passes read from Blender (``tracer.data_passes.DataPassInputs``): View Layer ▸ Passes ▸
-Data switches, World ▸ Mist Pass and World ▸ Ambient Occlusion ▸ Distance (Cycles reads the same)."""
+Data switches and Alpha Threshold, World ▸ Mist Pass and World ▸ Ambient Occlusion ▸ Distance (Cycles reads the
+same)."""
 
 from __future__ import annotations
 
 from collections import namedtuple
 
-from ..tracer.data_passes import AO_DISTANCE_DEFAULT, DataPassInputs
+from ..tracer.data_passes import ALPHA_THRESHOLD_DEFAULT, AO_DISTANCE_DEFAULT, DataPassInputs
 
 #: Which data passes the rendered view layer asks for (the per-triangle data is read only for those).
 DataPassSwitches = namedtuple("DataPassSwitches", "uv object_index material_index")
@@ -19,12 +20,14 @@ def data_pass_switches(view_layer) -> DataPassSwitches:
                             bool(getattr(view_layer, "use_pass_material_index", False)))
 
 
-def export_data_passes(scene, geometry) -> DataPassInputs:
-    """The data passes' inputs of ``scene`` whose meshes are ``geometry`` (``meshes.ExportedGeometry``)."""
+def export_data_passes(scene, geometry, view_layer=None) -> DataPassInputs:
+    """The data passes' inputs of ``scene`` whose meshes are ``geometry`` (``meshes.ExportedGeometry``), rendered
+    as ``view_layer``."""
     inputs = DataPassInputs(object_pass_index=geometry.triangle_pass_index, uv=geometry.pass_uv,
                             material_pass_index=tuple(geometry.material_pass_index),
                             asset_names=tuple(geometry.object_asset_names),
-                            material_names=tuple(geometry.material_names))
+                            material_names=tuple(geometry.material_names),
+                            alpha_threshold=float(getattr(view_layer, "pass_alpha_threshold", ALPHA_THRESHOLD_DEFAULT)))
     world = scene.world
     if world is not None:
         mist = world.mist_settings

@@ -10,9 +10,9 @@ import numpy as np
 
 #: ``PassData.first_hit_data`` [FIRST_HIT_DATA]: World ▸ Mist Pass start (m), 1 / depth (1/m; 0 for depth 0),
 #: falloff exponent, 1 for an orthographic camera (mist then measures along the view axis, as Cycles'
-#: ``camera_distance``), World ▸ Ambient Occlusion ▸ Distance (m).
-MIST_START, MIST_INV_DEPTH, MIST_FALLOFF, ORTHOGRAPHIC, AO_DISTANCE = range(5)
-FIRST_HIT_DATA = 5
+#: ``camera_distance``), World ▸ Ambient Occlusion ▸ Distance (m), View Layer ▸ Passes ▸ Data ▸ Alpha Threshold.
+MIST_START, MIST_INV_DEPTH, MIST_FALLOFF, ORTHOGRAPHIC, AO_DISTANCE, ALPHA_THRESHOLD = range(6)
+FIRST_HIT_DATA = 6
 
 #: Blender's mist falloffs (World ▸ Mist Pass ▸ Falloff) as Cycles' exponents.
 MIST_FALLOFFS = {"QUADRATIC": 2.0, "LINEAR": 1.0, "INVERSE_QUADRATIC": 0.5}
@@ -20,6 +20,8 @@ AO_FAR_M = 1e30  # an AO ray's length where the distance is unbounded (float32-r
 #: Blender's World ▸ Ambient Occlusion ▸ Distance (m) of a new world: the AO pass's, and an Ambient Occlusion
 #: node's where its own Distance is 0.
 AO_DISTANCE_DEFAULT = 10.0
+#: Blender's View Layer ▸ Passes ▸ Data ▸ Alpha Threshold of a new view layer (``ViewLayer.pass_alpha_threshold``).
+ALPHA_THRESHOLD_DEFAULT = 0.5
 
 
 @dataclass
@@ -27,7 +29,9 @@ class DataPassInputs:
     """``object_pass_index`` float32 [T] (Object ▸ Relations ▸ Pass Index per triangle) and ``uv`` float32
     [T, 3, 3] (the render UV map per triangle corner as u, v, 1; 0, 0, 0 on a mesh without one, as Cycles): None unless their pass is asked
     for; ``material_pass_index`` one per scene material; World ▸ Mist Pass (m; falloff a ``MIST_FALLOFFS``
-    key) and World ▸ Ambient Occlusion ▸ Distance (m). Defaults are Blender's.
+    key), World ▸ Ambient Occlusion ▸ Distance (m) and View Layer ▸ Passes ▸ Data ▸ Alpha Threshold (the data
+    passes are those of the first surface whose alpha reaches it; 0: the first surface, ``stages.pass_writes``).
+    Defaults are Blender's.
 
     The Vector pass (None unless asked for, and with Render ▸ Motion Blur off, as Cycles):
     ``triangle_motion`` float32 [T, 2, 3, 3], per triangle corner its world displacement to where it is at
@@ -42,6 +46,7 @@ class DataPassInputs:
     mist_depth_m: float = 25.0
     mist_falloff: str = "QUADRATIC"
     ao_distance_m: float = AO_DISTANCE_DEFAULT
+    alpha_threshold: float = ALPHA_THRESHOLD_DEFAULT
     triangle_motion: np.ndarray | None = None
     world_to_raster: np.ndarray | None = None
     asset_names: tuple = ()  # Cryptomatte: per scene object, its topmost parent's name (empty: its own)
@@ -67,6 +72,7 @@ def first_hit_tables(inputs: DataPassInputs, original_triangle, materials: int, 
     data[MIST_FALLOFF] = MIST_FALLOFFS[inputs.mist_falloff]
     data[ORTHOGRAPHIC] = 1.0 if orthographic else 0.0
     data[AO_DISTANCE] = min(float(inputs.ao_distance_m), AO_FAR_M)
+    data[ALPHA_THRESHOLD] = min(max(float(inputs.alpha_threshold), 0.0), 1.0)
     object_index = np.zeros(0, np.float32)
     if layout.object_index >= 0 and inputs.object_pass_index is not None:
         object_index = np.ascontiguousarray(np.concatenate(

@@ -21,7 +21,10 @@ deterministic). Embree reads the queues' float32 rays directly.
   and was split there (it goes on to Combined only); ``CATCHER_PASS``: the copy made at that split, which
   sees only shadow catchers and whose light goes to the catcher's accumulation (``stages.shadow_catcher``);
   ``SUBSURFACE_EXIT``: this bounce's vertex is where a subsurface random walk left the surface, its hit
-  already in ``hit_*`` (``stages.subsurface``);
+  already in ``hit_*`` (``stages.subsurface``); ``PASSES_DONE``: the camera path has written the data passes of the
+  first surface it met whose alpha reaches View Layer ▸ Alpha Threshold (Cycles' PATH_RAY_SINGLE_PASS_DONE,
+  ``stages.data_pass_writes``); ``DIRECT_SAMPLED``: this bounce's light sampling lights a vertex before any scattering
+  (its light is Direct in the passes, ``stages.pass_writes``);
 - ``medium`` int32: the medium the path's ray travels in (``MaterialArrays.media`` row, -1: none);
 - ``throughput`` and ``radiance`` float64 [n, K]; ``eta_scale`` float64 (Π eta'² of refractions, for
   Russian roulette); ``prev_pdf`` float64 (solid-angle pdf of the last BSDF sample); ``min_pdf`` float64
@@ -67,6 +70,8 @@ MEDIUM_VERTEX = 1024
 CATCHER_HIT = 2048
 CATCHER_PASS = 4096
 SUBSURFACE_EXIT = 8192
+PASSES_DONE = 16384
+DIRECT_SAMPLED = 32768
 
 _PATH_FIELDS = (
     ("pixel", np.int64, ()), ("sample", np.int64, ()), ("seed", np.int64, ()),

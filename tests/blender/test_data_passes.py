@@ -115,3 +115,36 @@ def test_pass_index_follows_each_object_and_instance(prism_addon, fresh_scene):
     assert len(index) == len(names) == 8  # A, B and two instances of C, two triangles each
     expected = {"A": 4.0, "B": 6.0, "C": 8.0}
     assert [float(v) for v in index] == [expected[n] for n in names]
+
+
+def test_cut_out_data_passes_match_cycles(prism_addon, data_scene, tmp_path):
+    """A cut-out card (Principled Alpha): Cycles writes the data passes of the first surface whose alpha reaches View
+    Layer ▸ Alpha Threshold, and blends Mist and AO by alpha; Prism the same, from one scene."""
+    card = bpy.data.objects["Card"].active_material.node_tree.nodes["Principled BSDF"].inputs["Alpha"]
+    layer = data_scene.view_layers[0]
+
+    def both(alpha, threshold, name):
+        card.default_value, layer.pass_alpha_threshold = alpha, threshold
+        prism = _render_layers(prism_addon, data_scene, tmp_path / f"prism_{name}.exr")
+        _cycles(data_scene)
+        cycles = _render_layers(prism_addon, data_scene, tmp_path / f"cycles_{name}.exr", engine="CYCLES")
+        data_scene.render.engine = "PRISM"
+        return prism, cycles
+
+    # Alpha 0.25 above the threshold 0.2: every sample writes the card's UV map (A = 1), in both engines.
+    prism, cycles = both(0.25, 0.2, "above")
+    on_card = (cycles["UV"][..., 0] == 1.0) & _inside(cycles["UV"][..., :1])  # A = 1 here and around
+    assert on_card.sum() >= 4 and np.all(prism["UV"][..., 0][on_card] == 1.0)  # the card's 6 x 3 pixels but its rim
+    # Alpha 0.25 below the default threshold 0.5: the samples that go through write the floor's (no UV map: 0), the
+    # others none; Mist and AO blend the card and the floor by alpha.
+    prism, cycles = both(0.25, 0.5, "below")
+    assert np.all(prism["UV"][on_card] == 0.0) and np.all(cycles["UV"][on_card] == 0.0)
+    for name, bound in (("Mist", 0.01), ("AO", 0.03)):
+        p, c = prism[name][..., 0][on_card].mean(), cycles[name][..., 0][on_card].mean()
+        print("measured:", name, p, c)
+        assert abs(p - c) < bound, (name, p, c)
+    # Alpha 0: the card is not there for the data passes, its ids neither.
+    prism, cycles = both(0.0, 0.5, "clear")
+    for name in ("IndexOB", "IndexMA"):
+        assert np.array_equal(prism[name][on_card], cycles[name][on_card]), name
+        assert np.all(prism[name][on_card] == (2.0 if name == "IndexOB" else 0.0)), name

@@ -66,3 +66,24 @@ def test_at_max_bounces_0_the_walk_takes_no_bounce_as_in_cycles(prism_addon, fre
     print("MEASURED Max Bounces 0, prism/cycles sphere luminance:", (prism / cycles).round(4), "Prism",
           prism.round(4), "Cycles", cycles.round(4))
     assert np.all(np.abs(prism / cycles - 1.0) < 0.02), (prism, cycles)
+
+
+def test_light_where_a_walk_leaves_is_direct_in_the_passes_as_in_cycles(prism_addon, fresh_scene, tmp_path):
+    """Cycles counts no bounce for a random walk, and its passes neither: the sun sampled where the walk leaves the
+    skin is Diffuse Direct, and so is what the exit's reflection finds; only more bounces are Indirect."""
+    from helpers.cycles import configure_cycles
+
+    from blender.test_passes import _render_layers, _switch_on
+
+    scene = skin_spheres_in_sun()
+    _switch_on(scene, ("diffuse_direct", "diffuse_indirect", "diffuse_color"))
+    scene.render.use_compositing = False
+    scene.prism.max_bounces = BOUNCES
+    scene.prism.samples = scene.prism.samples_per_pass = SAMPLES
+    prism = _render_layers(prism_addon, scene, tmp_path / "prism.exr")
+    configure_cycles(scene, SAMPLES, 0, BOUNCES)
+    cycles = _render_layers(prism_addon, scene, tmp_path / "cycles.exr", engine="CYCLES")
+    for name in ("DiffDir", "DiffInd"):
+        light_p, light_c = ((layers[name] * layers["DiffCol"]).mean() for layers in (prism, cycles))
+        print("MEASURED", name, "x DiffCol, image mean: Prism", light_p, "Cycles", light_c)
+        assert abs(light_p / light_c - 1.0) < 0.03, (name, light_p, light_c)

@@ -1,8 +1,11 @@
-"""Data passes as Cycles writes them (Mist, UV, IndexOB, IndexMA, AO), each against its closed form."""
+"""Data passes as Cycles writes them (Mist, UV, IndexOB, IndexMA, AO), each against its closed form, also behind
+cut-outs."""
 
 import numpy as np
 
+from engine.tracer.bsdf.closure import DIFFUSE, TRANSPARENT
 from engine.tracer.data_passes import DataPassInputs
+from engine.tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
 from engine.tracer.pass_table import PassRequest
 from engine.tracer.renderer import Renderer
 from engine.tracer.scene import Camera, Material, World
@@ -153,3 +156,52 @@ def test_vector_pass_is_the_screen_motion_to_the_previous_and_from_the_next_fram
     assert np.allclose(vector[full, 3], now_y - next_y, atol=2e-3)
     background = depth > 1e9
     assert background.sum() > 60 and np.all(vector[background] == 0.0)
+
+
+def _leaf_before_wall(alpha, threshold):
+    """A white diffuse leaf of alpha ``alpha`` (Diffuse × alpha + Transparent × (1 - alpha), so sampling goes through
+    it with probability 1 - alpha) filling the view 2 m in front of the camera, and a grey wall at 3 m; Mist from
+    0 over 10 m (linear), AO within 0.5 m (so neither surface's rays reach the other)."""
+    camera = Camera("cam", look_at((0, 0, 0), (0, 1, 0)), (16, 16), focal_length_mm=50.0, film_width_mm=18.0,
+                    film_height_mm=18.0)
+    leaf = Material("leaf", shader=ShaderProgram([
+        ClosureSpec(DIFFUSE, tint=Colour(rgb=(alpha,) * 3), selection=alpha),
+        ClosureSpec(TRANSPARENT, tint=Colour(rgb=(1.0 - alpha,) * 3), selection=1.0 - alpha)]))
+    wall = Material("wall", base_color=(0.5, 0.5, 0.5))
+    scene = make_scene([(*quad((0.0, 3.0, 0.0), (3.0, 0, 0), (0, 0, 3.0)), 0),
+                        (*quad((0.0, 2.0, 0.0), (3.0, 0, 0), (0, 0, 3.0)), 1)], [wall, leaf], camera,
+                       world=World((0.2, 0.2, 0.2), 1.0))
+    corners = scene.vertices[scene.triangles]  # the leaf's UV map only: (x, z) of the leaf
+    uv = np.stack([corners[..., 0], corners[..., 2], np.ones(corners.shape[:2])], -1)
+    uv[:2] = 0.0
+    scene.data_passes = DataPassInputs(mist_start_m=0.0, mist_depth_m=10.0, mist_falloff="LINEAR",
+                                       ao_distance_m=0.5, alpha_threshold=threshold,
+                                       object_pass_index=np.array([3, 3, 7, 7], np.float32), uv=uv.astype(np.float32))
+    return scene
+
+
+def test_cut_outs_below_the_alpha_threshold_show_the_surface_behind():
+    """Cycles' film_write_data_passes: Depth, Normal, UV and Object Index are those of the first surface whose alpha
+    reaches View Layer ▸ Alpha Threshold, Mist and AO blend the surfaces before the first scattering by alpha."""
+    names = ["Depth", "Normal", "UV", "IndexOB", "Mist", "AO"]
+    distance = _pixel_mean(lambda tx, tz: np.sqrt(1.0 + tx * tx + tz * tz), tan_half=0.18)  # per metre ahead
+    for alpha, threshold in ((0.0, 0.5), (0.3, 0.5), (0.3, 0.2), (0.3, 0.0), (0.7, 0.5)):
+        p = _passes(_leaf_before_wall(alpha, threshold), names, samples=64, samples_per_pass=64)
+        done_at_leaf = threshold == 0.0 or alpha >= threshold
+        # Mist: α (1 - m(leaf)) + (1 - α)(1 - m(wall)), m = distance / 10 (an expectation: 64 samples a pixel)
+        mist = 1.0 - (alpha * (1.0 - 0.2 * distance) + (1.0 - alpha) * (1.0 - 0.3 * distance))
+        error = p["Mist"][..., 0] - mist
+        assert abs(error.mean()) < 0.01 and abs(error).max() < 0.2, (alpha, threshold, error.mean(), abs(error).max())
+        assert abs(p["AO"][..., 0].mean() - 1.0) < 0.02, (alpha, threshold, p["AO"][..., 0].mean())  # α + (1 - α)
+        through = p["Normal"][..., 1].mean() * -1.0  # the samples whose Normal was written: all, or those through
+        if done_at_leaf:
+            assert np.allclose(p["Depth"], 2.0, atol=1e-4) and np.all(p["IndexOB"] == 7.0)
+            assert np.all(p["UV"][..., 2] == 1.0)
+            assert np.allclose(p["Normal"], [0.0, -1.0, 0.0])
+        elif alpha == 0.0:
+            assert np.allclose(p["Depth"], 3.0, atol=1e-4) and np.all(p["IndexOB"] == 3.0) and np.all(p["UV"] == 0.0)
+            assert np.allclose(p["Normal"], [0.0, -1.0, 0.0])
+        else:  # a sample that reflects off the leaf keeps the leaf's Depth and writes no Normal or UV
+            assert abs(p["Depth"].mean() - (alpha * 2.0 + (1.0 - alpha) * 3.0)) < 0.02, p["Depth"].mean()
+            assert abs(through - (1.0 - alpha)) < 0.02, through
+            assert np.all(p["UV"] == 0.0) and set(np.unique(p["IndexOB"]).tolist()) == {3.0, 7.0}

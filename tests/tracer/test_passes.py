@@ -32,10 +32,16 @@ def _facing_wall(distance=3.0, colours=((0.8, 0.2, 0.1), (0.1, 0.5, 0.9)), size=
     return make_scene([(*left, 0), (*right, 1)], materials, camera, lights, world)
 
 
-def test_depth_position_and_normal_of_a_wall_facing_the_camera():
-    scene = _facing_wall(distance=3.0, world=World((0.2, 0.2, 0.2), 1.0))
-    scene.camera.focal_length_mm = 15.0  # the wall (4 m wide) covers the middle of a 7.2 m wide view only
+def _wide_view(scene):
+    """``scene`` seen through a 15 mm lens on a 36 mm film: the wall of ``_facing_wall`` (4 m wide at 3 m) covers
+    the middle of a 7.2 m wide view only."""
+    scene.camera.focal_length_mm = 15.0
     scene.camera.film_width_mm = scene.camera.film_height_mm = 36.0
+    return scene
+
+
+def test_depth_position_and_normal_of_a_wall_facing_the_camera():
+    scene = _wide_view(_facing_wall(distance=3.0, world=World((0.2, 0.2, 0.2), 1.0)))
     _, p = _render(scene, samples=4, passes=PassRequest(("Depth", "Position", "Normal", "Denoising Normal")))
     depth, position, normal = p["Depth"][..., 0], p["Position"], p["Normal"]
     covered = depth < 100
@@ -74,19 +80,57 @@ def _box_with_glass(world=None):
     return scene
 
 
-def test_light_passes_add_up_to_combined():
-    scene = _box_with_glass(World((0.3, 0.4, 0.5), 1.0))
-    names = ("Emit", "Env", "DiffDir", "DiffInd", "DiffCol", "GlossDir", "GlossInd", "GlossCol", "TransDir",
-             "TransInd", "TransCol")
-    image, p = _render(scene, samples=8, samples_per_pass=8, passes=PassRequest(names))
+LIGHT = ("Emit", "Env", "DiffDir", "DiffInd", "DiffCol", "GlossDir", "GlossInd", "GlossCol", "TransDir", "TransInd",
+         "TransCol")
+
+
+def _light_total(p):
+    """Combined as the light passes add up: Emit + Env + (Dir + Ind) × Col of the three lobes."""
     total = p["Emit"] + p["Env"]
     for lobe in ("Diff", "Gloss", "Trans"):
         total += (p[lobe + "Dir"] + p[lobe + "Ind"]) * p[lobe + "Col"]
-    assert np.allclose(total, image, rtol=1e-4, atol=1e-5)
+    return total
+
+
+def test_light_passes_add_up_to_combined():
+    scene = _box_with_glass(World((0.3, 0.4, 0.5), 1.0))
+    image, p = _render(scene, samples=8, samples_per_pass=8, passes=PassRequest(LIGHT))
+    assert np.allclose(_light_total(p), image, rtol=1e-4, atol=1e-5)
     assert p["Env"].max() > 0 and p["TransInd"].max() > 0 and p["TransCol"].max() > 0  # through the glass ball
     assert p["DiffInd"].mean() > 0.1 * p["DiffDir"].mean()  # the box bounces light around
     # The camera sees no emitter (the area light is invisible to it) and sees the world through the mouth.
     assert not p["Emit"].any()
+
+
+@pytest.mark.parametrize("alpha", [0.0, 0.4])
+def test_light_seen_through_a_cut_out_is_split_as_the_surface_behind_it(alpha):
+    """Cycles' passes see through cut-outs: a surface behind a leaf of alpha α is the camera's, its light Direct
+    after one scattering and its albedo in its Color pass × (1 - α); the world behind it Environment × (1 - α)."""
+    from engine.tracer.bsdf.closure import DIFFUSE, TRANSPARENT
+    from engine.tracer.materials.shader import ClosureSpec, Colour, ShaderProgram
+
+    leaf_colour = np.array([0.2, 0.7, 0.3])
+    leaf = Material("leaf", shader=ShaderProgram([ClosureSpec(DIFFUSE, tint=Colour(rgb=tuple(alpha * leaf_colour))),
+                                                  ClosureSpec(TRANSPARENT, tint=Colour(rgb=(1.0 - alpha,) * 3))]))
+    scene = _wide_view(_facing_wall(world=World((0.2, 0.2, 0.2), 1.0)))
+    scene.materials.append(leaf)
+    quad_vertices, quad_triangles = quad((0.0, 1.5, 0.0), (4.0, 0, 0), (0, 0, 4.0))  # the leaf fills the view
+    scene.triangles = np.concatenate([scene.triangles, quad_triangles + len(scene.vertices)])
+    scene.vertices = np.concatenate([scene.vertices, quad_vertices])
+    scene.triangle_material = np.concatenate([scene.triangle_material, np.full(len(quad_triangles), 2)])
+    image, p = _render(scene, samples=64, samples_per_pass=64, passes=PassRequest(LIGHT))
+    assert np.allclose(_light_total(p), image, rtol=1e-4, atol=1e-5)
+    assert not any(p[name].any() for name in ("TransDir", "TransInd", "TransCol", "GlossCol", "Emit"))
+    wall, sky = (slice(5, 11), slice(4, 7)), (slice(0, 16), slice(0, 3))  # the left (red) wall, the world beside
+    colour = alpha * leaf_colour + (1.0 - alpha) * np.array([0.8, 0.2, 0.1])
+    assert np.allclose(p["DiffCol"][wall].mean((0, 1)), colour, rtol=0.05), p["DiffCol"][wall].mean((0, 1))
+    assert abs(p["Env"][sky].mean() - 0.2 * (1.0 - alpha)) < 0.006, p["Env"][sky].mean()
+    if alpha == 0.0:  # nothing scatters twice: the wall's light is all Direct, as without the leaf
+        assert not p["DiffInd"].any()
+        bare, q = _render(_wide_view(_facing_wall(world=World((0.2, 0.2, 0.2), 1.0))), samples=64,
+                          samples_per_pass=64, passes=PassRequest(LIGHT))
+        for name in ("DiffDir", "DiffCol", "Env"):
+            assert abs(p[name].mean() - q[name].mean()) < 0.01 * q[name].mean(), (name, p[name].mean(), q[name].mean())
 
 
 def test_a_single_bounce_is_all_direct_light():

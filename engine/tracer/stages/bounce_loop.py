@@ -28,17 +28,13 @@ from ..state import LoopBuffers  # noqa: F401  (the loop's record, declared with
 from .bounces import step_limit
 from .emission import emission_kernel
 from .film import film_kernel
-from .pass_writes import ao_kernel, convert_kernel, route_kernel
+from .data_pass_writes import ao_kernel
+from .pass_writes import convert_kernel, route_emission_kernel, route_end_kernel, route_shadows_kernel
 from .shade import shade_kernel
 from .shadow import film_layer_kernel, shadow_kernel, shadow_layers
 
 #: The render's tables the loop reads (``scene_tables.SceneTables.arrays``).
 SceneArrays = namedtuple("SceneArrays", "geometry materials lights spectra settings wavelengths")
-
-#: When the light split of the render passes runs (``route_kernel``'s step): after the first vertex's
-#: shadows, after the second ray's emission, at the end.
-ROUTE_FIRST_SHADOWS, ROUTE_SECOND_EMISSION, ROUTE_END = 0, 1, 2
-
 
 # Inlined: a kernel called from a kernel has its code linked into the caller and optimised and compiled
 # again there (numba links LLVM modules), so a middle layer of kernels would compile its callees a third time.
@@ -74,7 +70,6 @@ def bounce_loop_kernel(loop, arrays, caster, camera, passes, layout, count, queu
     cut-outs. Returns the rays cast."""
     state = loop.state
     settings = arrays.settings
-    routed = ROUTE_FIRST_SHADOWS if route_light else ROUTE_END + 1
     rays_cast = 0
     for depth in range(step_limit(settings.max_bounces, settings.transparent_max_bounces)):
         if queued == 0:
@@ -87,9 +82,8 @@ def bounce_loop_kernel(loop, arrays, caster, camera, passes, layout, count, queu
         surfaces = emission_kernel(state, current, queued, loop.hits.triangle, loop.hits.t, loop.hits.u, loop.hits.v,
                                    arrays.geometry, arrays.materials, arrays.lights, arrays.spectra, settings, depth,
                                    loop.surface, passes, layout, loop.scratch, caster)
-        if depth == 1 and routed == ROUTE_SECOND_EMISSION:
-            route_kernel(state, passes, layout, count, routed)
-            routed += 1
+        if route_light:
+            route_emission_kernel(state, passes, layout, current, queued, depth)
         if surfaces == 0:
             break
         following = loop.rays[(depth + 1) % 2]
@@ -98,16 +92,14 @@ def bounce_loop_kernel(loop, arrays, caster, camera, passes, layout, count, queu
                                         loop.scratch, glass_clamps, loop.rejected, passes, layout, caster)
         if shadowed:
             rays_cast += _trace_shadows(loop, arrays, caster, passes, layout, shadowed, see_through)
-        if depth == 0 and layout.ao >= 0 and passes.ao_count[0] > 0:  # the AO pass's rays
+        if route_light:
+            route_shadows_kernel(state, passes, layout, loop.surface, surfaces)
+        if layout.ao >= 0 and passes.ao_count[0] > 0:  # the AO pass's rays (cut-outs: at each surface behind)
             occlusion(caster, passes.ao_rays, passes.ao_count[0], passes.ao_free)
             rays_cast += passes.ao_count[0]
             ao_kernel(passes, layout, passes.ao_count[0])
-        if depth == 0 and routed == ROUTE_FIRST_SHADOWS:
-            route_kernel(state, passes, layout, count, routed)
-            routed += 1
-    while routed <= ROUTE_END:
-        route_kernel(state, passes, layout, count, routed)
-        routed += 1
+    if route_light:
+        route_end_kernel(state, passes, layout, count)
     film_kernel(state, count, arrays.wavelengths, loop.rgb)
     if layout.slots:
         convert_kernel(state, passes, layout, arrays.wavelengths, count)

@@ -13,8 +13,8 @@ The bounce loop steps every path of a chunk together: at step ``depth`` each liv
 ``PathState.crossings`` int32 [n, 2] keeps, per path, the steps that were not scatterings (``STEPS``: all
 three kinds) and the transparent bounces (``TRANSPARENT``). The path's bounce count is then ``depth`` minus its
 steps. The sampler's dimensions stay per step (``sampler.bounce_slot(depth, ...)``), as Cycles advances its
-``rng_offset`` at transparent bounces and volume boundaries too; so does the split of the render passes into
-direct and indirect light (``pass_writes.camera_slot``), which is decided per step for the whole chunk.
+``rng_offset`` at transparent bounces and volume boundaries too. The split of the render passes into direct and
+indirect light counts bounces per path (``pass_writes.route_emission_kernel``), as Cycles' passes do.
 
 A path whose bounces are used up (more than Max Bounces) still goes through cut-outs and films, as Cycles'
 ``PATH_RAY_TERMINATE_AFTER_TRANSPARENT``: the surface is shaded without light sampling, and the path ends

@@ -15,34 +15,14 @@ the paths that reach the surface).
 
 from __future__ import annotations
 
-from ..bsdf.closure import C_KIND, C_WEIGHT, SAMPLED_NULL, TRANSPARENT
+from ..bsdf.closure import SAMPLED_NULL
 from ..jit import inlined
 from ..sampler import sample_1d
+from .see_through import see_through
 
 #: The sampler slot of the attribution at an all see-through surface (+ the bounce): past any bounce's
 #: slots and the AO pass's.
 SLOT_CRYPTOMATTE = (1 << 20) + 16
-
-
-@inlined
-def _see_through(rows, spectral, closures):
-    """(T, q): the material's transparency (the see-through lobes' tint, averaged over the path's
-    wavelengths, as Cycles averages its colour) and the probability that sampling takes one of them."""
-    total = 0.0
-    null = 0.0
-    transparency = 0.0
-    k = spectral.shape[2]
-    for c in range(closures):
-        total += rows[c, C_WEIGHT]
-        if int(rows[c, C_KIND]) == TRANSPARENT:
-            null += rows[c, C_WEIGHT]
-            tint = 0.0
-            for j in range(k):
-                tint += spectral[c, 2, j]
-            transparency += tint / k
-    if closures == 1:  # one closure is sampled whatever its weight
-        return transparency, 1.0 if null > 0.0 or int(rows[0, C_KIND]) == TRANSPARENT else 0.0
-    return transparency, null / total if total > 0.0 else 0.0
 
 
 @inlined
@@ -55,7 +35,7 @@ def cryptomatte_vertex(state, passes, layout, settings, i, depth, triangle, mate
     if passes.row_object.shape[0] == 0 or passes.values[i, column] != 0.0:
         return
     carried = 1.0 - passes.values[i, column + 2]
-    transparency, q = _see_through(rows, spectral, closures)
+    transparency, q = see_through(rows, spectral, closures)
     if sampled & SAMPLED_NULL:
         if q < 1.0:
             passes.values[i, column + 2] = 1.0 - carried * transparency / q

@@ -37,6 +37,7 @@ from ..visibility import HOLDOUT
 from .bounces import bounces_left, ends_at_next_surface, path_bounce
 from .clamp import clamp_factor
 from .mis import emitter_weight
+from .data_pass_writes import camera_escape
 from .pass_writes import camera_slot, deposit, features_done
 from .shadow_catcher import background_seen, share_emission, split_at_catcher, splits_here
 
@@ -71,7 +72,7 @@ def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, 
             factor, pdf = light_hit(lights, index, mis_origin, d, t_light + offset)
             _add(state, i, factor, light_spectrum(lights, index), spectra,
                  emitter_weight(state, i, pdf, settings.use_mis), passes, layout, lights.group[index],
-                 camera_slot(layout, depth, False), True, settings, bounce, tmp)
+                 camera_slot(state, i, layout, False), True, settings, bounce, tmp)
 
 
 @inlined
@@ -90,7 +91,7 @@ def _add_background(state, i, d, lights, spectra, settings, depth, bounce, passe
     if settings.film_transparent and state.flags[i] & CAMERA_PATH:
         _see_through(state, i)
         return
-    slot = camera_slot(layout, depth, True)
+    slot = camera_slot(state, i, layout, True)
     backplate = lights.backplate and state.flags[i] & CAMERA_PATH != 0  # Light Path ▸ Is Camera Ray's background
     env = lights.camera_environment if backplate else lights.environment
     if env.kind != environment.ENV_NONE:
@@ -165,6 +166,7 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
             _add_background(state, i, d, lights, spectra, settings, depth, bounce, passes, layout, scratch.weight)
             if layout.columns > 0:
                 features_done(passes, layout, i)
+                camera_escape(state, passes, layout, i)
             continue
         if geometry.flags[triangle] & HOLDOUT and state.flags[i] & CAMERA_PATH:
             _see_through(state, i)
@@ -183,7 +185,7 @@ def emission_kernel(state, rays, count, hit_triangle, hit_t, hit_u, hit_v, geome
             t_mis = t + (o[0] - mis_origin[0]) * d[0] + (o[1] - mis_origin[1]) * d[1] + (o[2] - mis_origin[2]) * d[2]
             light_pdf = emitter_pdf(lights, geometry, triangle, d, t_mis, state.time[i])
             weight = 1.0 if bounce == 0 else emitter_weight(state, i, light_pdf, settings.use_mis)
-            group, slot = emitter_group(lights, triangle), camera_slot(layout, depth, False)
+            group, slot = emitter_group(lights, triangle), camera_slot(state, i, layout, False)
             if materials.flags[material] & MAT_EMISSION_VARIES:
                 radiance = scratch.li
                 if settings.light_path:

@@ -17,6 +17,7 @@ from ..jit import inlined, kernel
 from ..light_linking import ALL_SETS, emitter_sets, in_sets
 from ..lights.dispatch import sample_light
 from ..sampler import BOUNCE_LIGHT, BOUNCE_LIGHT_POINT, bounce_slot, sample_1d, sample_2d
+from ..state import DIRECT_SAMPLED
 from ..terminator import lifted_ray, terminator_lift
 from ..vec3 import to_local
 from ..warps import power_heuristic
@@ -87,7 +88,7 @@ def sample_direct(state, i, vertex, bsdf, lights, materials, spectra, geometry, 
     if not queue_shadow(shadows, slot, i, origin, toward, distance, group, state.medium[i], shadow_sets,
                         shadow_crossings(state, i, settings)):
         return 0
-    if depth == 0 and layout.light >= 0:
+    if layout.light >= 0 and state.flags[i] & DIRECT_SAMPLED:  # the light's direction splits Direct light
         lobe_shares(rows, spectral, eta, count, wo_l, wi_l, lam, state.hero[i], collapsed, scratch[0],
                     passes.split[i, 0])
     return 1

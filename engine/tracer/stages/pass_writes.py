@@ -1,6 +1,7 @@
 """What the stages write for the render passes (``tracer.pass_table`` declares them; ``layout`` says which are on).
 
-Per path (``PassData``): ``values`` [n, columns] (data passes and AOVs, written directly), ``spectral``
+Per path (``PassData``): ``values`` [n, columns] (data passes and AOVs, written directly by
+``data_pass_writes``), ``spectral``
 [n, slots, K] (light, albedo and colour buffers, per wavelength, turned into Rec.709 by
 ``convert_kernel``), and for the light split ``snapshot`` [n, K] and ``split`` [n, 2, 3, K]; ``feature``
 [n] (1 once the denoising features are written). Render constants (``Renderer.pass_data``):
@@ -12,43 +13,40 @@ With a shadow catcher (``stages.shadow_catcher``): ``catcher_matte`` / ``catcher
 radiance at its split, the world seen along its camera ray), ``catcher_copy`` int32 [n] (the row of its copy,
 -1: none) and ``catcher_next`` int64 [1] (the next free row).
 
-The light split (Cycles' meaning): light that reaches the camera straight from an emitter or the world
-is Emission or Environment; any other light is attributed to the lobes of the first surface it met,
-in proportion to each lobe category's share of the BSDF in the direction it arrived from (per
-wavelength), Direct when that surface was its last scattering, Indirect otherwise. The stages do not
-route light by category: ``route_kernel`` takes the growth of each path's radiance at three points
-(after the first vertex's light sampling, after the second ray's emission, at the end) and splits it
-with the shares recorded at the first vertex: ``split[i, 0]`` for light sampling, ``split[i, 1]`` for
-the sampled direction. Colour = the BSDF sample weight × share, whose mean is each category's albedo.
+The light split (Cycles' meaning): light that reaches the camera straight from an emitter or the world, or
+through cut-outs only (``CAMERA_PATH``), is Emission or Environment; any other light is attributed to the lobes of
+the surface where the path first scattered, in proportion to each lobe category's share of the BSDF in the
+direction it arrived from (per wavelength), Direct when that surface was its last scattering (Cycles' bounce 1,
+or light sampling at that surface), Indirect otherwise. A surface seen through cut-outs counts as the camera's, as
+in Cycles. The stages do not route light by category: each bounce, ``route_emission_kernel`` (after the
+emission stage) and ``route_shadows_kernel`` (after the shadow rays) split each path's radiance grown since it was
+last routed (``snapshot``), with the shares recorded where the camera saw the vertex: ``split[i, 0]`` for light
+sampling there (``DIRECT_SAMPLED``), ``split[i, 1]`` for the direction sampled at its first scattering. Colour =
+throughput × the BSDF sample weight × share at each such surface, whose mean is each category's albedo seen
+through the cut-outs before it.
 """
 
 from __future__ import annotations
 
-import math
 from collections import namedtuple
 
 import numpy as np
 
 from ..bsdf.closure import C_KIND, CONDUCTOR, DIFFUSE, SAMPLED_DELTA, SAMPLED_SUBSURFACE, SAMPLED_TRANSMISSION
 from ..bsdf.dispatch import closure_evaluate
-from ..data_passes import AO_DISTANCE, FIRST_HIT_DATA, MIST_FALLOFF, MIST_INV_DEPTH, MIST_START, ORTHOGRAPHIC
-from ..geometry import offset_origin
+from ..data_passes import FIRST_HIT_DATA
 from ..jit import inlined, kernel
-from ..sampler import sample_2d
 from ..spectra.table import spectrum_value
 from ..spectra.wavelength_sampling import radiance_to_rgb
-from ..state import CATCHER_HIT, new_ray_queue
-from ..vec3 import tangents, to_world
-from ..warps import cosine_hemisphere
+from ..state import CAMERA_PATH, CATCHER_HIT, CATCHER_PASS, DIRECT_SAMPLED, new_ray_queue
+from .bounces import path_bounce
+from .data_pass_writes import camera_depth
 
 PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table "
                                    "aov_registers "
                                    "first_hit_data object_index material_index triangle_uv triangle_motion "
                                    "world_to_raster ao_rays ao_free ao_weight ao_count row_object "
                                    "catcher_matte catcher_background catcher_copy catcher_next")
-
-#: The sampler slot of the AO pass's direction (2-D): far past any bounce's slots.
-SLOT_AO = 1 << 20
 
 EMISSION = 0  # offsets from layout.light, in pass_table.LIGHT_SLOTS order
 ENVIRONMENT = 1
@@ -90,6 +88,7 @@ def reset_kernel(passes, layout, count):
             passes.feature[i] = 0
         if passes.split.shape[0] > 0:
             passes.split[i, :, :, :] = 0.0
+            passes.snapshot[i, :] = 0.0
     passes.ao_count[0] = 0
 
 
@@ -101,14 +100,18 @@ def deposit(passes, layout, i, k, value, group, slot, albedo):
         passes.spectral[i, layout.group + group, k] += value
     if slot >= 0:
         passes.spectral[i, slot, k] += value
+        if slot == layout.light + EMISSION or slot == layout.light + ENVIRONMENT:
+            passes.snapshot[i, k] += value  # seen directly: attributed already (``route_*``)
     if albedo and layout.denoising_albedo >= 0 and passes.feature[i] == 0:
         passes.spectral[i, layout.denoising_albedo, k] += value
 
 
 @inlined
-def camera_slot(layout, depth, escaped):
-    """The slot of light found by the camera ray itself (Environment or Emission), else -1."""
-    if depth != 0 or layout.light < 0:
+def camera_slot(state, i, layout, escaped):
+    """The slot of light path ``i`` finds while the camera still sees through it (``CAMERA_PATH``: straight
+    through cut-outs, or transparent glass; Cycles' paths without PATH_RAY_ANY_PASS): Environment or Emission;
+    else -1."""
+    if layout.light < 0 or not state.flags[i] & CAMERA_PATH:
         return -1
     return layout.light + (ENVIRONMENT if escaped else EMISSION)
 
@@ -117,137 +120,6 @@ def camera_slot(layout, depth, escaped):
 def features_done(passes, layout, i):
     if passes.feature.shape[0] > 0:
         passes.feature[i] = 1
-
-
-@inlined
-def _camera_depth(passes, p):
-    a, c = passes.camera_axes, passes.camera_at
-    return -((p[0] - c[0]) * a[0, 2] + (p[1] - c[1]) * a[1, 2] + (p[2] - c[2]) * a[2, 2])
-
-
-@inlined
-def _mist(passes, p):
-    """1 - mist at ``p`` (Cycles' ``film_write_data_passes``: distance from the camera, or along its axis
-    for an orthographic one, mapped through start, depth and falloff)."""
-    data = passes.first_hit_data
-    if data[ORTHOGRAPHIC] > 0.0:
-        distance = abs(_camera_depth(passes, p))
-    else:
-        c = passes.camera_at
-        distance = math.sqrt((p[0] - c[0]) ** 2 + (p[1] - c[1]) ** 2 + (p[2] - c[2]) ** 2)
-    mist = min(max((distance - data[MIST_START]) * data[MIST_INV_DEPTH], 0.0), 1.0)
-    falloff = data[MIST_FALLOFF]
-    if falloff != 1.0:
-        mist = mist ** falloff
-    return 1.0 - mist
-
-
-@kernel
-def _raster(passes, frame, x, y, z):
-    """Pixel position (x, y) of the world point (x, y, z) in the camera of ``frame`` (0 previous, 1 now, 2 next)."""
-    m = passes.world_to_raster[frame]
-    w = m[3, 0] * x + m[3, 1] * y + m[3, 2] * z + m[3, 3]
-    w = w if w != 0.0 else 1e-30
-    return ((m[0, 0] * x + m[0, 1] * y + m[0, 2] * z + m[0, 3]) / w,
-            (m[1, 0] * x + m[1, 1] * y + m[1, 2] * z + m[1, 3]) / w)
-
-
-@inlined
-def _vector(state, passes, layout, i, p, triangle):
-    """The Vector pass of the hit at ``p`` (Cycles' ``camera_motion_vector``): the surface point where it is
-    at the previous and next frames (its triangle's corners moved by their displacements, same
-    barycentrics), each projected by that frame's camera; previous - now, now - next, in pixels."""
-    u, v = state.hit_u[i], state.hit_v[i]
-    motion = passes.triangle_motion[triangle]
-    x = p[0] + passes.render_origin[0]
-    y = p[1] + passes.render_origin[1]
-    z = p[2] + passes.render_origin[2]
-    now_x, now_y = _raster(passes, 1, x, y, z)
-    w = 1.0 - u - v
-    pre_x, pre_y = _raster(passes, 0, x + w * motion[0, 0, 0] + u * motion[0, 1, 0] + v * motion[0, 2, 0],
-                           y + w * motion[0, 0, 1] + u * motion[0, 1, 1] + v * motion[0, 2, 1],
-                           z + w * motion[0, 0, 2] + u * motion[0, 1, 2] + v * motion[0, 2, 2])
-    post_x, post_y = _raster(passes, 2, x + w * motion[1, 0, 0] + u * motion[1, 1, 0] + v * motion[1, 2, 0],
-                             y + w * motion[1, 0, 1] + u * motion[1, 1, 1] + v * motion[1, 2, 1],
-                             z + w * motion[1, 0, 2] + u * motion[1, 1, 2] + v * motion[1, 2, 2])
-    passes.values[i, layout.vector] = pre_x - now_x
-    passes.values[i, layout.vector + 1] = pre_y - now_y
-    passes.values[i, layout.vector + 2] = now_x - post_x
-    passes.values[i, layout.vector + 3] = now_y - post_y
-    passes.values[i, layout.vector + 4] = 1.0
-
-
-@inlined
-def _queue_ao_ray(state, passes, settings, i, p, ng, n):
-    """The first surface's ambient-occlusion ray (Cycles' ``integrate_surface_ao``: a cosine-weighted
-    direction about the shading normal, as far as World ▸ Ambient Occlusion ▸ Distance)."""
-    u1, u2 = sample_2d(settings.sampler, state.seed[i], state.sample[i], SLOT_AO)
-    tangent, bitangent = tangents(n)
-    d = to_world(cosine_hemisphere(u1, u2), tangent, bitangent, n)
-    o = offset_origin(p, ng, d)
-    j = passes.ao_count[0]
-    rays = passes.ao_rays
-    for c in range(3):
-        rays.origin[j, c] = o[c]
-        rays.direction[j, c] = d[c]
-    rays.tmax[j] = passes.first_hit_data[AO_DISTANCE]
-    rays.path[j] = i
-    k = state.throughput.shape[1]
-    total = 0.0
-    for c in range(k):
-        total += state.throughput[i, c]
-    passes.ao_weight[i] = total / k
-    passes.ao_count[0] = j + 1
-
-
-@kernel
-def ao_kernel(passes, layout, count):
-    """The AO pass of the first ``count`` AO rays: their path's weight where the ray was free."""
-    for j in range(count):
-        if passes.ao_free[j] != 0:
-            i = passes.ao_rays.path[j]
-            passes.values[i, layout.ao] += passes.ao_weight[i]
-
-
-@inlined
-def first_hit(state, passes, layout, settings, i, p, ng, n, material, triangle, regs):
-    """Depth, Mist, Position, Normal, UV, Object and Material Index, AO, Vector and AOVs of the surface the camera
-    ray hit at ``p`` (in the render's space) with normals ``ng`` and ``n`` (facing the camera); ``regs`` the
-    register file of the material's program, just run for this hit."""
-    if layout.mist >= 0:
-        passes.values[i, layout.mist] = _mist(passes, p)
-    if layout.uv >= 0 and passes.triangle_uv.shape[0] > 0:
-        u, v = state.hit_u[i], state.hit_v[i]
-        corners = passes.triangle_uv[triangle]
-        for c in range(3):  # u, v and A (1 where the mesh has the UV map)
-            passes.values[i, layout.uv + c] = ((1.0 - u - v) * corners[0, c] + u * corners[1, c]
-                                               + v * corners[2, c])
-    if state.sample[i] == 0:  # Cycles writes the indices of sample 0 only, never a blend
-        if layout.object_index >= 0 and passes.object_index.shape[0] > 0:
-            passes.values[i, layout.object_index] = passes.object_index[triangle]
-            passes.values[i, layout.object_index + 1] = 1.0
-        if layout.material_index >= 0:
-            passes.values[i, layout.material_index] = passes.material_index[material]
-            passes.values[i, layout.material_index + 1] = 1.0
-    if layout.ao >= 0:
-        _queue_ao_ray(state, passes, settings, i, p, ng, n)
-    if layout.vector >= 0 and passes.triangle_motion.shape[0] > 0:
-        _vector(state, passes, layout, i, p, triangle)
-    for a in range(layout.aovs):
-        for c in range(4):
-            passes.values[i, layout.aov + 4 * a + c] = passes.aov_table[material, a, c]
-        first = passes.aov_registers[material, a, 0]
-        for c in range(passes.aov_registers[material, a, 1]):  # a linked AOV Output socket
-            passes.values[i, layout.aov + 4 * a + c] = regs[first + c]
-    if layout.depth >= 0:
-        passes.values[i, layout.depth] = _camera_depth(passes, p)
-        passes.values[i, layout.depth + 1] = 1.0
-    if layout.position >= 0:
-        for c in range(3):
-            passes.values[i, layout.position + c] = p[c] + passes.render_origin[c]
-    if layout.normal >= 0:
-        for c in range(3):
-            passes.values[i, layout.normal + c] = n[c]
 
 
 @kernel
@@ -267,7 +139,7 @@ def surface_features(state, passes, layout, i, p, n, weight, spectra):
         passes.values[i, layout.denoising_normal + 1] = up
         passes.values[i, layout.denoising_normal + 2] = forward
     if layout.denoising_depth >= 0:
-        passes.values[i, layout.denoising_depth] = _camera_depth(passes, p)
+        passes.values[i, layout.denoising_depth] = camera_depth(passes, p)
         passes.values[i, layout.denoising_depth + 1] = 1.0
     if layout.denoising_albedo >= 0:
         for k in range(weight.shape[0]):
@@ -308,8 +180,9 @@ def lobe_shares(rows, spectral, eta, count, wo, wi, wavelength_nm, hero, collaps
 @kernel
 def first_bounce(state, passes, layout, i, rows, spectral, eta, count, wo, wi, lam, hero, collapsed, sampled,
                  weight, scratch, spectra):
-    """At the first surface: the lobe shares of the sampled direction (delta lobes by what they did)
-    and the colour passes (sample weight × share, reflectance carried on a white spectrum)."""
+    """Where a path the camera still sees through (``CAMERA_PATH``) scatters: the lobe shares of the sampled direction
+    (delta lobes by what they did), which split the light it finds from there on, and the colour passes (throughput
+    × sample weight × share, reflectance carried on a white spectrum)."""
     shares = passes.split[i, 1]
     if sampled & SAMPLED_SUBSURFACE:  # Cycles' passes count subsurface scattering as diffuse
         shares[:, :] = 0.0
@@ -319,37 +192,82 @@ def first_bounce(state, passes, layout, i, rows, spectral, eta, count, wo, wi, l
         shares[TRANSMISSION if sampled & SAMPLED_TRANSMISSION else GLOSSY, :] = 1.0
     else:
         lobe_shares(rows, spectral, eta, count, wo, wi, lam, hero, collapsed, scratch, shares)
-    for k in range(weight.shape[0]):
-        white = weight[k] * spectrum_value(spectra, layout.white, lam[k])
+    k_count = weight.shape[0]
+    mean = 0.0
+    for k in range(k_count):
+        mean += state.throughput[i, k] / k_count
+    for k in range(k_count):
+        # what the cut-outs before let through; a path that keeps only its hero from here (dispersion, ×K): its
+        # hero's share for every wavelength (exact behind grey cut-outs)
+        seen = mean if collapsed else state.throughput[i, k]
+        white = seen * weight[k] * spectrum_value(spectra, layout.white, lam[k])
         if white == white:
             for c in range(3):
                 passes.spectral[i, layout.light + COLOUR + c, k] += white * shares[c, k]
 
 
-@kernel
-def route_kernel(state, passes, layout, count, step):
-    """Split each path's new radiance since the last step: ``step`` 0 after the first vertex's light
-    sampling (Direct, shares of the light's direction), 1 after the second ray's emission (Direct,
-    shares of the sampled direction), 2 at the end (Indirect)."""
-    k_count = state.radiance.shape[1]
+@inlined
+def _route(state, passes, layout, i, offset, shares):
+    """Path ``i``'s radiance since it was last routed: to slot ``offset`` (``EMISSION``), or split by ``shares``
+    [3, K] into the Direct or Indirect slots of the three lobe categories (``offset`` ``DIRECT`` / ``INDIRECT``)."""
     base = layout.light
-    for i in range(count):
-        if state.flags[i] & CATCHER_HIT:
-            continue  # a path split at a shadow catcher writes Combined only, as in Cycles (``stages.shadow_catcher``)
-        for k in range(k_count):
-            now = state.radiance[i, k]
-            if step == 0:
-                before = passes.spectral[i, base + EMISSION, k] + passes.spectral[i, base + ENVIRONMENT, k]
-            else:
-                before = passes.snapshot[i, k]
-            passes.snapshot[i, k] = now
-            grown = now - before
-            if grown == 0.0:
-                continue
-            shares = passes.split[i, 0] if step == 0 else passes.split[i, 1]
-            offset = INDIRECT if step == 2 else DIRECT
+    for k in range(state.radiance.shape[1]):
+        now = state.radiance[i, k]
+        grown = now - passes.snapshot[i, k]
+        passes.snapshot[i, k] = now
+        if grown == 0.0:
+            continue
+        if offset == EMISSION:
+            passes.spectral[i, base + EMISSION, k] += grown
+        else:
             for c in range(3):
                 passes.spectral[i, base + offset + 2 * c, k] += grown * shares[c, k]
+
+
+@inlined
+def _unsplit(state, i):
+    """A path split at a shadow catcher writes Combined only, as in Cycles (``stages.shadow_catcher``), and so does
+    its copy."""
+    return state.flags[i] & (CATCHER_HIT | CATCHER_PASS) != 0
+
+
+@kernel
+def route_emission_kernel(state, passes, layout, rays, count, depth):
+    """Split the light that this bounce's first ``count`` rays of ``rays`` found (emitters, the world, a medium's
+    emission): seen by the camera (``camera_slot`` took what it deposited; the rest is a medium's emission), after
+    one scattering Direct, after more Indirect, by the shares of the first scattering's sampled direction."""
+    for j in range(count):
+        i = rays.path[j]
+        if _unsplit(state, i):
+            continue
+        if state.flags[i] & CAMERA_PATH:
+            _route(state, passes, layout, i, EMISSION, passes.split[i, 1])
+        else:
+            _route(state, passes, layout, i, DIRECT if path_bounce(state, i, depth) <= 1 else INDIRECT,
+                   passes.split[i, 1])
+
+
+@kernel
+def route_shadows_kernel(state, passes, layout, surface, count):
+    """Split the light that this bounce's light sampling brought the first ``count`` paths of ``surface``: Direct by
+    the shares of the light's direction where the camera saw the vertex (``DIRECT_SAMPLED``), else Indirect."""
+    for s in range(count):
+        i = surface.path[s]
+        if _unsplit(state, i):
+            continue
+        if state.flags[i] & DIRECT_SAMPLED:
+            state.flags[i] &= ~DIRECT_SAMPLED
+            _route(state, passes, layout, i, DIRECT, passes.split[i, 0])
+        else:
+            _route(state, passes, layout, i, INDIRECT, passes.split[i, 1])
+
+
+@kernel
+def route_end_kernel(state, passes, layout, count):
+    """Whatever light of paths 0 .. count-1 no bounce routed: Indirect."""
+    for i in range(count):
+        if not _unsplit(state, i):
+            _route(state, passes, layout, i, INDIRECT, passes.split[i, 1])
 
 
 @kernel

@@ -29,8 +29,8 @@ from ..materials.table import (MAT_BOUNDARY, MAT_CLOSURE_NORMALS, MAT_DELTA, MAT
 from ..media.boundary import side_medium
 from ..media.scatter import scatter_in_medium
 from ..sampler import BOUNCE_DIRECTION, BOUNCE_LOBE, bounce_slot, sample_1d, sample_2d
-from ..state import (CAMERA_PATH, COLLAPSED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX, PREV_DELTA,
-                     SUBSURFACE_EXIT)
+from ..state import (CAMERA_PATH, COLLAPSED, DIRECT_SAMPLED, LAST_DIFFUSE, LAST_TRANSMISSION, MEDIUM_VERTEX,
+                     PREV_DELTA, SUBSURFACE_EXIT)
 from ..terminator import soften_closures
 from ..vec3 import tangents, to_local, to_world
 from .bounces import TRANSPARENT, bounces_left, count_crossing, path_bounce
@@ -40,9 +40,11 @@ from .filter_glossy import blur_alpha, blur_glossy_closures
 from .nee import sample_direct
 from .surface_vertex import ResolvedBsdf, SurfaceVertex, on_its_geometric_side
 from .cryptomatte_write import cryptomatte_vertex
-from .pass_writes import first_bounce, first_hit, surface_features
+from .data_pass_writes import camera_surface, writes_data_passes
+from .pass_writes import first_bounce, surface_features
 from .queue import push_ray
 from .roulette import survives
+from .see_through import surface_alpha
 from .subsurface import lambertian_exit, walk_under_surface
 
 
@@ -147,11 +149,14 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
         tangent, bitangent = tangents(n)
         frame = (tangent, bitangent, n)
         wo_l = to_local(wo, tangent, bitangent, n)
-        if depth == 0 and layout.columns > 0:
-            first_hit(state, passes, layout, settings, i, p, facing_ng, seen_n, material, triangle, registers)
+        if writes_data_passes(state, i, layout, mflags):  # a surface the camera sees, perhaps through cut-outs
+            camera_surface(state, passes, layout, settings, geometry, i, p, facing_ng, facing_ns, seen_n, material,
+                           triangle, registers, surface_alpha(rows, spectral, closures), bounce)
         if has_lights and not final and (not mflags & MAT_DELTA or blurred):
             if settings.light_path:
                 emission_sample(registers, state, i)
+            if layout.light >= 0 and bounce == 0 and (state.flags[i] & CAMERA_PATH or exiting):
+                state.flags[i] |= DIRECT_SAMPLED  # light sampled before any scattering: Direct in the passes
             vertex = SurfaceVertex(p, ng, frame, wo_l, facing_ns)
             lit = sample_direct(state, i, vertex, ResolvedBsdf(rows, spectral, eta, closures, collapsed), lights,
                                 materials, spectra, geometry, settings, depth, shadows, shadowed, li, f, mix, passes,
@@ -180,7 +185,7 @@ def shade_kernel(state, surface, count, geometry, materials, lights, spectra, se
                 weight[:] = 0.0
             if not mflags & MAT_DELTA:
                 surface_features(state, passes, layout, i, p, n, weight, spectra)
-            if depth == 0 and layout.light >= 0:
+            if layout.light >= 0 and state.flags[i] & CAMERA_PATH and not sampled & SAMPLED_NULL:
                 first_bounce(state, passes, layout, i, rows, spectral, eta, closures, wo_l, wi_l, lam, hero, collapsed,
                              sampled, weight, mix[0], spectra)
         if not valid:

@@ -14,6 +14,7 @@ from ..jit import Launch
 from . import bake_camera as _bake_camera
 from . import bounce_loop as _bounce_loop
 from . import camera as _camera
+from . import data_pass_writes as _data_passes
 from . import emission as _emission
 from . import film as _film
 from . import pass_writes as _passes
@@ -32,17 +33,17 @@ emission_kernel = Launch(_emission.emission_kernel)
 shade_kernel = Launch(_shade.shade_kernel)
 film_layer_kernel = Launch(_shadow.film_layer_kernel)
 shadow_kernel = Launch(_shadow.shadow_kernel)
-route_kernel = Launch(_passes.route_kernel)
+route_emission_kernel = Launch(_passes.route_emission_kernel)
+route_shadows_kernel = Launch(_passes.route_shadows_kernel)
+route_end_kernel = Launch(_passes.route_end_kernel)
 reset_kernel = Launch(_passes.reset_kernel)
 convert_kernel = Launch(_passes.convert_kernel)
-ao_kernel = Launch(_passes.ao_kernel)
+ao_kernel = Launch(_data_passes.ao_kernel)
 film_kernel = Launch(_film.film_kernel)
 catcher_start_kernel = Launch(_shadow_catcher.catcher_start_kernel)
 catcher_film_kernel = Launch(_shadow_catcher.catcher_film_kernel)
 bounce_loop_kernel = Launch(_bounce_loop.bounce_loop_kernel)
 
-_ROUTE_FIRST_SHADOWS, _ROUTE_SECOND_EMISSION, _ROUTE_END = (_bounce_loop.ROUTE_FIRST_SHADOWS,
-                                                            _bounce_loop.ROUTE_SECOND_EMISSION, _bounce_loop.ROUTE_END)
 
 
 def _trace_shadows(renderer, state, shadows, count, passes, layout, scratch):
@@ -106,7 +107,7 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
         rays_cast = bounce_loop_kernel(buffers.loop, tables.arrays, accel.caster(), renderer.camera.data, passes,
                                        layout, count, queued, glass_clamps, see_through, layout.light >= 0)
         return rays_cast, int(rejected[0])
-    routed = 0 if layout.light >= 0 else _ROUTE_END + 1
+    route_light = layout.light >= 0
     rays_cast = 0
     for depth in range(step_limit(settings.max_bounces, settings.transparent_max_bounces)):
         if queued == 0:
@@ -120,9 +121,8 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
         rays_cast += queued
         surfaces = emission_kernel(state, current, queued, *hit, geometry, materials, lights, spectra, settings,
                                    depth, buffers.surface, passes, layout, buffers.scratch, tables.accel.caster())
-        if depth == 1 and routed == _ROUTE_SECOND_EMISSION:
-            route_kernel(state, passes, layout, count, routed)
-            routed += 1
+        if route_light:
+            route_emission_kernel(state, passes, layout, current, queued, depth)
         if surfaces == 0:
             break
         following = buffers.rays[1] if current is buffers.rays[0] else buffers.rays[0]
@@ -131,18 +131,16 @@ def trace_chunk(renderer, buffers, first, count, samples_per_pixel, first_sample
                                         rejected, passes, layout, tables.accel.caster())
         if shadowed:
             rays_cast += _trace_shadows(renderer, state, buffers.shadows, shadowed, passes, layout, buffers.scratch)
-        if depth == 0 and layout.ao >= 0 and passes.ao_count[0] > 0:  # the AO pass's rays see every object
+        if route_light:
+            route_shadows_kernel(state, passes, layout, buffers.surface, surfaces)
+        if layout.ao >= 0 and passes.ao_count[0] > 0:  # the AO pass's rays see every object
             ao_rays = int(passes.ao_count[0])
             passes.ao_free[:ao_rays] = tables.accel.occluded(passes.ao_rays, ao_rays)
             rays_cast += ao_rays
             ao_kernel(passes, layout, ao_rays)
-        if depth == 0 and routed == _ROUTE_FIRST_SHADOWS:
-            route_kernel(state, passes, layout, count, routed)
-            routed += 1
         current = following
-    while routed <= _ROUTE_END:
-        route_kernel(state, passes, layout, count, routed)
-        routed += 1
+    if route_light:
+        route_end_kernel(state, passes, layout, count)
     film_kernel(state, count, wavelengths, buffers.rgb)
     if layout.slots:
         convert_kernel(state, passes, layout, wavelengths, count)
