@@ -53,11 +53,12 @@ COMPATIBLE_PANELS = frozenset(
         "EEVEE_MATERIAL_PT_surface",
         "EEVEE_MATERIAL_PT_volume",  # the Material Output's Volume: a medium inside the mesh
         "MATERIAL_PT_custom_props",
-        # View layer: use for rendering, the Passes parent Prism's pass panels sit in, AOVs, light groups
+        # View layer: use for rendering, the Passes parent Prism's pass panels sit in, AOVs, Cryptomatte, light groups
         "VIEWLAYER_PT_layer",
         "VIEWLAYER_PT_filter",  # Environment, Surfaces, Curves, Volumes, Motion Blur: each honoured as Cycles
         "VIEWLAYER_PT_layer_passes",
         "VIEWLAYER_PT_layer_passes_aov",
+        "VIEWLAYER_PT_layer_passes_cryptomatte",
         "VIEWLAYER_PT_layer_passes_lightgroups",
         # World
         "WORLD_PT_context_world",

@@ -181,12 +181,21 @@ class PRISM_PT_passes_data(_PassesPanel, bpy.types.Panel):
         column = _pass_column(self.layout, "Include")
         column.prop(layer, "use_pass_combined")
         column.prop(layer, "use_pass_z")
+        column.prop(layer, "use_pass_mist")
         column.prop(layer, "use_pass_position")
         column.prop(layer, "use_pass_normal")
+        vector = column.column()
+        vector.active = not context.scene.render.use_motion_blur  # Cycles writes no Vector pass with motion blur
+        vector.prop(layer, "use_pass_vector")
+        column.prop(layer, "use_pass_uv")
+        column = _pass_column(self.layout, "Indexes")
+        column.prop(layer, "use_pass_object_index")
+        column.prop(layer, "use_pass_material_index")
         column = _pass_column(self.layout, "Other")
         column.prop(prism, "use_pass_denoising_data")
         column.prop(prism, "use_pass_variance")
         column.prop(prism, "use_pass_sample_count")
+        self.layout.prop(layer, "pass_alpha_threshold")  # cut-outs below it show the surface behind them
 
 
 class PRISM_PT_passes_light(_PassesPanel, bpy.types.Panel):
@@ -205,6 +214,10 @@ class PRISM_PT_passes_light(_PassesPanel, bpy.types.Panel):
         column = _pass_column(self.layout, "Other")
         column.prop(layer, "use_pass_emit", text="Emission")
         column.prop(layer, "use_pass_environment")
+        column.prop(layer, "use_pass_ambient_occlusion", text="Ambient Occlusion")
+        cycles = getattr(layer, "cycles", None)  # Cycles' own switch, which Prism reads (Cycles is a core add-on)
+        if cycles is not None:
+            column.prop(cycles, "use_pass_shadow_catcher")
 
 
 CLASSES = (PRISM_PT_sampling, PRISM_PT_denoise, PRISM_PT_light_paths, PRISM_PT_wavelengths, PRISM_PT_spectral_output,

@@ -73,6 +73,20 @@ def test_render_panels_draw_in_both_wavelength_modes(prism_addon, fresh_scene):
     assert any(name == "template_icon" for name, _, _ in log)
 
 
+def test_pass_panels_draw_every_pass_switch_prism_reads(prism_addon, fresh_scene):
+    """Every view-layer pass Prism renders can be switched on from its panels, with Cycles' Alpha Threshold."""
+    from engine.tracer.pass_table import CYCLES_VIEW_LAYER_SWITCH, VIEW_LAYER_SWITCH
+
+    ui = prism_addon.ui.panels_render
+    drawn = []
+    for panel in (ui.PRISM_PT_passes_data, ui.PRISM_PT_passes_light):
+        drawn += _props(_draw(panel, _context(fresh_scene)))
+    expected = {*VIEW_LAYER_SWITCH.values(), *CYCLES_VIEW_LAYER_SWITCH.values(), "use_pass_combined",
+                "pass_alpha_threshold"}
+    assert expected <= set(drawn), expected - set(drawn)
+    assert "VIEWLAYER_PT_layer_passes_cryptomatte" in prism_addon.ui.compat_panels.COMPATIBLE_PANELS
+
+
 def test_farm_panel_shows_the_job_or_what_to_fix(prism_addon, fresh_scene):
     panel = prism_addon.ui.panel_farm.PRISM_PT_farm
     fresh_scene.frame_start, fresh_scene.frame_end = 1, 2
