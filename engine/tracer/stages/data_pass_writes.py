@@ -31,6 +31,7 @@ from ..state import CAMERA_PATH, CATCHER_PASS, PASSES_DONE
 from ..terminator import terminator_lift
 from ..vec3 import tangents, to_world
 from ..warps import cosine_hemisphere
+from .see_through import mean_throughput
 
 #: The sampler slot of the AO pass's direction (2-D): far past any bounce's slots.
 SLOT_AO = 1 << 20
@@ -41,15 +42,6 @@ def writes_data_passes(state, i, layout, material_flags):
     """Whether path ``i``, at a surface of a material with ``material_flags``, writes data passes there."""
     return (layout.columns > 0 and state.flags[i] & (CAMERA_PATH | CATCHER_PASS) == CAMERA_PATH
             and material_flags & MAT_BOUNDARY == 0)
-
-
-@inlined
-def _mean_throughput(state, i):
-    k = state.throughput.shape[1]
-    total = 0.0
-    for c in range(k):
-        total += state.throughput[i, c]
-    return total / k
 
 
 @inlined
@@ -128,7 +120,7 @@ def _queue_ao_ray(state, passes, settings, geometry, i, p, ng, ns, n, triangle, 
         rays.direction[j, c] = d[c]
     rays.tmax[j] = passes.first_hit_data[AO_DISTANCE]
     rays.path[j] = i
-    passes.ao_weight[i] = _mean_throughput(state, i) * alpha
+    passes.ao_weight[i] = mean_throughput(state, i) * alpha
     passes.ao_count[0] = j + 1
 
 
@@ -151,7 +143,7 @@ def camera_surface(state, passes, layout, settings, geometry, i, p, ng, ns, n, m
     passes show), ``alpha`` (``see_through.surface_alpha``), ``bounce`` the path's scatterings so far (0 unless it
     went through transparent glass); ``regs`` the register file of the material's program, just run for this hit."""
     if layout.mist >= 0:
-        passes.values[i, layout.mist] += _mist(passes, p) * alpha * _mean_throughput(state, i)
+        passes.values[i, layout.mist] += _mist(passes, p) * alpha * mean_throughput(state, i)
     if layout.ao >= 0 and bounce == 0:
         _queue_ao_ray(state, passes, settings, geometry, i, p, ng, ns, n, triangle, alpha)
     if state.flags[i] & PASSES_DONE:

@@ -39,6 +39,7 @@ from .clamp import clamp_factor
 from .mis import emitter_weight
 from .data_pass_writes import camera_escape
 from .pass_writes import camera_slot, deposit, features_done
+from .see_through import mean_throughput
 from .shadow_catcher import background_seen, share_emission, split_at_catcher, splits_here
 
 
@@ -78,11 +79,7 @@ def _add_lights_along(state, i, o, d, t, mis_origin, lights, spectra, settings, 
 @inlined
 def _see_through(state, i):
     """Path ``i`` is transparent by its throughput's mean from here on."""
-    k = state.throughput.shape[1]
-    total = 0.0
-    for c in range(k):
-        total += state.throughput[i, c]
-    state.transparency[i] += total / k
+    state.transparency[i] += mean_throughput(state, i)
 
 
 @inlined

@@ -41,6 +41,7 @@ from ..spectra.wavelength_sampling import radiance_to_rgb
 from ..state import CAMERA_PATH, CATCHER_HIT, CATCHER_PASS, DIRECT_SAMPLED, new_ray_queue
 from .bounces import path_bounce
 from .data_pass_writes import camera_depth
+from .see_through import mean_throughput
 
 PassData = namedtuple("PassData", "values spectral snapshot split feature camera_axes camera_at render_origin aov_table "
                                    "aov_registers "
@@ -192,11 +193,8 @@ def first_bounce(state, passes, layout, i, rows, spectral, eta, count, wo, wi, l
         shares[TRANSMISSION if sampled & SAMPLED_TRANSMISSION else GLOSSY, :] = 1.0
     else:
         lobe_shares(rows, spectral, eta, count, wo, wi, lam, hero, collapsed, scratch, shares)
-    k_count = weight.shape[0]
-    mean = 0.0
-    for k in range(k_count):
-        mean += state.throughput[i, k] / k_count
-    for k in range(k_count):
+    mean = mean_throughput(state, i)
+    for k in range(weight.shape[0]):
         # what the cut-outs before let through; a path that keeps only its hero from here (dispersion, ×K): its
         # hero's share for every wavelength (exact behind grey cut-outs)
         seen = mean if collapsed else state.throughput[i, k]

@@ -1,5 +1,6 @@
-"""How much of a surface a camera path sees through: the transparency of its resolved closures (Cycles'
-``surface_shader_transparency``) and the probability that sampling goes straight through it."""
+"""How much a camera path sees through: the transparency of a surface's resolved closures (Cycles'
+``surface_shader_transparency``), the probability that sampling goes straight through it, and what the path's
+throughput kept of what lies behind the cut-outs it crossed."""
 
 from __future__ import annotations
 
@@ -33,3 +34,13 @@ def surface_alpha(rows, spectral, closures):
     """The surface's alpha: 1 - its transparency, within 0..1 (Cycles' ``surface_shader_alpha``)."""
     transparency, _ = see_through(rows, spectral, closures)
     return min(max(1.0 - transparency, 0.0), 1.0)
+
+
+@inlined
+def mean_throughput(state, i):
+    """Path ``i``'s throughput averaged over its wavelengths (Cycles' ``average(throughput)``)."""
+    k = state.throughput.shape[1]
+    total = 0.0
+    for c in range(k):
+        total += state.throughput[i, c]
+    return total / k
